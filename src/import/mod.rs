@@ -1,0 +1,117 @@
+//! glTF 2.0 import (`.gltf` and `.glb`) into the scene model.
+//!
+//! Exists so that every technique sees a glTF file the same way an independent renderer does:
+//! node hierarchy transforms, KHR_lights_punctual lights in W/sr, perspective cameras,
+//! one-sided CCW triangles. Files are treated as hostile: every problem becomes an
+//! [`ImportError`] naming the file, never a panic (platform-notes.md section 12).
+
+mod accessor;
+mod build;
+mod images;
+mod nodes;
+mod primitive;
+mod uri;
+
+pub use accessor::AccessorError;
+pub use uri::UriError;
+
+use std::path::{Path, PathBuf};
+
+use crate::scene::{Image, Material, Mesh, SceneDesc};
+
+/// Extensions we understand well enough to accept when a file marks them required.
+pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &["KHR_lights_punctual"];
+
+/// Largest file we read (bytes); protects against memory blow-ups.
+const MAX_FILE_BYTES: u64 = 2 << 30;
+
+/// Why a glTF file could not be imported. Every variant names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum ImportError {
+    /// The file itself could not be read.
+    #[error("{path}: cannot read file: {source}")]
+    Io { path: PathBuf, source: std::io::Error },
+    /// The JSON or GLB container is malformed or fails glTF validation.
+    #[error("{path}: not a valid glTF file: {message}")]
+    Parse { path: PathBuf, message: String },
+    /// The file requires an extension we do not implement.
+    #[error("{path}: requires unsupported extension {extension:?} (supported: {supported})")]
+    UnsupportedExtension { path: PathBuf, extension: String, supported: String },
+    /// A buffer could not be loaded.
+    #[error("{path}: buffer {index}: {source}")]
+    Buffer { path: PathBuf, index: usize, source: UriError },
+    /// A buffer is shorter than its declared byteLength.
+    #[error("{path}: buffer {index} has {actual} bytes but declares {declared}")]
+    BufferTooShort { path: PathBuf, index: usize, actual: usize, declared: usize },
+    /// A GLB buffer refers to a binary chunk that is absent.
+    #[error("{path}: buffer {index} refers to the GLB binary chunk, which is missing")]
+    MissingBinaryChunk { path: PathBuf, index: usize },
+    /// An image could not be loaded or decoded.
+    #[error("{path}: image {index}: {message}")]
+    Image { path: PathBuf, index: usize, message: String },
+    /// A mesh primitive is unusable.
+    #[error("{path}: mesh {mesh} primitive {primitive}: {message}")]
+    Primitive { path: PathBuf, mesh: usize, primitive: usize, message: String },
+    /// A node, light or camera is unusable.
+    #[error("{path}: {what}: {message}")]
+    Node { path: PathBuf, what: String, message: String },
+    /// The importer hit an internal failure on this file (a bug, reported instead of crashing).
+    #[error("{path}: internal importer failure: {message}")]
+    Internal { path: PathBuf, message: String },
+}
+
+/// Everything one glTF asset provides.
+#[derive(Clone, Debug, Default)]
+pub struct Asset {
+    /// Meshes keyed by (glTF mesh index, primitive index), with the primitive's material index.
+    pub primitives: Vec<((usize, usize), Mesh, Option<usize>)>,
+    /// Decoded images, in glTF image order.
+    pub images: Vec<Image>,
+    /// Materials, in glTF material order (image indices local to this asset).
+    pub materials: Vec<Material>,
+    /// The default scene: objects (material index local; the default material is appended at
+    /// `materials.len()` when used), lights, camera.
+    pub scene: SceneDesc,
+    /// Whether the file had a camera (otherwise `scene.camera` frames the bounds).
+    pub has_camera: bool,
+}
+
+impl Asset {
+    /// The mesh of glTF mesh `mesh`, primitive `primitive`.
+    pub fn primitive(&self, mesh: usize, primitive: usize) -> Option<&Mesh> {
+        self.primitives.iter().find(|(k, _, _)| *k == (mesh, primitive)).map(|(_, m, _)| m)
+    }
+}
+
+/// Imports a `.gltf` or `.glb` file.
+pub fn import_gltf(path: &Path) -> Result<Asset, ImportError> {
+    let io = |source| ImportError::Io { path: path.to_owned(), source };
+    let len = std::fs::metadata(path).map_err(io)?.len();
+    if len > MAX_FILE_BYTES {
+        return Err(ImportError::Parse { path: path.to_owned(), message: format!("file is {len} bytes, too large") });
+    }
+    let bytes = std::fs::read(path).map_err(io)?;
+    let base_dir = path.parent().unwrap_or_else(|| Path::new("."));
+    import_slice(&bytes, base_dir, path)
+}
+
+/// Imports glTF or GLB bytes; `base_dir` resolves relative URIs, `path` names the file in errors.
+pub fn import_slice(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset, ImportError> {
+    // Defence in depth: our own checks run before the gltf crate's readers, but a panic inside
+    // the third-party parser must still become an error rather than take down the editor.
+    let result = std::panic::catch_unwind(|| build::build(bytes, base_dir, path));
+    match result {
+        Ok(r) => r,
+        Err(payload) => {
+            let message = payload
+                .downcast_ref::<&str>()
+                .map(|s| (*s).to_owned())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "panic".into());
+            Err(ImportError::Internal { path: path.to_owned(), message })
+        }
+    }
+}
+
+pub use resolve::{ResolveError, framing_camera, resolve, scene_from_asset};
+mod resolve;

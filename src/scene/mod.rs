@@ -1,0 +1,211 @@
+//! The scene model: pure data that every other layer reads.
+//!
+//! It exists so that the importer, the project file, the renderer, the reference path tracer and
+//! the editor all agree on one description of the world, with the conventions of
+//! `architecture.md` section 3 (metres, +Y up, radiometric lights in W/sr, one-sided surfaces).
+//! It never imports wgpu or egui.
+//!
+//! Every mutable access goes through a method that bumps [`Scene::revision`], so caches (GPU
+//! buffers, sample points, path-tracer accumulation) can tell when they are stale.
+
+mod camera;
+mod light;
+mod material;
+mod mesh;
+mod object;
+
+pub use camera::Camera;
+pub use light::{Light, LightKind, spot_attenuation};
+pub use material::{Material, TextureRef};
+pub use mesh::{Aabb, Mesh, MeshError};
+pub use object::{MeshSource, Object, ObjectRole, Transform};
+
+use serde::{Deserialize, Serialize};
+
+/// An RGBA8 image decoded from an asset (base colour or normal map).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Tightly packed RGBA8 texels, row-major from the top-left.
+    pub rgba8: Vec<u8>,
+}
+
+/// Runtime geometry and images loaded from the scene's assets (not saved in project files; the
+/// project file refers to them by [`MeshSource`] and [`TextureRef`]).
+#[derive(Clone, Debug, Default)]
+pub struct Resources {
+    /// Meshes, indexed by [`Object::mesh`].
+    pub meshes: Vec<Mesh>,
+    /// Images, indexed by [`TextureRef::image`].
+    pub images: Vec<Image>,
+}
+
+/// The authored description of a scene: what the project file stores.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDesc {
+    /// Materials, indexed by [`Object::material`].
+    pub materials: Vec<Material>,
+    /// Objects (static geometry, proxy blocks, clutter).
+    pub objects: Vec<Object>,
+    /// Punctual lights.
+    pub lights: Vec<Light>,
+    /// The view camera.
+    pub camera: Camera,
+}
+
+/// A scene ready to render: the authored description plus its loaded resources.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    desc: SceneDesc,
+    resources: Resources,
+    revision: u64,
+}
+
+/// A problem that makes a scene unusable (found by [`Scene::validate`]).
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum SceneError {
+    /// An object names a mesh that does not exist.
+    #[error("object {object:?} refers to mesh {mesh}, but the scene has {count} meshes")]
+    MissingMesh { object: String, mesh: usize, count: usize },
+    /// An object names a material that does not exist.
+    #[error("object {object:?} refers to material {material}, but the scene has {count} materials")]
+    MissingMaterial { object: String, material: usize, count: usize },
+    /// A material names an image that does not exist.
+    #[error("material {material:?} refers to image {image}, but the scene has {count} images")]
+    MissingImage { material: String, image: usize, count: usize },
+    /// A value is NaN, infinite or out of its range.
+    #[error("{what} is invalid: {why}")]
+    BadValue { what: String, why: String },
+}
+
+impl Scene {
+    /// Builds a scene and checks that every reference resolves and every number is finite.
+    pub fn new(desc: SceneDesc, resources: Resources) -> Result<Self, SceneError> {
+        let scene = Self { desc, resources, revision: 1 };
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// The authored description.
+    pub fn desc(&self) -> &SceneDesc {
+        &self.desc
+    }
+
+    /// Mutable access to the description; bumps the revision.
+    pub fn desc_mut(&mut self) -> &mut SceneDesc {
+        self.revision += 1;
+        &mut self.desc
+    }
+
+    /// Loaded meshes and images.
+    pub fn resources(&self) -> &Resources {
+        &self.resources
+    }
+
+    /// Mutable access to the resources; bumps the revision.
+    pub fn resources_mut(&mut self) -> &mut Resources {
+        self.revision += 1;
+        &mut self.resources
+    }
+
+    /// A counter that changes on every edit (every mutable access).
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+
+    /// Objects.
+    pub fn objects(&self) -> &[Object] {
+        &self.desc.objects
+    }
+
+    /// Lights.
+    pub fn lights(&self) -> &[Light] {
+        &self.desc.lights
+    }
+
+    /// Materials.
+    pub fn materials(&self) -> &[Material] {
+        &self.desc.materials
+    }
+
+    /// The view camera.
+    pub fn camera(&self) -> &Camera {
+        &self.desc.camera
+    }
+
+    /// Sets the view camera; bumps the revision.
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.desc_mut().camera = camera;
+    }
+
+    /// The world-space bounds of every object, or `None` for an empty scene.
+    pub fn bounds(&self) -> Option<Aabb> {
+        let mut out: Option<Aabb> = None;
+        for object in &self.desc.objects {
+            let Some(mesh) = self.resources.meshes.get(object.mesh) else {
+                continue;
+            };
+            let Some(local) = mesh.bounds() else { continue };
+            let world = local.transformed(&object.transform.matrix());
+            out = Some(match out {
+                Some(b) => b.union(&world),
+                None => world,
+            });
+        }
+        out
+    }
+
+    /// Checks references and numbers.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        let meshes = self.resources.meshes.len();
+        let materials = self.desc.materials.len();
+        let images = self.resources.images.len();
+        for object in &self.desc.objects {
+            if object.mesh >= meshes {
+                return Err(SceneError::MissingMesh {
+                    object: object.name.clone(),
+                    mesh: object.mesh,
+                    count: meshes,
+                });
+            }
+            if object.material >= materials {
+                return Err(SceneError::MissingMaterial {
+                    object: object.name.clone(),
+                    material: object.material,
+                    count: materials,
+                });
+            }
+            object.validate()?;
+        }
+        for material in &self.desc.materials {
+            for tex in [&material.base_color_texture, &material.normal_texture].into_iter().flatten() {
+                if tex.image >= images {
+                    return Err(SceneError::MissingImage {
+                        material: material.name.clone(),
+                        image: tex.image,
+                        count: images,
+                    });
+                }
+            }
+            material.validate()?;
+        }
+        for light in &self.desc.lights {
+            light.validate()?;
+        }
+        self.desc.camera.validate()?;
+        Ok(())
+    }
+}
+
+/// Returns an error unless every value is finite.
+pub(crate) fn check_finite(what: &str, values: &[f32]) -> Result<(), SceneError> {
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(SceneError::BadValue { what: what.to_owned(), why: "not a finite number".to_owned() })
+    }
+}
