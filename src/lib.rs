@@ -4,5 +4,11 @@
 //! fill it; [`render`] draws it with wgpu; `app` is the egui editor. Lower layers never import
 //! higher ones.
 
+pub mod app;
+pub mod cli;
+pub mod image_io;
 pub mod import;
+pub mod project_file;
+pub mod render;
 pub mod scene;
+pub mod settings;

@@ -1,0 +1,22 @@
+// Per-frame view constants shared by every full-screen pass (mirrors render::uniforms::FrameUniforms).
+struct Frame {
+    clip_from_world: mat4x4<f32>,
+    world_from_clip: mat4x4<f32>,
+    prev_clip_from_world: mat4x4<f32>,
+    // xyz camera position, w unused.
+    camera_position: vec4<f32>,
+    // width, height, 1/width, 1/height.
+    size: vec4<f32>,
+    // light count, frame index, PCF radius, shadow layer count.
+    params: vec4<u32>,
+    // normal bias in texels, shadow map size, 1/size, unused.
+    shadow: vec4<f32>,
+}
+
+// World position of pixel `pixel` (integer coordinates) at depth `depth` (0..1).
+fn world_from_pixel(frame: Frame, pixel: vec2<u32>, depth: f32) -> vec3<f32> {
+    let uv = (vec2<f32>(pixel) + 0.5) * frame.size.zw;
+    let ndc = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
+    let h = frame.world_from_clip * ndc;
+    return h.xyz / h.w;
+}

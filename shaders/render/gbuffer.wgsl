@@ -1,0 +1,102 @@
+// G-buffer pass: one draw per object. Outputs (see render::gbuffer for formats and packing):
+//   0 albedo    rgba8unorm-srgb  linear Lambertian albedo (base colour x texture), a = 1
+//   1 normal    rgba16float      xy = octahedral shading normal (normal-mapped), zw = octahedral geometric normal
+//   2 material  rgba8unorm       rgb = specular colour, a = roughness
+//   3 motion    rg16float        uv(current) - uv(previous frame)
+//   4 object id r32uint          object index + 1 (0 = background)
+#import common/frame.wgsl
+#import common/octahedral.wgsl
+
+struct Object {
+    world_from_local: mat4x4<f32>,
+    normal_from_local: mat4x4<f32>,
+    prev_world_from_local: mat4x4<f32>,
+    // object id + 1, material index, unused, unused.
+    ids: vec4<u32>,
+}
+
+struct MaterialParams {
+    base_color: vec4<f32>,
+    // rgb specular, a roughness.
+    specular: vec4<f32>,
+    // has base texture, has normal texture, unused, unused.
+    flags: vec4<u32>,
+    // normal scale, unused...
+    params: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(1) @binding(0) var<uniform> object: Object;
+@group(2) @binding(0) var<uniform> material: MaterialParams;
+@group(2) @binding(1) var base_texture: texture_2d<f32>;
+@group(2) @binding(2) var normal_texture: texture_2d<f32>;
+@group(2) @binding(3) var material_sampler: sampler;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+    @location(4) cur_clip: vec4<f32>,
+    @location(5) prev_clip: vec4<f32>,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    let world = object.world_from_local * vec4<f32>(v.position, 1.0);
+    out.world = world.xyz;
+    out.clip = frame.clip_from_world * world;
+    out.cur_clip = out.clip;
+    out.prev_clip = frame.prev_clip_from_world * (object.prev_world_from_local * vec4<f32>(v.position, 1.0));
+    out.normal = (object.normal_from_local * vec4<f32>(v.normal, 0.0)).xyz;
+    out.tangent = vec4<f32>((object.world_from_local * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
+    out.uv = v.uv;
+    return out;
+}
+
+struct GbufferOut {
+    @location(0) albedo: vec4<f32>,
+    @location(1) normal: vec4<f32>,
+    @location(2) material: vec4<f32>,
+    @location(3) motion: vec2<f32>,
+    @location(4) object_id: u32,
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> GbufferOut {
+    var out: GbufferOut;
+    var albedo = material.base_color.rgb;
+    if material.flags.x != 0u {
+        albedo = albedo * textureSample(base_texture, material_sampler, in.uv).rgb;
+    }
+    var n = normalize(in.normal);
+    // Flat geometric normal of the triangle, oriented like the interpolated normal.
+    var ng = normalize(cross(dpdx(in.world), dpdy(in.world)));
+    if dot(ng, n) < 0.0 {
+        ng = -ng;
+    }
+    if material.flags.y != 0u {
+        let t = normalize(in.tangent.xyz - n * dot(n, in.tangent.xyz));
+        let b = cross(n, t) * select(-1.0, 1.0, in.tangent.w >= 0.0);
+        var m = textureSample(normal_texture, material_sampler, in.uv).xyz * 2.0 - 1.0;
+        m = vec3<f32>(m.xy * material.params.x, m.z);
+        n = normalize(t * m.x + b * m.y + n * m.z);
+    }
+    out.albedo = vec4<f32>(albedo, 1.0);
+    out.normal = vec4<f32>(oct_encode(n), oct_encode(ng));
+    out.material = vec4<f32>(material.specular.rgb, material.specular.a);
+    let cur = in.cur_clip.xy / in.cur_clip.w;
+    let prev = in.prev_clip.xy / in.prev_clip.w;
+    out.motion = (cur - prev) * vec2<f32>(0.5, -0.5);
+    out.object_id = object.ids.x;
+    return out;
+}

@@ -1,0 +1,60 @@
+// Deferred direct lighting and composite: radiance = direct (shadowed punctual lights on the
+// Lambertian + glossy BRDF) + albedo x indirect, where `indirect` is the active GI technique's
+// output (zero for `direct`). One-sided surfaces: a light behind the geometric normal adds nothing.
+#import common/frame.wgsl
+#import common/octahedral.wgsl
+#import common/lights.wgsl
+#import common/brdf.wgsl
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> lights: array<GpuLight>;
+@group(0) @binding(2) var<storage, read> shadow_views: array<mat4x4<f32>>;
+@group(0) @binding(3) var shadow_maps: texture_depth_2d_array;
+@group(0) @binding(4) var shadow_sampler: sampler_comparison;
+
+@group(1) @binding(0) var depth_tex: texture_depth_2d;
+@group(1) @binding(1) var albedo_tex: texture_2d<f32>;
+@group(1) @binding(2) var normal_tex: texture_2d<f32>;
+@group(1) @binding(3) var material_tex: texture_2d<f32>;
+@group(1) @binding(4) var indirect_tex: texture_2d<f32>;
+@group(1) @binding(5) var out_radiance: texture_storage_2d<rgba32float, write>;
+
+#import common/shadow.wgsl
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = vec2<u32>(frame.size.xy);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let pixel = id.xy;
+    let depth = textureLoad(depth_tex, pixel, 0);
+    if depth >= 1.0 {
+        textureStore(out_radiance, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    let p = world_from_pixel(frame, pixel, depth);
+    let albedo = textureLoad(albedo_tex, pixel, 0).rgb;
+    let enc = textureLoad(normal_tex, pixel, 0);
+    let n = oct_decode(enc.xy);
+    let ng = oct_decode(enc.zw);
+    let mat = textureLoad(material_tex, pixel, 0);
+    let v = normalize(frame.camera_position.xyz - p);
+    var radiance = vec3<f32>(0.0);
+    for (var i = 0u; i < frame.params.x; i = i + 1u) {
+        let light = lights[i];
+        let inc = light_incident(light, p);
+        if dot(ng, inc.dir) <= 0.0 {
+            continue;
+        }
+        let cos_s = max(dot(n, inc.dir), 0.0);
+        if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
+            continue;
+        }
+        let vis = shadow_factor(frame, light, p, ng, inc.distance);
+        let f = brdf_eval(albedo, mat.rgb, mat.a, n, v, inc.dir);
+        radiance = radiance + f * inc.irradiance * cos_s * vis;
+    }
+    radiance = radiance + albedo * textureLoad(indirect_tex, pixel, 0).rgb;
+    textureStore(out_radiance, pixel, vec4<f32>(radiance, 1.0));
+}

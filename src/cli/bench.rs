@@ -1,0 +1,129 @@
+//! `bouncelab bench`: per-pass timings of each mode at fixed sizes, written to
+//! `docs/BENCHMARKS.md`. Later techniques add their rows here.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use crate::project_file::{Project, default_project_path};
+use crate::render::{GpuContext, PassTiming, Renderer};
+use crate::settings::GiMode;
+
+/// One measured configuration.
+struct Row {
+    mode: GiMode,
+    size: (u32, u32),
+    frame_ms: f64,
+    passes: Vec<PassTiming>,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(0.0)
+}
+
+fn measure(
+    ctx: &GpuContext,
+    project: &Project,
+    mode: GiMode,
+    size: (u32, u32),
+    frames: usize,
+) -> anyhow::Result<Row> {
+    let mut renderer = Renderer::new(&ctx.device, &ctx.queue)?;
+    let mut settings = project.render.clone();
+    settings.mode = mode;
+    // Warm-up: pipeline compilation and first uploads.
+    for _ in 0..3 {
+        renderer.render(&project.scene, &settings, size)?;
+        let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+    let mut times = Vec::new();
+    let mut per_pass: Vec<Vec<PassTiming>> = Vec::new();
+    for _ in 0..frames {
+        let t = Instant::now();
+        renderer.render(&project.scene, &settings, size)?;
+        let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+        per_pass.push(renderer.timings(true));
+    }
+    let names: Vec<String> = per_pass
+        .last()
+        .map(|p| p.iter().map(|t| t.name.clone()).collect())
+        .unwrap_or_default();
+    let passes = names
+        .into_iter()
+        .map(|name| {
+            let ms = median(
+                per_pass
+                    .iter()
+                    .filter_map(|f| f.iter().find(|t| t.name == name).map(|t| t.ms))
+                    .collect(),
+            );
+            PassTiming { name, ms }
+        })
+        .collect();
+    Ok(Row {
+        mode,
+        size,
+        frame_ms: median(times),
+        passes,
+    })
+}
+
+/// Runs the benchmark and writes `out` (normally `docs/BENCHMARKS.md`).
+pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
+    let ctx = GpuContext::new_headless()?;
+    let project = Project::load(&default_project_path())?;
+    let sizes: &[(u32, u32)] = if quick {
+        &[(320, 180)]
+    } else {
+        &[(320, 180), (640, 360), (1280, 720)]
+    };
+    let frames = if quick { 5 } else { 20 };
+    let mut rows = Vec::new();
+    for &size in sizes {
+        rows.push(measure(&ctx, &project, GiMode::Direct, size, frames)?);
+    }
+    let mut md = String::new();
+    let _ = writeln!(md, "# Benchmarks\n");
+    let _ = writeln!(
+        md,
+        "Written by `bouncelab bench{}` (release build). Adapter: **{}**.",
+        if quick { " --quick" } else { "" },
+        ctx.describe()
+    );
+    let _ = writeln!(
+        md,
+        "Scene: the default project (Cornell box, one shadowed point light). Frame time is wall-clock per frame \
+         including submission and waiting for the GPU (median of {frames}); pass times are GPU timestamps (median). \
+         Software adapters are not GPUs: compare ratios, not absolute numbers.\n"
+    );
+    let _ = writeln!(md, "## Direct lighting\n");
+    let _ = writeln!(md, "| mode | size | frame ms | per-pass GPU ms |");
+    let _ = writeln!(md, "|---|---|---|---|");
+    for r in &rows {
+        let passes = if r.passes.is_empty() {
+            "(no timestamp queries on this adapter)".to_owned()
+        } else {
+            r.passes
+                .iter()
+                .map(|p| format!("{} {:.2}", p.name, p.ms))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let _ = writeln!(
+            md,
+            "| {} | {}x{} | {:.2} | {} |",
+            r.mode.name(),
+            r.size.0,
+            r.size.1,
+            r.frame_ms,
+            passes
+        );
+    }
+    if let Some(dir) = out.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    std::fs::write(out, &md)?;
+    Ok(md)
+}

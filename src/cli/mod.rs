@@ -1,0 +1,6 @@
+//! Command-line entry points (architecture.md section 5): `render`, `bench`, asset generation.
+//! The binary's `main.rs` only parses arguments and calls these.
+
+pub mod bench;
+pub mod generate;
+pub mod render;

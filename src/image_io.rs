@@ -1,0 +1,138 @@
+//! Image files: EXR holds linear radiance (before exposure and tonemapping), PNG the
+//! tonemapped sRGB view. No GPU types.
+
+use std::path::{Path, PathBuf};
+
+/// Why an image could not be written or read.
+#[derive(Debug, thiserror::Error)]
+pub enum ImageIoError {
+    /// The extension is neither `.exr` nor `.png`.
+    #[error(
+        "{0}: unsupported image extension (use .exr for linear radiance or .png for the tonemapped view)"
+    )]
+    Extension(PathBuf),
+    /// Encoding or decoding failed.
+    #[error("{path}: {message}")]
+    Codec { path: PathBuf, message: String },
+    /// The pixel count does not match the size.
+    #[error("{path}: {got} pixels for a {width}x{height} image")]
+    Size {
+        path: PathBuf,
+        got: usize,
+        width: u32,
+        height: u32,
+    },
+}
+
+/// Linear RGBA float image.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HdrImage {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Row-major RGBA, top row first.
+    pub pixels: Vec<[f32; 4]>,
+}
+
+/// Writes linear radiance to `.exr` (32-bit float RGBA).
+pub fn write_exr(path: &Path, img: &HdrImage) -> Result<(), ImageIoError> {
+    let codec = |e: image::ImageError| ImageIoError::Codec {
+        path: path.to_owned(),
+        message: e.to_string(),
+    };
+    let flat: Vec<f32> = img.pixels.iter().flatten().copied().collect();
+    let buf = image::Rgba32FImage::from_raw(img.width, img.height, flat).ok_or_else(|| {
+        ImageIoError::Size {
+            path: path.to_owned(),
+            got: img.pixels.len(),
+            width: img.width,
+            height: img.height,
+        }
+    })?;
+    image::DynamicImage::ImageRgba32F(buf)
+        .save_with_format(path, image::ImageFormat::OpenExr)
+        .map_err(codec)
+}
+
+/// Writes RGBA8 (already sRGB-encoded) to `.png`.
+pub fn write_png(path: &Path, width: u32, height: u32, rgba8: Vec<u8>) -> Result<(), ImageIoError> {
+    let got = rgba8.len() / 4;
+    let buf =
+        image::RgbaImage::from_raw(width, height, rgba8).ok_or_else(|| ImageIoError::Size {
+            path: path.to_owned(),
+            got,
+            width,
+            height,
+        })?;
+    buf.save_with_format(path, image::ImageFormat::Png)
+        .map_err(|e| ImageIoError::Codec {
+            path: path.to_owned(),
+            message: e.to_string(),
+        })
+}
+
+/// Reads an image as linear RGBA float: EXR as stored, PNG/JPEG decoded from sRGB.
+pub fn read_linear(path: &Path) -> Result<HdrImage, ImageIoError> {
+    let img = image::open(path).map_err(|e| ImageIoError::Codec {
+        path: path.to_owned(),
+        message: e.to_string(),
+    })?;
+    let is_exr = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    let rgba = img.to_rgba32f();
+    let (width, height) = rgba.dimensions();
+    let pixels = rgba
+        .pixels()
+        .map(|p| {
+            if is_exr {
+                p.0
+            } else {
+                [
+                    srgb_to_linear(p.0[0]),
+                    srgb_to_linear(p.0[1]),
+                    srgb_to_linear(p.0[2]),
+                    p.0[3],
+                ]
+            }
+        })
+        .collect();
+    Ok(HdrImage {
+        width,
+        height,
+        pixels,
+    })
+}
+
+/// The sRGB decoding curve.
+pub fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// What an output path asks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputKind {
+    /// Linear radiance.
+    Exr,
+    /// Tonemapped sRGB.
+    Png,
+}
+
+/// Chooses the output kind from the extension.
+pub fn output_kind(path: &Path) -> Result<OutputKind, ImageIoError> {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("exr") => Ok(OutputKind::Exr),
+        Some("png") => Ok(OutputKind::Png),
+        _ => Err(ImageIoError::Extension(path.to_owned())),
+    }
+}

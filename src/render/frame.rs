@@ -1,0 +1,396 @@
+//! The frame: one function that runs the passes in order over typed resources.
+
+use glam::Mat4;
+use wgpu::util::DeviceExt as _;
+
+use super::gbuffer::GbufferPass;
+use super::layouts::Layouts;
+use super::lighting::{LightingInputs, LightingPass};
+use super::readback::{self, ReadbackError};
+use super::scene_gpu::SceneGpu;
+use super::shaders::ShaderError;
+use super::shadows::ShadowPass;
+use super::targets::ViewTargets;
+use super::timing::{GpuTimer, PassTiming};
+use super::tonemap::TonemapPass;
+use super::uniforms::{FrameUniforms, GpuLight};
+use crate::scene::Scene;
+use crate::settings::{GiMode, RenderSettings, SettingsError};
+
+/// Why a frame could not be rendered.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// A shader is missing from the build.
+    #[error(transparent)]
+    Shader(#[from] ShaderError),
+    /// The GI mode is not available in this build or on this adapter.
+    #[error("GI mode {mode:?} is not available: {reason}")]
+    Unsupported { mode: &'static str, reason: String },
+    /// A setting is out of range.
+    #[error(transparent)]
+    Settings(#[from] SettingsError),
+    /// The requested size is empty or too large for the adapter.
+    #[error("image size {0}x{1} is outside 1..={2} pixels per side")]
+    Size(u32, u32, u32),
+    /// wgpu reported a validation or out-of-memory error while recording the frame.
+    #[error("GPU error: {0}")]
+    Gpu(String),
+    /// Reading results back failed.
+    #[error(transparent)]
+    Readback(#[from] ReadbackError),
+}
+
+struct SizedResources {
+    targets: ViewTargets,
+    lighting_targets: wgpu::BindGroup,
+    tonemap: wgpu::BindGroup,
+}
+
+/// Owns every pipeline and per-view resource; long-lived.
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    layouts: Layouts,
+    gbuffer: GbufferPass,
+    shadows: ShadowPass,
+    lighting: LightingPass,
+    tonemap: TonemapPass,
+    frame_buffer: wgpu::Buffer,
+    frame_bind_group: wgpu::BindGroup,
+    lights_buffer: wgpu::Buffer,
+    shadow_views_buffer: wgpu::Buffer,
+    lighting_inputs: Option<(u64, wgpu::BindGroup)>,
+    inputs_generation: u64,
+    scene_gpu: Option<SceneGpu>,
+    sized: Option<SizedResources>,
+    timer: GpuTimer,
+    prev_clip_from_world: Option<Mat4>,
+    frame_index: u32,
+}
+
+fn storage_buffer(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
+impl Renderer {
+    /// Creates every pipeline (fails only if a shader is missing; validation errors surface
+    /// through wgpu's error handler).
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Self, RenderError> {
+        let layouts = Layouts::new(device);
+        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame uniforms"),
+            size: std::mem::size_of::<FrameUniforms>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let frame_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame bind group"),
+            layout: &layouts.frame,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: frame_buffer.as_entire_binding(),
+            }],
+        });
+        Ok(Self {
+            gbuffer: GbufferPass::new(device, &layouts)?,
+            shadows: ShadowPass::new(device)?,
+            lighting: LightingPass::new(device)?,
+            tonemap: TonemapPass::new(device)?,
+            lights_buffer: storage_buffer(
+                device,
+                "lights",
+                bytemuck::bytes_of(&GpuLight::default()),
+            ),
+            shadow_views_buffer: storage_buffer(
+                device,
+                "shadow views",
+                bytemuck::bytes_of(&Mat4::IDENTITY.to_cols_array()),
+            ),
+            lighting_inputs: None,
+            inputs_generation: 0,
+            frame_buffer,
+            frame_bind_group,
+            layouts,
+            scene_gpu: None,
+            sized: None,
+            timer: GpuTimer::new(device, queue),
+            prev_clip_from_world: None,
+            frame_index: 0,
+            device: device.clone(),
+            queue: queue.clone(),
+        })
+    }
+
+    /// The modes this renderer can draw now.
+    pub fn supports(mode: GiMode) -> Result<(), String> {
+        match mode {
+            GiMode::Direct => Ok(()),
+            other => Err(format!(
+                "{} is not implemented yet in this build",
+                other.name()
+            )),
+        }
+    }
+
+    /// Renders one frame of `scene` at `size` into the view targets (HDR and display image).
+    pub fn render(
+        &mut self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        size: (u32, u32),
+    ) -> Result<(), RenderError> {
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let result = self.render_inner(scene, settings, size);
+        let oom = pollster::block_on(memory.pop());
+        let invalid = pollster::block_on(validation.pop());
+        result?;
+        match oom.or(invalid) {
+            Some(e) => Err(RenderError::Gpu(e.to_string())),
+            None => Ok(()),
+        }
+    }
+
+    fn render_inner(
+        &mut self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        size: (u32, u32),
+    ) -> Result<(), RenderError> {
+        settings.validate()?;
+        Self::supports(settings.mode).map_err(|reason| RenderError::Unsupported {
+            mode: settings.mode.name(),
+            reason,
+        })?;
+        let max = self.device.limits().max_texture_dimension_2d;
+        if size.0 == 0 || size.1 == 0 || size.0 > max || size.1 > max {
+            return Err(RenderError::Size(size.0, size.1, max));
+        }
+        self.ensure_size(size);
+        let (device, queue) = (&self.device.clone(), &self.queue.clone());
+        match &mut self.scene_gpu {
+            Some(gpu) => gpu.sync(device, queue, &self.layouts, scene),
+            None => self.scene_gpu = Some(SceneGpu::new(device, queue, &self.layouts, scene)),
+        }
+
+        // Shadow layers, packed lights and frame constants.
+        let assignment = self.shadows.prepare(device, scene, &settings.shadows);
+        self.upload_lights(&assignment.lights);
+        let camera = scene.camera();
+        let clip_from_world =
+            camera.clip_from_view(size.0 as f32 / size.1 as f32) * camera.view_from_world();
+        let prev = self.prev_clip_from_world.unwrap_or(clip_from_world);
+        let res = self.shadows.resolution() as f32;
+        let frame = FrameUniforms {
+            clip_from_world: clip_from_world.to_cols_array_2d(),
+            world_from_clip: clip_from_world.inverse().to_cols_array_2d(),
+            prev_clip_from_world: prev.to_cols_array_2d(),
+            camera_position: camera.position.extend(1.0).to_array(),
+            size: [
+                size.0 as f32,
+                size.1 as f32,
+                1.0 / size.0 as f32,
+                1.0 / size.1 as f32,
+            ],
+            params: [
+                assignment.lights.len() as u32,
+                self.frame_index,
+                settings.shadows.pcf_radius,
+                self.shadows.layer_matrices.len() as u32,
+            ],
+            shadow: [settings.shadows.normal_bias_texels, res, 1.0 / res, 0.0],
+        };
+        queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
+        self.prev_clip_from_world = Some(clip_from_world);
+        self.frame_index = self.frame_index.wrapping_add(1);
+
+        let (Some(gpu), Some(sized)) = (&self.scene_gpu, &self.sized) else {
+            return Ok(());
+        };
+        let generation = self.shadows.generation * 1_000_003 + self.inputs_generation;
+        if self
+            .lighting_inputs
+            .as_ref()
+            .is_none_or(|(g, _)| *g != generation)
+        {
+            let inputs = LightingInputs {
+                frame: &self.frame_buffer,
+                lights: &self.lights_buffer,
+                shadow_views: &self.shadow_views_buffer,
+                shadow_maps: &self.shadows.array_view,
+            };
+            self.lighting_inputs =
+                Some((generation, self.lighting.inputs_bind_group(device, &inputs)));
+        }
+        let Some((_, lighting_inputs)) = &self.lighting_inputs else {
+            return Ok(());
+        };
+
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("frame encoder"),
+        });
+        self.timer.begin_frame();
+        self.gbuffer.record(
+            &mut encoder,
+            &sized.targets,
+            &self.frame_bind_group,
+            scene,
+            gpu,
+            self.timer
+                .scope("gbuffer")
+                .map(|t| t.render_writes(true, true)),
+        );
+        let shadow_ts = if self.shadows.layer_matrices.is_empty() {
+            None
+        } else {
+            self.timer.scope("shadows")
+        };
+        self.shadows
+            .record(device, queue, &mut encoder, scene, gpu, shadow_ts);
+        // The active GI technique writes `targets.indirect` here; `direct` leaves it black.
+        clear(&mut encoder, &sized.targets.indirect.view);
+        self.lighting.record(
+            &mut encoder,
+            lighting_inputs,
+            &sized.lighting_targets,
+            size,
+            self.timer.scope("lighting"),
+        );
+        self.tonemap.record(
+            queue,
+            &mut encoder,
+            &sized.tonemap,
+            &settings.view,
+            size,
+            self.timer.scope("tonemap"),
+        );
+        self.timer.resolve(&mut encoder);
+        queue.submit([encoder.finish()]);
+        self.timer.after_submit();
+        Ok(())
+    }
+
+    fn ensure_size(&mut self, size: (u32, u32)) {
+        if self.sized.as_ref().is_some_and(|s| s.targets.size == size) {
+            return;
+        }
+        let targets = ViewTargets::new(&self.device, size);
+        let lighting_targets = self.lighting.targets_bind_group(&self.device, &targets);
+        let tonemap = self
+            .tonemap
+            .bind_group(&self.device, &targets.hdr.view, &targets.ldr.view);
+        self.sized = Some(SizedResources {
+            targets,
+            lighting_targets,
+            tonemap,
+        });
+        self.prev_clip_from_world = None;
+    }
+
+    fn upload_lights(&mut self, lights: &[GpuLight]) {
+        let empty = [GpuLight::default()];
+        let light_bytes: &[u8] =
+            bytemuck::cast_slice(if lights.is_empty() { &empty } else { lights });
+        let views: Vec<[f32; 16]> = self
+            .shadows
+            .layer_matrices
+            .iter()
+            .map(Mat4::to_cols_array)
+            .collect();
+        let view_bytes: Vec<u8> = if views.is_empty() {
+            bytemuck::bytes_of(&Mat4::IDENTITY.to_cols_array()).to_vec()
+        } else {
+            bytemuck::cast_slice(&views).to_vec()
+        };
+        if self.lights_buffer.size() < light_bytes.len() as u64 {
+            self.lights_buffer = storage_buffer(
+                &self.device,
+                "lights",
+                &vec![0u8; light_bytes.len().next_power_of_two()],
+            );
+            self.inputs_generation += 1;
+        }
+        if self.shadow_views_buffer.size() < view_bytes.len() as u64 {
+            self.shadow_views_buffer = storage_buffer(
+                &self.device,
+                "shadow views",
+                &vec![0u8; view_bytes.len().next_power_of_two()],
+            );
+            self.inputs_generation += 1;
+        }
+        self.queue.write_buffer(&self.lights_buffer, 0, light_bytes);
+        self.queue
+            .write_buffer(&self.shadow_views_buffer, 0, &view_bytes);
+    }
+
+    /// The current view targets (after the first render).
+    pub fn targets(&self) -> Option<&ViewTargets> {
+        self.sized.as_ref().map(|s| &s.targets)
+    }
+
+    /// Latest per-pass GPU timings (`wait` blocks until this frame's are in).
+    pub fn timings(&mut self, wait: bool) -> Vec<PassTiming> {
+        self.timer.collect(&self.device, wait).to_vec()
+    }
+
+    /// Whether per-pass GPU timings are measured.
+    pub fn has_gpu_timings(&self) -> bool {
+        self.timer.enabled()
+    }
+
+    /// Reads the linear HDR radiance of the last frame (row-major RGBA).
+    pub fn read_hdr(&self) -> Result<Vec<[f32; 4]>, RenderError> {
+        let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
+        Ok(readback::read_rgba32f(
+            &self.device,
+            &self.queue,
+            &t.hdr.texture,
+        )?)
+    }
+
+    /// Reads the tonemapped display image of the last frame (RGBA8, sRGB-encoded).
+    pub fn read_ldr(&self) -> Result<Vec<u8>, RenderError> {
+        let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
+        Ok(readback::read_texture(
+            &self.device,
+            &self.queue,
+            &t.ldr.texture,
+        )?)
+    }
+
+    /// Forgets temporal state (motion vectors restart from zero).
+    pub fn reset_history(&mut self) {
+        self.prev_clip_from_world = None;
+        if let Some(gpu) = &mut self.scene_gpu {
+            gpu.reset_motion();
+        }
+    }
+
+    /// Frames rendered so far (temporal techniques seed from it).
+    pub fn frame_index(&self) -> u32 {
+        self.frame_index
+    }
+}
+
+fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("clear indirect"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+}

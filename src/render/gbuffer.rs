@@ -1,0 +1,141 @@
+//! The G-buffer pass: rasterises every visible object into the view targets (back faces culled:
+//! surfaces are one-sided, CCW front).
+
+use super::layouts::Layouts;
+use super::scene_gpu::{OBJECT_SLOT, SceneGpu, Vertex};
+use super::shaders::{self, ShaderError};
+use super::targets::{ViewTargets, formats};
+use crate::scene::Scene;
+
+/// The G-buffer pipeline.
+pub struct GbufferPass {
+    pipeline: wgpu::RenderPipeline,
+}
+
+impl GbufferPass {
+    /// Creates the pipeline.
+    pub fn new(device: &wgpu::Device, layouts: &Layouts) -> Result<Self, ShaderError> {
+        let module = shaders::module(device, "render/gbuffer.wgsl")?;
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("gbuffer pipeline layout"),
+            bind_group_layouts: &[
+                Some(&layouts.frame),
+                Some(&layouts.object),
+                Some(&layouts.material),
+            ],
+            immediate_size: 0,
+        });
+        let target = |format| {
+            Some(wgpu::ColorTargetState {
+                format,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })
+        };
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("gbuffer pipeline"),
+            layout: Some(&layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(Vertex::LAYOUT)],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                front_face: wgpu::FrontFace::Ccw,
+                cull_mode: Some(wgpu::Face::Back),
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: formats::DEPTH,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &[
+                    target(formats::ALBEDO),
+                    target(formats::NORMAL),
+                    target(formats::MATERIAL),
+                    target(formats::MOTION),
+                    target(formats::OBJECT_ID),
+                ],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self { pipeline })
+    }
+
+    /// Records the pass.
+    pub fn record(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &ViewTargets,
+        frame_bind_group: &wgpu::BindGroup,
+        scene: &Scene,
+        gpu: &SceneGpu,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        fn color(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        }
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("gbuffer pass"),
+            color_attachments: &[
+                color(&targets.albedo.view),
+                color(&targets.normal.view),
+                color(&targets.material.view),
+                color(&targets.motion.view),
+                color(&targets.object_id.view),
+            ],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth.view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: timestamps,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, frame_bind_group, &[]);
+        for (i, object) in scene.objects().iter().enumerate() {
+            let (Some(mesh), Some(material)) = (
+                gpu.meshes.get(object.mesh),
+                gpu.materials.get(object.material),
+            ) else {
+                continue;
+            };
+            if !object.visible || mesh.index_count == 0 {
+                continue;
+            }
+            pass.set_bind_group(
+                1,
+                &gpu.object_bind_group,
+                &[(i as u64 * OBJECT_SLOT) as u32],
+            );
+            pass.set_bind_group(2, material, &[]);
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        }
+    }
+}

@@ -1,0 +1,110 @@
+//! Bind group layouts shared by several passes (created once per renderer).
+
+/// Layouts used across passes.
+pub struct Layouts {
+    /// Group 0 of the G-buffer pass: the frame uniforms.
+    pub frame: wgpu::BindGroupLayout,
+    /// Group 1 of the G-buffer pass: one object's uniforms (dynamic offset).
+    pub object: wgpu::BindGroupLayout,
+    /// Group 2 of the G-buffer pass: material uniforms, base colour and normal textures, sampler.
+    pub material: wgpu::BindGroupLayout,
+}
+
+/// A uniform-buffer layout entry.
+pub fn uniform_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    dynamic: bool,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: dynamic,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// A read-only storage-buffer layout entry.
+pub fn storage_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// A sampled 2D texture layout entry.
+pub fn texture_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    sample_type: wgpu::TextureSampleType,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// A write-only storage texture layout entry.
+pub fn storage_texture_entry(
+    binding: u32,
+    format: wgpu::TextureFormat,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format,
+            view_dimension: wgpu::TextureViewDimension::D2,
+        },
+        count: None,
+    }
+}
+
+impl Layouts {
+    /// Creates the layouts.
+    pub fn new(device: &wgpu::Device) -> Self {
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let float = wgpu::TextureSampleType::Float { filterable: true };
+        Self {
+            frame: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("frame layout"),
+                entries: &[uniform_entry(0, vf | wgpu::ShaderStages::COMPUTE, false)],
+            }),
+            object: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("object layout"),
+                entries: &[uniform_entry(0, vf, true)],
+            }),
+            material: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("material layout"),
+                entries: &[
+                    uniform_entry(0, vf, false),
+                    texture_entry(1, wgpu::ShaderStages::FRAGMENT, float),
+                    texture_entry(2, wgpu::ShaderStages::FRAGMENT, float),
+                    wgpu::BindGroupLayoutEntry {
+                        binding: 3,
+                        visibility: wgpu::ShaderStages::FRAGMENT,
+                        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                        count: None,
+                    },
+                ],
+            }),
+        }
+    }
+}

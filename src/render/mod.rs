@@ -1,0 +1,25 @@
+//! The wgpu renderer (no egui): device context, scene upload, G-buffer, shadow maps, deferred
+//! lighting, tonemapping, GPU timings and readback.
+//!
+//! [`Renderer::render`] is the one readable frame function (architecture.md section 2):
+//! G-buffer -> shadow maps -> active GI technique -> lighting composite -> tonemap.
+
+mod context;
+mod frame;
+mod gbuffer;
+mod layouts;
+mod lighting;
+pub mod readback;
+mod scene_gpu;
+pub mod shaders;
+mod shadows;
+pub mod targets;
+mod timing;
+mod tonemap;
+mod uniforms;
+
+pub use context::{
+    ContextError, GpuContext, device_descriptor, log_device_errors, wanted_features,
+};
+pub use frame::{RenderError, Renderer};
+pub use timing::PassTiming;

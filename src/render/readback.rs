@@ -1,0 +1,99 @@
+//! Copies a texture back to the CPU (blocking): for headless output, tests and the pixel probe.
+
+/// Why a readback failed.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadbackError {
+    /// Mapping the staging buffer failed.
+    #[error("GPU readback failed: {0}")]
+    Map(String),
+    /// The format has no fixed texel size.
+    #[error("cannot read back texture format {0:?}")]
+    Format(wgpu::TextureFormat),
+}
+
+/// Reads layer 0 of `texture` as tightly packed rows.
+pub fn read_texture(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+) -> Result<Vec<u8>, ReadbackError> {
+    let format = texture.format();
+    let aspect = if format.is_depth_stencil_format() {
+        wgpu::TextureAspect::DepthOnly
+    } else {
+        wgpu::TextureAspect::All
+    };
+    let bpp = format
+        .block_copy_size(Some(aspect))
+        .ok_or(ReadbackError::Format(format))?;
+    let (w, h) = (texture.width(), texture.height());
+    let row = w * bpp;
+    let padded =
+        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("readback staging"),
+        size: u64::from(padded) * u64::from(h),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+        label: Some("readback encoder"),
+    });
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(h),
+            },
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+    queue.submit([encoder.finish()]);
+    let (tx, rx) = std::sync::mpsc::channel();
+    buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| ReadbackError::Map(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| ReadbackError::Map(e.to_string()))?
+        .map_err(|e| ReadbackError::Map(e.to_string()))?;
+    let data = buffer
+        .slice(..)
+        .get_mapped_range()
+        .map_err(|e| ReadbackError::Map(e.to_string()))?;
+    let mut out = Vec::with_capacity((row * h) as usize);
+    for y in 0..h as usize {
+        let start = y * padded as usize;
+        out.extend_from_slice(&data[start..start + row as usize]);
+    }
+    drop(data);
+    buffer.unmap();
+    Ok(out)
+}
+
+/// Reads an `Rgba32Float` texture as RGBA texels.
+pub fn read_rgba32f(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+) -> Result<Vec<[f32; 4]>, ReadbackError> {
+    if texture.format() != wgpu::TextureFormat::Rgba32Float {
+        return Err(ReadbackError::Format(texture.format()));
+    }
+    let bytes = read_texture(device, queue, texture)?;
+    Ok(bytemuck::pod_collect_to_vec(&bytes))
+}

@@ -1,0 +1,321 @@
+//! The scene on the GPU: vertex and index buffers per mesh, material bind groups (uniforms and
+//! textures), and per-object uniforms with this and the previous frame's matrices (for motion
+//! vectors). Geometry is re-uploaded only when the scene's resources change.
+
+use glam::Mat4;
+use wgpu::util::DeviceExt as _;
+
+use super::layouts::Layouts;
+use super::uniforms::{MaterialUniforms, ObjectUniforms};
+use crate::scene::{Image, Scene};
+
+/// Interleaved vertex: position, normal, uv, tangent (48 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+    pub tangent: [f32; 4],
+}
+
+impl Vertex {
+    /// The layout matching `VertexIn` in `render/gbuffer.wgsl`.
+    pub const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+        array_stride: std::mem::size_of::<Vertex>() as u64,
+        step_mode: wgpu::VertexStepMode::Vertex,
+        attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4],
+    };
+}
+
+/// One uploaded mesh.
+pub struct GpuMesh {
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    pub index_count: u32,
+}
+
+/// Dynamic uniform slot size for objects.
+pub const OBJECT_SLOT: u64 = 256;
+
+/// GPU copies of a scene's meshes, materials and objects.
+pub struct SceneGpu {
+    pub meshes: Vec<GpuMesh>,
+    pub materials: Vec<wgpu::BindGroup>,
+    material_buffers: Vec<wgpu::Buffer>,
+    pub object_buffer: wgpu::Buffer,
+    pub object_bind_group: wgpu::BindGroup,
+    object_capacity: usize,
+    prev_world: Vec<Mat4>,
+    resources_revision: u64,
+    textures: Vec<wgpu::TextureView>,
+    white: wgpu::TextureView,
+    flat_normal: wgpu::TextureView,
+    sampler: wgpu::Sampler,
+}
+
+fn upload_image(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    image: &Image,
+    label: &str,
+    srgb: bool,
+) -> wgpu::TextureView {
+    let format = if srgb {
+        wgpu::TextureFormat::Rgba8UnormSrgb
+    } else {
+        wgpu::TextureFormat::Rgba8Unorm
+    };
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: image.width,
+                height: image.height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[format.remove_srgb_suffix()],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &image.rgba8,
+    );
+    texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some(label),
+        ..Default::default()
+    })
+}
+
+impl SceneGpu {
+    /// Uploads everything.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &Layouts,
+        scene: &Scene,
+    ) -> Self {
+        let one = |rgba: [u8; 4]| Image {
+            width: 1,
+            height: 1,
+            rgba8: rgba.to_vec(),
+        };
+        let white = upload_image(device, queue, &one([255; 4]), "white texture", true);
+        let flat_normal = upload_image(
+            device,
+            queue,
+            &one([128, 128, 255, 255]),
+            "flat normal texture",
+            false,
+        );
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("material sampler"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let (object_buffer, object_bind_group) = Self::object_buffer(device, layouts, 1);
+        let mut gpu = Self {
+            meshes: Vec::new(),
+            materials: Vec::new(),
+            material_buffers: Vec::new(),
+            object_buffer,
+            object_bind_group,
+            object_capacity: 1,
+            prev_world: Vec::new(),
+            resources_revision: 0,
+            textures: Vec::new(),
+            white,
+            flat_normal,
+            sampler,
+        };
+        gpu.sync(device, queue, layouts, scene);
+        gpu
+    }
+
+    fn object_buffer(
+        device: &wgpu::Device,
+        layouts: &Layouts,
+        capacity: usize,
+    ) -> (wgpu::Buffer, wgpu::BindGroup) {
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("object uniforms"),
+            size: OBJECT_SLOT * capacity.max(1) as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("object bind group"),
+            layout: &layouts.object,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &buffer,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(std::mem::size_of::<ObjectUniforms>() as u64),
+                }),
+            }],
+        });
+        (buffer, bind_group)
+    }
+
+    /// Brings the GPU copy up to date: geometry when resources changed, materials and object
+    /// matrices always (cheap). Call once per frame; it also advances the previous-frame matrices.
+    pub fn sync(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &Layouts,
+        scene: &Scene,
+    ) {
+        if self.resources_revision != scene.resources_revision() {
+            self.upload_geometry(device, queue, scene);
+            self.resources_revision = scene.resources_revision();
+        }
+        self.upload_materials(device, queue, layouts, scene);
+        let objects = scene.objects();
+        if objects.len() > self.object_capacity {
+            self.object_capacity = objects.len().next_power_of_two();
+            (self.object_buffer, self.object_bind_group) =
+                Self::object_buffer(device, layouts, self.object_capacity);
+        }
+        let mut data = vec![0u8; OBJECT_SLOT as usize * objects.len()];
+        let mut worlds = Vec::with_capacity(objects.len());
+        for (i, object) in objects.iter().enumerate() {
+            let world = object.transform.matrix();
+            let prev = self.prev_world.get(i).copied().unwrap_or(world);
+            let u = ObjectUniforms::new(world, prev, i as u32 + 1, object.material as u32);
+            let start = i * OBJECT_SLOT as usize;
+            data[start..start + std::mem::size_of::<ObjectUniforms>()]
+                .copy_from_slice(bytemuck::bytes_of(&u));
+            worlds.push(world);
+        }
+        if !data.is_empty() {
+            queue.write_buffer(&self.object_buffer, 0, &data);
+        }
+        self.prev_world = worlds;
+    }
+
+    /// Forgets the previous frame's matrices (no motion on the next frame).
+    pub fn reset_motion(&mut self) {
+        self.prev_world.clear();
+    }
+
+    fn upload_geometry(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) {
+        let res = scene.resources();
+        self.meshes = res
+            .meshes
+            .iter()
+            .map(|m| {
+                let vertices: Vec<Vertex> = (0..m.positions.len())
+                    .map(|i| Vertex {
+                        position: m.positions[i].to_array(),
+                        normal: m.normals[i].to_array(),
+                        uv: m.uvs[i].to_array(),
+                        tangent: m.tangents[i].to_array(),
+                    })
+                    .collect();
+                let label = format!("mesh {}", m.name);
+                GpuMesh {
+                    vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(&format!("{label} vertices")),
+                        contents: bytemuck::cast_slice(&vertices),
+                        usage: wgpu::BufferUsages::VERTEX,
+                    }),
+                    indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(&format!("{label} indices")),
+                        contents: bytemuck::cast_slice(&m.indices),
+                        usage: wgpu::BufferUsages::INDEX,
+                    }),
+                    index_count: m.indices.len() as u32,
+                }
+            })
+            .collect();
+        // Textures are sRGB for base colour; normal maps use the linear view of the same data.
+        self.textures = res
+            .images
+            .iter()
+            .enumerate()
+            .map(|(i, img)| upload_image(device, queue, img, &format!("scene image {i}"), true))
+            .collect();
+        self.material_buffers.clear();
+    }
+
+    fn upload_materials(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &Layouts,
+        scene: &Scene,
+    ) {
+        let materials = scene.materials();
+        if self.material_buffers.len() != materials.len() {
+            self.material_buffers = materials
+                .iter()
+                .map(|m| {
+                    device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some(&format!("material {} uniforms", m.name)),
+                        size: std::mem::size_of::<MaterialUniforms>() as u64,
+                        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    })
+                })
+                .collect();
+            self.materials.clear();
+        }
+        let rebuild = self.materials.len() != materials.len();
+        let mut groups = Vec::new();
+        for (m, buffer) in materials.iter().zip(&self.material_buffers) {
+            queue.write_buffer(buffer, 0, bytemuck::bytes_of(&MaterialUniforms::new(m)));
+            if rebuild {
+                let base = m
+                    .base_color_texture
+                    .and_then(|t| self.textures.get(t.image))
+                    .unwrap_or(&self.white);
+                let normal_view;
+                let normal = match m.normal_texture.and_then(|t| self.textures.get(t.image)) {
+                    Some(view) => {
+                        normal_view = view.texture().create_view(&wgpu::TextureViewDescriptor {
+                            label: Some("normal map linear view"),
+                            format: Some(wgpu::TextureFormat::Rgba8Unorm),
+                            ..Default::default()
+                        });
+                        &normal_view
+                    }
+                    None => &self.flat_normal,
+                };
+                groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(&format!("material {} bind group", m.name)),
+                    layout: &layouts.material,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: buffer.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::TextureView(base),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: wgpu::BindingResource::TextureView(normal),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 3,
+                            resource: wgpu::BindingResource::Sampler(&self.sampler),
+                        },
+                    ],
+                }));
+            }
+        }
+        if rebuild {
+            self.materials = groups;
+        }
+    }
+}

@@ -1,0 +1,108 @@
+//! WGSL sources, embedded at build time, with a small `#import path` preprocessor.
+//!
+//! Shaders live in `shaders/` mirroring `src/render/`; shared code sits in `shaders/common/`.
+//! A line `#import common/x.wgsl` is replaced by that file's text (each file at most once per
+//! shader). Tests validate every entry of [`SHADERS`] with naga and check that every file on
+//! disk is listed here.
+
+/// Every WGSL file, by path relative to `shaders/`.
+pub const SHADERS: &[(&str, &str)] = &[
+    (
+        "common/brdf.wgsl",
+        include_str!("../../shaders/common/brdf.wgsl"),
+    ),
+    (
+        "common/color.wgsl",
+        include_str!("../../shaders/common/color.wgsl"),
+    ),
+    (
+        "common/frame.wgsl",
+        include_str!("../../shaders/common/frame.wgsl"),
+    ),
+    (
+        "common/lights.wgsl",
+        include_str!("../../shaders/common/lights.wgsl"),
+    ),
+    (
+        "common/octahedral.wgsl",
+        include_str!("../../shaders/common/octahedral.wgsl"),
+    ),
+    (
+        "common/shadow.wgsl",
+        include_str!("../../shaders/common/shadow.wgsl"),
+    ),
+    (
+        "render/gbuffer.wgsl",
+        include_str!("../../shaders/render/gbuffer.wgsl"),
+    ),
+    (
+        "render/lighting.wgsl",
+        include_str!("../../shaders/render/lighting.wgsl"),
+    ),
+    (
+        "render/shadow_depth.wgsl",
+        include_str!("../../shaders/render/shadow_depth.wgsl"),
+    ),
+    (
+        "render/tonemap.wgsl",
+        include_str!("../../shaders/render/tonemap.wgsl"),
+    ),
+];
+
+/// Shader entry files (the others are only imported).
+pub const ENTRY_SHADERS: &[&str] = &[
+    "render/gbuffer.wgsl",
+    "render/lighting.wgsl",
+    "render/shadow_depth.wgsl",
+    "render/tonemap.wgsl",
+];
+
+/// A shader that could not be assembled.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum ShaderError {
+    /// The named file is not in [`SHADERS`].
+    #[error("shader {0:?} is not embedded (add it to render::shaders::SHADERS)")]
+    Unknown(String),
+}
+
+fn source(path: &str) -> Result<&'static str, ShaderError> {
+    SHADERS
+        .iter()
+        .find(|(p, _)| *p == path)
+        .map(|(_, s)| *s)
+        .ok_or_else(|| ShaderError::Unknown(path.to_owned()))
+}
+
+/// The full text of `path` with its imports expanded.
+pub fn assemble(path: &str) -> Result<String, ShaderError> {
+    let mut seen = Vec::new();
+    let mut out = String::new();
+    expand(path, &mut seen, &mut out)?;
+    Ok(out)
+}
+
+fn expand(path: &str, seen: &mut Vec<String>, out: &mut String) -> Result<(), ShaderError> {
+    if seen.iter().any(|s| s == path) {
+        return Ok(());
+    }
+    seen.push(path.to_owned());
+    for line in source(path)?.lines() {
+        match line.trim().strip_prefix("#import ") {
+            Some(import) => expand(import.trim(), seen, out)?,
+            None => {
+                out.push_str(line);
+                out.push('\n');
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Creates a shader module from an assembled entry file.
+pub fn module(device: &wgpu::Device, path: &str) -> Result<wgpu::ShaderModule, ShaderError> {
+    let text = assemble(path)?;
+    Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(path),
+        source: wgpu::ShaderSource::Wgsl(text.into()),
+    }))
+}

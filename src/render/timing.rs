@@ -1,0 +1,189 @@
+//! Per-pass GPU timing with timestamp queries (where the adapter has them). Results are read
+//! back without stalling: a frame's queries are copied to a readback buffer that is mapped
+//! asynchronously and collected on a later frame (or waited for by `bench`).
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Queries available per frame (two per pass).
+const MAX_QUERIES: u32 = 64;
+
+/// The begin/end query pair of one pass.
+pub struct TimestampPair<'a> {
+    pub query_set: &'a wgpu::QuerySet,
+    pub begin: u32,
+    pub end: u32,
+}
+
+impl<'a> TimestampPair<'a> {
+    /// Timestamp writes for a render pass that is (or is not) the first / last of the scope.
+    pub fn render_writes(&self, first: bool, last: bool) -> wgpu::RenderPassTimestampWrites<'a> {
+        wgpu::RenderPassTimestampWrites {
+            query_set: self.query_set,
+            beginning_of_pass_write_index: first.then_some(self.begin),
+            end_of_pass_write_index: last.then_some(self.end),
+        }
+    }
+
+    /// Timestamp writes for a single compute pass.
+    pub fn compute_writes(&self) -> wgpu::ComputePassTimestampWrites<'a> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: self.query_set,
+            beginning_of_pass_write_index: Some(self.begin),
+            end_of_pass_write_index: Some(self.end),
+        }
+    }
+}
+
+/// One pass's measured GPU time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassTiming {
+    /// Pass name.
+    pub name: String,
+    /// Milliseconds.
+    pub ms: f64,
+}
+
+struct Gpu {
+    query_set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    pending: Option<(Vec<String>, Arc<AtomicBool>)>,
+    map_requested: bool,
+}
+
+/// Timestamp scopes for the current frame and the latest finished results.
+pub struct GpuTimer {
+    gpu: Option<Gpu>,
+    names: Vec<String>,
+    period_ns: f32,
+    latest: Vec<PassTiming>,
+}
+
+impl GpuTimer {
+    /// A timer; without `TIMESTAMP_QUERY` it records nothing.
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        let gpu = device
+            .features()
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
+            .then(|| {
+                let size = u64::from(MAX_QUERIES) * 8;
+                Gpu {
+                    query_set: device.create_query_set(&wgpu::QuerySetDescriptor {
+                        label: Some("pass timestamps"),
+                        ty: wgpu::QueryType::Timestamp,
+                        count: MAX_QUERIES,
+                    }),
+                    resolve: device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("timestamp resolve"),
+                        size,
+                        usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                        mapped_at_creation: false,
+                    }),
+                    readback: device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("timestamp readback"),
+                        size,
+                        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    }),
+                    pending: None,
+                    map_requested: false,
+                }
+            });
+        Self {
+            gpu,
+            names: Vec::new(),
+            period_ns: queue.get_timestamp_period(),
+            latest: Vec::new(),
+        }
+    }
+
+    /// Whether timestamps are recorded.
+    pub fn enabled(&self) -> bool {
+        self.gpu.is_some()
+    }
+
+    /// Starts a frame's scopes.
+    pub fn begin_frame(&mut self) {
+        self.names.clear();
+    }
+
+    /// Allocates a begin/end pair for pass `name`, if timing is on and the readback is free.
+    pub fn scope(&mut self, name: &str) -> Option<TimestampPair<'_>> {
+        let gpu = self.gpu.as_ref()?;
+        if gpu.pending.is_some() || (self.names.len() as u32 + 1) * 2 > MAX_QUERIES {
+            return None;
+        }
+        let begin = self.names.len() as u32 * 2;
+        self.names.push(name.to_owned());
+        Some(TimestampPair {
+            query_set: &gpu.query_set,
+            begin,
+            end: begin + 1,
+        })
+    }
+
+    /// Resolves this frame's queries into the readback buffer.
+    pub fn resolve(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        let Some(gpu) = self.gpu.as_mut() else { return };
+        if gpu.pending.is_some() || self.names.is_empty() {
+            return;
+        }
+        let n = self.names.len() as u32 * 2;
+        encoder.resolve_query_set(&gpu.query_set, 0..n, &gpu.resolve, 0);
+        encoder.copy_buffer_to_buffer(&gpu.resolve, 0, &gpu.readback, 0, u64::from(n) * 8);
+        gpu.pending = Some((
+            std::mem::take(&mut self.names),
+            Arc::new(AtomicBool::new(false)),
+        ));
+    }
+
+    /// After submit: starts mapping the readback buffer.
+    pub fn after_submit(&mut self) {
+        let Some(gpu) = self.gpu.as_mut() else { return };
+        if let Some((_, ready)) = &gpu.pending
+            && !gpu.map_requested
+        {
+            gpu.map_requested = true;
+            let ready = ready.clone();
+            gpu.readback
+                .slice(..)
+                .map_async(wgpu::MapMode::Read, move |r| {
+                    ready.store(r.is_ok(), Ordering::Release)
+                });
+        }
+    }
+
+    /// Collects finished results (non-blocking unless `wait`); returns the latest timings.
+    pub fn collect(&mut self, device: &wgpu::Device, wait: bool) -> &[PassTiming] {
+        if let Some(gpu) = self.gpu.as_mut()
+            && let Some((names, ready)) = &gpu.pending
+        {
+            let poll = if wait {
+                wgpu::PollType::wait_indefinitely()
+            } else {
+                wgpu::PollType::Poll
+            };
+            let _ = device.poll(poll);
+            if ready.load(Ordering::Acquire) {
+                if let Ok(view) = gpu.readback.slice(..).get_mapped_range() {
+                    let ticks: &[u64] = bytemuck::cast_slice(&view[..names.len() * 16]);
+                    self.latest = names
+                        .iter()
+                        .enumerate()
+                        .map(|(i, name)| PassTiming {
+                            name: name.clone(),
+                            ms: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64
+                                * f64::from(self.period_ns)
+                                * 1e-6,
+                        })
+                        .collect();
+                }
+                gpu.readback.unmap();
+                gpu.pending = None;
+                gpu.map_requested = false;
+            }
+        }
+        &self.latest
+    }
+}

@@ -1,0 +1,164 @@
+//! Render and GI settings that are part of a project file.
+//!
+//! Pure data (no wgpu): the renderer reads them, the project file stores them, the editor edits
+//! them. Each field documents its cost/quality trade-off.
+
+use serde::{Deserialize, Serialize};
+
+/// The GI technique that produces indirect light.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+pub enum GiMode {
+    /// Direct light only (shadowed punctual lights), no indirect term.
+    #[default]
+    #[value(name = "direct")]
+    Direct,
+    /// Knecht 2009: instant radiosity with imperfect shadow maps and temporal reuse.
+    #[value(name = "ism")]
+    Ism,
+    /// Ritschel 2008: the same ISM pipeline without temporal reuse (baseline).
+    #[value(name = "ism-ritschel")]
+    IsmRitschel,
+    /// Modular / delta radiance transfer (Loos 2015).
+    #[value(name = "mrt")]
+    Mrt,
+    /// Screen-space hierarchical GI (Soler et al. 2010).
+    #[value(name = "sshgi")]
+    Sshgi,
+    /// Radiance cache splatting (Gautron et al.).
+    #[value(name = "rcs")]
+    Rcs,
+    /// The progressive reference path tracer.
+    #[value(name = "reference")]
+    Reference,
+}
+
+impl GiMode {
+    /// The name used on the command line and in the UI.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Direct => "direct",
+            Self::Ism => "ism",
+            Self::IsmRitschel => "ism-ritschel",
+            Self::Mrt => "mrt",
+            Self::Sshgi => "sshgi",
+            Self::Rcs => "rcs",
+            Self::Reference => "reference",
+        }
+    }
+}
+
+/// The operator that maps exposed linear radiance to display values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Tonemap {
+    /// Clamp to [0, 1]: shows radiance exactly where it is below 1 (best for comparisons).
+    Clamp,
+    /// Reinhard on luminance: keeps hue, compresses highlights.
+    Reinhard,
+    /// Narkowicz's ACES fit: filmic contrast (the default for viewing).
+    #[default]
+    Aces,
+}
+
+/// Shadow map settings for the direct light.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ShadowSettings {
+    /// Side of each shadow map (per cube face for point lights). Cost: memory and raster time
+    /// grow with its square; quality: sharper, less aliased shadow edges.
+    pub resolution: u32,
+    /// PCF kernel radius in texels (taps = (2r+1)^2, each a 2x2 hardware comparison). Cost:
+    /// linear in taps; quality: softer, less aliased edges.
+    pub pcf_radius: u32,
+    /// Receiver offset along the normal, in shadow-map texels. Too small: acne; too large:
+    /// light leaks at contact (peter-panning).
+    pub normal_bias_texels: f32,
+}
+
+impl Default for ShadowSettings {
+    fn default() -> Self {
+        Self {
+            resolution: 1024,
+            pcf_radius: 1,
+            normal_bias_texels: 1.5,
+        }
+    }
+}
+
+/// Exposure and tonemapping for the displayed image (EXR output is before both).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ViewSettings {
+    /// Exposure in stops: displayed = radiance * 2^ev. Free.
+    pub exposure_ev: f32,
+    /// Tonemapping operator. Free.
+    pub tonemap: Tonemap,
+}
+
+impl Default for ViewSettings {
+    fn default() -> Self {
+        Self {
+            exposure_ev: 0.0,
+            tonemap: Tonemap::Aces,
+        }
+    }
+}
+
+/// Everything that selects and tunes the renderer.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RenderSettings {
+    /// The active GI technique.
+    pub mode: GiMode,
+    /// Shadow maps for the direct term.
+    pub shadows: ShadowSettings,
+    /// Exposure and tonemapping.
+    pub view: ViewSettings,
+}
+
+/// A settings value outside its valid range.
+#[derive(Debug, thiserror::Error, PartialEq)]
+#[error("setting {name} = {value} is outside {range}")]
+pub struct SettingsError {
+    /// Field path.
+    pub name: &'static str,
+    /// Offending value.
+    pub value: String,
+    /// Valid range.
+    pub range: &'static str,
+}
+
+impl RenderSettings {
+    /// Checks ranges (absurd values are errors, never silently clamped).
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        let s = &self.shadows;
+        if !(64..=8192).contains(&s.resolution) {
+            return Err(SettingsError {
+                name: "shadows.resolution",
+                value: s.resolution.to_string(),
+                range: "64..=8192",
+            });
+        }
+        if s.pcf_radius > 4 {
+            return Err(SettingsError {
+                name: "shadows.pcf_radius",
+                value: s.pcf_radius.to_string(),
+                range: "0..=4",
+            });
+        }
+        if !(0.0..=16.0).contains(&s.normal_bias_texels) {
+            return Err(SettingsError {
+                name: "shadows.normal_bias_texels",
+                value: s.normal_bias_texels.to_string(),
+                range: "0..=16",
+            });
+        }
+        if !(-32.0..=32.0).contains(&self.view.exposure_ev) {
+            return Err(SettingsError {
+                name: "view.exposure_ev",
+                value: self.view.exposure_ev.to_string(),
+                range: "-32..=32",
+            });
+        }
+        Ok(())
+    }
+}
