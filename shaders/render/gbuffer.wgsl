@@ -1,5 +1,5 @@
 // G-buffer pass: one draw per object. Outputs (see render::gbuffer for formats and packing):
-//   0 albedo    rgba8unorm-srgb  linear Lambertian albedo (base colour x texture), a = 1
+//   0 albedo    rgba16float      linear Lambertian albedo (base colour x texture), a = 1
 //   1 normal    rgba16float      xy = octahedral shading normal (normal-mapped), zw = octahedral geometric normal
 //   2 material  rgba8unorm       rgb = specular colour, a = roughness
 //   3 motion    rg16float        uv(current) - uv(previous frame)

@@ -42,7 +42,7 @@ pub struct NodeDesc {
 
 impl GltfWriter {
     fn push_view(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let mut view =

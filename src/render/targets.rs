@@ -2,8 +2,8 @@
 //! tonemapped display image. Recreated on resize.
 //!
 //! G-buffer packing (see `shaders/render/gbuffer.wgsl`):
-//! - `albedo` Rgba8UnormSrgb: linear albedo stored with sRGB encoding (dark colours keep
-//!   precision: 0.4% error at 0.065 instead of 2.6% with linear 8-bit);
+//! - `albedo` Rgba16Float: linear albedo (8-bit storage would cost up to 2.6% error on dark
+//!   channels such as the Cornell red wall's 0.065; half floats keep it under 0.05%);
 //! - `normal` Rgba16Float: xy octahedral shading normal, zw octahedral geometric normal;
 //! - `material` Rgba8Unorm: specular colour and roughness;
 //! - `motion` Rg16Float: screen-uv motion to the previous frame;
@@ -12,7 +12,7 @@
 
 /// Formats of the targets.
 pub mod formats {
-    pub const ALBEDO: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+    pub const ALBEDO: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
     pub const NORMAL: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
     pub const MATERIAL: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
     pub const MOTION: wgpu::TextureFormat = wgpu::TextureFormat::Rg16Float;

@@ -124,7 +124,7 @@ impl Mesh {
                 return Err(MeshError::AttributeLength(name, len, n));
             }
         }
-        if self.indices.len() % 3 != 0 {
+        if !self.indices.len().is_multiple_of(3) {
             return Err(MeshError::NotTriangles(self.indices.len()));
         }
         if let Some(&bad) = self.indices.iter().find(|&&i| i as usize >= n) {
