@@ -7,21 +7,14 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 pub enum ImageIoError {
     /// The extension is neither `.exr` nor `.png`.
-    #[error(
-        "{0}: unsupported image extension (use .exr for linear radiance or .png for the tonemapped view)"
-    )]
+    #[error("{0}: unsupported image extension (use .exr for linear radiance or .png for the tonemapped view)")]
     Extension(PathBuf),
     /// Encoding or decoding failed.
     #[error("{path}: {message}")]
     Codec { path: PathBuf, message: String },
     /// The pixel count does not match the size.
     #[error("{path}: {got} pixels for a {width}x{height} image")]
-    Size {
-        path: PathBuf,
-        got: usize,
-        width: u32,
-        height: u32,
-    },
+    Size { path: PathBuf, got: usize, width: u32, height: u32 },
 }
 
 /// Linear RGBA float image.
@@ -37,81 +30,48 @@ pub struct HdrImage {
 
 /// Writes linear radiance to `.exr` (32-bit float RGBA).
 pub fn write_exr(path: &Path, img: &HdrImage) -> Result<(), ImageIoError> {
-    let codec = |e: image::ImageError| ImageIoError::Codec {
-        path: path.to_owned(),
-        message: e.to_string(),
-    };
+    let codec = |e: image::ImageError| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() };
     let flat: Vec<f32> = img.pixels.iter().flatten().copied().collect();
-    let buf = image::Rgba32FImage::from_raw(img.width, img.height, flat).ok_or_else(|| {
-        ImageIoError::Size {
-            path: path.to_owned(),
-            got: img.pixels.len(),
-            width: img.width,
-            height: img.height,
-        }
+    let buf = image::Rgba32FImage::from_raw(img.width, img.height, flat).ok_or_else(|| ImageIoError::Size {
+        path: path.to_owned(),
+        got: img.pixels.len(),
+        width: img.width,
+        height: img.height,
     })?;
-    image::DynamicImage::ImageRgba32F(buf)
-        .save_with_format(path, image::ImageFormat::OpenExr)
-        .map_err(codec)
+    image::DynamicImage::ImageRgba32F(buf).save_with_format(path, image::ImageFormat::OpenExr).map_err(codec)
 }
 
 /// Writes RGBA8 (already sRGB-encoded) to `.png`.
 pub fn write_png(path: &Path, width: u32, height: u32, rgba8: Vec<u8>) -> Result<(), ImageIoError> {
     let got = rgba8.len() / 4;
-    let buf =
-        image::RgbaImage::from_raw(width, height, rgba8).ok_or_else(|| ImageIoError::Size {
-            path: path.to_owned(),
-            got,
-            width,
-            height,
-        })?;
+    let buf = image::RgbaImage::from_raw(width, height, rgba8).ok_or_else(|| ImageIoError::Size {
+        path: path.to_owned(),
+        got,
+        width,
+        height,
+    })?;
     buf.save_with_format(path, image::ImageFormat::Png)
-        .map_err(|e| ImageIoError::Codec {
-            path: path.to_owned(),
-            message: e.to_string(),
-        })
+        .map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })
 }
 
 /// Reads an image as linear RGBA float: EXR as stored, PNG/JPEG decoded from sRGB.
 pub fn read_linear(path: &Path) -> Result<HdrImage, ImageIoError> {
-    let img = image::open(path).map_err(|e| ImageIoError::Codec {
-        path: path.to_owned(),
-        message: e.to_string(),
-    })?;
-    let is_exr = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    let img = image::open(path).map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })?;
+    let is_exr = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
     let rgba = img.to_rgba32f();
     let (width, height) = rgba.dimensions();
     let pixels = rgba
         .pixels()
         .map(|p| {
-            if is_exr {
-                p.0
-            } else {
-                [
-                    srgb_to_linear(p.0[0]),
-                    srgb_to_linear(p.0[1]),
-                    srgb_to_linear(p.0[2]),
-                    p.0[3],
-                ]
-            }
+            if is_exr { p.0 } else { [srgb_to_linear(p.0[0]), srgb_to_linear(p.0[1]), srgb_to_linear(p.0[2]), p.0[3]] }
         })
         .collect();
-    Ok(HdrImage {
-        width,
-        height,
-        pixels,
-    })
+    Ok(HdrImage { width, height, pixels })
 }
 
 /// The sRGB decoding curve.
 pub fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
 }
 
 /// What an output path asks for.
@@ -125,14 +85,59 @@ pub enum OutputKind {
 
 /// Chooses the output kind from the extension.
 pub fn output_kind(path: &Path) -> Result<OutputKind, ImageIoError> {
-    match path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        .as_deref()
-    {
+    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
         Some("exr") => Ok(OutputKind::Exr),
         Some("png") => Ok(OutputKind::Png),
         _ => Err(ImageIoError::Extension(path.to_owned())),
     }
+}
+
+/// The CPU twin of `shaders/render/tonemap.wgsl`: exposure, operator, sRGB encoding to RGBA8.
+pub fn tonemap_srgb8(img: &HdrImage, view: &crate::settings::ViewSettings) -> Vec<u8> {
+    use crate::settings::Tonemap;
+    let k = view.exposure_ev.exp2();
+    let encode = |c: f32| {
+        let c = c.clamp(0.0, 1.0);
+        let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+        (s * 255.0 + 0.5) as u8
+    };
+    img.pixels
+        .iter()
+        .flat_map(|p| {
+            let c = [p[0] * k, p[1] * k, p[2] * k].map(|v| v.max(0.0));
+            let m = match view.tonemap {
+                Tonemap::Clamp => c,
+                Tonemap::Reinhard => {
+                    let l = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+                    c.map(|v| v / (1.0 + l))
+                }
+                Tonemap::Aces => c.map(|v| (v * (2.51 * v + 0.03)) / (v * (2.43 * v + 0.59) + 0.14)),
+            };
+            [encode(m[0]), encode(m[1]), encode(m[2]), 255]
+        })
+        .collect()
+}
+
+/// Averages `k` x `k` blocks of a `size` image (a box pixel filter).
+pub fn box_downsample(pixels: &[[f32; 4]], size: (u32, u32), k: u32) -> Vec<[f32; 4]> {
+    if k <= 1 {
+        return pixels.to_vec();
+    }
+    let (w, h) = (size.0 / k, size.1 / k);
+    let inv = 1.0 / (k * k) as f32;
+    let mut out = vec![[0.0f32; 4]; (w * h) as usize];
+    for y in 0..size.1 {
+        for x in 0..size.0 {
+            let (ox, oy) = (x / k, y / k);
+            if ox >= w || oy >= h {
+                continue;
+            }
+            let src = pixels[(y * size.0 + x) as usize];
+            let dst = &mut out[(oy * w + ox) as usize];
+            for c in 0..4 {
+                dst[c] += src[c] * inv;
+            }
+        }
+    }
+    out
 }

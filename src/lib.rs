@@ -8,6 +8,8 @@ pub mod app;
 pub mod cli;
 pub mod image_io;
 pub mod import;
+pub mod metrics;
+pub mod precompute;
 pub mod project_file;
 pub mod render;
 pub mod scene;

@@ -41,6 +41,36 @@ enum Command {
         /// Exposure in stops for the PNG view.
         #[arg(long)]
         exposure: Option<f32>,
+        /// Samples per pixel (reference mode).
+        #[arg(long)]
+        spp: Option<u32>,
+        /// Longest path in bounces, 1 = direct light only (reference mode).
+        #[arg(long)]
+        max_bounces: Option<u32>,
+        /// Random seed (reference mode).
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Write an intermediate buffer instead of the final image (albedo, normal, material,
+        /// motion, object_id, depth, indirect, hdr, ldr, shadow_map).
+        #[arg(long)]
+        buffer: Option<String>,
+        /// Supersampling per axis for raster modes: renders at N times the size and box-filters
+        /// down, as a path tracer's pixel filter does (1 = one sample at each pixel centre).
+        #[arg(long, default_value_t = 3)]
+        ssaa: u32,
+    },
+    /// Compare a candidate image with a reference: RMSE, relMSE, FLIP, luminance ratio.
+    Compare {
+        /// Candidate image (.exr linear or .png sRGB).
+        candidate: PathBuf,
+        /// Reference image.
+        reference: PathBuf,
+        /// Write the signed error heat map (red = too bright, blue = too dark).
+        #[arg(long)]
+        heatmap: Option<PathBuf>,
+        /// Exposure in stops applied before FLIP (FLIP compares display images).
+        #[arg(long, default_value_t = 0.0)]
+        exposure: f32,
     },
     /// Time each mode per pass and write docs/BENCHMARKS.md.
     Bench {
@@ -75,19 +105,32 @@ fn main() -> ExitCode {
             height,
             frames,
             exposure,
-        }) => cli::render::run(&cli::render::RenderArgs {
-            input,
-            mode,
-            out,
-            width,
-            height,
-            frames,
-            exposure,
-        })
-        .map(|s| println!("wrote {s}")),
-        Some(Command::Bench { quick, out }) => {
-            cli::bench::run(&out, quick).map(|md| println!("{md}"))
+            spp,
+            max_bounces,
+            seed,
+            buffer,
+            ssaa,
+        }) => {
+            let args = cli::render::RenderArgs {
+                input,
+                mode,
+                out,
+                width,
+                height,
+                frames,
+                exposure,
+                spp,
+                max_bounces,
+                seed,
+                buffer,
+                ssaa,
+            };
+            cli::render::run(&args).map(|s| println!("wrote {s}"))
         }
+        Some(Command::Compare { candidate, reference, heatmap, exposure }) => {
+            cli::compare::run(&candidate, &reference, heatmap.as_deref(), exposure).map(|s| println!("{s}"))
+        }
+        Some(Command::Bench { quick, out }) => cli::bench::run(&out, quick).map(|md| println!("{md}")),
         Some(Command::GenerateAssets { root }) => cli::generate::generate(&root),
         None => bouncelab::app::run(args.project),
     };

@@ -30,11 +30,7 @@ fn compare(pixels: &[[f32; 4]], mut expected: impl FnMut(Vec3) -> Option<f32>) -
             let got = pixels[(y * SIZE.0 + x) as usize];
             for c in &got[..3] {
                 let err = (c - want).abs() / want.max(1e-3);
-                assert!(
-                    err < 0.01,
-                    "pixel ({x},{y}) at {p}: got {c}, want {want} ({:.2}% off)",
-                    err * 100.0
-                );
+                assert!(err < 0.01, "pixel ({x},{y}) at {p}: got {c}, want {want} ({:.2}% off)", err * 100.0);
                 worst = worst.max(err);
             }
             checked += 1;
@@ -56,10 +52,7 @@ fn point_light_on_lambertian_plane() {
         Some(ALBEDO / std::f32::consts::PI * 3.0 * (to.y / d2.sqrt()) / d2)
     });
     assert!(checked > 2000, "only {checked} floor pixels");
-    eprintln!(
-        "point light: {checked} pixels, worst error {:.3}%",
-        worst * 100.0
-    );
+    eprintln!("point light: {checked} pixels, worst error {:.3}%", worst * 100.0);
 }
 
 #[test]
@@ -86,14 +79,8 @@ fn spot_light_follows_khr_cone() {
         }
         Some(ALBEDO / std::f32::consts::PI * 5.0 * cone * l.y / (d * d))
     });
-    assert!(
-        checked > 2000 && inside > 100,
-        "checked {checked}, fully inside the cone {inside}"
-    );
-    eprintln!(
-        "spot light: {checked} pixels, worst error {:.3}%",
-        worst * 100.0
-    );
+    assert!(checked > 2000 && inside > 100, "checked {checked}, fully inside the cone {inside}");
+    eprintln!("spot light: {checked} pixels, worst error {:.3}%", worst * 100.0);
 }
 
 #[test]
@@ -107,10 +94,7 @@ fn directional_light_gives_e_cos() {
     let want = ALBEDO / std::f32::consts::PI * 2.0 * -dir.y;
     let (checked, worst) = compare(&pixels, |_| Some(want));
     assert!(checked > 2000);
-    eprintln!(
-        "directional light: {checked} pixels, worst error {:.3}%",
-        worst * 100.0
-    );
+    eprintln!("directional light: {checked} pixels, worst error {:.3}%", worst * 100.0);
 }
 
 fn ray_box(origin: Vec3, dir: Vec3, min: Vec3, max: Vec3, t_max: f32) -> bool {
@@ -133,10 +117,7 @@ fn box_shadow_is_black_with_clean_edges() {
         "box",
         MeshSource::Cuboid { size },
         1,
-        Transform {
-            translation: center,
-            ..Transform::default()
-        },
+        Transform { translation: center, ..Transform::default() },
     );
     let light = Light::point("p", Vec3::new(-0.4, 1.3, -1.1), 3.0);
     let scene = common::scene(
@@ -167,14 +148,8 @@ fn box_shadow_is_black_with_clean_edges() {
             let v = visible(p);
             let near_edge = (-2i32..=2).any(|dy| {
                 (-2i32..=2).any(|dx| {
-                    common::floor_hit(
-                        &cam,
-                        (x as i32 + dx) as u32,
-                        (y as i32 + dy) as u32,
-                        SIZE,
-                        1.95,
-                    )
-                    .is_some_and(|q| visible(q) != v)
+                    common::floor_hit(&cam, (x as i32 + dx) as u32, (y as i32 + dy) as u32, SIZE, 1.95)
+                        .is_some_and(|q| visible(q) != v)
                 })
             });
             if near_edge {
@@ -185,10 +160,7 @@ fn box_shadow_is_black_with_clean_edges() {
                 let to = light.position - p;
                 let d2 = to.length_squared();
                 let want = ALBEDO / std::f32::consts::PI * 3.0 * (to.y / d2.sqrt()) / d2;
-                assert!(
-                    (got - want).abs() / want < 0.01,
-                    "lit pixel ({x},{y}): {got} vs {want} (acne?)"
-                );
+                assert!((got - want).abs() / want < 0.01, "lit pixel ({x},{y}): {got} vs {want} (acne?)");
                 lit += 1;
             } else {
                 assert!(got < 1e-4, "shadowed pixel ({x},{y}) = {got} (light leak?)");

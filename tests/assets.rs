@@ -18,11 +18,7 @@ fn shipped_assets_are_current() {
     );
     let project = default_project_path();
     let want = generate::default_project_text(gltf, &project).expect("project text");
-    assert_eq!(
-        std::fs::read_to_string(&project).expect("project"),
-        want,
-        "run `bouncelab generate-assets`"
-    );
+    assert_eq!(std::fs::read_to_string(&project).expect("project"), want, "run `bouncelab generate-assets`");
 }
 
 #[test]
@@ -31,15 +27,8 @@ fn default_project_renders_plausibly() {
     let project = Project::load(&default_project_path()).expect("loads");
     let size = (64, 36);
     let px = common::render(&ctx, &project.scene, &project.render, size);
-    assert!(
-        px.iter()
-            .all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0)),
-        "finite, non-negative radiance"
-    );
+    assert!(px.iter().all(|p| p.iter().all(|c| c.is_finite() && *c >= 0.0)), "finite, non-negative radiance");
     // Centre of the back wall: lit by the point light, white.
     let c = px[(18 * 64 + 32) as usize];
-    assert!(
-        c[0] > 0.01 && (c[0] - c[1]).abs() < 1e-3 * c[0].max(1.0) + 1e-4,
-        "back wall is lit and grey: {c:?}"
-    );
+    assert!(c[0] > 0.01 && (c[0] - c[1]).abs() < 1e-3 * c[0].max(1.0) + 1e-4, "back wall is lit and grey: {c:?}");
 }

@@ -26,21 +26,10 @@ fn write(dir: &Path, name: &str, doc: &Value) -> PathBuf {
 fn triangle_doc(normals: bool) -> GltfWriter {
     let mut w = GltfWriter::default();
     let m = w.material("grey", [0.5, 0.5, 0.5, 1.0]);
-    let p = [
-        Vec3::new(0.0, 0.0, 0.0),
-        Vec3::new(0.0, 0.0, 1.0),
-        Vec3::new(1.0, 0.0, 0.0),
-    ];
+    let p = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 0.0, 1.0), Vec3::new(1.0, 0.0, 0.0)];
     let n = [Vec3::Y; 3];
     let mesh = w.mesh("tri", &p, normals.then_some(&n[..]), &[0, 1, 2], Some(m));
-    w.node(
-        NodeDesc {
-            name: "tri".into(),
-            mesh: Some(mesh),
-            ..NodeDesc::default()
-        },
-        true,
-    );
+    w.node(NodeDesc { name: "tri".into(), mesh: Some(mesh), ..NodeDesc::default() }, true);
     w
 }
 
@@ -49,10 +38,7 @@ fn expect_err(dir: &Path, name: &str, doc: &Value, needle: &str) -> ImportError 
     let err = import_gltf(&path).expect_err("import must fail");
     let msg = err.to_string();
     assert!(msg.contains(name), "error does not name the file: {msg}");
-    assert!(
-        msg.to_lowercase().contains(&needle.to_lowercase()),
-        "error {msg:?} does not mention {needle:?}"
-    );
+    assert!(msg.to_lowercase().contains(&needle.to_lowercase()), "error {msg:?} does not mention {needle:?}");
     err
 }
 
@@ -84,15 +70,7 @@ fn lights_and_camera_follow_khr_conventions() {
         },
         true,
     );
-    w.node(
-        NodeDesc {
-            name: "d".into(),
-            light: Some(d),
-            rotation: Some(down),
-            ..NodeDesc::default()
-        },
-        true,
-    );
+    w.node(NodeDesc { name: "d".into(), light: Some(d), rotation: Some(down), ..NodeDesc::default() }, true);
     w.node(
         NodeDesc {
             name: "cam".into(),
@@ -107,22 +85,9 @@ fn lights_and_camera_follow_khr_conventions() {
     assert_eq!(lights.len(), 3);
     assert_eq!(lights[0].kind, LightKind::Point);
     assert!((lights[0].position - Vec3::new(1.0, 2.0, 3.0)).length() < 1e-6);
-    assert_eq!(
-        lights[0].radiant(),
-        Vec3::new(4.0, 2.0, 1.0),
-        "colour x intensity in W/sr, no conversion"
-    );
-    assert_eq!(
-        lights[1].kind,
-        LightKind::Spot {
-            inner_cone_angle: 0.1,
-            outer_cone_angle: 0.7
-        }
-    );
-    assert!(
-        (lights[1].direction - Vec3::NEG_Y).length() < 1e-5,
-        "spot points down its node's -Z"
-    );
+    assert_eq!(lights[0].radiant(), Vec3::new(4.0, 2.0, 1.0), "colour x intensity in W/sr, no conversion");
+    assert_eq!(lights[1].kind, LightKind::Spot { inner_cone_angle: 0.1, outer_cone_angle: 0.7 });
+    assert!((lights[1].direction - Vec3::NEG_Y).length() < 1e-5, "spot points down its node's -Z");
     assert_eq!(lights[2].kind, LightKind::Directional);
     assert!((lights[2].direction - Vec3::NEG_Y).length() < 1e-5);
     assert!(asset.has_camera);
@@ -159,22 +124,12 @@ fn hierarchy_transforms_compose() {
     );
     let asset = import_gltf(&write(&dir, "hier.gltf", &w.to_json())).expect("imports");
     let scene = import::scene_from_asset(&asset).expect("resolves");
-    let obj = scene
-        .objects()
-        .iter()
-        .find(|o| o.name == "child")
-        .expect("child object");
+    let obj = scene.objects().iter().find(|o| o.name == "child").expect("child object");
     // Child origin: parent T * R * S * (1,0,0) = (0,2,0) + R(2,0,0) = (0, 2, -2).
     let origin = obj.transform.matrix().transform_point3(Vec3::ZERO);
-    assert!(
-        (origin - Vec3::new(0.0, 2.0, -2.0)).length() < 1e-5,
-        "got {origin}"
-    );
+    assert!((origin - Vec3::new(0.0, 2.0, -2.0)).length() < 1e-5, "got {origin}");
     assert!(!asset.has_camera);
-    assert!(
-        scene.camera().validate().is_ok(),
-        "a framing camera is made when the file has none"
-    );
+    assert!(scene.camera().validate().is_ok(), "a framing camera is made when the file has none");
 }
 
 #[test]
@@ -192,21 +147,11 @@ fn mirrored_nodes_bake_and_keep_front_faces() {
     );
     let asset = import_gltf(&write(&dir, "mirror.gltf", &w.to_json())).expect("imports");
     let scene = import::scene_from_asset(&asset).expect("resolves");
-    let obj = scene
-        .objects()
-        .iter()
-        .find(|o| o.name == "mirror")
-        .expect("mirror object");
-    assert!(matches!(
-        obj.source,
-        MeshSource::Asset { baked: Some(_), .. }
-    ));
+    let obj = scene.objects().iter().find(|o| o.name == "mirror").expect("mirror object");
+    assert!(matches!(obj.source, MeshSource::Asset { baked: Some(_), .. }));
     let mesh = &scene.resources().meshes[obj.mesh];
     let [a, b, c] = mesh.triangle(0);
-    assert!(
-        (b - a).cross(c - a).y > 0.0,
-        "winding flipped so the front still faces +Y"
-    );
+    assert!((b - a).cross(c - a).y > 0.0, "winding flipped so the front still faces +Y");
     assert!(mesh.positions.iter().all(|p| p.x <= 0.0));
 }
 
@@ -214,10 +159,7 @@ fn mirrored_nodes_bake_and_keep_front_faces() {
 fn missing_normals_are_computed_and_non_indexed_works() {
     let dir = temp_dir("normals");
     let mut doc = triangle_doc(false).to_json();
-    doc["meshes"][0]["primitives"][0]
-        .as_object_mut()
-        .expect("prim")
-        .remove("indices");
+    doc["meshes"][0]["primitives"][0].as_object_mut().expect("prim").remove("indices");
     let asset = import_gltf(&write(&dir, "nonormals.gltf", &doc)).expect("imports");
     let mesh = asset.primitive(0, 0).expect("mesh");
     assert_eq!(mesh.indices, vec![0, 1, 2]);
@@ -232,13 +174,8 @@ fn glb_container_imports() {
     let uri = doc["buffers"][0]["uri"].as_str().expect("uri").to_owned();
     let data = uri.split_once(";base64,").expect("data uri").1;
     use base64::Engine as _;
-    let mut bin = base64::engine::general_purpose::STANDARD
-        .decode(data)
-        .expect("b64");
-    doc["buffers"][0]
-        .as_object_mut()
-        .expect("buffer")
-        .remove("uri");
+    let mut bin = base64::engine::general_purpose::STANDARD.decode(data).expect("b64");
+    doc["buffers"][0].as_object_mut().expect("buffer").remove("uri");
     let mut json = serde_json::to_vec(&doc).expect("json");
     while !json.len().is_multiple_of(4) {
         json.push(b' ');
@@ -301,9 +238,8 @@ fn every_error_case_is_a_named_error() {
     let mut d = base.clone();
     let uri = d["buffers"][0]["uri"].as_str().expect("uri").to_owned();
     use base64::Engine as _;
-    let mut bytes = base64::engine::general_purpose::STANDARD
-        .decode(uri.split_once(";base64,").expect("b64").1)
-        .expect("b64");
+    let mut bytes =
+        base64::engine::general_purpose::STANDARD.decode(uri.split_once(";base64,").expect("b64").1).expect("b64");
     bytes[0..4].copy_from_slice(&f32::NAN.to_le_bytes());
     d["buffers"][0]["uri"] = json!(format!(
         "data:application/octet-stream;base64,{}",
@@ -314,9 +250,8 @@ fn every_error_case_is_a_named_error() {
     // Index out of range: patch the index buffer (last 12 bytes) to 7.
     let mut d = base.clone();
     let n = bytes.len();
-    let mut b2 = base64::engine::general_purpose::STANDARD
-        .decode(uri.split_once(";base64,").expect("b64").1)
-        .expect("b64");
+    let mut b2 =
+        base64::engine::general_purpose::STANDARD.decode(uri.split_once(";base64,").expect("b64").1).expect("b64");
     b2[n - 4..].copy_from_slice(&7u32.to_le_bytes());
     d["buffers"][0]["uri"] = json!(format!(
         "data:application/octet-stream;base64,{}",
@@ -353,22 +288,10 @@ fn every_error_case_is_a_named_error() {
 
     // Not JSON at all, and an empty file.
     std::fs::write(dir.join("garbage.gltf"), b"{ this is not json").expect("write");
-    let msg = import_gltf(&dir.join("garbage.gltf"))
-        .expect_err("garbage")
-        .to_string();
-    assert!(
-        msg.contains("garbage.gltf") && msg.contains("not a valid glTF"),
-        "{msg}"
-    );
+    let msg = import_gltf(&dir.join("garbage.gltf")).expect_err("garbage").to_string();
+    assert!(msg.contains("garbage.gltf") && msg.contains("not a valid glTF"), "{msg}");
     std::fs::write(dir.join("empty.glb"), b"").expect("write");
-    assert!(
-        import_gltf(&dir.join("empty.glb"))
-            .expect_err("empty")
-            .to_string()
-            .contains("empty.glb")
-    );
-    let msg = import_gltf(&dir.join("nope.gltf"))
-        .expect_err("missing")
-        .to_string();
+    assert!(import_gltf(&dir.join("empty.glb")).expect_err("empty").to_string().contains("empty.glb"));
+    let msg = import_gltf(&dir.join("nope.gltf")).expect_err("missing").to_string();
     assert!(msg.contains("nope.gltf"), "{msg}");
 }

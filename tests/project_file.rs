@@ -20,11 +20,7 @@ fn default_project_round_trips_byte_identical() {
     let path = default_project_path();
     let original = std::fs::read_to_string(&path).expect("default project exists");
     let project = Project::load(&path).expect("loads");
-    assert_eq!(
-        project.to_ron(&path).expect("serialises"),
-        original,
-        "load + save changes nothing"
-    );
+    assert_eq!(project.to_ron(&path).expect("serialises"), original, "load + save changes nothing");
     assert!(project.scene.lights().len() == 1 && project.scene.objects().len() == 7);
 }
 
@@ -50,20 +46,10 @@ fn edited_project_saves_and_reopens_exactly() {
     project.save(&path).expect("saves");
     let first = std::fs::read(&path).expect("read");
     project.save(&path).expect("saves again");
-    assert_eq!(
-        std::fs::read(&path).expect("read"),
-        first,
-        "saving twice gives identical bytes"
-    );
+    assert_eq!(std::fs::read(&path).expect("read"), first, "saving twice gives identical bytes");
     let text = String::from_utf8(first.clone()).expect("utf8");
-    assert!(
-        text.trim_start().starts_with("(\n  format_version: 1,"),
-        "format_version comes first"
-    );
-    assert!(
-        !text.contains(&*dir.to_string_lossy()),
-        "asset paths are relative"
-    );
+    assert!(text.trim_start().starts_with("(\n  format_version: 1,"), "format_version comes first");
+    assert!(!text.contains(&*dir.to_string_lossy()), "asset paths are relative");
     let reopened = Project::load(&path).expect("reopens");
     assert_eq!(reopened.scene.desc(), project.scene.desc());
     assert_eq!(reopened.render, project.render);
@@ -75,21 +61,13 @@ fn unknown_fields_and_syntax_errors_have_line_and_column() {
     let dir = temp_dir("errors");
     let good = std::fs::read_to_string(default_project_path()).expect("default");
     let asset = std::fs::canonicalize("assets/cornell_box.gltf").expect("asset");
-    let good = good.replace(
-        "\"../assets/cornell_box.gltf\"",
-        &format!("{:?}", asset.to_string_lossy()),
-    );
+    let good = good.replace("\"../assets/cornell_box.gltf\"", &format!("{:?}", asset.to_string_lossy()));
 
     let bad = good.replacen("  render: (", "  colour: 3,\n  render: (", 1);
     let path = dir.join("unknown.ron");
     std::fs::write(&path, &bad).expect("write");
     match Project::load(&path) {
-        Err(ProjectError::Parse {
-            line,
-            column,
-            message,
-            ..
-        }) => {
+        Err(ProjectError::Parse { line, column, message, .. }) => {
             assert!(line > 1 && column > 0, "line {line} column {column}");
             assert!(message.contains("colour"), "{message}");
         }
@@ -99,52 +77,23 @@ fn unknown_fields_and_syntax_errors_have_line_and_column() {
     assert!(msg.contains("unknown.ron:"), "{msg}");
 
     std::fs::write(&path, "(format_version: 1, assets: [").expect("write");
-    assert!(matches!(
-        Project::load(&path),
-        Err(ProjectError::Parse { .. })
-    ));
+    assert!(matches!(Project::load(&path), Err(ProjectError::Parse { .. })));
 
-    std::fs::write(
-        &path,
-        good.replace("format_version: 1", "format_version: 99"),
-    )
-    .expect("write");
-    assert!(matches!(
-        Project::load(&path),
-        Err(ProjectError::TooNew { found: 99, .. })
-    ));
+    std::fs::write(&path, good.replace("format_version: 1", "format_version: 99")).expect("write");
+    assert!(matches!(Project::load(&path), Err(ProjectError::TooNew { found: 99, .. })));
 
     std::fs::write(&path, good.replace("resolution: 1024", "resolution: 0")).expect("write");
-    let msg = Project::load(&path)
-        .expect_err("absurd setting")
-        .to_string();
+    let msg = Project::load(&path).expect_err("absurd setting").to_string();
     assert!(msg.contains("shadows.resolution"), "{msg}");
 
-    std::fs::write(
-        &path,
-        good.replace("sampling_weight: 1.0", "sampling_weight: -1.0"),
-    )
-    .expect("write");
-    assert!(
-        Project::load(&path)
-            .expect_err("negative weight")
-            .to_string()
-            .contains("sampling weight")
-    );
+    std::fs::write(&path, good.replace("sampling_weight: 1.0", "sampling_weight: -1.0")).expect("write");
+    assert!(Project::load(&path).expect_err("negative weight").to_string().contains("sampling weight"));
 
     std::fs::write(&path, good.replace("cornell_box.gltf", "nowhere.gltf")).expect("write");
-    assert!(
-        Project::load(&path)
-            .expect_err("missing asset")
-            .to_string()
-            .contains("nowhere.gltf")
-    );
+    assert!(Project::load(&path).expect_err("missing asset").to_string().contains("nowhere.gltf"));
 
     std::fs::write(&path, "").expect("write");
-    assert!(matches!(
-        Project::load(&path),
-        Err(ProjectError::Parse { .. })
-    ));
+    assert!(matches!(Project::load(&path), Err(ProjectError::Parse { .. })));
 }
 
 #[test]
@@ -157,16 +106,9 @@ fn failed_save_keeps_the_previous_file() {
     let mut broken = project.clone();
     broken.render.shadows.pcf_radius = 99;
     assert!(broken.save(&path).is_err(), "invalid settings are refused");
-    assert_eq!(
-        std::fs::read(&path).expect("read"),
-        before,
-        "previous file intact"
-    );
-    let leftovers: Vec<_> = std::fs::read_dir(&dir)
-        .expect("dir")
-        .filter_map(Result::ok)
-        .filter(|e| e.file_name() != "p.ron")
-        .collect();
+    assert_eq!(std::fs::read(&path).expect("read"), before, "previous file intact");
+    let leftovers: Vec<_> =
+        std::fs::read_dir(&dir).expect("dir").filter_map(Result::ok).filter(|e| e.file_name() != "p.ron").collect();
     assert!(leftovers.is_empty(), "no temp files left: {leftovers:?}");
 }
 

@@ -24,9 +24,7 @@ pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.device_descriptor = Arc::new(device_descriptor);
     let options = eframe::NativeOptions {
-        viewport: egui::ViewportBuilder::default()
-            .with_inner_size([1280.0, 800.0])
-            .with_title("Bounce Lab"),
+        viewport: egui::ViewportBuilder::default().with_inner_size([1280.0, 800.0]).with_title("Bounce Lab"),
         renderer: eframe::Renderer::Wgpu,
         wgpu_options: egui_wgpu::WgpuConfiguration {
             wgpu_setup: egui_wgpu::WgpuSetup::CreateNew(setup),
@@ -35,12 +33,8 @@ pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
         ..Default::default()
     };
     let title = format!("Bounce Lab — {}", path.display());
-    eframe::run_native(
-        &title,
-        options,
-        Box::new(move |cc| Ok(Box::new(EditorApp::new(cc, project, path)))),
-    )
-    .map_err(|e| anyhow::anyhow!("cannot open the editor window: {e}"))
+    eframe::run_native(&title, options, Box::new(move |cc| Ok(Box::new(EditorApp::new(cc, project, path)))))
+        .map_err(|e| anyhow::anyhow!("cannot open the editor window: {e}"))
 }
 
 /// The editor application state.
@@ -55,12 +49,7 @@ impl EditorApp {
     /// Creates the app; the renderer is created on eframe's wgpu device.
     pub fn new(cc: &eframe::CreationContext<'_>, project: Project, path: PathBuf) -> Self {
         let viewport = viewport::Viewport::new(cc.wgpu_render_state.as_ref(), &project);
-        Self {
-            project,
-            path,
-            viewport,
-            error: None,
-        }
+        Self { project, path, viewport, error: None }
     }
 
     fn side_panel(&mut self, ui: &mut egui::Ui) {
@@ -74,26 +63,19 @@ impl EditorApp {
             self.project.scene.lights().len()
         ));
         for light in self.project.scene.lights() {
-            ui.label(format!(
-                "💡 {} ({:?}, {} W/sr)",
-                light.name, light.kind, light.intensity
-            ));
+            ui.label(format!("💡 {} ({:?}, {} W/sr)", light.name, light.kind, light.intensity));
         }
         ui.separator();
         ui.heading("View");
         let view = &mut self.project.render.view;
         ui.add(egui::Slider::new(&mut view.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
-        egui::ComboBox::from_label("tonemap")
-            .selected_text(format!("{:?}", view.tonemap))
-            .show_ui(ui, |ui| {
-                for t in [
-                    crate::settings::Tonemap::Aces,
-                    crate::settings::Tonemap::Reinhard,
-                    crate::settings::Tonemap::Clamp,
-                ] {
-                    ui.selectable_value(&mut view.tonemap, t, format!("{t:?}"));
-                }
-            });
+        egui::ComboBox::from_label("tonemap").selected_text(format!("{:?}", view.tonemap)).show_ui(ui, |ui| {
+            for t in
+                [crate::settings::Tonemap::Aces, crate::settings::Tonemap::Reinhard, crate::settings::Tonemap::Clamp]
+            {
+                ui.selectable_value(&mut view.tonemap, t, format!("{t:?}"));
+            }
+        });
         ui.separator();
         ui.heading("Timings");
         self.viewport.timings_ui(ui);
@@ -108,15 +90,9 @@ impl EditorApp {
 
 impl eframe::App for EditorApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        egui::Panel::left("side panel")
-            .default_size(280.0)
-            .show(ui, |ui| self.side_panel(ui));
+        egui::Panel::left("side panel").default_size(280.0).show(ui, |ui| self.side_panel(ui));
         egui::CentralPanel::default().show(ui, |ui| {
-            self.error = self
-                .viewport
-                .ui(ui, frame, &mut self.project)
-                .err()
-                .map(|e| e.to_string());
+            self.error = self.viewport.ui(ui, frame, &mut self.project).err().map(|e| e.to_string());
         });
     }
 }

@@ -79,12 +79,7 @@ mod tests {
 
     #[test]
     fn rotation_keeps_distance_and_zoom_moves_closer() {
-        let mut orbit = Orbit {
-            target: Vec3::ZERO,
-            distance: 2.0,
-            yaw: 0.0,
-            pitch: 0.0,
-        };
+        let mut orbit = Orbit { target: Vec3::ZERO, distance: 2.0, yaw: 0.0, pitch: 0.0 };
         orbit.rotate(100.0, 50.0);
         let mut cam = Camera::default();
         orbit.apply(&mut cam);

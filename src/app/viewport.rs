@@ -26,9 +26,7 @@ impl Viewport {
             None => (None, Some("eframe is not running on wgpu".to_owned())),
         };
         let cam = project.scene.camera();
-        let dist = project.scene.bounds().map_or(3.0, |b| {
-            (b.center() - cam.position).dot(cam.forward()).max(0.1)
-        });
+        let dist = project.scene.bounds().map_or(3.0, |b| (b.center() - cam.position).dot(cam.forward()).max(0.1));
         Self {
             renderer,
             texture: None,
@@ -49,31 +47,21 @@ impl Viewport {
     }
 
     /// Handles input, renders and paints into the remaining space.
-    pub fn ui(
-        &mut self,
-        ui: &mut egui::Ui,
-        frame: &eframe::Frame,
-        project: &mut Project,
-    ) -> Result<(), RenderError> {
+    pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame, project: &mut Project) -> Result<(), RenderError> {
         if let Some(e) = &self.init_error {
             ui.label(format!("Renderer unavailable: {e}"));
             return Ok(());
         }
-        let (rect, response) =
-            ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
+        let (rect, response) = ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
         let ppp = ui.ctx().pixels_per_point();
-        let size = (
-            (rect.width() * ppp).round().max(1.0) as u32,
-            (rect.height() * ppp).round().max(1.0) as u32,
-        );
+        let size = ((rect.width() * ppp).round().max(1.0) as u32, (rect.height() * ppp).round().max(1.0) as u32);
         let d = response.drag_delta();
         if response.dragged_by(egui::PointerButton::Primary) {
             self.orbit.rotate(d.x, d.y);
         } else if response.dragged_by(egui::PointerButton::Secondary)
             || response.dragged_by(egui::PointerButton::Middle)
         {
-            self.orbit
-                .pan(d.x, d.y, rect.height(), project.scene.camera().yfov);
+            self.orbit.pan(d.x, d.y, rect.height(), project.scene.camera().yfov);
         }
         if response.hovered() {
             let scroll = ui.input(|i| i.smooth_scroll_delta.y);
@@ -111,11 +99,7 @@ impl Viewport {
                     self.texture = Some((id, size));
                 }
                 None => {
-                    let id = egui_renderer.register_native_texture(
-                        &rs.device,
-                        &t.ldr.view,
-                        wgpu::FilterMode::Linear,
-                    );
+                    let id = egui_renderer.register_native_texture(&rs.device, &t.ldr.view, wgpu::FilterMode::Linear);
                     self.texture = Some((id, size));
                 }
             }

@@ -22,13 +22,7 @@ fn median(mut v: Vec<f64>) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
 
-fn measure(
-    ctx: &GpuContext,
-    project: &Project,
-    mode: GiMode,
-    size: (u32, u32),
-    frames: usize,
-) -> anyhow::Result<Row> {
+fn measure(ctx: &GpuContext, project: &Project, mode: GiMode, size: (u32, u32), frames: usize) -> anyhow::Result<Row> {
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue)?;
     let mut settings = project.render.clone();
     settings.mode = mode;
@@ -46,39 +40,22 @@ fn measure(
         times.push(t.elapsed().as_secs_f64() * 1e3);
         per_pass.push(renderer.timings(true));
     }
-    let names: Vec<String> = per_pass
-        .last()
-        .map(|p| p.iter().map(|t| t.name.clone()).collect())
-        .unwrap_or_default();
+    let names: Vec<String> = per_pass.last().map(|p| p.iter().map(|t| t.name.clone()).collect()).unwrap_or_default();
     let passes = names
         .into_iter()
         .map(|name| {
-            let ms = median(
-                per_pass
-                    .iter()
-                    .filter_map(|f| f.iter().find(|t| t.name == name).map(|t| t.ms))
-                    .collect(),
-            );
+            let ms = median(per_pass.iter().filter_map(|f| f.iter().find(|t| t.name == name).map(|t| t.ms)).collect());
             PassTiming { name, ms }
         })
         .collect();
-    Ok(Row {
-        mode,
-        size,
-        frame_ms: median(times),
-        passes,
-    })
+    Ok(Row { mode, size, frame_ms: median(times), passes })
 }
 
 /// Runs the benchmark and writes `out` (normally `docs/BENCHMARKS.md`).
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
     let ctx = GpuContext::new_headless()?;
     let project = Project::load(&default_project_path())?;
-    let sizes: &[(u32, u32)] = if quick {
-        &[(320, 180)]
-    } else {
-        &[(320, 180), (640, 360), (1280, 720)]
-    };
+    let sizes: &[(u32, u32)] = if quick { &[(320, 180)] } else { &[(320, 180), (640, 360), (1280, 720)] };
     let frames = if quick { 5 } else { 20 };
     let mut rows = Vec::new();
     for &size in sizes {
@@ -105,21 +82,9 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
         let passes = if r.passes.is_empty() {
             "(no timestamp queries on this adapter)".to_owned()
         } else {
-            r.passes
-                .iter()
-                .map(|p| format!("{} {:.2}", p.name, p.ms))
-                .collect::<Vec<_>>()
-                .join(", ")
+            r.passes.iter().map(|p| format!("{} {:.2}", p.name, p.ms)).collect::<Vec<_>>().join(", ")
         };
-        let _ = writeln!(
-            md,
-            "| {} | {}x{} | {:.2} | {} |",
-            r.mode.name(),
-            r.size.0,
-            r.size.1,
-            r.frame_ms,
-            passes
-        );
+        let _ = writeln!(md, "| {} | {}x{} | {:.2} | {} |", r.mode.name(), r.size.0, r.size.1, r.frame_ms, passes);
     }
     if let Some(dir) = out.parent() {
         std::fs::create_dir_all(dir)?;

@@ -25,8 +25,7 @@ pub fn generate(root: &Path) -> anyhow::Result<()> {
     let project = root.join("projects/default.ron");
     std::fs::create_dir_all(root.join("assets"))?;
     std::fs::create_dir_all(root.join("projects"))?;
-    std::fs::write(&gltf, cornell_gltf_text())
-        .with_context(|| format!("writing {}", gltf.display()))?;
+    std::fs::write(&gltf, cornell_gltf_text()).with_context(|| format!("writing {}", gltf.display()))?;
     let text = default_project_text(&gltf, &project)?;
     std::fs::write(&project, text).with_context(|| format!("writing {}", project.display()))?;
     println!("wrote {} and {}", gltf.display(), project.display());

@@ -2,5 +2,6 @@
 //! The binary's `main.rs` only parses arguments and calls these.
 
 pub mod bench;
+pub mod compare;
 pub mod generate;
 pub mod render;

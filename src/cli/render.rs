@@ -1,16 +1,19 @@
-//! `bouncelab render`: headless rendering of a project or glTF file to EXR or PNG.
+//! `bouncelab render`: headless rendering of a project or glTF file to EXR or PNG, with the
+//! rasteriser (`direct`, GI modes) or the CPU reference path tracer (`reference`).
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
 
 use anyhow::Context as _;
 
 use crate::image_io::{self, HdrImage, OutputKind};
+use crate::precompute::pathtracer::PathTracer;
 use crate::project_file::Project;
 use crate::render::{GpuContext, Renderer};
-use crate::settings::GiMode;
+use crate::settings::{GiMode, Tonemap, ViewSettings};
 
 /// Options of one headless render.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct RenderArgs {
     /// Project (`.ron`) or scene (`.gltf`, `.glb`).
     pub input: PathBuf,
@@ -26,27 +29,70 @@ pub struct RenderArgs {
     pub frames: u32,
     /// Exposure override in stops (PNG only).
     pub exposure: Option<f32>,
+    /// Samples per pixel for `reference`.
+    pub spp: Option<u32>,
+    /// Longest path for `reference` (1 = direct only).
+    pub max_bounces: Option<u32>,
+    /// Seed for `reference`.
+    pub seed: Option<u64>,
+    /// Write this intermediate buffer instead of the final image.
+    pub buffer: Option<String>,
+    /// Supersampling factor per axis for raster modes (the image is rendered at `ssaa` times the
+    /// size and box-filtered down, like a path tracer's pixel filter).
+    pub ssaa: u32,
 }
 
 /// Renders and writes the output file; returns a one-line summary.
 pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     let kind = image_io::output_kind(&args.out)?;
     let mut project = Project::open(&args.input)?;
+    let r = &mut project.render;
     if let Some(mode) = args.mode {
-        project.render.mode = mode;
+        r.mode = mode;
     }
     if let Some(ev) = args.exposure {
-        project.render.view.exposure_ev = ev;
+        r.view.exposure_ev = ev;
+    }
+    r.reference.spp = args.spp.unwrap_or(r.reference.spp);
+    r.reference.max_bounces = args.max_bounces.unwrap_or(r.reference.max_bounces);
+    r.reference.seed = args.seed.unwrap_or(r.reference.seed);
+    r.validate()?;
+    let size = (args.width, args.height);
+    if size.0 == 0 || size.1 == 0 || size.0 > 16384 || size.1 > 16384 {
+        anyhow::bail!("image size {}x{} is outside 1..=16384 pixels per side", size.0, size.1);
+    }
+    if project.render.mode == GiMode::Reference {
+        if args.buffer.is_some() {
+            anyhow::bail!("--buffer is for raster modes; the reference mode has no intermediate buffers");
+        }
+        return reference(&project, &args.out, kind, size);
     }
     let ctx = GpuContext::new_headless()?;
     ctx.log_errors();
     log::info!("rendering {} with {}", args.input.display(), ctx.describe());
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue)?;
-    let size = (args.width, args.height);
+    // Buffers are inspected at their own resolution; the final image is supersampled.
+    let k = if args.buffer.is_some() { 1 } else { args.ssaa.clamp(1, 8) };
+    let render_size = (size.0 * k, size.1 * k);
     for _ in 0..args.frames.max(1) {
-        renderer.render(&project.scene, &project.render, size)?;
+        renderer.render(&project.scene, &project.render, render_size)?;
     }
-    write_output(&renderer, &args.out, kind, size)?;
+    let img = match &args.buffer {
+        Some(name) => renderer.read_buffer(name)?,
+        None => HdrImage {
+            width: size.0,
+            height: size.1,
+            pixels: image_io::box_downsample(&renderer.read_hdr()?, render_size, k),
+        },
+    };
+    let size = (img.width, img.height);
+    // PNGs of buffers show raw values (clamped); the final image uses the project's view.
+    let view = if args.buffer.is_some() {
+        ViewSettings { exposure_ev: 0.0, tonemap: Tonemap::Clamp }
+    } else {
+        project.render.view.clone()
+    };
+    write_image(&args.out, kind, &img, &view)?;
     Ok(format!(
         "{} ({}x{}, mode {}, {})",
         args.out.display(),
@@ -57,28 +103,45 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     ))
 }
 
-fn write_output(
-    renderer: &Renderer,
-    out: &Path,
-    kind: OutputKind,
-    size: (u32, u32),
-) -> anyhow::Result<()> {
+fn reference(project: &Project, out: &Path, kind: OutputKind, size: (u32, u32)) -> anyhow::Result<String> {
+    let settings = project.render.reference.clone();
+    let mut tracer = PathTracer::new(&project.scene, size, settings.clone());
+    let cancel = AtomicBool::new(false);
+    let mut last = std::time::Instant::now();
+    tracer.render(settings.spp, &cancel, |p| {
+        if last.elapsed().as_secs_f32() > 2.0 || p.spp == settings.spp {
+            eprintln!(
+                "reference: {} / {} spp, {:.2} Mrays/s, {:.2} Msamples/s",
+                p.spp,
+                settings.spp,
+                p.rays_per_second * 1e-6,
+                p.samples_per_second * 1e-6
+            );
+            last = std::time::Instant::now();
+        }
+    });
+    let img = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    write_image(out, kind, &img, &project.render.view)?;
+    let p = tracer.progress();
+    Ok(format!(
+        "{} ({}x{}, reference, {} spp, max {} bounces, {:.2} Mrays/s)",
+        out.display(),
+        size.0,
+        size.1,
+        p.spp,
+        settings.max_bounces,
+        p.rays_per_second * 1e-6
+    ))
+}
+
+/// Writes linear radiance as EXR, or the tonemapped view as PNG.
+pub fn write_image(out: &Path, kind: OutputKind, img: &HdrImage, view: &ViewSettings) -> anyhow::Result<()> {
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     }
     match kind {
-        OutputKind::Exr => {
-            let pixels = renderer.read_hdr()?;
-            image_io::write_exr(
-                out,
-                &HdrImage {
-                    width: size.0,
-                    height: size.1,
-                    pixels,
-                },
-            )?;
-        }
-        OutputKind::Png => image_io::write_png(out, size.0, size.1, renderer.read_ldr()?)?,
+        OutputKind::Exr => image_io::write_exr(out, img)?,
+        OutputKind::Png => image_io::write_png(out, img.width, img.height, crate::image_io::tonemap_srgb8(img, view))?,
     }
     Ok(())
 }

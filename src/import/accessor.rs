@@ -18,11 +18,7 @@ pub enum AccessorError {
     NoView(usize),
     /// Wrong element shape for its use.
     #[error("accessor {index} is {found:?}, expected {expected}")]
-    WrongType {
-        index: usize,
-        found: String,
-        expected: &'static str,
-    },
+    WrongType { index: usize, found: String, expected: &'static str },
     /// The accessor reaches past the end of its buffer view or buffer.
     #[error("accessor {0} reads past the end of its buffer (offsets, stride or count too large)")]
     OutOfBounds(usize),
@@ -50,14 +46,10 @@ fn element_bytes<'a>(
     }
     let view = accessor.view().ok_or(AccessorError::NoView(index))?;
     let buffer_index = view.buffer().index();
-    let buffer = buffers
-        .get(buffer_index)
-        .ok_or(AccessorError::MissingBuffer(index, buffer_index))?;
+    let buffer = buffers.get(buffer_index).ok_or(AccessorError::MissingBuffer(index, buffer_index))?;
     let oob = || AccessorError::OutOfBounds(index);
     let data_type = accessor.data_type();
-    let elem = component_size(data_type)
-        .checked_mul(accessor.dimensions().multiplicity())
-        .ok_or_else(oob)?;
+    let elem = component_size(data_type).checked_mul(accessor.dimensions().multiplicity()).ok_or_else(oob)?;
     let stride = view.stride().unwrap_or(elem);
     if stride < elem {
         return Err(oob());
@@ -71,10 +63,7 @@ fn element_bytes<'a>(
     if count == 0 {
         return Ok((Vec::new(), data_type));
     }
-    let last_start = stride
-        .checked_mul(count - 1)
-        .and_then(|s| s.checked_add(accessor.offset()))
-        .ok_or_else(oob)?;
+    let last_start = stride.checked_mul(count - 1).and_then(|s| s.checked_add(accessor.offset())).ok_or_else(oob)?;
     let end = last_start.checked_add(elem).ok_or_else(oob)?;
     if end > view_bytes.len() {
         return Err(oob());
@@ -104,11 +93,7 @@ fn component(bytes: &[u8], t: DataType, normalized: bool, k: usize) -> f32 {
         }
         DataType::I16 => {
             let v = f32::from(i16::from_le_bytes([at(2)[0], at(2)[1]]));
-            if normalized {
-                (v / 32767.0).max(-1.0)
-            } else {
-                v
-            }
+            if normalized { (v / 32767.0).max(-1.0) } else { v }
         }
         DataType::U32 => u32::from_le_bytes([at(4)[0], at(4)[1], at(4)[2], at(4)[3]]) as f32,
     }
@@ -123,42 +108,24 @@ pub fn read_vec<const N: usize>(
     let dims = accessor.dimensions();
     let ok_dims = matches!(
         (dims, N),
-        (Dimensions::Scalar, 1)
-            | (Dimensions::Vec2, 2)
-            | (Dimensions::Vec3, 3)
-            | (Dimensions::Vec4, 4)
+        (Dimensions::Scalar, 1) | (Dimensions::Vec2, 2) | (Dimensions::Vec3, 3) | (Dimensions::Vec4, 4)
     );
     let t = accessor.data_type();
     if !ok_dims || (t != DataType::F32 && !accessor.normalized()) {
         return Err(AccessorError::WrongType {
             index: accessor.index(),
-            found: format!(
-                "{dims:?} of {t:?}{}",
-                if accessor.normalized() {
-                    " (normalized)"
-                } else {
-                    ""
-                }
-            ),
+            found: format!("{dims:?} of {t:?}{}", if accessor.normalized() { " (normalized)" } else { "" }),
             expected,
         });
     }
     let (elems, t) = element_bytes(accessor, buffers)?;
-    Ok(elems
-        .into_iter()
-        .map(|b| std::array::from_fn(|k| component(b, t, accessor.normalized(), k)))
-        .collect())
+    Ok(elems.into_iter().map(|b| std::array::from_fn(|k| component(b, t, accessor.normalized(), k))).collect())
 }
 
 /// Reads an index accessor (unsigned scalar of 8, 16 or 32 bits).
-pub fn read_indices(
-    accessor: &gltf::Accessor<'_>,
-    buffers: &[Vec<u8>],
-) -> Result<Vec<u32>, AccessorError> {
+pub fn read_indices(accessor: &gltf::Accessor<'_>, buffers: &[Vec<u8>]) -> Result<Vec<u32>, AccessorError> {
     let t = accessor.data_type();
-    if accessor.dimensions() != Dimensions::Scalar
-        || !matches!(t, DataType::U8 | DataType::U16 | DataType::U32)
-    {
+    if accessor.dimensions() != Dimensions::Scalar || !matches!(t, DataType::U8 | DataType::U16 | DataType::U32) {
         return Err(AccessorError::WrongType {
             index: accessor.index(),
             found: format!("{:?} of {t:?}", accessor.dimensions()),

@@ -7,10 +7,8 @@ use super::{Asset, ImportError, SUPPORTED_REQUIRED_EXTENSIONS, images, nodes, pr
 use crate::scene::{Material, TextureRef};
 
 pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset, ImportError> {
-    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| ImportError::Parse {
-        path: path.to_owned(),
-        message: e.to_string(),
-    })?;
+    let gltf = gltf::Gltf::from_slice(bytes)
+        .map_err(|e| ImportError::Parse { path: path.to_owned(), message: e.to_string() })?;
     let doc = &gltf.document;
     for ext in doc.extensions_required() {
         if !SUPPORTED_REQUIRED_EXTENSIONS.contains(&ext) {
@@ -25,12 +23,7 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset,
     let images = images::load_images(doc, &buffers, base_dir, path)?;
     let materials = doc.materials().map(|m| material(&m)).collect();
     let primitives = primitive::load_primitives(doc, &buffers, path)?;
-    let mut asset = Asset {
-        primitives,
-        images,
-        materials,
-        ..Asset::default()
-    };
+    let mut asset = Asset { primitives, images, materials, ..Asset::default() };
     nodes::build_scene(doc, &mut asset, path)?;
     Ok(asset)
 }
@@ -46,19 +39,13 @@ fn load_buffers(
             let index = buffer.index();
             let data = match buffer.source() {
                 gltf::buffer::Source::Bin => {
-                    blob.map(<[u8]>::to_vec)
-                        .ok_or(ImportError::MissingBinaryChunk {
-                            path: path.to_owned(),
-                            index,
-                        })?
+                    blob.map(<[u8]>::to_vec).ok_or(ImportError::MissingBinaryChunk { path: path.to_owned(), index })?
                 }
-                gltf::buffer::Source::Uri(u) => {
-                    uri::load(u, base_dir).map_err(|source| ImportError::Buffer {
-                        path: path.to_owned(),
-                        index,
-                        source,
-                    })?
-                }
+                gltf::buffer::Source::Uri(u) => uri::load(u, base_dir).map_err(|source| ImportError::Buffer {
+                    path: path.to_owned(),
+                    index,
+                    source,
+                })?,
             };
             if data.len() < buffer.length() {
                 return Err(ImportError::BufferTooShort {
@@ -75,20 +62,12 @@ fn load_buffers(
 
 fn material(m: &gltf::Material<'_>) -> Material {
     let pbr = m.pbr_metallic_roughness();
-    let tex = |t: gltf::texture::Texture<'_>, tex_coord: u32| TextureRef {
-        image: t.source().index(),
-        tex_coord,
-    };
-    let name = m.name().map_or_else(
-        || format!("material {}", m.index().unwrap_or(0)),
-        str::to_owned,
-    );
+    let tex = |t: gltf::texture::Texture<'_>, tex_coord: u32| TextureRef { image: t.source().index(), tex_coord };
+    let name = m.name().map_or_else(|| format!("material {}", m.index().unwrap_or(0)), str::to_owned);
     Material {
         name,
         base_color: pbr.base_color_factor(),
-        base_color_texture: pbr
-            .base_color_texture()
-            .map(|i| tex(i.texture(), i.tex_coord())),
+        base_color_texture: pbr.base_color_texture().map(|i| tex(i.texture(), i.tex_coord())),
         normal_texture: m.normal_texture().map(|n| tex(n.texture(), n.tex_coord())),
         normal_scale: m.normal_texture().map_or(1.0, |n| n.scale()),
         specular: [0.0; 3],

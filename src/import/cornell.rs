@@ -20,42 +20,14 @@ pub const LIGHT_INTENSITY: f32 = 2.5;
 pub const LIGHT_POSITION: Vec3 = Vec3::new(0.0, 1.85, 0.0);
 
 fn quad(w: &mut GltfWriter, name: &str, corners: [Vec3; 4], material: usize) -> usize {
-    let n = (corners[1] - corners[0])
-        .cross(corners[2] - corners[0])
-        .normalize();
-    let mesh = w.mesh(
-        name,
-        &corners,
-        Some(&[n; 4]),
-        &[0, 1, 2, 0, 2, 3],
-        Some(material),
-    );
-    w.node(
-        NodeDesc {
-            name: name.to_owned(),
-            mesh: Some(mesh),
-            ..NodeDesc::default()
-        },
-        true,
-    )
+    let n = (corners[1] - corners[0]).cross(corners[2] - corners[0]).normalize();
+    let mesh = w.mesh(name, &corners, Some(&[n; 4]), &[0, 1, 2, 0, 2, 3], Some(material));
+    w.node(NodeDesc { name: name.to_owned(), mesh: Some(mesh), ..NodeDesc::default() }, true)
 }
 
-fn cuboid_node(
-    w: &mut GltfWriter,
-    name: &str,
-    size: Vec3,
-    translation: Vec3,
-    angle: f32,
-    material: usize,
-) -> usize {
+fn cuboid_node(w: &mut GltfWriter, name: &str, size: Vec3, translation: Vec3, angle: f32, material: usize) -> usize {
     let m = Mesh::cuboid(name, size);
-    let mesh = w.mesh(
-        name,
-        &m.positions,
-        Some(&m.normals),
-        &m.indices,
-        Some(material),
-    );
+    let mesh = w.mesh(name, &m.positions, Some(&m.normals), &m.indices, Some(material));
     w.node(
         NodeDesc {
             name: name.to_owned(),
@@ -77,74 +49,17 @@ pub fn cornell_box() -> GltfWriter {
     let (x0, x1, y0, y1, z0, z1) = (-1.0, 1.0, 0.0, 2.0, -1.0, 1.0);
     let v = Vec3::new;
     // Each quad is counter-clockwise seen from inside the room.
-    quad(
-        &mut w,
-        "floor",
-        [v(x0, y0, z1), v(x1, y0, z1), v(x1, y0, z0), v(x0, y0, z0)],
-        white,
-    );
-    quad(
-        &mut w,
-        "ceiling",
-        [v(x0, y1, z0), v(x1, y1, z0), v(x1, y1, z1), v(x0, y1, z1)],
-        white,
-    );
-    quad(
-        &mut w,
-        "back_wall",
-        [v(x0, y0, z0), v(x1, y0, z0), v(x1, y1, z0), v(x0, y1, z0)],
-        white,
-    );
-    quad(
-        &mut w,
-        "left_wall",
-        [v(x0, y0, z1), v(x0, y0, z0), v(x0, y1, z0), v(x0, y1, z1)],
-        red,
-    );
-    quad(
-        &mut w,
-        "right_wall",
-        [v(x1, y0, z0), v(x1, y0, z1), v(x1, y1, z1), v(x1, y1, z0)],
-        green,
-    );
-    let short = cuboid_node(
-        &mut w,
-        "short_box",
-        v(0.6, 0.6, 0.6),
-        v(0.35, 0.3, 0.3),
-        -0.29,
-        white,
-    );
-    let tall = cuboid_node(
-        &mut w,
-        "tall_box",
-        v(0.6, 1.2, 0.6),
-        v(-0.35, 0.6, -0.35),
-        0.29,
-        white,
-    );
+    quad(&mut w, "floor", [v(x0, y0, z1), v(x1, y0, z1), v(x1, y0, z0), v(x0, y0, z0)], white);
+    quad(&mut w, "ceiling", [v(x0, y1, z0), v(x1, y1, z0), v(x1, y1, z1), v(x0, y1, z1)], white);
+    quad(&mut w, "back_wall", [v(x0, y0, z0), v(x1, y0, z0), v(x1, y1, z0), v(x0, y1, z0)], white);
+    quad(&mut w, "left_wall", [v(x0, y0, z1), v(x0, y0, z0), v(x0, y1, z0), v(x0, y1, z1)], red);
+    quad(&mut w, "right_wall", [v(x1, y0, z0), v(x1, y0, z1), v(x1, y1, z1), v(x1, y1, z0)], green);
+    let short = cuboid_node(&mut w, "short_box", v(0.6, 0.6, 0.6), v(0.35, 0.3, 0.3), -0.29, white);
+    let tall = cuboid_node(&mut w, "tall_box", v(0.6, 1.2, 0.6), v(-0.35, 0.6, -0.35), 0.29, white);
+    w.node(NodeDesc { name: "boxes".into(), children: vec![short, tall], ..NodeDesc::default() }, true);
+    let light = w.light("ceiling_light", "point", [1.0, 1.0, 1.0], LIGHT_INTENSITY, None);
     w.node(
-        NodeDesc {
-            name: "boxes".into(),
-            children: vec![short, tall],
-            ..NodeDesc::default()
-        },
-        true,
-    );
-    let light = w.light(
-        "ceiling_light",
-        "point",
-        [1.0, 1.0, 1.0],
-        LIGHT_INTENSITY,
-        None,
-    );
-    w.node(
-        NodeDesc {
-            name: "light".into(),
-            translation: Some(LIGHT_POSITION),
-            light: Some(light),
-            ..NodeDesc::default()
-        },
+        NodeDesc { name: "light".into(), translation: Some(LIGHT_POSITION), light: Some(light), ..NodeDesc::default() },
         true,
     );
     let cam = w.camera(0.6911, 0.05, Some(20.0));

@@ -30,60 +30,31 @@ const MAX_FILE_BYTES: u64 = 2 << 30;
 pub enum ImportError {
     /// The file itself could not be read.
     #[error("{path}: cannot read file: {source}")]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Io { path: PathBuf, source: std::io::Error },
     /// The JSON or GLB container is malformed or fails glTF validation.
     #[error("{path}: not a valid glTF file: {message}")]
     Parse { path: PathBuf, message: String },
     /// The file requires an extension we do not implement.
     #[error("{path}: requires unsupported extension {extension:?} (supported: {supported})")]
-    UnsupportedExtension {
-        path: PathBuf,
-        extension: String,
-        supported: String,
-    },
+    UnsupportedExtension { path: PathBuf, extension: String, supported: String },
     /// A buffer could not be loaded.
     #[error("{path}: buffer {index}: {source}")]
-    Buffer {
-        path: PathBuf,
-        index: usize,
-        source: UriError,
-    },
+    Buffer { path: PathBuf, index: usize, source: UriError },
     /// A buffer is shorter than its declared byteLength.
     #[error("{path}: buffer {index} has {actual} bytes but declares {declared}")]
-    BufferTooShort {
-        path: PathBuf,
-        index: usize,
-        actual: usize,
-        declared: usize,
-    },
+    BufferTooShort { path: PathBuf, index: usize, actual: usize, declared: usize },
     /// A GLB buffer refers to a binary chunk that is absent.
     #[error("{path}: buffer {index} refers to the GLB binary chunk, which is missing")]
     MissingBinaryChunk { path: PathBuf, index: usize },
     /// An image could not be loaded or decoded.
     #[error("{path}: image {index}: {message}")]
-    Image {
-        path: PathBuf,
-        index: usize,
-        message: String,
-    },
+    Image { path: PathBuf, index: usize, message: String },
     /// A mesh primitive is unusable.
     #[error("{path}: mesh {mesh} primitive {primitive}: {message}")]
-    Primitive {
-        path: PathBuf,
-        mesh: usize,
-        primitive: usize,
-        message: String,
-    },
+    Primitive { path: PathBuf, mesh: usize, primitive: usize, message: String },
     /// A node, light or camera is unusable.
     #[error("{path}: {what}: {message}")]
-    Node {
-        path: PathBuf,
-        what: String,
-        message: String,
-    },
+    Node { path: PathBuf, what: String, message: String },
     /// The importer hit an internal failure on this file (a bug, reported instead of crashing).
     #[error("{path}: internal importer failure: {message}")]
     Internal { path: PathBuf, message: String },
@@ -108,25 +79,16 @@ pub struct Asset {
 impl Asset {
     /// The mesh of glTF mesh `mesh`, primitive `primitive`.
     pub fn primitive(&self, mesh: usize, primitive: usize) -> Option<&Mesh> {
-        self.primitives
-            .iter()
-            .find(|(k, _, _)| *k == (mesh, primitive))
-            .map(|(_, m, _)| m)
+        self.primitives.iter().find(|(k, _, _)| *k == (mesh, primitive)).map(|(_, m, _)| m)
     }
 }
 
 /// Imports a `.gltf` or `.glb` file.
 pub fn import_gltf(path: &Path) -> Result<Asset, ImportError> {
-    let io = |source| ImportError::Io {
-        path: path.to_owned(),
-        source,
-    };
+    let io = |source| ImportError::Io { path: path.to_owned(), source };
     let len = std::fs::metadata(path).map_err(io)?.len();
     if len > MAX_FILE_BYTES {
-        return Err(ImportError::Parse {
-            path: path.to_owned(),
-            message: format!("file is {len} bytes, too large"),
-        });
+        return Err(ImportError::Parse { path: path.to_owned(), message: format!("file is {len} bytes, too large") });
     }
     let bytes = std::fs::read(path).map_err(io)?;
     let base_dir = path.parent().unwrap_or_else(|| Path::new("."));
@@ -146,10 +108,7 @@ pub fn import_slice(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset,
                 .map(|s| (*s).to_owned())
                 .or_else(|| payload.downcast_ref::<String>().cloned())
                 .unwrap_or_else(|| "panic".into());
-            Err(ImportError::Internal {
-                path: path.to_owned(),
-                message,
-            })
+            Err(ImportError::Internal { path: path.to_owned(), message })
         }
     }
 }

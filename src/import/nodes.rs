@@ -11,16 +11,8 @@ use gltf::khr_lights_punctual::Kind;
 use super::{Asset, ImportError};
 use crate::scene::{Camera, Light, LightKind, Material, MeshSource, Object, ObjectRole, Transform};
 
-pub(super) fn build_scene(
-    doc: &gltf::Document,
-    asset: &mut Asset,
-    path: &Path,
-) -> Result<(), ImportError> {
-    let node_err = |what: String, message: String| ImportError::Node {
-        path: path.to_owned(),
-        what,
-        message,
-    };
+pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) -> Result<(), ImportError> {
+    let node_err = |what: String, message: String| ImportError::Node { path: path.to_owned(), what, message };
     let roots: Vec<gltf::Node<'_>> = match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
         None => {
@@ -33,17 +25,11 @@ pub(super) fn build_scene(
                     }
                 }
             }
-            doc.nodes()
-                .filter(|n| !is_child.get(n.index()).copied().unwrap_or(true))
-                .collect()
+            doc.nodes().filter(|n| !is_child.get(n.index()).copied().unwrap_or(true)).collect()
         }
     };
     let mut visited = vec![false; doc.nodes().len()];
-    let mut stack: Vec<(gltf::Node<'_>, Mat4)> = roots
-        .into_iter()
-        .rev()
-        .map(|n| (n, Mat4::IDENTITY))
-        .collect();
+    let mut stack: Vec<(gltf::Node<'_>, Mat4)> = roots.into_iter().rev().map(|n| (n, Mat4::IDENTITY)).collect();
     let mut camera: Option<Camera> = None;
     let mut uses_default_material = false;
     let default_material = asset.materials.len();
@@ -52,18 +38,12 @@ pub(super) fn build_scene(
         let idx = node.index();
         let what = format!("node {idx} ({})", node.name().unwrap_or("unnamed"));
         if visited.get(idx).copied().unwrap_or(true) {
-            return Err(node_err(
-                what,
-                "is reached twice (a cycle or several parents)".into(),
-            ));
+            return Err(node_err(what, "is reached twice (a cycle or several parents)".into()));
         }
         visited[idx] = true;
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());
         if !local.is_finite() {
-            return Err(node_err(
-                what,
-                "transform has NaN or infinite values".into(),
-            ));
+            return Err(node_err(what, "transform has NaN or infinite values".into()));
         }
         let world = parent * local;
         if !world.is_finite() {
@@ -99,8 +79,7 @@ pub(super) fn build_scene(
             }
         }
         if let Some(light) = node.light() {
-            let light = convert_light(&light, &world, node.name())
-                .map_err(|m| node_err(what.clone(), m))?;
+            let light = convert_light(&light, &world, node.name()).map_err(|m| node_err(what.clone(), m))?;
             asset.scene.lights.push(light);
         }
         if let (Some(cam), None) = (node.camera(), camera) {
@@ -128,18 +107,10 @@ fn convert_light(
     let kind = match light.kind() {
         Kind::Point => LightKind::Point,
         Kind::Directional => LightKind::Directional,
-        Kind::Spot {
-            inner_cone_angle,
-            outer_cone_angle,
-        } => LightKind::Spot {
-            inner_cone_angle,
-            outer_cone_angle,
-        },
+        Kind::Spot { inner_cone_angle, outer_cone_angle } => LightKind::Spot { inner_cone_angle, outer_cone_angle },
     };
-    let direction = world
-        .transform_vector3(Vec3::NEG_Z)
-        .try_normalize()
-        .ok_or("light direction is degenerate (zero scale)")?;
+    let direction =
+        world.transform_vector3(Vec3::NEG_Z).try_normalize().ok_or("light direction is degenerate (zero scale)")?;
     let out = Light {
         name: light.name().or(node_name).unwrap_or("light").to_owned(),
         kind,
@@ -159,11 +130,7 @@ fn convert_camera(cam: &gltf::Camera<'_>, world: &Mat4) -> Result<Camera, String
         return Err("orthographic cameras are not supported".into());
     };
     let m = Mat3::from_mat4(*world);
-    let cols = [
-        m.x_axis.try_normalize(),
-        m.y_axis.try_normalize(),
-        m.z_axis.try_normalize(),
-    ];
+    let cols = [m.x_axis.try_normalize(), m.y_axis.try_normalize(), m.z_axis.try_normalize()];
     let [Some(x), Some(y), Some(z)] = cols else {
         return Err("camera transform has a zero scale".into());
     };

@@ -27,11 +27,7 @@ pub(super) fn load_primitives(
             };
             let name = format!("{}#{}", mesh.name().unwrap_or("mesh"), prim.index());
             let loaded = load(&prim, buffers, name).map_err(err)?;
-            out.push((
-                (mesh.index(), prim.index()),
-                loaded,
-                prim.material().index(),
-            ));
+            out.push(((mesh.index(), prim.index()), loaded, prim.material().index()));
         }
     }
     Ok(out)
@@ -39,9 +35,7 @@ pub(super) fn load_primitives(
 
 fn load(prim: &gltf::Primitive<'_>, buffers: &[Vec<u8>], name: String) -> Result<Mesh, String> {
     let acc_err = |e: accessor::AccessorError| e.to_string();
-    let positions = prim
-        .get(&gltf::Semantic::Positions)
-        .ok_or("no POSITION attribute")?;
+    let positions = prim.get(&gltf::Semantic::Positions).ok_or("no POSITION attribute")?;
     let positions: Vec<Vec3> = accessor::read_vec::<3>(&positions, buffers, "VEC3 float")
         .map_err(acc_err)?
         .into_iter()
@@ -63,16 +57,11 @@ fn load(prim: &gltf::Primitive<'_>, buffers: &[Vec<u8>], name: String) -> Result
         Mode::TriangleStrip => strip_to_list(&indices),
         Mode::TriangleFan => fan_to_list(&indices),
         other => {
-            return Err(format!(
-                "mode {other:?} is not triangles; only triangle primitives are supported"
-            ));
+            return Err(format!("mode {other:?} is not triangles; only triangle primitives are supported"));
         }
     };
     if indices.len() % 3 != 0 {
-        return Err(format!(
-            "{} indices is not a whole number of triangles",
-            indices.len()
-        ));
+        return Err(format!("{} indices is not a whole number of triangles", indices.len()));
     }
     let attr = |sem: gltf::Semantic| prim.get(&sem);
     let normals = match attr(gltf::Semantic::Normals) {
@@ -92,22 +81,11 @@ fn load(prim: &gltf::Primitive<'_>, buffers: &[Vec<u8>], name: String) -> Result
     };
     let tangents = match attr(gltf::Semantic::Tangents) {
         Some(a) => Some(
-            accessor::read_vec::<4>(&a, buffers, "VEC4 float")
-                .map_err(acc_err)?
-                .into_iter()
-                .map(Vec4::from)
-                .collect(),
+            accessor::read_vec::<4>(&a, buffers, "VEC4 float").map_err(acc_err)?.into_iter().map(Vec4::from).collect(),
         ),
         None => None,
     };
-    let mut mesh = Mesh {
-        name,
-        positions,
-        normals: Vec::new(),
-        uvs,
-        tangents: Vec::new(),
-        indices,
-    };
+    let mut mesh = Mesh { name, positions, normals: Vec::new(), uvs, tangents: Vec::new(), indices };
     for (what, len) in [
         ("NORMAL", normals.as_ref().map(Vec::len)),
         ("TEXCOORD_0", Some(mesh.uvs.len())),
@@ -119,10 +97,7 @@ fn load(prim: &gltf::Primitive<'_>, buffers: &[Vec<u8>], name: String) -> Result
     }
     match normals {
         Some(v) if v.iter().all(|x| x.is_finite()) => {
-            mesh.normals = v
-                .into_iter()
-                .map(|x| x.try_normalize().unwrap_or(Vec3::Y))
-                .collect();
+            mesh.normals = v.into_iter().map(|x| x.try_normalize().unwrap_or(Vec3::Y)).collect();
         }
         Some(_) => return Err("NORMAL has non-finite values".into()),
         None => mesh.compute_normals(),
@@ -167,10 +142,7 @@ pub fn compute_tangents(mesh: &Mesh) -> Vec<Vec4> {
     let mut bit = vec![Vec3::ZERO; n];
     for tri in mesh.indices.chunks_exact(3) {
         let [a, b, c] = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
-        let (e1, e2) = (
-            mesh.positions[b] - mesh.positions[a],
-            mesh.positions[c] - mesh.positions[a],
-        );
+        let (e1, e2) = (mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
         let (d1, d2) = (mesh.uvs[b] - mesh.uvs[a], mesh.uvs[c] - mesh.uvs[a]);
         let det = d1.x * d2.y - d2.x * d1.y;
         if det.abs() < 1e-12 {
@@ -187,14 +159,8 @@ pub fn compute_tangents(mesh: &Mesh) -> Vec<Vec4> {
     (0..n)
         .map(|v| {
             let nrm = mesh.normals[v];
-            let t = (tan[v] - nrm * nrm.dot(tan[v]))
-                .try_normalize()
-                .unwrap_or_else(|| nrm.any_orthonormal_vector());
-            let w = if nrm.cross(t).dot(bit[v]) < 0.0 {
-                -1.0
-            } else {
-                1.0
-            };
+            let t = (tan[v] - nrm * nrm.dot(tan[v])).try_normalize().unwrap_or_else(|| nrm.any_orthonormal_vector());
+            let w = if nrm.cross(t).dot(bit[v]) < 0.0 { -1.0 } else { 1.0 };
             t.extend(w)
         })
         .collect()

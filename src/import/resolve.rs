@@ -25,25 +25,14 @@ pub fn resolve(mut desc: SceneDesc, assets: &[Asset]) -> Result<Scene, ResolveEr
         resources.images.extend(asset.images.iter().cloned());
     }
     for object in &mut desc.objects {
-        let missing = |message: String| ResolveError::MissingSource {
-            object: object.name.clone(),
-            message,
-        };
+        let missing = |message: String| ResolveError::MissingSource { object: object.name.clone(), message };
         let mesh = match &object.source {
-            MeshSource::Asset {
-                asset,
-                mesh,
-                primitive,
-                baked,
-            } => {
-                let a = assets
-                    .get(*asset)
-                    .ok_or_else(|| missing(format!("asset {asset} does not exist")))?;
-                let mut m = a.primitive(*mesh, *primitive).cloned().ok_or_else(|| {
-                    missing(format!(
-                        "asset {asset} has no mesh {mesh} primitive {primitive}"
-                    ))
-                })?;
+            MeshSource::Asset { asset, mesh, primitive, baked } => {
+                let a = assets.get(*asset).ok_or_else(|| missing(format!("asset {asset} does not exist")))?;
+                let mut m = a
+                    .primitive(*mesh, *primitive)
+                    .cloned()
+                    .ok_or_else(|| missing(format!("asset {asset} has no mesh {mesh} primitive {primitive}")))?;
                 if let Some(matrix) = baked {
                     if !matrix.is_finite() {
                         return Err(missing("baked matrix is not finite".into()));
@@ -80,8 +69,5 @@ pub fn framing_camera(scene: &Scene) -> Camera {
     let r = b.radius().max(0.01);
     let dist = r / (0.5 * yfov).sin();
     let dir = Vec3::new(0.0, 0.25, 1.0).normalize();
-    Camera {
-        znear: (dist - r).max(0.01 * r).min(0.1),
-        ..Camera::look_at(b.center() + dir * dist, b.center(), yfov)
-    }
+    Camera { znear: (dist - r).max(0.01 * r).min(0.1), ..Camera::look_at(b.center() + dir * dist, b.center(), yfov) }
 }

@@ -9,19 +9,14 @@ use base64::Engine as _;
 #[derive(Debug, thiserror::Error)]
 pub enum UriError {
     /// Absolute paths, `file:`, `http(s):` and `..` escapes are refused.
-    #[error(
-        "refusing URI {0:?}: only data: URIs and relative paths inside the model's folder are allowed"
-    )]
+    #[error("refusing URI {0:?}: only data: URIs and relative paths inside the model's folder are allowed")]
     Refused(String),
     /// A `data:` URI that is not base64 or does not decode.
     #[error("malformed data URI: {0}")]
     BadData(String),
     /// The referenced file could not be read.
     #[error("cannot read {path}: {source}")]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Io { path: PathBuf, source: std::io::Error },
 }
 
 fn percent_decode(s: &str) -> String {
@@ -31,9 +26,7 @@ fn percent_decode(s: &str) -> String {
     while i < bytes.len() {
         if bytes[i] == b'%'
             && i + 2 < bytes.len()
-            && let Some(v) = std::str::from_utf8(&bytes[i + 1..i + 3])
-                .ok()
-                .and_then(|h| u8::from_str_radix(h, 16).ok())
+            && let Some(v) = std::str::from_utf8(&bytes[i + 1..i + 3]).ok().and_then(|h| u8::from_str_radix(h, 16).ok())
         {
             out.push(v);
             i += 3;
@@ -55,16 +48,12 @@ pub fn load(uri: &str, base_dir: &Path) -> Result<Vec<u8>, UriError> {
             .decode(payload.trim())
             .map_err(|e| UriError::BadData(e.to_string()));
     }
-    let has_scheme = uri.split_once(':').is_some_and(|(s, _)| {
-        s.len() > 1
-            && s.chars()
-                .all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
-    });
+    let has_scheme = uri
+        .split_once(':')
+        .is_some_and(|(s, _)| s.len() > 1 && s.chars().all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c)));
     let decoded = percent_decode(uri);
     let rel = Path::new(&decoded);
-    let escapes = rel
-        .components()
-        .any(|c| !matches!(c, Component::Normal(_) | Component::CurDir));
+    let escapes = rel.components().any(|c| !matches!(c, Component::Normal(_) | Component::CurDir));
     if has_scheme || decoded.is_empty() || escapes {
         return Err(UriError::Refused(uri.to_owned()));
     }
@@ -79,24 +68,14 @@ mod tests {
     #[test]
     fn refuses_escapes() {
         let base = Path::new("/tmp");
-        for uri in [
-            "../x.bin",
-            "/etc/passwd",
-            "file:///etc/passwd",
-            "http://example.com/a.bin",
-            "a/../../b",
-        ] {
-            assert!(
-                matches!(load(uri, base), Err(UriError::Refused(_))),
-                "{uri}"
-            );
+        for uri in ["../x.bin", "/etc/passwd", "file:///etc/passwd", "http://example.com/a.bin", "a/../../b"] {
+            assert!(matches!(load(uri, base), Err(UriError::Refused(_))), "{uri}");
         }
     }
 
     #[test]
     fn decodes_data_uri() {
-        let bytes =
-            load("data:application/octet-stream;base64,AAEC", Path::new(".")).expect("decodes");
+        let bytes = load("data:application/octet-stream;base64,AAEC", Path::new(".")).expect("decodes");
         assert_eq!(bytes, vec![0, 1, 2]);
         assert!(load("data:text/plain,hello", Path::new(".")).is_err());
     }

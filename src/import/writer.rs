@@ -45,8 +45,7 @@ impl GltfWriter {
         while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
-        let mut view =
-            json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
+        let mut view = json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
         if let Some(t) = target {
             view["target"] = json!(t);
         }
@@ -56,20 +55,12 @@ impl GltfWriter {
     }
 
     fn vec3_accessor(&mut self, data: &[Vec3]) -> usize {
-        let bytes: Vec<u8> = data
-            .iter()
-            .flat_map(|v| v.to_array())
-            .flat_map(f32::to_le_bytes)
-            .collect();
+        let bytes: Vec<u8> = data.iter().flat_map(|v| v.to_array()).flat_map(f32::to_le_bytes).collect();
         let view = self.push_view(&bytes, Some(34962));
-        let (min, max) = data.iter().fold(
-            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-            |(a, b), v| (a.min(*v), b.max(*v)),
-        );
-        self.accessors.push(
-            json!({"bufferView": view, "componentType": 5126, "count": data.len(), "type": "VEC3",
-            "min": min.to_array(), "max": max.to_array()}),
-        );
+        let (min, max) =
+            data.iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(a, b), v| (a.min(*v), b.max(*v)));
+        self.accessors.push(json!({"bufferView": view, "componentType": 5126, "count": data.len(), "type": "VEC3",
+            "min": min.to_array(), "max": max.to_array()}));
         self.accessors.len() - 1
     }
 
@@ -95,14 +86,13 @@ impl GltfWriter {
         }
         let bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
         let view = self.push_view(&bytes, Some(34963));
-        self.accessors.push(json!({"bufferView": view, "componentType": 5125, "count": indices.len(), "type": "SCALAR"}));
-        let mut prim =
-            json!({"attributes": attributes, "indices": self.accessors.len() - 1, "mode": 4});
+        self.accessors
+            .push(json!({"bufferView": view, "componentType": 5125, "count": indices.len(), "type": "SCALAR"}));
+        let mut prim = json!({"attributes": attributes, "indices": self.accessors.len() - 1, "mode": 4});
         if let Some(m) = material {
             prim["material"] = json!(m);
         }
-        self.meshes
-            .push(json!({"name": name, "primitives": [prim]}));
+        self.meshes.push(json!({"name": name, "primitives": [prim]}));
         self.meshes.len() - 1
     }
 
@@ -130,8 +120,7 @@ impl GltfWriter {
         if let Some(f) = zfar {
             p["zfar"] = json!(f);
         }
-        self.cameras
-            .push(json!({"type": "perspective", "perspective": p}));
+        self.cameras.push(json!({"type": "perspective", "perspective": p}));
         self.cameras.len() - 1
     }
 

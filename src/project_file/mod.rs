@@ -23,39 +23,22 @@ pub const FORMAT_VERSION: u32 = 1;
 pub enum ProjectError {
     /// Reading or writing failed.
     #[error("{path}: {source}")]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Io { path: PathBuf, source: std::io::Error },
     /// The RON text is malformed or has unknown or missing fields.
     #[error("{path}:{line}:{column}: {message}")]
-    Parse {
-        path: PathBuf,
-        line: usize,
-        column: usize,
-        message: String,
-    },
+    Parse { path: PathBuf, line: usize, column: usize, message: String },
     /// Written by a newer Bounce Lab.
-    #[error(
-        "{path}: format_version {found} is newer than this build understands ({FORMAT_VERSION})"
-    )]
+    #[error("{path}: format_version {found} is newer than this build understands ({FORMAT_VERSION})")]
     TooNew { path: PathBuf, found: u32 },
     /// A referenced asset failed to import.
     #[error("{project}: asset {index}: {source}")]
-    Asset {
-        project: PathBuf,
-        index: usize,
-        source: Box<ImportError>,
-    },
+    Asset { project: PathBuf, index: usize, source: Box<ImportError> },
     /// The scene does not resolve against its assets.
     #[error("{path}: {source}")]
     Resolve { path: PathBuf, source: ResolveError },
     /// A setting is out of range.
     #[error("{path}: {source}")]
-    Settings {
-        path: PathBuf,
-        source: SettingsError,
-    },
+    Settings { path: PathBuf, source: SettingsError },
     /// Serialising failed (a bug).
     #[error("{path}: cannot serialise project: {message}")]
     Serialize { path: PathBuf, message: String },
@@ -99,25 +82,14 @@ impl Project {
             index: 0,
             source: Box::new(e),
         })?;
-        let scene = import::scene_from_asset(&asset).map_err(|source| ProjectError::Resolve {
-            path: path.to_owned(),
-            source,
-        })?;
-        Ok(Self {
-            assets: vec![path.to_owned()],
-            scene,
-            render: RenderSettings::default(),
-        })
+        let scene = import::scene_from_asset(&asset)
+            .map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
+        Ok(Self { assets: vec![path.to_owned()], scene, render: RenderSettings::default() })
     }
 
     /// Opens a `.ron` project, or a `.gltf` / `.glb` scene as a new project.
     pub fn open(path: &Path) -> Result<Self, ProjectError> {
-        match path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .as_deref()
-        {
+        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
             Some("gltf" | "glb") => Self::from_gltf(path),
             _ => Self::load(path),
         }
@@ -125,10 +97,8 @@ impl Project {
 
     /// Loads a project file and the assets it refers to.
     pub fn load(path: &Path) -> Result<Self, ProjectError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ProjectError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
+        let text =
+            std::fs::read_to_string(path).map_err(|source| ProjectError::Io { path: path.to_owned(), source })?;
         let file = parse(&text, path)?;
         let dir = path.parent().unwrap_or_else(|| Path::new("."));
         let assets: Vec<PathBuf> = file.assets.iter().map(|a| dir.join(a)).collect();
@@ -143,22 +113,10 @@ impl Project {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let scene =
-            import::resolve(file.scene, &imported).map_err(|source| ProjectError::Resolve {
-                path: path.to_owned(),
-                source,
-            })?;
-        file.render
-            .validate()
-            .map_err(|source| ProjectError::Settings {
-                path: path.to_owned(),
-                source,
-            })?;
-        Ok(Self {
-            assets,
-            scene,
-            render: file.render,
-        })
+        let scene = import::resolve(file.scene, &imported)
+            .map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
+        file.render.validate().map_err(|source| ProjectError::Settings { path: path.to_owned(), source })?;
+        Ok(Self { assets, scene, render: file.render })
     }
 
     /// The RON text this project saves as, with asset paths relative to `project_path`'s folder.
@@ -166,23 +124,13 @@ impl Project {
         let dir = project_path.parent().unwrap_or_else(|| Path::new("."));
         let file = ProjectFileV1 {
             format_version: FORMAT_VERSION,
-            assets: self
-                .assets
-                .iter()
-                .map(|a| paths::relative_to(a, dir))
-                .collect(),
+            assets: self.assets.iter().map(|a| paths::relative_to(a, dir)).collect(),
             scene: self.scene.desc().clone(),
             render: self.render.clone(),
         };
-        let config = ron::ser::PrettyConfig::new()
-            .indentor("  ")
-            .struct_names(false)
-            .separate_tuple_members(false);
-        let mut text =
-            ron::ser::to_string_pretty(&file, config).map_err(|e| ProjectError::Serialize {
-                path: project_path.to_owned(),
-                message: e.to_string(),
-            })?;
+        let config = ron::ser::PrettyConfig::new().indentor("  ").struct_names(false).separate_tuple_members(false);
+        let mut text = ron::ser::to_string_pretty(&file, config)
+            .map_err(|e| ProjectError::Serialize { path: project_path.to_owned(), message: e.to_string() })?;
         text.push('\n');
         Ok(text)
     }
@@ -190,17 +138,9 @@ impl Project {
     /// Saves atomically to `path` (temp file, fsync, rename): the previous file survives any
     /// failure.
     pub fn save(&self, path: &Path) -> Result<(), ProjectError> {
-        self.render
-            .validate()
-            .map_err(|source| ProjectError::Settings {
-                path: path.to_owned(),
-                source,
-            })?;
+        self.render.validate().map_err(|source| ProjectError::Settings { path: path.to_owned(), source })?;
         let text = self.to_ron(path)?;
-        atomic::write(path, text.as_bytes()).map_err(|source| ProjectError::Io {
-            path: path.to_owned(),
-            source,
-        })
+        atomic::write(path, text.as_bytes()).map_err(|source| ProjectError::Io { path: path.to_owned(), source })
     }
 }
 
@@ -214,10 +154,7 @@ pub fn parse(text: &str, path: &Path) -> Result<ProjectFileV1, ProjectError> {
     };
     let header: Header = ron::from_str(text).map_err(spanned)?;
     match header.format_version {
-        v if v > FORMAT_VERSION => Err(ProjectError::TooNew {
-            path: path.to_owned(),
-            found: v,
-        }),
+        v if v > FORMAT_VERSION => Err(ProjectError::TooNew { path: path.to_owned(), found: v }),
         // Version 1 is the first; later versions add `From<ProjectFileV1>` conversions here.
         _ => ron::from_str::<ProjectFileV1>(text).map_err(spanned),
     }
@@ -226,9 +163,5 @@ pub fn parse(text: &str, path: &Path) -> Result<ProjectFileV1, ProjectError> {
 /// The default project shipped in `projects/` (the generated Cornell box).
 pub fn default_project_path() -> PathBuf {
     let local = PathBuf::from("projects/default.ron");
-    if local.exists() {
-        local
-    } else {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("projects/default.ron")
-    }
+    if local.exists() { local } else { Path::new(env!("CARGO_MANIFEST_DIR")).join("projects/default.ron") }
 }

@@ -4,11 +4,7 @@
 use std::path::{Component, Path, PathBuf};
 
 fn absolute(p: &Path) -> PathBuf {
-    let p = if p.is_absolute() {
-        p.to_owned()
-    } else {
-        std::env::current_dir().unwrap_or_default().join(p)
-    };
+    let p = if p.is_absolute() { p.to_owned() } else { std::env::current_dir().unwrap_or_default().join(p) };
     let mut out = PathBuf::new();
     for c in p.components() {
         match c {
@@ -29,11 +25,7 @@ pub fn relative_to(target: &Path, base: &Path) -> String {
     let bc: Vec<_> = b.components().collect();
     let common = tc.iter().zip(&bc).take_while(|(a, b)| a == b).count();
     let mut parts: Vec<String> = std::iter::repeat_n("..".to_owned(), bc.len() - common).collect();
-    parts.extend(
-        tc[common..]
-            .iter()
-            .map(|c| c.as_os_str().to_string_lossy().into_owned()),
-    );
+    parts.extend(tc[common..].iter().map(|c| c.as_os_str().to_string_lossy().into_owned()));
     parts.join("/")
 }
 
@@ -43,19 +35,10 @@ mod tests {
 
     #[test]
     fn relative_paths() {
+        assert_eq!(relative_to(Path::new("/a/assets/x.gltf"), Path::new("/a/projects")), "../assets/x.gltf");
+        assert_eq!(relative_to(Path::new("/a/x.gltf"), Path::new("/a")), "x.gltf");
         assert_eq!(
-            relative_to(Path::new("/a/assets/x.gltf"), Path::new("/a/projects")),
-            "../assets/x.gltf"
-        );
-        assert_eq!(
-            relative_to(Path::new("/a/x.gltf"), Path::new("/a")),
-            "x.gltf"
-        );
-        assert_eq!(
-            relative_to(
-                Path::new("/a/projects/../assets/x.gltf"),
-                Path::new("/a/projects")
-            ),
+            relative_to(Path::new("/a/projects/../assets/x.gltf"), Path::new("/a/projects")),
             "../assets/x.gltf"
         );
     }

@@ -18,9 +18,7 @@ pub fn wanted_features() -> wgpu::Features {
 #[derive(Debug, thiserror::Error)]
 pub enum ContextError {
     /// No adapter at all (on Linux without a GPU: install `mesa-vulkan-drivers`).
-    #[error(
-        "no GPU adapter found{0}; on Linux without a GPU install mesa-vulkan-drivers (software Vulkan)"
-    )]
+    #[error("no GPU adapter found{0}; on Linux without a GPU install mesa-vulkan-drivers (software Vulkan)")]
     NoAdapter(String),
     /// The adapter refused the device.
     #[error("cannot create a device on {adapter}: {message}")]
@@ -50,17 +48,12 @@ impl GpuContext {
         // Vulkan/Metal/DX12 first; GL only if none of them has an adapter (or WGPU_BACKEND asks).
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
         desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::PRIMARY);
-        let mut adapters = wgpu::Instance::new(desc)
-            .enumerate_adapters(wgpu::Backends::all())
-            .await;
+        let mut adapters = wgpu::Instance::new(desc).enumerate_adapters(wgpu::Backends::all()).await;
         if adapters.is_empty() {
-            let instance = wgpu::Instance::new(
-                wgpu::InstanceDescriptor::new_without_display_handle_from_env(),
-            );
+            let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
             adapters = instance.enumerate_adapters(wgpu::Backends::all()).await;
         }
-        let adapter =
-            choose_adapter(adapters).ok_or_else(|| ContextError::NoAdapter(String::new()))?;
+        let adapter = choose_adapter(adapters).ok_or_else(|| ContextError::NoAdapter(String::new()))?;
         Self::from_adapter(adapter).await
     }
 
@@ -69,10 +62,7 @@ impl GpuContext {
         pollster::block_on(async {
             let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
             desc.backends = wgpu::Backends::NOOP;
-            desc.backend_options.noop = wgpu::NoopBackendOptions {
-                enable: true,
-                ..Default::default()
-            };
+            desc.backend_options.noop = wgpu::NoopBackendOptions { enable: true, ..Default::default() };
             let instance = wgpu::Instance::new(desc);
             let adapter = instance
                 .request_adapter(&wgpu::RequestAdapterOptions::default())
@@ -87,10 +77,7 @@ impl GpuContext {
         let (device, queue) = adapter
             .request_device(&device_descriptor(&adapter))
             .await
-            .map_err(|e| ContextError::Device {
-                adapter: info.name.clone(),
-                message: e.to_string(),
-            })?;
+            .map_err(|e| ContextError::Device { adapter: info.name.clone(), message: e.to_string() })?;
         log::info!(
             "GPU adapter: {} ({:?}, {:?}, driver {} {})",
             info.name,
@@ -99,12 +86,7 @@ impl GpuContext {
             info.driver,
             info.driver_info
         );
-        Ok(Self {
-            adapter: Arc::new(adapter),
-            device,
-            queue,
-            info,
-        })
+        Ok(Self { adapter: Arc::new(adapter), device, queue, info })
     }
 
     /// Logs uncaptured wgpu errors instead of panicking (interactive and CLI use; tests keep
@@ -115,17 +97,12 @@ impl GpuContext {
 
     /// Whether GPU timestamps are available.
     pub fn has_timestamps(&self) -> bool {
-        self.device
-            .features()
-            .contains(wgpu::Features::TIMESTAMP_QUERY)
+        self.device.features().contains(wgpu::Features::TIMESTAMP_QUERY)
     }
 
     /// One line describing the adapter.
     pub fn describe(&self) -> String {
-        format!(
-            "{} ({:?}, {:?})",
-            self.info.name, self.info.backend, self.info.device_type
-        )
+        format!("{} ({:?}, {:?})", self.info.name, self.info.backend, self.info.device_type)
     }
 }
 
@@ -151,14 +128,11 @@ fn rank(t: wgpu::DeviceType) -> u8 {
 }
 
 fn choose_adapter(mut adapters: Vec<wgpu::Adapter>) -> Option<wgpu::Adapter> {
-    let forced = std::env::var("BOUNCELAB_ADAPTER")
-        .or_else(|_| std::env::var("WGPU_ADAPTER_NAME"))
-        .ok();
+    let forced = std::env::var("BOUNCELAB_ADAPTER").or_else(|_| std::env::var("WGPU_ADAPTER_NAME")).ok();
     if let Some(want) = forced.map(|s| s.to_lowercase()) {
         let pos = adapters.iter().position(|a| {
             let info = a.get_info();
-            (want == "cpu" && info.device_type == wgpu::DeviceType::Cpu)
-                || info.name.to_lowercase().contains(&want)
+            (want == "cpu" && info.device_type == wgpu::DeviceType::Cpu) || info.name.to_lowercase().contains(&want)
         });
         match pos {
             Some(i) => return Some(adapters.swap_remove(i)),
@@ -168,10 +142,7 @@ fn choose_adapter(mut adapters: Vec<wgpu::Adapter>) -> Option<wgpu::Adapter> {
     // Hardware first; among equals prefer Vulkan/Metal/DX12 over GL.
     adapters.sort_by_key(|a| {
         let info = a.get_info();
-        (
-            rank(info.device_type),
-            u8::from(info.backend == wgpu::Backend::Gl),
-        )
+        (rank(info.device_type), u8::from(info.backend == wgpu::Backend::Gl))
     });
     adapters.into_iter().next()
 }

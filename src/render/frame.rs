@@ -35,6 +35,9 @@ pub enum RenderError {
     /// wgpu reported a validation or out-of-memory error while recording the frame.
     #[error("GPU error: {0}")]
     Gpu(String),
+    /// `--buffer` named a buffer that does not exist.
+    #[error("unknown buffer {name:?}; available: {known}")]
+    UnknownBuffer { name: String, known: String },
     /// Reading results back failed.
     #[error(transparent)]
     Readback(#[from] ReadbackError),
@@ -90,21 +93,14 @@ impl Renderer {
         let frame_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("frame bind group"),
             layout: &layouts.frame,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: frame_buffer.as_entire_binding(),
-            }],
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() }],
         });
         Ok(Self {
             gbuffer: GbufferPass::new(device, &layouts)?,
             shadows: ShadowPass::new(device)?,
             lighting: LightingPass::new(device)?,
             tonemap: TonemapPass::new(device)?,
-            lights_buffer: storage_buffer(
-                device,
-                "lights",
-                bytemuck::bytes_of(&GpuLight::default()),
-            ),
+            lights_buffer: storage_buffer(device, "lights", bytemuck::bytes_of(&GpuLight::default())),
             shadow_views_buffer: storage_buffer(
                 device,
                 "shadow views",
@@ -129,20 +125,12 @@ impl Renderer {
     pub fn supports(mode: GiMode) -> Result<(), String> {
         match mode {
             GiMode::Direct => Ok(()),
-            other => Err(format!(
-                "{} is not implemented yet in this build",
-                other.name()
-            )),
+            other => Err(format!("{} is not implemented yet in this build", other.name())),
         }
     }
 
     /// Renders one frame of `scene` at `size` into the view targets (HDR and display image).
-    pub fn render(
-        &mut self,
-        scene: &Scene,
-        settings: &RenderSettings,
-        size: (u32, u32),
-    ) -> Result<(), RenderError> {
+    pub fn render(&mut self, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> Result<(), RenderError> {
         let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
         let result = self.render_inner(scene, settings, size);
@@ -155,17 +143,10 @@ impl Renderer {
         }
     }
 
-    fn render_inner(
-        &mut self,
-        scene: &Scene,
-        settings: &RenderSettings,
-        size: (u32, u32),
-    ) -> Result<(), RenderError> {
+    fn render_inner(&mut self, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> Result<(), RenderError> {
         settings.validate()?;
-        Self::supports(settings.mode).map_err(|reason| RenderError::Unsupported {
-            mode: settings.mode.name(),
-            reason,
-        })?;
+        Self::supports(settings.mode)
+            .map_err(|reason| RenderError::Unsupported { mode: settings.mode.name(), reason })?;
         let max = self.device.limits().max_texture_dimension_2d;
         if size.0 == 0 || size.1 == 0 || size.0 > max || size.1 > max {
             return Err(RenderError::Size(size.0, size.1, max));
@@ -181,8 +162,7 @@ impl Renderer {
         let assignment = self.shadows.prepare(device, scene, &settings.shadows);
         self.upload_lights(&assignment.lights);
         let camera = scene.camera();
-        let clip_from_world =
-            camera.clip_from_view(size.0 as f32 / size.1 as f32) * camera.view_from_world();
+        let clip_from_world = camera.clip_from_view(size.0 as f32 / size.1 as f32) * camera.view_from_world();
         let prev = self.prev_clip_from_world.unwrap_or(clip_from_world);
         let res = self.shadows.resolution() as f32;
         let frame = FrameUniforms {
@@ -190,12 +170,7 @@ impl Renderer {
             world_from_clip: clip_from_world.inverse().to_cols_array_2d(),
             prev_clip_from_world: prev.to_cols_array_2d(),
             camera_position: camera.position.extend(1.0).to_array(),
-            size: [
-                size.0 as f32,
-                size.1 as f32,
-                1.0 / size.0 as f32,
-                1.0 / size.1 as f32,
-            ],
+            size: [size.0 as f32, size.1 as f32, 1.0 / size.0 as f32, 1.0 / size.1 as f32],
             params: [
                 assignment.lights.len() as u32,
                 self.frame_index,
@@ -212,27 +187,21 @@ impl Renderer {
             return Ok(());
         };
         let generation = self.shadows.generation * 1_000_003 + self.inputs_generation;
-        if self
-            .lighting_inputs
-            .as_ref()
-            .is_none_or(|(g, _)| *g != generation)
-        {
+        if self.lighting_inputs.as_ref().is_none_or(|(g, _)| *g != generation) {
             let inputs = LightingInputs {
                 frame: &self.frame_buffer,
                 lights: &self.lights_buffer,
                 shadow_views: &self.shadow_views_buffer,
                 shadow_maps: &self.shadows.array_view,
             };
-            self.lighting_inputs =
-                Some((generation, self.lighting.inputs_bind_group(device, &inputs)));
+            self.lighting_inputs = Some((generation, self.lighting.inputs_bind_group(device, &inputs)));
         }
         let Some((_, lighting_inputs)) = &self.lighting_inputs else {
             return Ok(());
         };
 
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("frame encoder"),
-        });
+        let mut encoder =
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame encoder") });
         self.timer.begin_frame();
         self.gbuffer.record(
             &mut encoder,
@@ -240,17 +209,10 @@ impl Renderer {
             &self.frame_bind_group,
             scene,
             gpu,
-            self.timer
-                .scope("gbuffer")
-                .map(|t| t.render_writes(true, true)),
+            self.timer.scope("gbuffer").map(|t| t.render_writes(true, true)),
         );
-        let shadow_ts = if self.shadows.layer_matrices.is_empty() {
-            None
-        } else {
-            self.timer.scope("shadows")
-        };
-        self.shadows
-            .record(device, queue, &mut encoder, scene, gpu, shadow_ts);
+        let shadow_ts = if self.shadows.layer_matrices.is_empty() { None } else { self.timer.scope("shadows") };
+        self.shadows.record(device, queue, &mut encoder, scene, gpu, shadow_ts);
         // The active GI technique writes `targets.indirect` here; `direct` leaves it black.
         clear(&mut encoder, &sized.targets.indirect.view);
         self.lighting.record(
@@ -260,14 +222,7 @@ impl Renderer {
             size,
             self.timer.scope("lighting"),
         );
-        self.tonemap.record(
-            queue,
-            &mut encoder,
-            &sized.tonemap,
-            &settings.view,
-            size,
-            self.timer.scope("tonemap"),
-        );
+        self.tonemap.record(queue, &mut encoder, &sized.tonemap, &settings.view, size, self.timer.scope("tonemap"));
         self.timer.resolve(&mut encoder);
         queue.submit([encoder.finish()]);
         self.timer.after_submit();
@@ -280,51 +235,32 @@ impl Renderer {
         }
         let targets = ViewTargets::new(&self.device, size);
         let lighting_targets = self.lighting.targets_bind_group(&self.device, &targets);
-        let tonemap = self
-            .tonemap
-            .bind_group(&self.device, &targets.hdr.view, &targets.ldr.view);
-        self.sized = Some(SizedResources {
-            targets,
-            lighting_targets,
-            tonemap,
-        });
+        let tonemap = self.tonemap.bind_group(&self.device, &targets.hdr.view, &targets.ldr.view);
+        self.sized = Some(SizedResources { targets, lighting_targets, tonemap });
         self.prev_clip_from_world = None;
     }
 
     fn upload_lights(&mut self, lights: &[GpuLight]) {
         let empty = [GpuLight::default()];
-        let light_bytes: &[u8] =
-            bytemuck::cast_slice(if lights.is_empty() { &empty } else { lights });
-        let views: Vec<[f32; 16]> = self
-            .shadows
-            .layer_matrices
-            .iter()
-            .map(Mat4::to_cols_array)
-            .collect();
+        let light_bytes: &[u8] = bytemuck::cast_slice(if lights.is_empty() { &empty } else { lights });
+        let views: Vec<[f32; 16]> = self.shadows.layer_matrices.iter().map(Mat4::to_cols_array).collect();
         let view_bytes: Vec<u8> = if views.is_empty() {
             bytemuck::bytes_of(&Mat4::IDENTITY.to_cols_array()).to_vec()
         } else {
             bytemuck::cast_slice(&views).to_vec()
         };
         if self.lights_buffer.size() < light_bytes.len() as u64 {
-            self.lights_buffer = storage_buffer(
-                &self.device,
-                "lights",
-                &vec![0u8; light_bytes.len().next_power_of_two()],
-            );
+            self.lights_buffer =
+                storage_buffer(&self.device, "lights", &vec![0u8; light_bytes.len().next_power_of_two()]);
             self.inputs_generation += 1;
         }
         if self.shadow_views_buffer.size() < view_bytes.len() as u64 {
-            self.shadow_views_buffer = storage_buffer(
-                &self.device,
-                "shadow views",
-                &vec![0u8; view_bytes.len().next_power_of_two()],
-            );
+            self.shadow_views_buffer =
+                storage_buffer(&self.device, "shadow views", &vec![0u8; view_bytes.len().next_power_of_two()]);
             self.inputs_generation += 1;
         }
         self.queue.write_buffer(&self.lights_buffer, 0, light_bytes);
-        self.queue
-            .write_buffer(&self.shadow_views_buffer, 0, &view_bytes);
+        self.queue.write_buffer(&self.shadow_views_buffer, 0, &view_bytes);
     }
 
     /// The current view targets (after the first render).
@@ -345,21 +281,44 @@ impl Renderer {
     /// Reads the linear HDR radiance of the last frame (row-major RGBA).
     pub fn read_hdr(&self) -> Result<Vec<[f32; 4]>, RenderError> {
         let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
-        Ok(readback::read_rgba32f(
-            &self.device,
-            &self.queue,
-            &t.hdr.texture,
-        )?)
+        Ok(readback::read_rgba32f(&self.device, &self.queue, &t.hdr.texture)?)
     }
 
     /// Reads the tonemapped display image of the last frame (RGBA8, sRGB-encoded).
     pub fn read_ldr(&self) -> Result<Vec<u8>, RenderError> {
         let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
-        Ok(readback::read_texture(
-            &self.device,
-            &self.queue,
-            &t.ldr.texture,
-        )?)
+        Ok(readback::read_texture(&self.device, &self.queue, &t.ldr.texture)?)
+    }
+
+    /// Names of the buffers [`Renderer::read_buffer`] can read (G-buffer channels, lighting
+    /// inputs and outputs).
+    pub fn buffer_names() -> &'static [&'static str] {
+        &["albedo", "normal", "material", "motion", "object_id", "depth", "indirect", "hdr", "ldr", "shadow_map"]
+    }
+
+    /// Reads a named buffer of the last frame as RGBA floats with its size.
+    pub fn read_buffer(&self, name: &str) -> Result<crate::image_io::HdrImage, RenderError> {
+        let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
+        let texture = match name {
+            "albedo" => &t.albedo.texture,
+            "normal" => &t.normal.texture,
+            "material" => &t.material.texture,
+            "motion" => &t.motion.texture,
+            "object_id" => &t.object_id.texture,
+            "depth" => &t.depth.texture,
+            "indirect" => &t.indirect.texture,
+            "hdr" => &t.hdr.texture,
+            "ldr" => &t.ldr.texture,
+            "shadow_map" => &self.shadows.texture,
+            other => {
+                return Err(RenderError::UnknownBuffer {
+                    name: other.to_owned(),
+                    known: Self::buffer_names().join(", "),
+                });
+            }
+        };
+        let pixels = readback::read_as_rgba_f32(&self.device, &self.queue, texture)?;
+        Ok(crate::image_io::HdrImage { width: texture.width(), height: texture.height(), pixels })
     }
 
     /// Forgets temporal state (motion vectors restart from zero).
@@ -383,10 +342,7 @@ fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
             view,
             depth_slice: None,
             resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                store: wgpu::StoreOp::Store,
-            },
+            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
         })],
         depth_stencil_attachment: None,
         timestamp_writes: None,

@@ -18,20 +18,10 @@ impl GbufferPass {
         let module = shaders::module(device, "render/gbuffer.wgsl")?;
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("gbuffer pipeline layout"),
-            bind_group_layouts: &[
-                Some(&layouts.frame),
-                Some(&layouts.object),
-                Some(&layouts.material),
-            ],
+            bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.object), Some(&layouts.material)],
             immediate_size: 0,
         });
-        let target = |format| {
-            Some(wgpu::ColorTargetState {
-                format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })
-        };
+        let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("gbuffer pipeline"),
             layout: Some(&layout),
@@ -105,10 +95,7 @@ impl GbufferPass {
             ],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth.view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
                 stencil_ops: None,
             }),
             timestamp_writes: timestamps,
@@ -118,20 +105,13 @@ impl GbufferPass {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, frame_bind_group, &[]);
         for (i, object) in scene.objects().iter().enumerate() {
-            let (Some(mesh), Some(material)) = (
-                gpu.meshes.get(object.mesh),
-                gpu.materials.get(object.material),
-            ) else {
+            let (Some(mesh), Some(material)) = (gpu.meshes.get(object.mesh), gpu.materials.get(object.material)) else {
                 continue;
             };
             if !object.visible || mesh.index_count == 0 {
                 continue;
             }
-            pass.set_bind_group(
-                1,
-                &gpu.object_bind_group,
-                &[(i as u64 * OBJECT_SLOT) as u32],
-            );
+            pass.set_bind_group(1, &gpu.object_bind_group, &[(i as u64 * OBJECT_SLOT) as u32]);
             pass.set_bind_group(2, material, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);

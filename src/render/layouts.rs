@@ -11,11 +11,7 @@ pub struct Layouts {
 }
 
 /// A uniform-buffer layout entry.
-pub fn uniform_entry(
-    binding: u32,
-    visibility: wgpu::ShaderStages,
-    dynamic: bool,
-) -> wgpu::BindGroupLayoutEntry {
+pub fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages, dynamic: bool) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
@@ -61,10 +57,7 @@ pub fn texture_entry(
 }
 
 /// A write-only storage texture layout entry.
-pub fn storage_texture_entry(
-    binding: u32,
-    format: wgpu::TextureFormat,
-) -> wgpu::BindGroupLayoutEntry {
+pub fn storage_texture_entry(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,

@@ -86,44 +86,20 @@ impl LightingPass {
             compare: Some(wgpu::CompareFunction::LessEqual),
             ..Default::default()
         });
-        Ok(Self {
-            pipeline,
-            inputs_layout,
-            targets_layout,
-            shadow_sampler,
-        })
+        Ok(Self { pipeline, inputs_layout, targets_layout, shadow_sampler })
     }
 
     /// The bind group of lights, shadows and frame constants.
-    pub fn inputs_bind_group(
-        &self,
-        device: &wgpu::Device,
-        inputs: &LightingInputs<'_>,
-    ) -> wgpu::BindGroup {
+    pub fn inputs_bind_group(&self, device: &wgpu::Device, inputs: &LightingInputs<'_>) -> wgpu::BindGroup {
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lighting inputs bind group"),
             layout: &self.inputs_layout,
             entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: inputs.frame.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: inputs.lights.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: inputs.shadow_views.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(inputs.shadow_maps),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: wgpu::BindingResource::Sampler(&self.shadow_sampler),
-                },
+                wgpu::BindGroupEntry { binding: 0, resource: inputs.frame.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: inputs.lights.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: inputs.shadow_views.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(inputs.shadow_maps) },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::Sampler(&self.shadow_sampler) },
             ],
         })
     }
@@ -131,10 +107,7 @@ impl LightingPass {
     /// The bind group of the view targets.
     pub fn targets_bind_group(&self, device: &wgpu::Device, t: &ViewTargets) -> wgpu::BindGroup {
         fn view(binding: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
-            wgpu::BindGroupEntry {
-                binding,
-                resource: wgpu::BindingResource::TextureView(v),
-            }
+            wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(v) }
         }
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lighting targets bind group"),

@@ -18,8 +18,6 @@ mod timing;
 mod tonemap;
 mod uniforms;
 
-pub use context::{
-    ContextError, GpuContext, device_descriptor, log_device_errors, wanted_features,
-};
+pub use context::{ContextError, GpuContext, device_descriptor, log_device_errors, wanted_features};
 pub use frame::{RenderError, Renderer};
 pub use timing::PassTiming;

@@ -18,63 +18,36 @@ pub fn read_texture(
     texture: &wgpu::Texture,
 ) -> Result<Vec<u8>, ReadbackError> {
     let format = texture.format();
-    let aspect = if format.is_depth_stencil_format() {
-        wgpu::TextureAspect::DepthOnly
-    } else {
-        wgpu::TextureAspect::All
-    };
-    let bpp = format
-        .block_copy_size(Some(aspect))
-        .ok_or(ReadbackError::Format(format))?;
+    let aspect =
+        if format.is_depth_stencil_format() { wgpu::TextureAspect::DepthOnly } else { wgpu::TextureAspect::All };
+    let bpp = format.block_copy_size(Some(aspect)).ok_or(ReadbackError::Format(format))?;
     let (w, h) = (texture.width(), texture.height());
     let row = w * bpp;
-    let padded =
-        row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let padded = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback staging"),
         size: u64::from(padded) * u64::from(h),
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-        label: Some("readback encoder"),
-    });
+    let mut encoder =
+        device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback encoder") });
     encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo {
-            texture,
-            mip_level: 0,
-            origin: wgpu::Origin3d::ZERO,
-            aspect,
-        },
+        wgpu::TexelCopyTextureInfo { texture, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(padded),
-                rows_per_image: Some(h),
-            },
+            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(h) },
         },
-        wgpu::Extent3d {
-            width: w,
-            height: h,
-            depth_or_array_layers: 1,
-        },
+        wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
     );
     queue.submit([encoder.finish()]);
     let (tx, rx) = std::sync::mpsc::channel();
     buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
     });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| ReadbackError::Map(e.to_string()))?;
-    rx.recv()
-        .map_err(|e| ReadbackError::Map(e.to_string()))?
-        .map_err(|e| ReadbackError::Map(e.to_string()))?;
-    let data = buffer
-        .slice(..)
-        .get_mapped_range()
-        .map_err(|e| ReadbackError::Map(e.to_string()))?;
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| ReadbackError::Map(e.to_string()))?;
+    rx.recv().map_err(|e| ReadbackError::Map(e.to_string()))?.map_err(|e| ReadbackError::Map(e.to_string()))?;
+    let data = buffer.slice(..).get_mapped_range().map_err(|e| ReadbackError::Map(e.to_string()))?;
     let mut out = Vec::with_capacity((row * h) as usize);
     for y in 0..h as usize {
         let start = y * padded as usize;
@@ -96,4 +69,42 @@ pub fn read_rgba32f(
     }
     let bytes = read_texture(device, queue, texture)?;
     Ok(bytemuck::pod_collect_to_vec(&bytes))
+}
+
+/// Reads any colour or depth target as RGBA floats (integers as their value, missing channels 0,
+/// alpha 1): the inspector's and `--buffer`'s common format.
+pub fn read_as_rgba_f32(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+) -> Result<Vec<[f32; 4]>, ReadbackError> {
+    use wgpu::TextureFormat as F;
+    let bytes = read_texture(device, queue, texture)?;
+    let f16 = |b: &[u8]| half::f16::from_le_bytes([b[0], b[1]]).to_f32();
+    let f32le = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+    let out = match texture.format() {
+        F::Rgba32Float => {
+            bytes.chunks_exact(16).map(|c| [f32le(&c[0..]), f32le(&c[4..]), f32le(&c[8..]), f32le(&c[12..])]).collect()
+        }
+        F::Rgba16Float => {
+            bytes.chunks_exact(8).map(|c| [f16(&c[0..]), f16(&c[2..]), f16(&c[4..]), f16(&c[6..])]).collect()
+        }
+        F::Rg16Float => bytes.chunks_exact(4).map(|c| [f16(&c[0..]), f16(&c[2..]), 0.0, 1.0]).collect(),
+        F::R32Uint => bytes
+            .chunks_exact(4)
+            .map(|c| [u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f32, 0.0, 0.0, 1.0])
+            .collect(),
+        F::R32Float | F::Depth32Float => bytes
+            .chunks_exact(4)
+            .map(|c| {
+                let v = f32le(c);
+                [v, v, v, 1.0]
+            })
+            .collect(),
+        F::Rgba8Unorm | F::Rgba8UnormSrgb => {
+            bytes.chunks_exact(4).map(|c| [0, 1, 2, 3].map(|i| f32::from(c[i]) / 255.0)).collect()
+        }
+        other => return Err(ReadbackError::Format(other)),
+    };
+    Ok(out)
 }

@@ -61,20 +61,12 @@ fn upload_image(
     label: &str,
     srgb: bool,
 ) -> wgpu::TextureView {
-    let format = if srgb {
-        wgpu::TextureFormat::Rgba8UnormSrgb
-    } else {
-        wgpu::TextureFormat::Rgba8Unorm
-    };
+    let format = if srgb { wgpu::TextureFormat::Rgba8UnormSrgb } else { wgpu::TextureFormat::Rgba8Unorm };
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
             label: Some(label),
-            size: wgpu::Extent3d {
-                width: image.width,
-                height: image.height,
-                depth_or_array_layers: 1,
-            },
+            size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -85,33 +77,15 @@ fn upload_image(
         wgpu::util::TextureDataOrder::LayerMajor,
         &image.rgba8,
     );
-    texture.create_view(&wgpu::TextureViewDescriptor {
-        label: Some(label),
-        ..Default::default()
-    })
+    texture.create_view(&wgpu::TextureViewDescriptor { label: Some(label), ..Default::default() })
 }
 
 impl SceneGpu {
     /// Uploads everything.
-    pub fn new(
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        layouts: &Layouts,
-        scene: &Scene,
-    ) -> Self {
-        let one = |rgba: [u8; 4]| Image {
-            width: 1,
-            height: 1,
-            rgba8: rgba.to_vec(),
-        };
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, scene: &Scene) -> Self {
+        let one = |rgba: [u8; 4]| Image { width: 1, height: 1, rgba8: rgba.to_vec() };
         let white = upload_image(device, queue, &one([255; 4]), "white texture", true);
-        let flat_normal = upload_image(
-            device,
-            queue,
-            &one([128, 128, 255, 255]),
-            "flat normal texture",
-            false,
-        );
+        let flat_normal = upload_image(device, queue, &one([128, 128, 255, 255]), "flat normal texture", false);
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("material sampler"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -139,11 +113,7 @@ impl SceneGpu {
         gpu
     }
 
-    fn object_buffer(
-        device: &wgpu::Device,
-        layouts: &Layouts,
-        capacity: usize,
-    ) -> (wgpu::Buffer, wgpu::BindGroup) {
+    fn object_buffer(device: &wgpu::Device, layouts: &Layouts, capacity: usize) -> (wgpu::Buffer, wgpu::BindGroup) {
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("object uniforms"),
             size: OBJECT_SLOT * capacity.max(1) as u64,
@@ -167,13 +137,7 @@ impl SceneGpu {
 
     /// Brings the GPU copy up to date: geometry when resources changed, materials and object
     /// matrices always (cheap). Call once per frame; it also advances the previous-frame matrices.
-    pub fn sync(
-        &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        layouts: &Layouts,
-        scene: &Scene,
-    ) {
+    pub fn sync(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, scene: &Scene) {
         if self.resources_revision != scene.resources_revision() {
             self.upload_geometry(device, queue, scene);
             self.resources_revision = scene.resources_revision();
@@ -182,8 +146,7 @@ impl SceneGpu {
         let objects = scene.objects();
         if objects.len() > self.object_capacity {
             self.object_capacity = objects.len().next_power_of_two();
-            (self.object_buffer, self.object_bind_group) =
-                Self::object_buffer(device, layouts, self.object_capacity);
+            (self.object_buffer, self.object_bind_group) = Self::object_buffer(device, layouts, self.object_capacity);
         }
         let mut data = vec![0u8; OBJECT_SLOT as usize * objects.len()];
         let mut worlds = Vec::with_capacity(objects.len());
@@ -192,8 +155,7 @@ impl SceneGpu {
             let prev = self.prev_world.get(i).copied().unwrap_or(world);
             let u = ObjectUniforms::new(world, prev, i as u32 + 1, object.material as u32);
             let start = i * OBJECT_SLOT as usize;
-            data[start..start + std::mem::size_of::<ObjectUniforms>()]
-                .copy_from_slice(bytemuck::bytes_of(&u));
+            data[start..start + std::mem::size_of::<ObjectUniforms>()].copy_from_slice(bytemuck::bytes_of(&u));
             worlds.push(world);
         }
         if !data.is_empty() {
@@ -247,13 +209,7 @@ impl SceneGpu {
         self.material_buffers.clear();
     }
 
-    fn upload_materials(
-        &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        layouts: &Layouts,
-        scene: &Scene,
-    ) {
+    fn upload_materials(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, scene: &Scene) {
         let materials = scene.materials();
         if self.material_buffers.len() != materials.len() {
             self.material_buffers = materials
@@ -274,10 +230,7 @@ impl SceneGpu {
         for (m, buffer) in materials.iter().zip(&self.material_buffers) {
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(&MaterialUniforms::new(m)));
             if rebuild {
-                let base = m
-                    .base_color_texture
-                    .and_then(|t| self.textures.get(t.image))
-                    .unwrap_or(&self.white);
+                let base = m.base_color_texture.and_then(|t| self.textures.get(t.image)).unwrap_or(&self.white);
                 let normal_view;
                 let normal = match m.normal_texture.and_then(|t| self.textures.get(t.image)) {
                     Some(view) => {
@@ -294,22 +247,10 @@ impl SceneGpu {
                     label: Some(&format!("material {} bind group", m.name)),
                     layout: &layouts.material,
                     entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: buffer.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::TextureView(base),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: wgpu::BindingResource::TextureView(normal),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 3,
-                            resource: wgpu::BindingResource::Sampler(&self.sampler),
-                        },
+                        wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(base) },
+                        wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(normal) },
+                        wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.sampler) },
                     ],
                 }));
             }

@@ -7,55 +7,21 @@
 
 /// Every WGSL file, by path relative to `shaders/`.
 pub const SHADERS: &[(&str, &str)] = &[
-    (
-        "common/brdf.wgsl",
-        include_str!("../../shaders/common/brdf.wgsl"),
-    ),
-    (
-        "common/color.wgsl",
-        include_str!("../../shaders/common/color.wgsl"),
-    ),
-    (
-        "common/frame.wgsl",
-        include_str!("../../shaders/common/frame.wgsl"),
-    ),
-    (
-        "common/lights.wgsl",
-        include_str!("../../shaders/common/lights.wgsl"),
-    ),
-    (
-        "common/octahedral.wgsl",
-        include_str!("../../shaders/common/octahedral.wgsl"),
-    ),
-    (
-        "common/shadow.wgsl",
-        include_str!("../../shaders/common/shadow.wgsl"),
-    ),
-    (
-        "render/gbuffer.wgsl",
-        include_str!("../../shaders/render/gbuffer.wgsl"),
-    ),
-    (
-        "render/lighting.wgsl",
-        include_str!("../../shaders/render/lighting.wgsl"),
-    ),
-    (
-        "render/shadow_depth.wgsl",
-        include_str!("../../shaders/render/shadow_depth.wgsl"),
-    ),
-    (
-        "render/tonemap.wgsl",
-        include_str!("../../shaders/render/tonemap.wgsl"),
-    ),
+    ("common/brdf.wgsl", include_str!("../../shaders/common/brdf.wgsl")),
+    ("common/color.wgsl", include_str!("../../shaders/common/color.wgsl")),
+    ("common/frame.wgsl", include_str!("../../shaders/common/frame.wgsl")),
+    ("common/lights.wgsl", include_str!("../../shaders/common/lights.wgsl")),
+    ("common/octahedral.wgsl", include_str!("../../shaders/common/octahedral.wgsl")),
+    ("common/shadow.wgsl", include_str!("../../shaders/common/shadow.wgsl")),
+    ("render/gbuffer.wgsl", include_str!("../../shaders/render/gbuffer.wgsl")),
+    ("render/lighting.wgsl", include_str!("../../shaders/render/lighting.wgsl")),
+    ("render/shadow_depth.wgsl", include_str!("../../shaders/render/shadow_depth.wgsl")),
+    ("render/tonemap.wgsl", include_str!("../../shaders/render/tonemap.wgsl")),
 ];
 
 /// Shader entry files (the others are only imported).
-pub const ENTRY_SHADERS: &[&str] = &[
-    "render/gbuffer.wgsl",
-    "render/lighting.wgsl",
-    "render/shadow_depth.wgsl",
-    "render/tonemap.wgsl",
-];
+pub const ENTRY_SHADERS: &[&str] =
+    &["render/gbuffer.wgsl", "render/lighting.wgsl", "render/shadow_depth.wgsl", "render/tonemap.wgsl"];
 
 /// A shader that could not be assembled.
 #[derive(Debug, thiserror::Error, PartialEq)]
@@ -66,11 +32,7 @@ pub enum ShaderError {
 }
 
 fn source(path: &str) -> Result<&'static str, ShaderError> {
-    SHADERS
-        .iter()
-        .find(|(p, _)| *p == path)
-        .map(|(_, s)| *s)
-        .ok_or_else(|| ShaderError::Unknown(path.to_owned()))
+    SHADERS.iter().find(|(p, _)| *p == path).map(|(_, s)| *s).ok_or_else(|| ShaderError::Unknown(path.to_owned()))
 }
 
 /// The full text of `path` with its imports expanded.

@@ -48,14 +48,7 @@ pub struct ShadowAssignment {
 }
 
 fn face_views(position: Vec3) -> [Mat4; 6] {
-    let dirs = [
-        Vec3::X,
-        Vec3::NEG_X,
-        Vec3::Y,
-        Vec3::NEG_Y,
-        Vec3::Z,
-        Vec3::NEG_Z,
-    ];
+    let dirs = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z];
     dirs.map(|d| {
         let up = if d.y.abs() > 0.5 { Vec3::Z } else { Vec3::Y };
         look_at_mat4(position, position + d, up)
@@ -88,20 +81,13 @@ impl ShadowPass {
                 compilation_options: Default::default(),
                 buffers: &[Some(Vertex::LAYOUT)],
             },
-            primitive: wgpu::PrimitiveState {
-                cull_mode: None,
-                ..Default::default()
-            },
+            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: formats::DEPTH,
                 depth_write_enabled: Some(true),
                 depth_compare: Some(wgpu::CompareFunction::Less),
                 stencil: Default::default(),
-                bias: wgpu::DepthBiasState {
-                    constant: 2,
-                    slope_scale: 1.5,
-                    clamp: 0.0,
-                },
+                bias: wgpu::DepthBiasState { constant: 2, slope_scale: 1.5, clamp: 0.0 },
             }),
             multisample: Default::default(),
             fragment: None,
@@ -158,11 +144,7 @@ impl ShadowPass {
     ) -> (wgpu::Texture, wgpu::TextureView, Vec<wgpu::TextureView>) {
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("shadow map array"),
-            size: wgpu::Extent3d {
-                width: resolution,
-                height: resolution,
-                depth_or_array_layers: layers,
-            },
+            size: wgpu::Extent3d { width: resolution, height: resolution, depth_or_array_layers: layers },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -192,17 +174,9 @@ impl ShadowPass {
     }
 
     /// Assigns layers to shadowed lights, computes their matrices and packs the lights.
-    pub fn prepare(
-        &mut self,
-        device: &wgpu::Device,
-        scene: &Scene,
-        settings: &ShadowSettings,
-    ) -> ShadowAssignment {
+    pub fn prepare(&mut self, device: &wgpu::Device, scene: &Scene, settings: &ShadowSettings) -> ShadowAssignment {
         let res = settings.resolution.max(16);
-        let bounds = scene.bounds().unwrap_or(Aabb {
-            min: Vec3::splat(-1.0),
-            max: Vec3::splat(1.0),
-        });
+        let bounds = scene.bounds().unwrap_or(Aabb { min: Vec3::splat(-1.0), max: Vec3::splat(1.0) });
         let (center, radius) = (bounds.center(), bounds.radius().max(1e-3));
         self.layer_matrices.clear();
         let mut lights = Vec::with_capacity(scene.lights().len());
@@ -214,10 +188,7 @@ impl ShadowPass {
             let first = self.layer_matrices.len() as u32;
             if !light.cast_shadows || first + needed > MAX_SHADOW_LAYERS {
                 if light.cast_shadows {
-                    log::warn!(
-                        "light {:?}: more than {MAX_SHADOW_LAYERS} shadow layers, drawn unshadowed",
-                        light.name
-                    );
+                    log::warn!("light {:?}: more than {MAX_SHADOW_LAYERS} shadow layers, drawn unshadowed", light.name);
                 }
                 lights.push(GpuLight::new(light, None, 0.0));
                 continue;
@@ -228,30 +199,22 @@ impl ShadowPass {
                     let t = 1.0 + 2.0 * (settings.pcf_radius as f32 + 2.0) / res as f32;
                     let (near, far) = (0.01f32.min(0.1 * radius), far_for(light.position));
                     let proj = directx::perspective(2.0 * t.atan(), 1.0, near, far);
-                    self.layer_matrices
-                        .extend(face_views(light.position).map(|v| proj * v));
+                    self.layer_matrices.extend(face_views(light.position).map(|v| proj * v));
                     2.0 * t / res as f32
                 }
-                LightKind::Spot {
-                    outer_cone_angle, ..
-                } => {
+                LightKind::Spot { outer_cone_angle, .. } => {
                     let margin = 2.0 * (settings.pcf_radius as f32 + 2.0) / res as f32;
                     let fov = (2.0 * outer_cone_angle + margin).min(170f32.to_radians());
                     let (near, far) = (0.01f32.min(0.1 * radius), far_for(light.position));
                     let proj = directx::perspective(fov, 1.0, near, far);
-                    let view = look_at_mat4(
-                        light.position,
-                        light.position + light.direction,
-                        up_for(light.direction),
-                    );
+                    let view = look_at_mat4(light.position, light.position + light.direction, up_for(light.direction));
                     self.layer_matrices.push(proj * view);
                     2.0 * (0.5 * fov).tan() / res as f32
                 }
                 LightKind::Directional => {
                     let eye = center - light.direction * (2.0 * radius);
                     let view = look_at_mat4(eye, center, up_for(light.direction));
-                    let proj =
-                        directx::orthographic(-radius, radius, -radius, radius, 0.0, 4.0 * radius);
+                    let proj = directx::orthographic(-radius, radius, -radius, radius, 0.0, 4.0 * radius);
                     self.layer_matrices.push(proj * view);
                     2.0 * radius / res as f32
                 }
@@ -287,15 +250,13 @@ impl ShadowPass {
         let draws = (self.layer_matrices.len() * objects.len()) as u64;
         if draws > self.draw_capacity {
             self.draw_capacity = draws.next_power_of_two();
-            (self.draw_buffer, self.draw_bind_group) =
-                Self::draw_buffer(device, &self.draw_layout, self.draw_capacity);
+            (self.draw_buffer, self.draw_bind_group) = Self::draw_buffer(device, &self.draw_layout, self.draw_capacity);
         }
         let mut data = vec![0u8; (DRAW_SLOT * draws) as usize];
         for (l, m) in self.layer_matrices.iter().enumerate() {
             for (o, (world, _)) in objects.iter().enumerate() {
                 let at = (l * objects.len() + o) * DRAW_SLOT as usize;
-                data[at..at + 64]
-                    .copy_from_slice(bytemuck::cast_slice(&(*m * *world).to_cols_array()));
+                data[at..at + 64].copy_from_slice(bytemuck::cast_slice(&(*m * *world).to_cols_array()));
             }
         }
         if !data.is_empty() {
@@ -304,19 +265,13 @@ impl ShadowPass {
         let layer_count = self.layer_matrices.len();
         for l in 0..layer_count {
             let (first, last) = (l == 0, l + 1 == layer_count);
-            let ts = timestamps
-                .as_ref()
-                .filter(|_| first || last)
-                .map(|t| t.render_writes(first, last));
+            let ts = timestamps.as_ref().filter(|_| first || last).map(|t| t.render_writes(first, last));
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow pass"),
                 color_attachments: &[],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &self.layer_views[l],
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
                     stencil_ops: None,
                 }),
                 timestamp_writes: ts,

@@ -39,11 +39,7 @@ impl Target {
     ) -> Self {
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
-            size: wgpu::Extent3d {
-                width: size.0.max(1),
-                height: size.1.max(1),
-                depth_or_array_layers: 1,
-            },
+            size: wgpu::Extent3d { width: size.0.max(1), height: size.1.max(1), depth_or_array_layers: 1 },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -51,10 +47,7 @@ impl Target {
             usage,
             view_formats: &[],
         });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor {
-            label: Some(label),
-            ..Default::default()
-        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor { label: Some(label), ..Default::default() });
         Self { texture, view }
     }
 }
@@ -90,21 +83,9 @@ impl ViewTargets {
             motion: Target::new(device, "gbuffer motion", size, formats::MOTION, rt),
             object_id: Target::new(device, "gbuffer object id", size, formats::OBJECT_ID, rt),
             depth: Target::new(device, "gbuffer depth", size, formats::DEPTH, rt),
-            indirect: Target::new(
-                device,
-                "indirect radiance",
-                size,
-                formats::HDR,
-                storage | U::RENDER_ATTACHMENT,
-            ),
+            indirect: Target::new(device, "indirect radiance", size, formats::HDR, storage | U::RENDER_ATTACHMENT),
             hdr: Target::new(device, "hdr radiance", size, formats::HDR, storage),
-            ldr: Target::new(
-                device,
-                "ldr display",
-                size,
-                formats::LDR,
-                storage | U::RENDER_ATTACHMENT,
-            ),
+            ldr: Target::new(device, "ldr display", size, formats::LDR, storage | U::RENDER_ATTACHMENT),
         }
     }
 }

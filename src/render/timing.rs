@@ -63,39 +63,31 @@ pub struct GpuTimer {
 impl GpuTimer {
     /// A timer; without `TIMESTAMP_QUERY` it records nothing.
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
-        let gpu = device
-            .features()
-            .contains(wgpu::Features::TIMESTAMP_QUERY)
-            .then(|| {
-                let size = u64::from(MAX_QUERIES) * 8;
-                Gpu {
-                    query_set: device.create_query_set(&wgpu::QuerySetDescriptor {
-                        label: Some("pass timestamps"),
-                        ty: wgpu::QueryType::Timestamp,
-                        count: MAX_QUERIES,
-                    }),
-                    resolve: device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some("timestamp resolve"),
-                        size,
-                        usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                        mapped_at_creation: false,
-                    }),
-                    readback: device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some("timestamp readback"),
-                        size,
-                        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                        mapped_at_creation: false,
-                    }),
-                    pending: None,
-                    map_requested: false,
-                }
-            });
-        Self {
-            gpu,
-            names: Vec::new(),
-            period_ns: queue.get_timestamp_period(),
-            latest: Vec::new(),
-        }
+        let gpu = device.features().contains(wgpu::Features::TIMESTAMP_QUERY).then(|| {
+            let size = u64::from(MAX_QUERIES) * 8;
+            Gpu {
+                query_set: device.create_query_set(&wgpu::QuerySetDescriptor {
+                    label: Some("pass timestamps"),
+                    ty: wgpu::QueryType::Timestamp,
+                    count: MAX_QUERIES,
+                }),
+                resolve: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("timestamp resolve"),
+                    size,
+                    usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                    mapped_at_creation: false,
+                }),
+                readback: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("timestamp readback"),
+                    size,
+                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                pending: None,
+                map_requested: false,
+            }
+        });
+        Self { gpu, names: Vec::new(), period_ns: queue.get_timestamp_period(), latest: Vec::new() }
     }
 
     /// Whether timestamps are recorded.
@@ -116,11 +108,7 @@ impl GpuTimer {
         }
         let begin = self.names.len() as u32 * 2;
         self.names.push(name.to_owned());
-        Some(TimestampPair {
-            query_set: &gpu.query_set,
-            begin,
-            end: begin + 1,
-        })
+        Some(TimestampPair { query_set: &gpu.query_set, begin, end: begin + 1 })
     }
 
     /// Resolves this frame's queries into the readback buffer.
@@ -132,10 +120,7 @@ impl GpuTimer {
         let n = self.names.len() as u32 * 2;
         encoder.resolve_query_set(&gpu.query_set, 0..n, &gpu.resolve, 0);
         encoder.copy_buffer_to_buffer(&gpu.resolve, 0, &gpu.readback, 0, u64::from(n) * 8);
-        gpu.pending = Some((
-            std::mem::take(&mut self.names),
-            Arc::new(AtomicBool::new(false)),
-        ));
+        gpu.pending = Some((std::mem::take(&mut self.names), Arc::new(AtomicBool::new(false))));
     }
 
     /// After submit: starts mapping the readback buffer.
@@ -146,11 +131,7 @@ impl GpuTimer {
         {
             gpu.map_requested = true;
             let ready = ready.clone();
-            gpu.readback
-                .slice(..)
-                .map_async(wgpu::MapMode::Read, move |r| {
-                    ready.store(r.is_ok(), Ordering::Release)
-                });
+            gpu.readback.slice(..).map_async(wgpu::MapMode::Read, move |r| ready.store(r.is_ok(), Ordering::Release));
         }
     }
 
@@ -159,11 +140,7 @@ impl GpuTimer {
         if let Some(gpu) = self.gpu.as_mut()
             && let Some((names, ready)) = &gpu.pending
         {
-            let poll = if wait {
-                wgpu::PollType::wait_indefinitely()
-            } else {
-                wgpu::PollType::Poll
-            };
+            let poll = if wait { wgpu::PollType::wait_indefinitely() } else { wgpu::PollType::Poll };
             let _ = device.poll(poll);
             if ready.load(Ordering::Acquire) {
                 if let Ok(view) = gpu.readback.slice(..).get_mapped_range() {
@@ -173,9 +150,7 @@ impl GpuTimer {
                         .enumerate()
                         .map(|(i, name)| PassTiming {
                             name: name.clone(),
-                            ms: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64
-                                * f64::from(self.period_ns)
-                                * 1e-6,
+                            ms: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * f64::from(self.period_ns) * 1e-6,
                         })
                         .collect();
                 }

@@ -46,17 +46,10 @@ impl TonemapPass {
         });
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("tonemap params"),
-            contents: bytemuck::bytes_of(&TonemapUniforms {
-                exposure: [1.0; 4],
-                op: [0; 4],
-            }),
+            contents: bytemuck::bytes_of(&TonemapUniforms { exposure: [1.0; 4], op: [0; 4] }),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
-        Ok(Self {
-            pipeline,
-            layout,
-            params,
-        })
+        Ok(Self { pipeline, layout, params })
     }
 
     /// A bind group reading `hdr` and writing `ldr`.
@@ -70,18 +63,9 @@ impl TonemapPass {
             label: Some("tonemap bind group"),
             layout: &self.layout,
             entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: self.params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(hdr),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(ldr),
-                },
+                wgpu::BindGroupEntry { binding: 0, resource: self.params.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(hdr) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(ldr) },
             ],
         })
     }
@@ -101,10 +85,7 @@ impl TonemapPass {
             Tonemap::Reinhard => 1,
             Tonemap::Aces => 2,
         };
-        let params = TonemapUniforms {
-            exposure: [view.exposure_ev.exp2(), 0.0, 0.0, 0.0],
-            op: [op, 0, 0, 0],
-        };
+        let params = TonemapUniforms { exposure: [view.exposure_ev.exp2(), 0.0, 0.0, 0.0], op: [op, 0, 0, 0] };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("tonemap pass"),

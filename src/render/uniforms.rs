@@ -35,10 +35,7 @@ impl GpuLight {
     pub fn new(light: &Light, shadow_layer: Option<u32>, texel_factor: f32) -> Self {
         let (kind, scale, offset) = match light.kind {
             LightKind::Point => (0.0, 0.0, 0.0),
-            LightKind::Spot {
-                inner_cone_angle,
-                outer_cone_angle,
-            } => {
+            LightKind::Spot { inner_cone_angle, outer_cone_angle } => {
                 let scale = 1.0 / (inner_cone_angle.cos() - outer_cone_angle.cos()).max(0.001);
                 (1.0, scale, -outer_cone_angle.cos() * scale)
             }
@@ -47,14 +44,8 @@ impl GpuLight {
         let radiant = light.radiant();
         Self {
             position: light.position.extend(kind).to_array(),
-            direction: light
-                .direction
-                .normalize_or(Vec3::NEG_Y)
-                .extend(light.range.unwrap_or(0.0))
-                .to_array(),
-            radiant: radiant
-                .extend(shadow_layer.map_or(-1.0, |l| l as f32))
-                .to_array(),
+            direction: light.direction.normalize_or(Vec3::NEG_Y).extend(light.range.unwrap_or(0.0)).to_array(),
+            radiant: radiant.extend(shadow_layer.map_or(-1.0, |l| l as f32)).to_array(),
             cone: [scale, offset, texel_factor, 0.0],
         }
     }
@@ -101,12 +92,7 @@ impl MaterialUniforms {
         Self {
             base_color: m.base_color,
             specular: [m.specular[0], m.specular[1], m.specular[2], m.roughness],
-            flags: [
-                u32::from(m.base_color_texture.is_some()),
-                u32::from(m.normal_texture.is_some()),
-                0,
-                0,
-            ],
+            flags: [u32::from(m.base_color_texture.is_some()), u32::from(m.normal_texture.is_some()), 0, 0],
             params: [m.normal_scale, 0.0, 0.0, 0.0],
         }
     }

@@ -24,13 +24,7 @@ pub struct Camera {
 
 impl Default for Camera {
     fn default() -> Self {
-        Self {
-            position: Vec3::new(0.0, 1.0, 4.0),
-            rotation: Quat::IDENTITY,
-            yfov: 0.8,
-            znear: 0.05,
-            zfar: None,
-        }
+        Self { position: Vec3::new(0.0, 1.0, 4.0), rotation: Quat::IDENTITY, yfov: 0.8, znear: 0.05, zfar: None }
     }
 }
 
@@ -39,12 +33,7 @@ impl Camera {
     pub fn look_at(eye: Vec3, target: Vec3, yfov: f32) -> Self {
         let forward = (target - eye).normalize_or(Vec3::NEG_Z);
         let rotation = rotation_looking(forward);
-        Self {
-            position: eye,
-            rotation,
-            yfov,
-            ..Self::default()
-        }
+        Self { position: eye, rotation, yfov, ..Self::default() }
     }
 
     /// World-from-camera matrix.
@@ -85,10 +74,7 @@ impl Camera {
     pub fn validate(&self) -> Result<(), SceneError> {
         check_finite("camera position", &self.position.to_array())?;
         check_finite("camera rotation", &self.rotation.to_array())?;
-        check_finite(
-            "camera field of view",
-            &[self.yfov, self.znear, self.zfar.unwrap_or(1.0)],
-        )?;
+        check_finite("camera field of view", &[self.yfov, self.znear, self.zfar.unwrap_or(1.0)])?;
         if !(self.yfov > 1e-3 && self.yfov < std::f32::consts::PI - 1e-3) {
             return Err(SceneError::BadValue {
                 what: "camera yfov".into(),
@@ -98,10 +84,7 @@ impl Camera {
         if self.znear <= 0.0 || self.zfar.is_some_and(|f| f <= self.znear) {
             return Err(SceneError::BadValue {
                 what: "camera clip planes".into(),
-                why: format!(
-                    "need 0 < znear < zfar, got {} and {:?}",
-                    self.znear, self.zfar
-                ),
+                why: format!("need 0 < znear < zfar, got {} and {:?}", self.znear, self.zfar),
             });
         }
         Ok(())
@@ -131,10 +114,7 @@ mod tests {
 
     #[test]
     fn top_row_ray_is_at_half_fov() {
-        let cam = Camera {
-            yfov: 1.0,
-            ..Camera::default()
-        };
+        let cam = Camera { yfov: 1.0, ..Camera::default() };
         let d = cam.ray_direction(8.0, 0.0, 16, 16);
         assert!((d.y.atan2(-d.z) - 0.5).abs() < 1e-5);
     }

@@ -63,19 +63,9 @@ impl Light {
     }
 
     /// A white spot light.
-    pub fn spot(
-        name: &str,
-        position: Vec3,
-        direction: Vec3,
-        intensity: f32,
-        inner: f32,
-        outer: f32,
-    ) -> Self {
+    pub fn spot(name: &str, position: Vec3, direction: Vec3, intensity: f32, inner: f32, outer: f32) -> Self {
         Self {
-            kind: LightKind::Spot {
-                inner_cone_angle: inner,
-                outer_cone_angle: outer,
-            },
+            kind: LightKind::Spot { inner_cone_angle: inner, outer_cone_angle: outer },
             direction: direction.normalize_or(Vec3::NEG_Y),
             ..Self::point(name, position, intensity)
         }
@@ -117,16 +107,8 @@ impl Light {
                 let d = to_light.length();
                 let l = to_light / d.max(1e-8);
                 let mut e = self.radiant() * self.distance_attenuation(d);
-                if let LightKind::Spot {
-                    inner_cone_angle,
-                    outer_cone_angle,
-                } = self.kind
-                {
-                    e *= spot_attenuation(
-                        self.direction.dot(-l),
-                        inner_cone_angle,
-                        outer_cone_angle,
-                    );
+                if let LightKind::Spot { inner_cone_angle, outer_cone_angle } = self.kind {
+                    e *= spot_attenuation(self.direction.dot(-l), inner_cone_angle, outer_cone_angle);
                 }
                 (l, e)
             }
@@ -140,12 +122,7 @@ impl Light {
         check_finite(&what, &[self.intensity, self.range.unwrap_or(1.0)])?;
         check_finite(&what, &self.position.to_array())?;
         check_finite(&what, &self.direction.to_array())?;
-        let bad = |why: String| {
-            Err(SceneError::BadValue {
-                what: what.clone(),
-                why,
-            })
-        };
+        let bad = |why: String| Err(SceneError::BadValue { what: what.clone(), why });
         if self.intensity < 0.0 || self.color.iter().any(|c| *c < 0.0) {
             return bad("colour and intensity must be >= 0".into());
         }
@@ -155,19 +132,13 @@ impl Light {
         if !matches!(self.kind, LightKind::Point) && (self.direction.length() - 1.0).abs() > 1e-3 {
             return bad("direction must be a unit vector".into());
         }
-        if let LightKind::Spot {
-            inner_cone_angle,
-            outer_cone_angle,
-        } = self.kind
-        {
+        if let LightKind::Spot { inner_cone_angle, outer_cone_angle } = self.kind {
             check_finite(&what, &[inner_cone_angle, outer_cone_angle])?;
             if !(0.0 <= inner_cone_angle
                 && inner_cone_angle < outer_cone_angle
                 && outer_cone_angle <= std::f32::consts::FRAC_PI_2)
             {
-                return bad(format!(
-                    "need 0 <= inner ({inner_cone_angle}) < outer ({outer_cone_angle}) <= pi/2"
-                ));
+                return bad(format!("need 0 <= inner ({inner_cone_angle}) < outer ({outer_cone_angle}) <= pi/2"));
             }
         }
         Ok(())

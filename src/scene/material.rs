@@ -52,11 +52,7 @@ impl Default for Material {
 impl Material {
     /// A plain diffuse material.
     pub fn diffuse(name: &str, albedo: [f32; 3]) -> Self {
-        Self {
-            name: name.into(),
-            base_color: [albedo[0], albedo[1], albedo[2], 1.0],
-            ..Self::default()
-        }
+        Self { name: name.into(), base_color: [albedo[0], albedo[1], albedo[2], 1.0], ..Self::default() }
     }
 
     /// Checks numbers and ranges.
@@ -66,10 +62,7 @@ impl Material {
         check_finite(&what, &self.specular)?;
         check_finite(&what, &[self.roughness, self.normal_scale])?;
         if self.base_color.iter().any(|c| *c < 0.0) || self.specular.iter().any(|c| *c < 0.0) {
-            return Err(SceneError::BadValue {
-                what,
-                why: "colours must be >= 0".into(),
-            });
+            return Err(SceneError::BadValue { what, why: "colours must be >= 0".into() });
         }
         Ok(())
     }

@@ -51,24 +51,12 @@ impl Aabb {
     pub fn from_points(points: impl IntoIterator<Item = Vec3>) -> Option<Self> {
         let mut it = points.into_iter();
         let first = it.next()?;
-        Some(it.fold(
-            Self {
-                min: first,
-                max: first,
-            },
-            |b, p| Self {
-                min: b.min.min(p),
-                max: b.max.max(p),
-            },
-        ))
+        Some(it.fold(Self { min: first, max: first }, |b, p| Self { min: b.min.min(p), max: b.max.max(p) }))
     }
 
     /// The smallest box containing both.
     pub fn union(&self, other: &Self) -> Self {
-        Self {
-            min: self.min.min(other.min),
-            max: self.max.max(other.max),
-        }
+        Self { min: self.min.min(other.min), max: self.max.max(other.max) }
     }
 
     /// The bounds of this box's eight corners after `m`.
@@ -115,11 +103,8 @@ impl Mesh {
     /// Checks lengths, index ranges and finiteness.
     pub fn validate(&self) -> Result<(), MeshError> {
         let n = self.positions.len();
-        for (name, len) in [
-            ("normals", self.normals.len()),
-            ("uvs", self.uvs.len()),
-            ("tangents", self.tangents.len()),
-        ] {
+        for (name, len) in [("normals", self.normals.len()), ("uvs", self.uvs.len()), ("tangents", self.tangents.len())]
+        {
             if len != n {
                 return Err(MeshError::AttributeLength(name, len, n));
             }
@@ -144,11 +129,8 @@ impl Mesh {
         let mut acc = vec![Vec3::ZERO; self.positions.len()];
         for tri in self.indices.chunks_exact(3) {
             let [a, b, c] = [tri[0] as usize, tri[1] as usize, tri[2] as usize];
-            let (Some(pa), Some(pb), Some(pc)) = (
-                self.positions.get(a),
-                self.positions.get(b),
-                self.positions.get(c),
-            ) else {
+            let (Some(pa), Some(pb), Some(pc)) = (self.positions.get(a), self.positions.get(b), self.positions.get(c))
+            else {
                 continue;
             };
             let n = (*pb - *pa).cross(*pc - *pa);
@@ -156,10 +138,7 @@ impl Mesh {
                 acc[v] += n;
             }
         }
-        self.normals = acc
-            .into_iter()
-            .map(|n| n.try_normalize().unwrap_or(Vec3::Y))
-            .collect();
+        self.normals = acc.into_iter().map(|n| n.try_normalize().unwrap_or(Vec3::Y)).collect();
     }
 
     /// Applies `m` to the vertices (normals by the inverse transpose) and flips the winding when
@@ -173,9 +152,7 @@ impl Mesh {
             *n = (normal_m * *n).try_normalize().unwrap_or(Vec3::Y);
         }
         for t in &mut self.tangents {
-            let d = (Mat3::from_mat4(*m) * t.truncate())
-                .try_normalize()
-                .unwrap_or(Vec3::X);
+            let d = (Mat3::from_mat4(*m) * t.truncate()).try_normalize().unwrap_or(Vec3::X);
             *t = d.extend(t.w);
         }
         if m.determinant() < 0.0 {
@@ -188,10 +165,7 @@ impl Mesh {
     /// An axis-aligned box of the given full size centred at the origin, faces outward.
     pub fn cuboid(name: &str, size: Vec3) -> Self {
         let h = 0.5 * size;
-        let mut mesh = Self {
-            name: name.to_owned(),
-            ..Self::default()
-        };
+        let mut mesh = Self { name: name.to_owned(), ..Self::default() };
         // (normal, u axis, v axis): u x v = normal so the quad is CCW seen from outside.
         let faces = [
             (Vec3::X, Vec3::NEG_Z, Vec3::Y),
@@ -211,8 +185,7 @@ impl Mesh {
                 mesh.uvs.push(Vec2::new(0.5 + 0.5 * su, 0.5 - 0.5 * sv));
                 mesh.tangents.push(u.extend(1.0));
             }
-            mesh.indices
-                .extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+            mesh.indices.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
         }
         mesh
     }
@@ -222,19 +195,9 @@ impl Mesh {
         let h = 0.5 * size;
         Self {
             name: name.to_owned(),
-            positions: vec![
-                Vec3::new(-h, 0.0, h),
-                Vec3::new(h, 0.0, h),
-                Vec3::new(h, 0.0, -h),
-                Vec3::new(-h, 0.0, -h),
-            ],
+            positions: vec![Vec3::new(-h, 0.0, h), Vec3::new(h, 0.0, h), Vec3::new(h, 0.0, -h), Vec3::new(-h, 0.0, -h)],
             normals: vec![Vec3::Y; 4],
-            uvs: vec![
-                Vec2::new(0.0, 1.0),
-                Vec2::new(1.0, 1.0),
-                Vec2::new(1.0, 0.0),
-                Vec2::ZERO,
-            ],
+            uvs: vec![Vec2::new(0.0, 1.0), Vec2::new(1.0, 1.0), Vec2::new(1.0, 0.0), Vec2::ZERO],
             tangents: vec![Vec4::new(1.0, 0.0, 0.0, 1.0); 4],
             indices: vec![0, 1, 2, 0, 2, 3],
         }

@@ -71,25 +71,13 @@ pub struct Scene {
 pub enum SceneError {
     /// An object names a mesh that does not exist.
     #[error("object {object:?} refers to mesh {mesh}, but the scene has {count} meshes")]
-    MissingMesh {
-        object: String,
-        mesh: usize,
-        count: usize,
-    },
+    MissingMesh { object: String, mesh: usize, count: usize },
     /// An object names a material that does not exist.
     #[error("object {object:?} refers to material {material}, but the scene has {count} materials")]
-    MissingMaterial {
-        object: String,
-        material: usize,
-        count: usize,
-    },
+    MissingMaterial { object: String, material: usize, count: usize },
     /// A material names an image that does not exist.
     #[error("material {material:?} refers to image {image}, but the scene has {count} images")]
-    MissingImage {
-        material: String,
-        image: usize,
-        count: usize,
-    },
+    MissingImage { material: String, image: usize, count: usize },
     /// A value is NaN, infinite or out of its range.
     #[error("{what} is invalid: {why}")]
     BadValue { what: String, why: String },
@@ -98,12 +86,7 @@ pub enum SceneError {
 impl Scene {
     /// Builds a scene and checks that every reference resolves and every number is finite.
     pub fn new(desc: SceneDesc, resources: Resources) -> Result<Self, SceneError> {
-        let scene = Self {
-            desc,
-            resources,
-            revision: 1,
-            resources_revision: 1,
-        };
+        let scene = Self { desc, resources, revision: 1, resources_revision: 1 };
         scene.validate()?;
         Ok(scene)
     }
@@ -190,11 +173,7 @@ impl Scene {
         let images = self.resources.images.len();
         for object in &self.desc.objects {
             if object.mesh >= meshes {
-                return Err(SceneError::MissingMesh {
-                    object: object.name.clone(),
-                    mesh: object.mesh,
-                    count: meshes,
-                });
+                return Err(SceneError::MissingMesh { object: object.name.clone(), mesh: object.mesh, count: meshes });
             }
             if object.material >= materials {
                 return Err(SceneError::MissingMaterial {
@@ -206,10 +185,7 @@ impl Scene {
             object.validate()?;
         }
         for material in &self.desc.materials {
-            for tex in [&material.base_color_texture, &material.normal_texture]
-                .into_iter()
-                .flatten()
-            {
+            for tex in [&material.base_color_texture, &material.normal_texture].into_iter().flatten() {
                 if tex.image >= images {
                     return Err(SceneError::MissingImage {
                         material: material.name.clone(),
@@ -233,9 +209,6 @@ pub(crate) fn check_finite(what: &str, values: &[f32]) -> Result<(), SceneError>
     if values.iter().all(|v| v.is_finite()) {
         Ok(())
     } else {
-        Err(SceneError::BadValue {
-            what: what.to_owned(),
-            why: "not a finite number".to_owned(),
-        })
+        Err(SceneError::BadValue { what: what.to_owned(), why: "not a finite number".to_owned() })
     }
 }

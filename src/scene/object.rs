@@ -19,11 +19,7 @@ pub struct Transform {
 
 impl Default for Transform {
     fn default() -> Self {
-        Self {
-            translation: Vec3::ZERO,
-            rotation: Quat::IDENTITY,
-            scale: Vec3::ONE,
-        }
+        Self { translation: Vec3::ZERO, rotation: Quat::IDENTITY, scale: Vec3::ONE }
     }
 }
 
@@ -39,15 +35,10 @@ impl Transform {
             return None;
         }
         let (scale, rotation, translation) = m.to_scale_rotation_translation();
-        let t = Self {
-            translation,
-            rotation,
-            scale,
-        };
-        let err = (t.matrix() - *m)
-            .to_cols_array()
-            .iter()
-            .fold(0.0f32, |a, v| a.max(v.abs()));
+        // Decomposition noise (0.99999994 for a pure rotation) would leak into project files.
+        let scale = scale.map(|s| if (s - s.round()).abs() < 1e-6 && s.round() != 0.0 { s.round() } else { s });
+        let t = Self { translation, rotation, scale };
+        let err = (t.matrix() - *m).to_cols_array().iter().fold(0.0f32, |a, v| a.max(v.abs()));
         let size = m.to_cols_array().iter().fold(1.0f32, |a, v| a.max(v.abs()));
         (err <= 1e-5 * size).then_some(t)
     }
@@ -124,23 +115,14 @@ impl Object {
         check_finite(&what, &t.scale.to_array())?;
         check_finite(&what, &[self.sampling_weight])?;
         if self.sampling_weight < 0.0 {
-            return Err(SceneError::BadValue {
-                what,
-                why: "sampling weight must be >= 0".into(),
-            });
+            return Err(SceneError::BadValue { what, why: "sampling weight must be >= 0".into() });
         }
         match &self.source {
             MeshSource::Cuboid { size } if size.min_element() <= 0.0 || !size.is_finite() => {
-                Err(SceneError::BadValue {
-                    what,
-                    why: format!("box size {size} must be positive"),
-                })
+                Err(SceneError::BadValue { what, why: format!("box size {size} must be positive") })
             }
             MeshSource::Plane { size } if *size <= 0.0 || !size.is_finite() => {
-                Err(SceneError::BadValue {
-                    what,
-                    why: format!("plane size {size} must be positive"),
-                })
+                Err(SceneError::BadValue { what, why: format!("plane size {size} must be positive") })
             }
             _ => Ok(()),
         }
@@ -162,9 +144,8 @@ mod tests {
         assert!((back.matrix() - t.matrix()).abs_diff_eq(Mat4::ZERO, 1e-5));
         let mirror = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
         assert!(Transform::from_matrix_exact(&mirror).is_none());
-        let shear = Mat4::from_cols_array(&[
-            1.0, 0.0, 0.0, 0.0, 0.5, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
-        ]);
+        let shear =
+            Mat4::from_cols_array(&[1.0, 0.0, 0.0, 0.0, 0.5, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
         assert!(Transform::from_matrix_exact(&shear).is_none());
     }
 }

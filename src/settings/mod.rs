@@ -76,11 +76,7 @@ pub struct ShadowSettings {
 
 impl Default for ShadowSettings {
     fn default() -> Self {
-        Self {
-            resolution: 1024,
-            pcf_radius: 1,
-            normal_bias_texels: 1.5,
-        }
+        Self { resolution: 1024, pcf_radius: 1, normal_bias_texels: 1.5 }
     }
 }
 
@@ -96,10 +92,30 @@ pub struct ViewSettings {
 
 impl Default for ViewSettings {
     fn default() -> Self {
-        Self {
-            exposure_ev: 0.0,
-            tonemap: Tonemap::Aces,
-        }
+        Self { exposure_ev: 0.0, tonemap: Tonemap::Aces }
+    }
+}
+
+/// The reference path tracer's settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ReferenceSettings {
+    /// Samples per pixel to converge to. Cost: linear; noise falls as 1/sqrt(spp).
+    pub spp: u32,
+    /// Longest path in bounces (1 = direct light only). Cost: grows with each bounce until
+    /// Russian roulette ends most paths; cutting it biases the result dark.
+    pub max_bounces: u32,
+    /// Bounce from which Russian roulette may end paths (unbiased). Lower: faster, noisier.
+    pub rr_start: u32,
+    /// Random seed; the same seed gives the same image.
+    pub seed: u64,
+    /// Optional clamp of each path's radiance (biased; removes fireflies). `None` = unbiased.
+    pub clamp: Option<f32>,
+}
+
+impl Default for ReferenceSettings {
+    fn default() -> Self {
+        Self { spp: 256, max_bounces: 64, rr_start: 3, seed: 0, clamp: None }
     }
 }
 
@@ -113,6 +129,8 @@ pub struct RenderSettings {
     pub shadows: ShadowSettings,
     /// Exposure and tonemapping.
     pub view: ViewSettings,
+    /// The reference path tracer.
+    pub reference: ReferenceSettings,
 }
 
 /// A settings value outside its valid range.
@@ -139,11 +157,7 @@ impl RenderSettings {
             });
         }
         if s.pcf_radius > 4 {
-            return Err(SettingsError {
-                name: "shadows.pcf_radius",
-                value: s.pcf_radius.to_string(),
-                range: "0..=4",
-            });
+            return Err(SettingsError { name: "shadows.pcf_radius", value: s.pcf_radius.to_string(), range: "0..=4" });
         }
         if !(0.0..=16.0).contains(&s.normal_bias_texels) {
             return Err(SettingsError {
@@ -151,6 +165,20 @@ impl RenderSettings {
                 value: s.normal_bias_texels.to_string(),
                 range: "0..=16",
             });
+        }
+        let r = &self.reference;
+        if !(1..=1_000_000).contains(&r.spp) {
+            return Err(SettingsError { name: "reference.spp", value: r.spp.to_string(), range: "1..=1000000" });
+        }
+        if !(1..=1024).contains(&r.max_bounces) {
+            return Err(SettingsError {
+                name: "reference.max_bounces",
+                value: r.max_bounces.to_string(),
+                range: "1..=1024",
+            });
+        }
+        if r.clamp.is_some_and(|c| !(c > 0.0 && c.is_finite())) {
+            return Err(SettingsError { name: "reference.clamp", value: format!("{:?}", r.clamp), range: "> 0" });
         }
         if !(-32.0..=32.0).contains(&self.view.exposure_ev) {
             return Err(SettingsError {

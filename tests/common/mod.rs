@@ -4,8 +4,7 @@
 
 use bouncelab::render::{GpuContext, Renderer};
 use bouncelab::scene::{
-    Camera, Light, Material, Mesh, MeshSource, Object, ObjectRole, Resources, Scene, SceneDesc,
-    Transform,
+    Camera, Light, Material, Mesh, MeshSource, Object, ObjectRole, Resources, Scene, SceneDesc, Transform,
 };
 use bouncelab::settings::RenderSettings;
 use glam::Vec3;
@@ -39,36 +38,18 @@ pub fn object(name: &str, source: MeshSource, material: usize, transform: Transf
 }
 
 /// Builds a scene from objects with generated meshes.
-pub fn scene(
-    objects: Vec<Object>,
-    materials: Vec<Material>,
-    lights: Vec<Light>,
-    camera: Camera,
-) -> Scene {
-    let desc = SceneDesc {
-        materials,
-        objects,
-        lights,
-        camera,
-    };
+pub fn scene(objects: Vec<Object>, materials: Vec<Material>, lights: Vec<Light>, camera: Camera) -> Scene {
+    let desc = SceneDesc { materials, objects, lights, camera };
     bouncelab::import::resolve(desc, &[]).expect("scene resolves")
 }
 
 /// A `size` x `size` floor plane at y = 0 with albedo `albedo`.
 pub fn floor(size: f32, albedo: f32) -> (Object, Material) {
-    (
-        object("floor", MeshSource::Plane { size }, 0, Transform::default()),
-        Material::diffuse("floor", [albedo; 3]),
-    )
+    (object("floor", MeshSource::Plane { size }, 0, Transform::default()), Material::diffuse("floor", [albedo; 3]))
 }
 
 /// Renders `scene` and returns linear radiance.
-pub fn render(
-    ctx: &GpuContext,
-    scene: &Scene,
-    settings: &RenderSettings,
-    size: (u32, u32),
-) -> Vec<[f32; 4]> {
+pub fn render(ctx: &GpuContext, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> Vec<[f32; 4]> {
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     r.render(scene, settings, size).expect("render");
     r.read_hdr().expect("readback")

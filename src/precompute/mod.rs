@@ -1,0 +1,7 @@
+//! CPU-side heavy work that never touches the GPU: the ray-tracing BVH of the scene and the
+//! reference path tracer (and, later, MRT/DRT operators). Uses rayon; never imports wgpu/egui.
+
+pub mod brdf;
+pub mod bvh;
+pub mod pathtracer;
+pub mod rng;

@@ -1,0 +1,256 @@
+//! The reference path tracer: progressive, unbiased, deterministic for a seed.
+//!
+//! Same scene, materials and light conventions as the rasteriser: punctual lights by next-event
+//! estimation with the KHR spot falloff and inverse-square distance, the Lambertian + Blinn-Phong
+//! BRDF of `brdf.rs`, one-sided surfaces (a back-face hit ends the path black but occludes),
+//! base-colour textures and normal maps. Paths continue by BRDF importance sampling, with
+//! Russian roulette from `rr_start`; `max_bounces = 1` is direct light only. One call of
+//! [`PathTracer::add_sample`] adds one jittered (box-filtered) sample to every pixel, in parallel
+//! over rows with rayon, and can be cancelled.
+
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+use super::brdf::{Surface, phong_exponent};
+use super::bvh::{Hit, SceneBvh};
+use super::rng::Pcg32;
+use crate::image_io::srgb_to_linear;
+use crate::scene::{Camera, Image, Light, LightKind, Material, Scene};
+use crate::settings::ReferenceSettings;
+
+/// Progress after a pass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    /// Samples per pixel accumulated.
+    pub spp: u32,
+    /// Rays traced per second (camera, bounce and shadow rays), over the whole run.
+    pub rays_per_second: f64,
+    /// Samples (paths) per second, over the whole run.
+    pub samples_per_second: f64,
+}
+
+/// A progressive reference render of one view.
+pub struct PathTracer {
+    bvh: SceneBvh,
+    materials: Vec<Material>,
+    images: Vec<Image>,
+    lights: Vec<Light>,
+    camera: Camera,
+    size: (u32, u32),
+    settings: ReferenceSettings,
+    accum: Vec<[f64; 3]>,
+    spp: u32,
+    rays: u64,
+    elapsed: Duration,
+}
+
+fn texel(img: &Image, x: i64, y: i64) -> [f32; 4] {
+    let (w, h) = (i64::from(img.width), i64::from(img.height));
+    let (x, y) = (x.rem_euclid(w) as usize, y.rem_euclid(h) as usize);
+    let i = 4 * (y * img.width as usize + x);
+    let p = &img.rgba8[i..i + 4];
+    [p[0], p[1], p[2], p[3]].map(|c| f32::from(c) / 255.0)
+}
+
+/// Bilinear, repeating lookup; `srgb` decodes each texel before filtering (as the GPU does).
+fn sample_image(img: &Image, uv: Vec2, srgb: bool) -> Vec3 {
+    let x = uv.x * img.width as f32 - 0.5;
+    let y = uv.y * img.height as f32 - 0.5;
+    let (x0, y0) = (x.floor(), y.floor());
+    let (fx, fy) = (x - x0, y - y0);
+    let get = |dx: i64, dy: i64| {
+        let t = texel(img, x0 as i64 + dx, y0 as i64 + dy);
+        let c = Vec3::new(t[0], t[1], t[2]);
+        if srgb { Vec3::new(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z)) } else { c }
+    };
+    let top = get(0, 0).lerp(get(1, 0), fx);
+    let bottom = get(0, 1).lerp(get(1, 1), fx);
+    top.lerp(bottom, fy)
+}
+
+impl PathTracer {
+    /// Prepares a render of `scene` from its camera at `size`.
+    pub fn new(scene: &Scene, size: (u32, u32), settings: ReferenceSettings) -> Self {
+        let n = size.0 as usize * size.1 as usize;
+        Self {
+            bvh: SceneBvh::build(scene),
+            materials: scene.materials().to_vec(),
+            images: scene.resources().images.clone(),
+            lights: scene.lights().to_vec(),
+            camera: *scene.camera(),
+            size,
+            settings,
+            accum: vec![[0.0; 3]; n],
+            spp: 0,
+            rays: 0,
+            elapsed: Duration::ZERO,
+        }
+    }
+
+    /// Samples per pixel so far.
+    pub fn spp(&self) -> u32 {
+        self.spp
+    }
+
+    /// Current progress figures.
+    pub fn progress(&self) -> Progress {
+        let secs = self.elapsed.as_secs_f64().max(1e-9);
+        let pixels = self.accum.len() as f64;
+        Progress {
+            spp: self.spp,
+            rays_per_second: self.rays as f64 / secs,
+            samples_per_second: f64::from(self.spp) * pixels / secs,
+        }
+    }
+
+    /// Adds one sample to every pixel; returns `None` (and adds nothing) if cancelled.
+    pub fn add_sample(&mut self, cancel: &AtomicBool) -> Option<Progress> {
+        let start = Instant::now();
+        let w = self.size.0;
+        let sample = self.spp;
+        let rays = AtomicU64::new(0);
+        let mut pass = vec![[0.0f32; 3]; self.accum.len()];
+        pass.par_chunks_mut(w as usize).enumerate().for_each(|(y, row)| {
+            if cancel.load(Ordering::Relaxed) {
+                return;
+            }
+            let mut row_rays = 0u64;
+            for (x, out) in row.iter_mut().enumerate() {
+                let pixel = y as u64 * u64::from(w) + x as u64;
+                let mut rng = Pcg32::new(self.settings.seed, pixel, u64::from(sample));
+                let (l, r) = self.trace(x as f32, y as f32, &mut rng);
+                *out = l.to_array();
+                row_rays += r;
+            }
+            rays.fetch_add(row_rays, Ordering::Relaxed);
+        });
+        if cancel.load(Ordering::Relaxed) {
+            return None;
+        }
+        for (a, p) in self.accum.iter_mut().zip(&pass) {
+            for c in 0..3 {
+                a[c] += f64::from(p[c]);
+            }
+        }
+        self.spp += 1;
+        self.rays += rays.into_inner();
+        self.elapsed += start.elapsed();
+        Some(self.progress())
+    }
+
+    /// Adds samples until `spp` are accumulated (or cancelled), reporting after each pass.
+    pub fn render(&mut self, spp: u32, cancel: &AtomicBool, mut on_progress: impl FnMut(&Progress)) {
+        while self.spp < spp {
+            match self.add_sample(cancel) {
+                Some(p) => on_progress(&p),
+                None => return,
+            }
+        }
+    }
+
+    /// The current estimate: mean radiance per pixel (RGBA, alpha 1).
+    pub fn image(&self) -> Vec<[f32; 4]> {
+        let inv = 1.0 / f64::from(self.spp.max(1));
+        self.accum.iter().map(|a| [(a[0] * inv) as f32, (a[1] * inv) as f32, (a[2] * inv) as f32, 1.0]).collect()
+    }
+
+    fn surface(&self, hit: &Hit) -> (Vec3, Vec3, Surface) {
+        let tri = &self.bvh.tris[hit.tri as usize];
+        let (w0, w1, w2) = (1.0 - hit.u - hit.v, hit.u, hit.v);
+        let p = tri.p[0] * w0 + tri.p[1] * w1 + tri.p[2] * w2;
+        let mut n = (tri.n[0] * w0 + tri.n[1] * w1 + tri.n[2] * w2).try_normalize().unwrap_or(tri.ng);
+        let uv = tri.uv[0] * w0 + tri.uv[1] * w1 + tri.uv[2] * w2;
+        let m = self.materials.get(tri.material as usize).cloned().unwrap_or_default();
+        let mut albedo = Vec3::new(m.base_color[0], m.base_color[1], m.base_color[2]);
+        if let Some(img) = m.base_color_texture.and_then(|t| self.images.get(t.image)) {
+            albedo *= sample_image(img, uv, true);
+        }
+        if let Some(img) = m.normal_texture.and_then(|t| self.images.get(t.image)) {
+            let tw = tri.tangent[0] * w0 + tri.tangent[1] * w1 + tri.tangent[2] * w2;
+            let t = (tw.truncate() - n * n.dot(tw.truncate())).normalize_or_zero();
+            let b = n.cross(t) * if tw.w >= 0.0 { 1.0 } else { -1.0 };
+            let mut mm = sample_image(img, uv, false) * 2.0 - Vec3::ONE;
+            mm.x *= m.normal_scale;
+            mm.y *= m.normal_scale;
+            n = (t * mm.x + b * mm.y + n * mm.z).try_normalize().unwrap_or(n);
+        }
+        let surface =
+            Surface { albedo, specular: Vec3::from_array(m.specular), exponent: phong_exponent(m.roughness), n };
+        (p, tri.ng, surface)
+    }
+
+    /// One path through pixel (x, y): radiance and the number of rays traced.
+    fn trace(&self, x: f32, y: f32, rng: &mut Pcg32) -> (Vec3, u64) {
+        let (w, h) = self.size;
+        let dir = self.camera.ray_direction(x + rng.next_f32(), y + rng.next_f32(), w, h);
+        self.radiance(self.camera.position, dir, rng)
+    }
+
+    /// One path estimate of the radiance arriving at `origin` from direction `-dir` (the ray
+    /// `origin + t dir`), and the number of rays traced.
+    pub fn radiance(&self, mut origin: Vec3, mut dir: Vec3, rng: &mut Pcg32) -> (Vec3, u64) {
+        let mut throughput = Vec3::ONE;
+        let mut radiance = Vec3::ZERO;
+        let mut rays = 0u64;
+        let eps = 1e-4 * self.bvh.scale;
+        for depth in 0..self.settings.max_bounces {
+            rays += 1;
+            let Some(hit) = self.bvh.intersect(origin, dir, f32::INFINITY) else { break };
+            let (p, ng, surface) = self.surface(&hit);
+            let v = -dir;
+            if ng.dot(v) <= 0.0 {
+                break; // One-sided: the back of a surface is black.
+            }
+            let lifted = p + ng * eps;
+            for light in &self.lights {
+                let (l, e) = light.incident(p);
+                if ng.dot(l) <= 0.0 || e.max_element() <= 0.0 {
+                    continue;
+                }
+                let cos = surface.n.dot(l);
+                if cos <= 0.0 {
+                    continue;
+                }
+                let dist = match light.kind {
+                    LightKind::Directional => f32::INFINITY,
+                    _ => (light.position - lifted).length(),
+                };
+                rays += 1;
+                if !self.bvh.occluded(lifted, l, dist) {
+                    radiance += throughput * surface.eval(v, l) * e * cos;
+                }
+            }
+            if depth + 1 >= self.settings.max_bounces {
+                break;
+            }
+            let Some(l) = surface.sample(v, (rng.next_f32(), rng.next_f32()), rng.next_f32()) else { break };
+            if ng.dot(l) <= 0.0 {
+                break;
+            }
+            let pdf = surface.pdf(v, l);
+            if pdf <= 0.0 {
+                break;
+            }
+            throughput *= surface.eval(v, l) * surface.n.dot(l) / pdf;
+            if depth + 1 >= self.settings.rr_start {
+                let q = throughput.max_element().min(0.95);
+                if q <= 0.0 || rng.next_f32() >= q {
+                    break;
+                }
+                throughput /= q;
+            }
+            origin = lifted;
+            dir = l;
+        }
+        if let Some(c) = self.settings.clamp {
+            let m = radiance.max_element();
+            if m > c {
+                radiance *= c / m;
+            }
+        }
+        (radiance, rays)
+    }
+}

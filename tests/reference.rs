@@ -1,0 +1,159 @@
+//! The reference path tracer: convergence as 1/sqrt(spp), the analytic multi-bounce energy of a
+//! closed box, agreement with the raster direct mode at one bounce, determinism, cancellation.
+
+mod common;
+
+use std::sync::atomic::AtomicBool;
+
+use bouncelab::image_io::{self, HdrImage};
+use bouncelab::metrics;
+use bouncelab::precompute::pathtracer::PathTracer;
+use bouncelab::precompute::rng::Pcg32;
+use bouncelab::project_file::{Project, default_project_path};
+use bouncelab::scene::{Camera, Light, Material, Mesh, MeshSource, Transform};
+use bouncelab::settings::ReferenceSettings;
+use glam::Vec3;
+
+fn render(project: &Project, size: (u32, u32), settings: ReferenceSettings) -> HdrImage {
+    let mut t = PathTracer::new(&project.scene, size, settings.clone());
+    t.render(settings.spp, &AtomicBool::new(false), |_| {});
+    HdrImage { width: size.0, height: size.1, pixels: t.image() }
+}
+
+fn default_project() -> Project {
+    Project::load(&default_project_path()).expect("default project")
+}
+
+#[test]
+fn error_falls_as_inverse_sqrt_spp() {
+    let project = default_project();
+    let size = (32, 18);
+    let reference = render(&project, size, ReferenceSettings { spp: 2048, seed: 99, ..Default::default() });
+    let errors: Vec<f64> = [4, 16, 64]
+        .iter()
+        .map(|&spp| {
+            metrics::rmse(&render(&project, size, ReferenceSettings { spp, seed: 1, ..Default::default() }), &reference)
+                .expect("rmse")
+        })
+        .collect();
+    eprintln!("rmse at 4/16/64 spp: {errors:?}");
+    // Each 4x more samples should halve the error (the reference's own noise adds ~1%).
+    for pair in errors.windows(2) {
+        let ratio = pair[0] / pair[1];
+        assert!((1.6..2.5).contains(&ratio), "4x spp reduced the error by {ratio}, expected ~2");
+    }
+}
+
+#[test]
+fn closed_box_matches_the_geometric_series() {
+    // A closed 2 m box of inward-facing quads with albedo rho and a point light inside: all of
+    // the light's power 4 pi I lands on the walls, and each bounce returns rho of it, so the
+    // area-averaged outgoing radiance is rho / (pi (1 - rho)) * 4 pi I / A, exactly.
+    let rho = 0.6f32;
+    let intensity = 2.0f32;
+    let side = 2.0f32;
+    let inward = {
+        let mut m = Mesh::cuboid("room", Vec3::splat(side));
+        for tri in m.indices.chunks_exact_mut(3) {
+            tri.swap(1, 2);
+        }
+        for n in &mut m.normals {
+            *n = -*n;
+        }
+        m
+    };
+    let mut scene = common::scene(
+        vec![common::object("room", MeshSource::Cuboid { size: Vec3::splat(side) }, 0, Transform::default())],
+        vec![Material::diffuse("grey", [rho; 3])],
+        vec![Light::point("bulb", Vec3::new(0.3, 0.2, -0.1), intensity)],
+        Camera::default(),
+    );
+    scene.resources_mut().meshes[0] = inward;
+    let settings = ReferenceSettings { spp: 1, max_bounces: 256, ..Default::default() };
+    let tracer = PathTracer::new(&scene, (1, 1), settings);
+    // Area-uniform points on the walls, each looked at from just inside along its normal.
+    let mut rng = Pcg32::new(5, 0, 0);
+    let n = 200_000;
+    let mut sum = 0.0f64;
+    for _ in 0..n {
+        let face = (rng.next_f32() * 6.0) as usize % 6;
+        let (a, b) = (rng.next_f32() * side - 1.0, rng.next_f32() * side - 1.0);
+        let axis = face / 2;
+        let sign = if face.is_multiple_of(2) { 1.0 } else { -1.0 };
+        let mut p = [a, b, a];
+        p[axis] = sign;
+        p[(axis + 1) % 3] = a;
+        p[(axis + 2) % 3] = b;
+        let p = Vec3::from_array(p);
+        let mut normal = Vec3::ZERO;
+        normal[axis] = -sign;
+        let (l, _) = tracer.radiance(p + normal * 1e-3, -normal, &mut rng);
+        sum += f64::from(l.x);
+    }
+    let measured = sum / f64::from(n);
+    let area = 6.0 * side * side;
+    let expected =
+        f64::from(rho / (std::f32::consts::PI * (1.0 - rho)) * 4.0 * std::f32::consts::PI * intensity / area);
+    eprintln!("closed box: measured {measured:.5}, analytic {expected:.5}");
+    assert!((measured / expected - 1.0).abs() < 0.01, "measured {measured}, analytic {expected}");
+}
+
+#[test]
+fn one_bounce_reference_agrees_with_raster_direct() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = default_project();
+    let size = (64, 36);
+    // Raster supersampled 4x4 and box-filtered, like the path tracer's pixel filter.
+    let big = common::render(&ctx, &project.scene, &project.render, (size.0 * 4, size.1 * 4));
+    let raster =
+        HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * 4, size.1 * 4), 4) };
+    let one = ReferenceSettings { spp: 256, max_bounces: 1, ..Default::default() };
+    let a = render(&project, size, one.clone());
+    let b = render(&project, size, ReferenceSettings { seed: 7, ..one });
+    let ratio = metrics::luminance_ratio(&raster, &a).expect("ratio");
+    let noise = metrics::rmse(&a, &b).expect("rmse");
+    let err = metrics::rmse(&raster, &a).expect("rmse");
+    eprintln!("raster/reference luminance {ratio:.4}, rmse {err:.4}, reference noise {noise:.4}");
+    assert!((ratio - 1.0).abs() < 0.02, "mean luminance differs by {:.2}%", (ratio - 1.0) * 100.0);
+    assert!(err < 1.5 * noise, "raster differs from the reference by {err}, more than its noise {noise}");
+    let flip = metrics::flip(&raster, &a, 0.0).expect("flip").0;
+    assert!(flip < 0.08, "FLIP {flip}");
+}
+
+#[test]
+fn deterministic_for_a_seed_and_cancelable() {
+    let project = default_project();
+    let s = ReferenceSettings { spp: 2, ..Default::default() };
+    let a = render(&project, (16, 9), s.clone());
+    let b = render(&project, (16, 9), s.clone());
+    assert_eq!(a, b, "same seed, same image");
+    let c = render(&project, (16, 9), ReferenceSettings { seed: 3, ..s.clone() });
+    assert_ne!(a, c);
+    let mut t = PathTracer::new(&project.scene, (16, 9), s);
+    assert!(t.add_sample(&AtomicBool::new(true)).is_none());
+    assert_eq!(t.spp(), 0, "a cancelled pass adds nothing");
+    let p = t.add_sample(&AtomicBool::new(false)).expect("pass");
+    assert!(p.spp == 1 && p.rays_per_second > 0.0);
+}
+
+#[test]
+fn flip_of_identical_images_is_zero_and_grows_with_difference() {
+    let project = default_project();
+    let a = render(&project, (24, 16), ReferenceSettings { spp: 4, max_bounces: 1, ..Default::default() });
+    assert_eq!(metrics::flip(&a, &a, 0.0).expect("flip").0, 0.0);
+    let mut darker = a.clone();
+    for p in &mut darker.pixels {
+        for c in &mut p[..3] {
+            *c *= 0.5;
+        }
+    }
+    let mut much_darker = a.clone();
+    for p in &mut much_darker.pixels {
+        for c in &mut p[..3] {
+            *c *= 0.1;
+        }
+    }
+    let (f1, f2) =
+        (metrics::flip(&darker, &a, 0.0).expect("flip").0, metrics::flip(&much_darker, &a, 0.0).expect("flip").0);
+    assert!(0.0 < f1 && f1 < f2, "{f1} {f2}");
+}

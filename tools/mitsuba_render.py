@@ -1,0 +1,243 @@
+#!/usr/bin/env python3
+"""Render a glTF 2.0 scene with Mitsuba 3 as an independent reference for Bounce Lab.
+
+This is a validation tool only (not part of the product or CI): it re-implements the
+subset of glTF that Bounce Lab uses with a self-written loader (no third-party glTF
+library) and renders it with Mitsuba's `path` integrator, so Bounce Lab's units and
+conventions can be compared against an unrelated path tracer.
+
+Usage:
+    python3 tools/mitsuba_render.py SCENE.gltf --out OUT.exr --width W --height H \
+        --spp N --max-bounces K [--seed S]
+
+Conventions used:
+  * Every triangle primitive -> one-sided Mitsuba `diffuse` BSDF with reflectance =
+    baseColorFactor.rgb (textures, metallic, roughness ignored). Back faces are black
+    but still occlude. Positions/normals are baked to world space.
+  * KHR_lights_punctual: point `color*intensity` = radiant intensity [W/sr];
+    directional `color*intensity` = irradiance [W/m^2] along the node's -Z;
+    spot = Mitsuba `spot` whose angular profile is replaced by a projected bitmap of
+    the KHR falloff saturate(cos*scale+offset)^2 (bilinear, 512^2). `range` ignored.
+  * First camera in depth-first node order; yfov = vertical FOV; aspect = W/H.
+  * Film: hdrfilm with a box filter (each sample lands only in its own pixel, i.e. a
+    pixel is the average over its area), independent sampler.
+  * Integrator: path, max_depth = K+1 (K=1: direct light only), rr_depth = 1000, i.e.
+    Russian roulette is effectively disabled (unbiased either way, just less noise).
+Output is linear radiance, float32 RGB EXR, row 0 = top of the image.
+"""
+import argparse, base64, json, math, os, sys, time
+import numpy as np
+import mitsuba as mi
+
+mi.set_variant("scalar_rgb")  # the llvm_* variants need LLVM >= 16 here (system LLVM 15 crashes)
+
+COMP = {5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}
+NCOMP = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
+
+
+def warn(msg):
+    print("warning:", msg, file=sys.stderr)
+
+
+def load_buffers(gltf, base_dir):
+    out = []
+    for b in gltf.get("buffers", []):
+        uri = b["uri"]
+        if uri.startswith("data:"):
+            data = base64.b64decode(uri.split(",", 1)[1])
+        else:
+            from urllib.parse import unquote
+            with open(os.path.join(base_dir, unquote(uri)), "rb") as f:
+                data = f.read()
+        out.append(data)
+    return out
+
+
+def read_accessor(gltf, buffers, idx):
+    acc = gltf["accessors"][idx]
+    dt, n, count = np.dtype(COMP[acc["componentType"]]), NCOMP[acc["type"]], acc["count"]
+    if "bufferView" not in acc:
+        return np.zeros((count, n), dt)
+    bv = gltf["bufferViews"][acc["bufferView"]]
+    start = bv.get("byteOffset", 0) + acc.get("byteOffset", 0)
+    elem = dt.itemsize * n
+    stride = bv.get("byteStride") or elem
+    raw = np.frombuffer(buffers[bv["buffer"]], np.uint8)
+    rows = raw[start:start + stride * (count - 1) + elem]
+    rows = np.lib.stride_tricks.as_strided(rows, (count, elem), (stride, 1))
+    return np.ascontiguousarray(rows).view(dt).reshape(count, n)
+
+
+def local_matrix(node):
+    if "matrix" in node:
+        return np.array(node["matrix"], np.float64).reshape(4, 4).T  # column-major
+    t = node.get("translation", [0, 0, 0])
+    x, y, z, w = node.get("rotation", [0, 0, 0, 1])
+    s = node.get("scale", [1, 1, 1])
+    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    M = np.eye(4)
+    M[:3, :3] = R @ np.diag(s)
+    M[:3, 3] = t
+    return M
+
+
+def walk(gltf):
+    """Yield (node, world_matrix) depth-first over the default scene."""
+    nodes = gltf.get("nodes", [])
+    if gltf.get("scenes"):
+        roots = gltf["scenes"][gltf.get("scene", 0)]["nodes"]
+    else:
+        kids = {c for n in nodes for c in n.get("children", [])}
+        roots = [i for i in range(len(nodes)) if i not in kids]
+    stack = [(i, np.eye(4)) for i in reversed(roots)]
+    while stack:
+        i, parent = stack.pop()
+        W = parent @ local_matrix(nodes[i])
+        yield nodes[i], W
+        stack.extend((c, W) for c in reversed(nodes[i].get("children", [])))
+
+
+def xf_point(M, p):
+    return (M @ np.append(p, 1.0))[:3]
+
+
+def xf_dir(M, d):
+    v = M[:3, :3] @ np.asarray(d, float)
+    return v / np.linalg.norm(v)
+
+
+def lookat(origin, direction, M):
+    up = xf_dir(M, [0, 1, 0])
+    if abs(np.dot(up, direction)) > 0.999:
+        up = xf_dir(M, [1, 0, 0])
+    return mi.ScalarTransform4f().look_at(origin=origin.tolist(), target=(origin + direction).tolist(), up=up.tolist())
+
+
+def make_mesh(name, gltf, buffers, prim, W):
+    if prim.get("mode", 4) != 4:
+        warn(f"{name}: primitive mode {prim.get('mode')} is not triangles; skipped")
+        return None
+    attrs = prim["attributes"]
+    P = read_accessor(gltf, buffers, attrs["POSITION"]).astype(np.float64)
+    P = (P @ W[:3, :3].T + W[:3, 3]).astype(np.float32)
+    N = None
+    if "NORMAL" in attrs:
+        N = read_accessor(gltf, buffers, attrs["NORMAL"]).astype(np.float64) @ np.linalg.inv(W[:3, :3])
+        N = (N / np.maximum(np.linalg.norm(N, axis=1, keepdims=True), 1e-30)).astype(np.float32)
+    if "indices" in prim:
+        F = read_accessor(gltf, buffers, prim["indices"]).astype(np.uint32).reshape(-1, 3)
+    else:
+        F = np.arange(len(P), dtype=np.uint32).reshape(-1, 3)
+    if np.linalg.det(W[:3, :3]) < 0:
+        F = F[:, [0, 2, 1]]
+    rgb = [1.0, 1.0, 1.0]
+    if "material" in prim:
+        rgb = gltf["materials"][prim["material"]].get("pbrMetallicRoughness", {}).get("baseColorFactor", [1, 1, 1, 1])[:3]
+    props = mi.Properties()
+    props["bsdf"] = mi.load_dict({"type": "diffuse", "reflectance": {"type": "rgb", "value": [float(c) for c in rgb]}})
+    mesh = mi.Mesh(name, len(P), len(F), props=props, has_vertex_normals=N is not None)
+    params = mi.traverse(mesh)
+    params["vertex_positions"] = P.ravel()
+    params["faces"] = np.ascontiguousarray(F).ravel()
+    if N is not None:
+        params["vertex_normals"] = N.ravel()
+    params.update()
+    return mesh
+
+
+def spot_falloff_texture(inner, outer, cutoff, res=512):
+    """Bitmap over Mitsuba's spot uv (u-0.5)*2*tan(cutoff) = x/z holding the KHR falloff."""
+    t = (np.arange(res) + 0.5) / res * 2 - 1
+    X, Y = np.meshgrid(t * math.tan(cutoff), t * math.tan(cutoff))
+    cos = 1 / np.sqrt(1 + X * X + Y * Y)
+    scale = 1 / max(1e-3, math.cos(inner) - math.cos(outer))
+    f = np.clip(cos * scale - math.cos(outer) * scale, 0, 1) ** 2
+    img = np.repeat(f[:, :, None], 3, axis=2).astype(np.float32)
+    return {"type": "bitmap", "bitmap": mi.Bitmap(img), "raw": True,
+            "filter_type": "bilinear", "wrap_mode": "clamp"}
+
+
+def make_light(L, W, i):
+    rgb = (np.array(L.get("color", [1, 1, 1]), float) * L.get("intensity", 1.0)).tolist()
+    pos = xf_point(W, [0, 0, 0])
+    fwd = xf_dir(W, [0, 0, -1])
+    if "range" in L:
+        warn(f"light {i}: 'range' ignored (Mitsuba lights have no range cut-off)")
+    kind = L["type"]
+    if kind == "point":
+        return {"type": "point", "position": pos.tolist(), "intensity": {"type": "rgb", "value": rgb}}
+    if kind == "directional":
+        return {"type": "directional", "direction": fwd.tolist(), "irradiance": {"type": "rgb", "value": rgb}}
+    if kind == "spot":
+        sp = L.get("spot", {})
+        inner, outer = sp.get("innerConeAngle", 0.0), sp.get("outerConeAngle", math.pi / 4)
+        # Mitsuba's own linear-in-angle ramp is pushed just outside the outer cone (where the
+        # KHR falloff is already 0); the KHR profile itself comes from the projected texture.
+        cutoff = min(outer + 1e-3, math.radians(89.0))
+        return {"type": "spot", "to_world": lookat(pos, fwd, W), "intensity": {"type": "rgb", "value": rgb},
+                "cutoff_angle": math.degrees(cutoff), "beam_width": math.degrees(outer),
+                "texture": spot_falloff_texture(inner, outer, cutoff)}
+    warn(f"light {i}: unknown type {kind}; skipped")
+    return None
+
+
+def build_scene(path, width, height, spp, max_bounces):
+    with open(path) as f:
+        gltf = json.load(f)
+    buffers = load_buffers(gltf, os.path.dirname(os.path.abspath(path)))
+    scene = {"type": "scene",
+             "integrator": {"type": "path", "max_depth": max_bounces + 1, "rr_depth": 1000}}
+    lights = gltf.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+    sensor = None
+    for k, (node, W) in enumerate(walk(gltf)):
+        if "mesh" in node:
+            for j, prim in enumerate(gltf["meshes"][node["mesh"]]["primitives"]):
+                m = make_mesh(f"n{k}_p{j}", gltf, buffers, prim, W)
+                if m is not None:
+                    scene[f"mesh_{k}_{j}"] = m
+        li = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
+        if li is not None:
+            d = make_light(lights[li], W, li)
+            if d is not None:
+                scene[f"light_{k}"] = d
+        if "camera" in node and sensor is None:
+            cam = gltf["cameras"][node["camera"]]
+            if cam["type"] != "perspective":
+                sys.exit("only perspective cameras are supported")
+            p = cam["perspective"]
+            sensor = {"type": "perspective", "fov_axis": "y", "fov": math.degrees(p["yfov"]),
+                      "near_clip": p.get("znear", 0.01), "far_clip": p.get("zfar", 1e4),
+                      # Mitsuba cameras look down local +Z; glTF cameras down local -Z.
+                      "to_world": lookat(xf_point(W, [0, 0, 0]), xf_dir(W, [0, 0, -1]), W),
+                      "film": {"type": "hdrfilm", "width": width, "height": height,
+                               "pixel_format": "rgb", "component_format": "float32",
+                               "rfilter": {"type": "box"}},
+                      "sampler": {"type": "independent", "sample_count": spp}}
+    if sensor is None:
+        sys.exit("scene has no camera")
+    scene["sensor"] = sensor
+    return mi.load_dict(scene)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("scene")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--width", type=int, required=True)
+    ap.add_argument("--height", type=int, required=True)
+    ap.add_argument("--spp", type=int, required=True)
+    ap.add_argument("--max-bounces", type=int, required=True, help="1 = direct light only")
+    ap.add_argument("--seed", type=int, default=0)
+    a = ap.parse_args()
+    scene = build_scene(a.scene, a.width, a.height, a.spp, a.max_bounces)
+    t0 = time.time()
+    img = mi.render(scene, spp=a.spp, seed=a.seed)
+    dt = time.time() - t0
+    mi.Bitmap(img).write(a.out)
+    print(f"wrote {a.out} ({a.width}x{a.height}, {a.spp} spp, max_depth {a.max_bounces + 1}) in {dt:.2f} s")
+
+
+if __name__ == "__main__":
+    main()
