@@ -50,6 +50,9 @@ enum Command {
         /// Random seed (reference mode).
         #[arg(long)]
         seed: Option<u64>,
+        /// Bounce from which Russian roulette may end paths (reference mode).
+        #[arg(long)]
+        rr_start: Option<u32>,
         /// Write an intermediate buffer instead of the final image (albedo, normal, material,
         /// motion, object_id, depth, indirect, hdr, ldr, shadow_map).
         #[arg(long)]
@@ -108,6 +111,7 @@ fn main() -> ExitCode {
             spp,
             max_bounces,
             seed,
+            rr_start,
             buffer,
             ssaa,
         }) => {
@@ -122,6 +126,7 @@ fn main() -> ExitCode {
                 spp,
                 max_bounces,
                 seed,
+                rr_start,
                 buffer,
                 ssaa,
             };

@@ -157,3 +157,26 @@ fn flip_of_identical_images_is_zero_and_grows_with_difference() {
         (metrics::flip(&darker, &a, 0.0).expect("flip").0, metrics::flip(&much_darker, &a, 0.0).expect("flip").0);
     assert!(0.0 < f1 && f1 < f2, "{f1} {f2}");
 }
+
+#[test]
+fn spot_and_directional_lights_agree_with_raster() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = default_project();
+    let desc = project.scene.desc_mut();
+    desc.lights = vec![
+        Light::spot("spot", Vec3::new(0.2, 1.9, 0.3), Vec3::new(-0.2, -1.0, -0.3).normalize(), 6.0, 0.3, 0.7),
+        Light::directional("sun", Vec3::new(0.25, -0.35, -1.0).normalize(), 1.5),
+    ];
+    let size = (48, 27);
+    let big = common::render(&ctx, &project.scene, &project.render, (size.0 * 8, size.1 * 8));
+    let raster =
+        HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * 8, size.1 * 8), 8) };
+    let one = ReferenceSettings { spp: 256, max_bounces: 1, ..Default::default() };
+    let a = render(&project, size, one.clone());
+    let b = render(&project, size, ReferenceSettings { seed: 11, ..one });
+    let ratio = metrics::luminance_ratio(&raster, &a).expect("ratio");
+    let (err, noise) = (metrics::rmse(&raster, &a).expect("rmse"), metrics::rmse(&a, &b).expect("rmse"));
+    eprintln!("spot + sun: raster/reference luminance {ratio:.4}, rmse {err:.4}, reference noise {noise:.4}");
+    assert!((ratio - 1.0).abs() < 0.02, "mean luminance differs by {:.2}%", (ratio - 1.0) * 100.0);
+    assert!(err < 1.5 * noise, "raster differs from the reference by {err}, more than its noise {noise}");
+}

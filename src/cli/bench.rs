@@ -5,9 +5,11 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
+use crate::precompute::pathtracer::PathTracer;
 use crate::project_file::{Project, default_project_path};
 use crate::render::{GpuContext, PassTiming, Renderer};
 use crate::settings::GiMode;
+use crate::settings::ReferenceSettings;
 
 /// One measured configuration.
 struct Row {
@@ -86,9 +88,50 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
         };
         let _ = writeln!(md, "| {} | {}x{} | {:.2} | {} |", r.mode.name(), r.size.0, r.size.1, r.frame_ms, passes);
     }
+    reference_rows(&mut md, &project, quick);
+    // Anything after the manual marker (hand-run external comparisons) survives a rerun.
+    if let Ok(old) = std::fs::read_to_string(out)
+        && let Some(i) = old.find(MANUAL_MARKER)
+    {
+        md.push('\n');
+        md.push_str(&old[i..]);
+    }
     if let Some(dir) = out.parent() {
         std::fs::create_dir_all(dir)?;
     }
     std::fs::write(out, &md)?;
     Ok(md)
+}
+
+/// Marks the hand-maintained tail of `docs/BENCHMARKS.md`.
+const MANUAL_MARKER: &str = "<!-- manual -->";
+
+/// Reference path tracer throughput on the default project (CPU, rayon over all cores).
+fn reference_rows(md: &mut String, project: &Project, quick: bool) {
+    let size = (320, 180);
+    let spp = if quick { 4 } else { 32 };
+    let _ = writeln!(md, "\n## Reference path tracer (CPU)\n");
+    let _ = writeln!(
+        md,
+        "{} threads. Rays = camera + bounce + shadow rays. {}x{}, {spp} spp, Russian roulette from bounce 3.\n",
+        rayon::current_num_threads(),
+        size.0,
+        size.1
+    );
+    let _ = writeln!(md, "| max bounces | Mrays/s | Msamples/s | seconds |");
+    let _ = writeln!(md, "|---|---|---|---|");
+    for max_bounces in [1, 8, 64] {
+        let settings = ReferenceSettings { spp, max_bounces, ..ReferenceSettings::default() };
+        let mut tracer = PathTracer::new(&project.scene, size, settings);
+        let start = Instant::now();
+        tracer.render(spp, &std::sync::atomic::AtomicBool::new(false), |_| {});
+        let p = tracer.progress();
+        let _ = writeln!(
+            md,
+            "| {max_bounces} | {:.2} | {:.3} | {:.2} |",
+            p.rays_per_second * 1e-6,
+            p.samples_per_second * 1e-6,
+            start.elapsed().as_secs_f64()
+        );
+    }
 }

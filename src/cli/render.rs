@@ -35,6 +35,8 @@ pub struct RenderArgs {
     pub max_bounces: Option<u32>,
     /// Seed for `reference`.
     pub seed: Option<u64>,
+    /// Russian roulette start for `reference`.
+    pub rr_start: Option<u32>,
     /// Write this intermediate buffer instead of the final image.
     pub buffer: Option<String>,
     /// Supersampling factor per axis for raster modes (the image is rendered at `ssaa` times the
@@ -56,6 +58,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     r.reference.spp = args.spp.unwrap_or(r.reference.spp);
     r.reference.max_bounces = args.max_bounces.unwrap_or(r.reference.max_bounces);
     r.reference.seed = args.seed.unwrap_or(r.reference.seed);
+    r.reference.rr_start = args.rr_start.unwrap_or(r.reference.rr_start);
     r.validate()?;
     let size = (args.width, args.height);
     if size.0 == 0 || size.1 == 0 || size.0 > 16384 || size.1 > 16384 {

@@ -87,7 +87,7 @@ impl ShadowPass {
                 depth_write_enabled: Some(true),
                 depth_compare: Some(wgpu::CompareFunction::Less),
                 stencil: Default::default(),
-                bias: wgpu::DepthBiasState { constant: 2, slope_scale: 1.5, clamp: 0.0 },
+                bias: wgpu::DepthBiasState { constant: 0, slope_scale: 0.0, clamp: 0.0 },
             }),
             multisample: Default::default(),
             fragment: None,

@@ -69,14 +69,14 @@ pub struct ShadowSettings {
     /// PCF kernel radius in texels (taps = (2r+1)^2, each a 2x2 hardware comparison). Cost:
     /// linear in taps; quality: softer, less aliased edges.
     pub pcf_radius: u32,
-    /// Receiver offset along the normal, in shadow-map texels. Too small: acne; too large:
-    /// light leaks at contact (peter-panning).
+    /// Receiver offset along the geometric normal, in shadow-map texels, on top of the
+    /// receiver-plane depth bias. Free; too large: light leaks at contacts (peter-panning).
     pub normal_bias_texels: f32,
 }
 
 impl Default for ShadowSettings {
     fn default() -> Self {
-        Self { resolution: 1024, pcf_radius: 1, normal_bias_texels: 1.5 }
+        Self { resolution: 1024, pcf_radius: 1, normal_bias_texels: 0.5 }
     }
 }
 
