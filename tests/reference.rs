@@ -180,3 +180,28 @@ fn spot_and_directional_lights_agree_with_raster() {
     assert!((ratio - 1.0).abs() < 0.02, "mean luminance differs by {:.2}%", (ratio - 1.0) * 100.0);
     assert!(err < 1.5 * noise, "raster differs from the reference by {err}, more than its noise {noise}");
 }
+
+#[test]
+fn glossy_materials_agree_with_raster() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = default_project();
+    for m in &mut project.scene.desc_mut().materials {
+        m.specular = [0.3, 0.3, 0.3];
+        m.roughness = 0.4;
+        for c in &mut m.base_color[..3] {
+            *c *= 0.6;
+        }
+    }
+    let size = (48, 27);
+    let big = common::render(&ctx, &project.scene, &project.render, (size.0 * 8, size.1 * 8));
+    let raster =
+        HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * 8, size.1 * 8), 8) };
+    let one = ReferenceSettings { spp: 256, max_bounces: 1, ..Default::default() };
+    let a = render(&project, size, one.clone());
+    let b = render(&project, size, ReferenceSettings { seed: 13, ..one });
+    let ratio = metrics::luminance_ratio(&raster, &a).expect("ratio");
+    let (err, noise) = (metrics::rmse(&raster, &a).expect("rmse"), metrics::rmse(&a, &b).expect("rmse"));
+    eprintln!("glossy: raster/reference luminance {ratio:.4}, rmse {err:.4}, reference noise {noise:.4}");
+    assert!((ratio - 1.0).abs() < 0.02, "mean luminance differs by {:.2}%", (ratio - 1.0) * 100.0);
+    assert!(err < 1.5 * noise + 1e-3, "raster differs from the reference by {err}, more than its noise {noise}");
+}
