@@ -63,7 +63,7 @@ impl EditorApp {
             self.project.scene.lights().len()
         ));
         for light in self.project.scene.lights() {
-            ui.label(format!("💡 {} ({:?}, {} W/sr)", light.name, light.kind, light.intensity));
+            ui.label(format!("{} ({:?}, {} W/sr)", light.name, light.kind, light.intensity));
         }
         ui.separator();
         ui.heading("View");
