@@ -8,6 +8,7 @@ pub mod app;
 pub mod cli;
 pub mod image_io;
 pub mod import;
+pub mod logging;
 pub mod metrics;
 pub mod precompute;
 pub mod project_file;

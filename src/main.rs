@@ -94,10 +94,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    env_logger::Builder::from_env(
-        env_logger::Env::default().default_filter_or("info,wgpu_core=warn,wgpu_hal=warn,naga=warn"),
-    )
-    .init();
+    bouncelab::logging::init();
     let args = Args::parse();
     let result = match args.command {
         Some(Command::Render {

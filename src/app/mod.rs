@@ -1,13 +1,31 @@
-//! The editor window (eframe + egui). This first version shows the project in a viewport with
-//! an orbit camera, the render settings and per-pass timings; the full editor builds on it.
+//! The editor (eframe + egui; the only place besides `ui` where egui lives).
+//!
+//! Docking panes (egui_tiles) around the viewport: outliner, properties, GI panel, buffer
+//! inspector with the reference comparison, timings, log. Every edit is an undoable step; the
+//! layout and recent files persist in eframe's storage, apart from project files; unsaved work
+//! is autosaved to a recovery file that is offered back after a crash.
 //!
 //! The viewport follows platform-notes.md pattern B: the renderer draws into its own HDR and
 //! depth targets, the tonemapped `Rgba8Unorm` image is registered with egui as a native texture.
 
+pub mod edits;
+mod gi_panel;
+pub mod gizmo;
+pub mod history;
+mod inspector;
 mod orbit;
+mod outliner;
+mod overlays;
+mod panes;
+mod properties;
+mod recovery;
+mod reference_job;
+pub mod state;
+mod timings;
 mod viewport;
 
 pub use orbit::Orbit;
+pub use panes::Pane;
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -16,6 +34,13 @@ use anyhow::Context as _;
 
 use crate::project_file::{Project, default_project_path};
 use crate::render::device_descriptor;
+use crate::scene::{Camera, Resources, Scene, SceneDesc};
+use edits::Selection;
+use state::EditorState;
+
+/// Keys of the persisted UI state.
+const TREE_KEY: &str = "bouncelab.layout";
+const RECENT_KEY: &str = "bouncelab.recent";
 
 /// Opens the editor window on `project` (the default project if `None`).
 pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
@@ -24,7 +49,7 @@ pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.device_descriptor = Arc::new(device_descriptor);
     let options = eframe::NativeOptions {
-        viewport: egui::ViewportBuilder::default().with_inner_size([1280.0, 800.0]).with_title("Bounce Lab"),
+        viewport: egui::ViewportBuilder::default().with_inner_size([1400.0, 860.0]).with_title("Bounce Lab"),
         renderer: eframe::Renderer::Wgpu,
         wgpu_options: egui_wgpu::WgpuConfiguration {
             wgpu_setup: egui_wgpu::WgpuSetup::CreateNew(setup),
@@ -32,67 +57,415 @@ pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
         },
         ..Default::default()
     };
-    let title = format!("Bounce Lab — {}", path.display());
-    eframe::run_native(&title, options, Box::new(move |cc| Ok(Box::new(EditorApp::new(cc, project, path)))))
-        .map_err(|e| anyhow::anyhow!("cannot open the editor window: {e}"))
+    let is_project = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron"));
+    eframe::run_native(
+        "Bounce Lab",
+        options,
+        Box::new(move |cc| Ok(Box::new(EditorApp::new(cc, project, is_project.then_some(path))))),
+    )
+    .map_err(|e| anyhow::anyhow!("cannot open the editor window: {e}"))
 }
 
-/// The editor application state.
+/// A dialog the editor is showing.
+#[derive(Clone, Debug, PartialEq)]
+enum Modal {
+    None,
+    /// Unsaved changes and the user asked to close.
+    ConfirmClose,
+    /// A recovery file from a crash exists.
+    OfferRecovery(PathBuf),
+}
+
+/// The editor application.
 pub struct EditorApp {
-    project: Project,
-    path: PathBuf,
+    state: EditorState,
     viewport: viewport::Viewport,
-    error: Option<String>,
+    inspector: inspector::Inspector,
+    tree: egui_tiles::Tree<Pane>,
+    modal: Modal,
+    allow_close: bool,
+    recovery: Option<recovery::Recovery>,
 }
 
 impl EditorApp {
-    /// Creates the app; the renderer is created on eframe's wgpu device.
-    pub fn new(cc: &eframe::CreationContext<'_>, project: Project, path: PathBuf) -> Self {
-        let viewport = viewport::Viewport::new(cc.wgpu_render_state.as_ref(), &project);
-        Self { project, path, viewport, error: None }
+    /// Creates the app; the renderer is created on eframe's wgpu device. Without eframe storage
+    /// (tests) nothing is persisted and no recovery file is written.
+    pub fn new(cc: &eframe::CreationContext<'_>, project: Project, path: Option<PathBuf>) -> Self {
+        let mut state = EditorState::new(project, path);
+        let tree = cc.storage.and_then(|s| eframe::get_value(s, TREE_KEY)).unwrap_or_else(panes::default_tree);
+        if let Some(recent) = cc.storage.and_then(|s| eframe::get_value::<Vec<PathBuf>>(s, RECENT_KEY)) {
+            state.recent = recent;
+        }
+        let recovery = cc.storage.is_some().then(recovery::Recovery::new).flatten();
+        let modal = match recovery.as_ref().and_then(recovery::Recovery::pending) {
+            Some(p) => Modal::OfferRecovery(p),
+            None => Modal::None,
+        };
+        let viewport = viewport::Viewport::new(cc.wgpu_render_state.as_ref(), &state);
+        Self { state, viewport, inspector: inspector::Inspector::default(), tree, modal, allow_close: false, recovery }
     }
 
-    fn side_panel(&mut self, ui: &mut egui::Ui) {
-        ui.heading("Project");
-        ui.label(self.path.display().to_string());
-        ui.separator();
-        ui.heading("Scene");
-        ui.label(format!(
-            "{} objects, {} lights",
-            self.project.scene.objects().len(),
-            self.project.scene.lights().len()
-        ));
-        for light in self.project.scene.lights() {
-            ui.label(format!("{} ({:?}, {} W/sr)", light.name, light.kind, light.intensity));
-        }
-        ui.separator();
-        ui.heading("View");
-        let view = &mut self.project.render.view;
-        ui.add(egui::Slider::new(&mut view.exposure_ev, -8.0..=8.0).text("exposure (EV)"));
-        egui::ComboBox::from_label("tonemap").selected_text(format!("{:?}", view.tonemap)).show_ui(ui, |ui| {
-            for t in
-                [crate::settings::Tonemap::Aces, crate::settings::Tonemap::Reinhard, crate::settings::Tonemap::Clamp]
-            {
-                ui.selectable_value(&mut view.tonemap, t, format!("{t:?}"));
+    /// The editor state (tests read it).
+    pub fn state(&self) -> &EditorState {
+        &self.state
+    }
+
+    /// The editor state, mutable (tests drive actions that normally need file dialogs).
+    pub fn state_mut(&mut self) -> &mut EditorState {
+        &mut self.state
+    }
+
+    fn new_project(&mut self) {
+        let desc = SceneDesc { camera: Camera::default(), ..SceneDesc::default() };
+        match Scene::new(desc, Resources::default()) {
+            Ok(scene) => {
+                self.state.project =
+                    Project { assets: Vec::new(), scene, render: Default::default(), imported: Vec::new() };
+                self.state.path = None;
+                self.state.history.clear();
+                self.state.selection = Selection::None;
+                self.viewport.reset_orbit(&self.state);
             }
-        });
-        ui.separator();
-        ui.heading("Timings");
-        self.viewport.timings_ui(ui);
-        if let Some(e) = &self.error {
-            ui.separator();
-            ui.colored_label(ui.visuals().error_fg_color, e);
+            Err(e) => self.state.report("new project", &e),
         }
-        ui.separator();
-        ui.small("Drag: orbit · Right/middle drag: pan · Scroll: zoom");
+    }
+
+    fn open_dialog(&mut self) {
+        let picked = rfd::FileDialog::new().add_filter("Project or glTF", &["ron", "gltf", "glb"]).pick_file();
+        if let Some(path) = picked {
+            self.open(&path);
+        }
+    }
+
+    /// Opens a project or glTF file.
+    pub fn open(&mut self, path: &std::path::Path) {
+        match self.state.open(path) {
+            Ok(()) => self.viewport.reset_orbit(&self.state),
+            Err(e) => self.state.report("open failed", &e),
+        }
+    }
+
+    fn save(&mut self) {
+        match self.state.path.clone() {
+            Some(p) => self.save_to(&p),
+            None => self.save_as_dialog(),
+        }
+    }
+
+    fn save_as_dialog(&mut self) {
+        if let Some(path) =
+            rfd::FileDialog::new().add_filter("Bounce Lab project", &["ron"]).set_file_name("scene.ron").save_file()
+        {
+            self.save_to(&path);
+        }
+    }
+
+    /// Saves to `path` and clears the recovery file.
+    pub fn save_to(&mut self, path: &std::path::Path) {
+        match self.state.save_as(path) {
+            Ok(()) => {
+                if let Some(r) = &self.recovery {
+                    r.clear();
+                }
+            }
+            Err(e) => self.state.report("save failed", &e),
+        }
+    }
+
+    fn export_dialog(&mut self) {
+        let Some(path) =
+            rfd::FileDialog::new().add_filter("Image", &["png", "exr"]).set_file_name("viewport.png").save_file()
+        else {
+            return;
+        };
+        let Some(renderer) = self.viewport.renderer() else { return };
+        let result = renderer.read_buffer("hdr").map_err(anyhow::Error::from).and_then(|img| {
+            let kind = crate::image_io::output_kind(&path)?;
+            crate::cli::render::write_image(&path, kind, &img, &self.state.project.render.view)
+        });
+        match result {
+            Ok(()) => self.state.status = format!("exported {}", path.display()),
+            Err(e) => self.state.report("export failed", &e),
+        }
+    }
+
+    fn undo(&mut self) {
+        if let Some(label) = self.state.history.undo(&mut self.state.project) {
+            self.state.status = format!("undid {label}");
+            self.clamp_selection();
+        }
+    }
+
+    fn redo(&mut self) {
+        if let Some(label) = self.state.history.redo(&mut self.state.project) {
+            self.state.status = format!("redid {label}");
+            self.clamp_selection();
+        }
+    }
+
+    fn clamp_selection(&mut self) {
+        let s = &self.state;
+        let valid = match s.selection {
+            Selection::Light(i) => i < s.project.scene.lights().len(),
+            Selection::Object(i) => i < s.project.scene.objects().len(),
+            Selection::None => true,
+        };
+        if !valid {
+            self.state.selection = Selection::None;
+        }
+    }
+
+    fn edit(&mut self, f: fn(&mut Project, &mut history::History, Selection) -> Result<Selection, edits::EditError>) {
+        match f(&mut self.state.project, &mut self.state.history, self.state.selection) {
+            Ok(sel) => self.state.selection = sel,
+            Err(e) => self.state.report("edit failed", &e),
+        }
+    }
+
+    fn shortcuts(&mut self, ui: &egui::Ui) {
+        use egui::{Key, KeyboardShortcut as K, Modifiers as M};
+        let typing = ui.memory(|m| m.focused().is_some());
+        let pressed = |sc: K| ui.input_mut(|i| i.consume_shortcut(&sc));
+        if pressed(K::new(M::COMMAND | M::SHIFT, Key::Z)) || pressed(K::new(M::COMMAND, Key::Y)) {
+            self.redo();
+        }
+        if pressed(K::new(M::COMMAND, Key::Z)) {
+            self.undo();
+        }
+        if pressed(K::new(M::COMMAND | M::SHIFT, Key::S)) {
+            self.save_as_dialog();
+        }
+        if pressed(K::new(M::COMMAND, Key::S)) {
+            self.save();
+        }
+        if pressed(K::new(M::COMMAND, Key::O)) {
+            self.open_dialog();
+        }
+        if pressed(K::new(M::COMMAND, Key::N)) {
+            self.new_project();
+        }
+        if pressed(K::new(M::COMMAND, Key::D)) {
+            self.edit(edits::duplicate);
+        }
+        if !typing {
+            if pressed(K::new(M::NONE, Key::Delete)) {
+                self.edit(edits::delete);
+            }
+            if pressed(K::new(M::NONE, Key::G)) {
+                self.viewport.gizmo.mode = gizmo::GizmoMode::Translate;
+            }
+            if pressed(K::new(M::NONE, Key::R)) {
+                self.viewport.gizmo.mode = gizmo::GizmoMode::Rotate;
+            }
+        }
+    }
+
+    fn menu_bar(&mut self, ui: &mut egui::Ui) {
+        let sc = |ui: &egui::Ui, m: egui::Modifiers, k: egui::Key| {
+            ui.ctx().format_shortcut(&egui::KeyboardShortcut::new(m, k))
+        };
+        let cmd = egui::Modifiers::COMMAND;
+        egui::MenuBar::new().ui(ui, |ui| {
+            ui.menu_button("File", |ui| {
+                if ui.add(egui::Button::new("New").shortcut_text(sc(ui, cmd, egui::Key::N))).clicked() {
+                    self.new_project();
+                }
+                if ui.add(egui::Button::new("Open…").shortcut_text(sc(ui, cmd, egui::Key::O))).clicked() {
+                    self.open_dialog();
+                }
+                ui.menu_button("Open recent", |ui| {
+                    for p in self.state.recent.clone() {
+                        if ui.button(p.display().to_string()).clicked() {
+                            self.open(&p);
+                        }
+                    }
+                });
+                if ui.add(egui::Button::new("Save").shortcut_text(sc(ui, cmd, egui::Key::S))).clicked() {
+                    self.save();
+                }
+                if ui
+                    .add(egui::Button::new("Save As…").shortcut_text(sc(
+                        ui,
+                        cmd | egui::Modifiers::SHIFT,
+                        egui::Key::S,
+                    )))
+                    .clicked()
+                {
+                    self.save_as_dialog();
+                }
+                if ui.button("Export viewport image…").clicked() {
+                    self.export_dialog();
+                }
+            });
+            ui.menu_button("Edit", |ui| {
+                let undo = self.state.history.undo_label().map_or("Undo".to_owned(), |l| format!("Undo {l}"));
+                let redo = self.state.history.redo_label().map_or("Redo".to_owned(), |l| format!("Redo {l}"));
+                if ui.add(egui::Button::new(undo).shortcut_text(sc(ui, cmd, egui::Key::Z))).clicked() {
+                    self.undo();
+                }
+                if ui
+                    .add(egui::Button::new(redo).shortcut_text(sc(ui, cmd | egui::Modifiers::SHIFT, egui::Key::Z)))
+                    .clicked()
+                {
+                    self.redo();
+                }
+                ui.separator();
+                if ui.add(egui::Button::new("Duplicate").shortcut_text(sc(ui, cmd, egui::Key::D))).clicked() {
+                    self.edit(edits::duplicate);
+                }
+                if ui.add(egui::Button::new("Delete").shortcut_text("Del")).clicked() {
+                    self.edit(edits::delete);
+                }
+            });
+            ui.menu_button("View", |ui| {
+                if ui.button("Reset layout").clicked() {
+                    self.tree = panes::default_tree();
+                }
+            });
+        });
+    }
+
+    fn modal_ui(&mut self, ui: &mut egui::Ui) {
+        match self.modal.clone() {
+            Modal::None => {}
+            Modal::ConfirmClose => {
+                egui::Modal::new(egui::Id::unique("confirm close")).show(ui.ctx(), |ui| {
+                    ui.label("The project has unsaved changes.");
+                    ui.horizontal(|ui| {
+                        if ui.button("Save and quit").clicked() {
+                            self.save();
+                            if !self.state.history.is_dirty() {
+                                self.close_now(ui);
+                            }
+                        }
+                        if ui.button("Quit without saving").clicked() {
+                            self.close_now(ui);
+                        }
+                        if ui.button("Cancel").clicked() {
+                            self.modal = Modal::None;
+                        }
+                    });
+                });
+            }
+            Modal::OfferRecovery(path) => {
+                egui::Modal::new(egui::Id::unique("recovery")).show(ui.ctx(), |ui| {
+                    ui.label("Bounce Lab found unsaved work from a session that did not end cleanly.");
+                    ui.horizontal(|ui| {
+                        if ui.button("Restore").clicked() {
+                            match Project::load(&path) {
+                                Ok(p) => {
+                                    let before = history::Snapshot::of(&self.state.project);
+                                    self.state.project = p;
+                                    self.state.history.record("Restore recovered work", before, &self.state.project);
+                                    self.viewport.reset_orbit(&self.state);
+                                }
+                                Err(e) => self.state.report("recovery failed", &e),
+                            }
+                            self.modal = Modal::None;
+                        }
+                        if ui.button("Discard").clicked() {
+                            if let Some(r) = &self.recovery {
+                                r.clear();
+                            }
+                            self.modal = Modal::None;
+                        }
+                    });
+                });
+            }
+        }
+    }
+
+    fn close_now(&mut self, ui: &egui::Ui) {
+        if let Some(r) = &self.recovery {
+            r.clear();
+        }
+        self.allow_close = true;
+        ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
+    }
+}
+
+struct Behavior<'a> {
+    state: &'a mut EditorState,
+    viewport: &'a mut viewport::Viewport,
+    inspector: &'a mut inspector::Inspector,
+    frame: &'a eframe::Frame,
+}
+
+impl egui_tiles::Behavior<Pane> for Behavior<'_> {
+    fn tab_title_for_pane(&mut self, pane: &Pane) -> egui::WidgetText {
+        pane.title().into()
+    }
+
+    fn pane_ui(&mut self, ui: &mut egui::Ui, _tile: egui_tiles::TileId, pane: &mut Pane) -> egui_tiles::UiResponse {
+        match pane {
+            Pane::Viewport => {
+                if let Err(e) = self.viewport.ui(ui, self.frame, self.state) {
+                    self.state.report("render failed", &e);
+                }
+            }
+            Pane::Outliner => outliner::outliner_ui(self.state, ui),
+            Pane::Properties => properties::properties_ui(self.state, ui),
+            Pane::Gi => gi_panel::gi_ui(self.state, ui),
+            Pane::Inspector => {
+                self.inspector.ui(ui, self.viewport.renderer(), &self.state.project, self.viewport.frames)
+            }
+            Pane::Timings => self.viewport.timings.ui(ui),
+            Pane::Log => {
+                egui::ScrollArea::vertical().stick_to_bottom(true).show(ui, |ui| {
+                    for (level, line) in crate::logging::recent() {
+                        let colour = match level {
+                            log::Level::Error => ui.visuals().error_fg_color,
+                            log::Level::Warn => ui.visuals().warn_fg_color,
+                            _ => ui.visuals().text_color(),
+                        };
+                        ui.colored_label(colour, line);
+                    }
+                });
+            }
+        }
+        egui_tiles::UiResponse::None
+    }
+
+    fn simplification_options(&self) -> egui_tiles::SimplificationOptions {
+        egui_tiles::SimplificationOptions { all_panes_must_have_tabs: true, ..Default::default() }
     }
 }
 
 impl eframe::App for EditorApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        egui::Panel::left("side panel").default_size(280.0).show(ui, |ui| self.side_panel(ui));
-        egui::CentralPanel::default().show(ui, |ui| {
-            self.error = self.viewport.ui(ui, frame, &mut self.project).err().map(|e| e.to_string());
+        self.shortcuts(ui);
+        if ui.input(|i| i.viewport().close_requested()) && self.state.history.is_dirty() && !self.allow_close {
+            ui.ctx().send_viewport_cmd(egui::ViewportCommand::CancelClose);
+            self.modal = Modal::ConfirmClose;
+        }
+        ui.ctx().send_viewport_cmd(egui::ViewportCommand::Title(self.state.title()));
+        egui::Panel::top("menu bar").show(ui, |ui| self.menu_bar(ui));
+        egui::Panel::bottom("status bar").show(ui, |ui| {
+            ui.horizontal(|ui| {
+                ui.label(if self.state.history.is_dirty() { "● unsaved" } else { "saved" });
+                ui.separator();
+                ui.label(&self.state.status);
+            });
         });
+        egui::CentralPanel::default().show(ui, |ui| {
+            let mut behavior = Behavior {
+                state: &mut self.state,
+                viewport: &mut self.viewport,
+                inspector: &mut self.inspector,
+                frame,
+            };
+            self.tree.ui(&mut behavior, ui);
+        });
+        self.modal_ui(ui);
+        if let Some(r) = &mut self.recovery
+            && self.state.history.is_dirty()
+        {
+            r.maybe_save(&self.state.project);
+        }
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, TREE_KEY, &self.tree);
+        eframe::set_value(storage, RECENT_KEY, &self.state.recent);
     }
 }

@@ -1,67 +1,219 @@
-//! The 3D viewport: input to the orbit camera, rendering at the panel's pixel size, and the
-//! tonemapped image shown through a registered egui texture.
+//! The 3D viewport: camera control (orbit, pan, zoom, fly with WASD while the right button is
+//! held), picking through the object-id buffer and light icons, the transform gizmo, overlays,
+//! and the rendered image shown through a registered egui texture.
 
-use crate::project_file::Project;
-use crate::render::{PassTiming, RenderError, Renderer};
+use glam::{Quat, Vec2, Vec3};
 
 use super::Orbit;
+use super::edits::Selection;
+use super::gizmo::{self, Drag, GizmoMode, View};
+use super::overlays;
+use super::state::EditorState;
+use super::timings::Timings;
+use crate::render::{RenderError, Renderer};
+
+/// Gizmo options shown in the viewport toolbar.
+#[derive(Clone, Copy, Debug)]
+pub struct GizmoOptions {
+    pub mode: GizmoMode,
+    pub local: bool,
+    pub snap: bool,
+    /// Snap step for translation (metres).
+    pub step: f32,
+    /// Snap step for rotation (degrees).
+    pub angle_step: f32,
+}
+
+impl Default for GizmoOptions {
+    fn default() -> Self {
+        Self { mode: GizmoMode::Translate, local: false, snap: false, step: 0.1, angle_step: 15.0 }
+    }
+}
 
 /// Renderer and display state of the viewport.
 pub struct Viewport {
     renderer: Option<Renderer>,
     texture: Option<(egui::TextureId, (u32, u32))>,
     orbit: Orbit,
-    timings: Vec<PassTiming>,
-    frame_ms: f32,
     last: Option<std::time::Instant>,
     init_error: Option<String>,
+    drag: Option<Drag>,
+    /// Gizmo options.
+    pub gizmo: GizmoOptions,
+    /// Frame counter (inspector refresh cadence).
+    pub frames: u64,
+    /// Per-pass timing history.
+    pub timings: Timings,
 }
+
+const AXIS_COLOURS: [egui::Color32; 3] =
+    [egui::Color32::from_rgb(230, 70, 70), egui::Color32::from_rgb(80, 200, 80), egui::Color32::from_rgb(80, 120, 240)];
 
 impl Viewport {
     /// Creates the renderer on eframe's device (if eframe runs on wgpu).
-    pub fn new(rs: Option<&egui_wgpu::RenderState>, project: &Project) -> Self {
+    pub fn new(rs: Option<&egui_wgpu::RenderState>, state: &EditorState) -> Self {
         let (renderer, init_error) = match rs.map(|rs| Renderer::new(&rs.device, &rs.queue)) {
             Some(Ok(r)) => (Some(r), None),
             Some(Err(e)) => (None, Some(e.to_string())),
             None => (None, Some("eframe is not running on wgpu".to_owned())),
         };
-        let cam = project.scene.camera();
-        let dist = project.scene.bounds().map_or(3.0, |b| (b.center() - cam.position).dot(cam.forward()).max(0.1));
-        Self {
+        let mut v = Self {
             renderer,
             texture: None,
-            orbit: Orbit::from_camera(cam, dist),
-            timings: Vec::new(),
-            frame_ms: 0.0,
+            orbit: Orbit { target: Vec3::ZERO, distance: 3.0, yaw: 0.0, pitch: 0.0 },
             last: None,
             init_error,
+            drag: None,
+            gizmo: GizmoOptions::default(),
+            frames: 0,
+            timings: Timings::default(),
+        };
+        v.reset_orbit(state);
+        v
+    }
+
+    /// Re-derives the orbit controller from the project's camera (after opening a project).
+    pub fn reset_orbit(&mut self, state: &EditorState) {
+        let scene = &state.project.scene;
+        let cam = scene.camera();
+        let dist = scene.bounds().map_or(3.0, |b| (b.center() - cam.position).dot(cam.forward()).max(0.1));
+        self.orbit = Orbit::from_camera(cam, dist);
+    }
+
+    /// The renderer, for the inspector.
+    pub fn renderer(&self) -> Option<&Renderer> {
+        self.renderer.as_ref()
+    }
+
+    /// The position and rotation the gizmo edits for the selection.
+    fn target(state: &EditorState) -> Option<(Vec3, Quat)> {
+        match state.selection {
+            Selection::Object(i) => {
+                state.project.scene.objects().get(i).map(|o| (o.transform.translation, o.transform.rotation))
+            }
+            Selection::Light(i) => {
+                let l = state.project.scene.lights().get(i)?;
+                let rot = crate::scene::Camera::look_at(Vec3::ZERO, l.direction, 1.0).rotation;
+                (l.kind != crate::scene::LightKind::Directional)
+                    .then_some((l.position, rot))
+                    .or(Some((overlays::light_anchor(&state.project.scene, i)?, rot)))
+            }
+            Selection::None => None,
         }
     }
 
-    /// Shows per-pass timings.
-    pub fn timings_ui(&self, ui: &mut egui::Ui) {
-        ui.label(format!("frame {:.1} ms", self.frame_ms));
-        for t in &self.timings {
-            ui.label(format!("{:<10} {:.2} ms", t.name, t.ms));
+    fn apply_gizmo(state: &mut EditorState, drag: &Drag, view: &View, s: Vec2, opts: &GizmoOptions) {
+        let before_pos = drag.origin;
+        match drag.mode {
+            GizmoMode::Translate => {
+                let Some(offset) = drag.translation(view, s, if opts.snap { opts.step } else { 0.0 }) else { return };
+                state.history.begin("Move", &state.project);
+                match state.selection {
+                    Selection::Object(i) => {
+                        state.project.scene.desc_mut().objects[i].transform.translation = before_pos + offset
+                    }
+                    Selection::Light(i)
+                        if state.project.scene.lights()[i].kind != crate::scene::LightKind::Directional =>
+                    {
+                        state.project.scene.desc_mut().lights[i].position = before_pos + offset;
+                    }
+                    _ => {}
+                }
+            }
+            GizmoMode::Rotate => {
+                let Some(rot) = drag.rotation(view, s, if opts.snap { opts.angle_step } else { 0.0 }) else { return };
+                state.history.begin("Rotate", &state.project);
+                match state.selection {
+                    Selection::Object(i) => state.project.scene.desc_mut().objects[i].transform.rotation = rot,
+                    Selection::Light(i) => {
+                        state.project.scene.desc_mut().lights[i].direction = (rot * Vec3::NEG_Z).normalize()
+                    }
+                    Selection::None => {}
+                }
+            }
         }
     }
 
-    /// Handles input, renders and paints into the remaining space.
-    pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame, project: &mut Project) -> Result<(), RenderError> {
+    /// Toolbar, input, rendering and painting into the remaining space.
+    pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame, state: &mut EditorState) -> Result<(), RenderError> {
         if let Some(e) = &self.init_error {
             ui.label(format!("Renderer unavailable: {e}"));
             return Ok(());
         }
+        ui.horizontal(|ui| {
+            ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Translate, "Move (G)");
+            ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Rotate, "Rotate (R)");
+            ui.checkbox(&mut self.gizmo.local, "local axes");
+            ui.checkbox(&mut self.gizmo.snap, "snap");
+            ui.label(format!("mode: {}", state.project.render.mode.name()));
+        });
         let (rect, response) = ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
         let ppp = ui.ctx().pixels_per_point();
         let size = ((rect.width() * ppp).round().max(1.0) as u32, (rect.height() * ppp).round().max(1.0) as u32);
-        let d = response.drag_delta();
-        if response.dragged_by(egui::PointerButton::Primary) {
-            self.orbit.rotate(d.x, d.y);
-        } else if response.dragged_by(egui::PointerButton::Secondary)
-            || response.dragged_by(egui::PointerButton::Middle)
+        let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
+        let mouse = response
+            .hover_pos()
+            .or(response.interact_pointer_pos())
+            .map(|p| Vec2::new(p.x - rect.min.x, p.y - rect.min.y));
+
+        // Gizmo handles of the selection.
+        let target = Self::target(state);
+        let mut hovered_axis = None;
+        if let (Some((origin, rotation)), Some(m)) = (target, mouse) {
+            let len = view.world_size(origin, 70.0);
+            for (k, axis) in gizmo::axes(rotation, self.gizmo.local).into_iter().enumerate() {
+                if let (Some(a), Some(b)) = (view.project(origin), view.project(origin + axis * len))
+                    && gizmo::segment_distance(m, a, b) < 8.0
+                {
+                    hovered_axis = Some((k, axis));
+                }
+            }
+        }
+        if response.drag_started_by(egui::PointerButton::Primary)
+            && let (Some((_, axis)), Some((origin, rotation)), Some(m)) = (hovered_axis, target, mouse)
         {
-            self.orbit.pan(d.x, d.y, rect.height(), project.scene.camera().yfov);
+            self.drag = Drag::begin(&view, self.gizmo.mode, axis, origin, rotation, m);
+        }
+        if let (Some(drag), Some(m)) = (self.drag, mouse)
+            && response.dragged_by(egui::PointerButton::Primary)
+        {
+            Self::apply_gizmo(state, &drag, &view, m, &self.gizmo);
+        } else {
+            let d = response.drag_delta();
+            if response.dragged_by(egui::PointerButton::Primary) {
+                self.orbit.rotate(d.x, d.y);
+            } else if response.dragged_by(egui::PointerButton::Middle)
+                || (response.dragged_by(egui::PointerButton::Secondary) && ui.input(|i| i.modifiers.shift))
+            {
+                self.orbit.pan(d.x, d.y, rect.height(), state.project.scene.camera().yfov);
+            } else if response.dragged_by(egui::PointerButton::Secondary) {
+                // Fly: look around with the right button, WASD/QE to move.
+                self.orbit.rotate(d.x, d.y);
+                let step = self.orbit.distance * 0.02;
+                let r = self.orbit.rotation();
+                let mut mv = Vec3::ZERO;
+                ui.input(|i| {
+                    for (key, dir) in [
+                        (egui::Key::W, Vec3::NEG_Z),
+                        (egui::Key::S, Vec3::Z),
+                        (egui::Key::A, Vec3::NEG_X),
+                        (egui::Key::D, Vec3::X),
+                        (egui::Key::Q, Vec3::NEG_Y),
+                        (egui::Key::E, Vec3::Y),
+                    ] {
+                        if i.key_down(key) {
+                            mv += r * dir;
+                        }
+                    }
+                });
+                self.orbit.target += mv * step;
+            }
+        }
+        if !response.dragged() {
+            self.drag = None;
+            if ui.input(|i| !i.pointer.any_down()) {
+                state.history.commit(&state.project);
+            }
         }
         if response.hovered() {
             let scroll = ui.input(|i| i.smooth_scroll_delta.y);
@@ -69,21 +221,41 @@ impl Viewport {
                 self.orbit.zoom(scroll);
             }
         }
-        let mut cam = *project.scene.camera();
+        // Picking: light icons first, then the object-id buffer.
+        if response.clicked_by(egui::PointerButton::Primary)
+            && let Some(m) = mouse
+        {
+            let light = (0..state.project.scene.lights().len()).find(|&i| {
+                overlays::light_anchor(&state.project.scene, i)
+                    .and_then(|p| view.project(p))
+                    .is_some_and(|s| s.distance(m) < 10.0)
+            });
+            state.selection = match (light, &self.renderer) {
+                (Some(i), _) => Selection::Light(i),
+                (None, Some(r)) => match r.pick((m.x * ppp) as u32, (m.y * ppp) as u32) {
+                    Ok(Some(i)) => Selection::Object(i),
+                    Ok(None) => Selection::None,
+                    Err(e) => {
+                        log::warn!("pick failed: {e}");
+                        state.selection
+                    }
+                },
+                (None, None) => state.selection,
+            };
+        }
+        // Camera: only written when the user moved it, so undo history stays clean.
+        let mut cam = *state.project.scene.camera();
         self.orbit.apply(&mut cam);
-        if cam != *project.scene.camera() {
-            project.scene.set_camera(cam);
+        if cam != *state.project.scene.camera() {
+            state.project.scene.set_camera(cam);
         }
-        let (Some(renderer), Some(rs)) = (self.renderer.as_mut(), frame.wgpu_render_state()) else {
-            return Ok(());
-        };
-        renderer.render(&project.scene, &project.render, size)?;
-        self.timings = renderer.timings(false);
+        let (Some(renderer), Some(rs)) = (self.renderer.as_mut(), frame.wgpu_render_state()) else { return Ok(()) };
+        renderer.render(&state.project.scene, &state.project.render, size)?;
+        self.frames += 1;
         let now = std::time::Instant::now();
-        if let Some(last) = self.last {
-            self.frame_ms = 0.9 * self.frame_ms + 0.1 * (now - last).as_secs_f32() * 1e3;
-        }
+        let frame_ms = self.last.map_or(0.0, |l| (now - l).as_secs_f64() * 1e3);
         self.last = Some(now);
+        self.timings.push(frame_ms, &renderer.timings(false));
         if let Some(t) = renderer.targets() {
             let mut egui_renderer = rs.renderer.write();
             match self.texture {
@@ -104,9 +276,28 @@ impl Viewport {
                 }
             }
         }
+        let painter = ui.painter_at(rect);
         if let Some((id, _)) = self.texture {
             let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-            ui.painter().image(id, rect, uv, egui::Color32::WHITE);
+            painter.image(id, rect, uv, egui::Color32::WHITE);
+        }
+        let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
+        overlays::draw(&painter, rect, &view, &state.project.scene, state.selection);
+        if let Some((origin, rotation)) = Self::target(state) {
+            let len = view.world_size(origin, 70.0);
+            for (k, axis) in gizmo::axes(rotation, self.gizmo.local).into_iter().enumerate() {
+                if let (Some(a), Some(b)) = (view.project(origin), view.project(origin + axis * len)) {
+                    let hot = hovered_axis.is_some_and(|(h, _)| h == k) || self.drag.is_some_and(|d| d.axis == axis);
+                    let stroke = egui::Stroke::new(if hot { 4.0 } else { 2.5 }, AXIS_COLOURS[k]);
+                    let (pa, pb) = (rect.min + egui::vec2(a.x, a.y), rect.min + egui::vec2(b.x, b.y));
+                    painter.line_segment([pa, pb], stroke);
+                    if self.gizmo.mode == GizmoMode::Translate {
+                        painter.circle_filled(pb, 4.0, AXIS_COLOURS[k]);
+                    } else {
+                        painter.circle_stroke(pb, 6.0, stroke);
+                    }
+                }
+            }
         }
         ui.ctx().request_repaint();
         Ok(())

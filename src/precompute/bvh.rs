@@ -77,7 +77,9 @@ impl SceneBvh {
     pub fn build(scene: &Scene) -> Self {
         let mut tris = Vec::new();
         for (oi, object) in scene.objects().iter().enumerate() {
-            let Some(mesh) = scene.resources().meshes.get(object.mesh).filter(|_| object.visible) else { continue };
+            let Some(mesh) = scene.resources().meshes.get(object.mesh).filter(|_| object.is_rendered()) else {
+                continue;
+            };
             let m = object.transform.matrix();
             let nm = glam::Mat3::from_mat4(m).inverse().transpose();
             let flip = m.determinant() < 0.0;

@@ -72,6 +72,8 @@ pub struct Project {
     pub scene: Scene,
     /// GI mode and render settings.
     pub render: RenderSettings,
+    /// The imported assets, kept so edits (undo, added objects) can rebuild meshes.
+    pub imported: Vec<import::Asset>,
 }
 
 impl Project {
@@ -84,7 +86,7 @@ impl Project {
         })?;
         let scene = import::scene_from_asset(&asset)
             .map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
-        Ok(Self { assets: vec![path.to_owned()], scene, render: RenderSettings::default() })
+        Ok(Self { assets: vec![path.to_owned()], scene, render: RenderSettings::default(), imported: vec![asset] })
     }
 
     /// Opens a `.ron` project, or a `.gltf` / `.glb` scene as a new project.
@@ -116,7 +118,25 @@ impl Project {
         let scene = import::resolve(file.scene, &imported)
             .map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
         file.render.validate().map_err(|source| ProjectError::Settings { path: path.to_owned(), source })?;
-        Ok(Self { assets, scene, render: file.render })
+        Ok(Self { assets, scene, render: file.render, imported })
+    }
+
+    /// Replaces the scene description (undo, redo, structural edits), rebuilding meshes from the
+    /// loaded assets when the objects' mesh sources changed.
+    pub fn set_desc(&mut self, desc: SceneDesc) -> Result<(), ResolveError> {
+        let same_sources = desc.objects.len() == self.scene.objects().len()
+            && desc.objects.iter().zip(self.scene.objects()).all(|(a, b)| a.source == b.source);
+        if same_sources {
+            let mut desc = desc;
+            for (new, old) in desc.objects.iter_mut().zip(self.scene.objects()) {
+                new.mesh = old.mesh;
+            }
+            desc_validate(&desc, &self.scene)?;
+            *self.scene.desc_mut() = desc;
+        } else {
+            self.scene = import::resolve(desc, &self.imported)?;
+        }
+        Ok(())
     }
 
     /// The RON text this project saves as, with asset paths relative to `project_path`'s folder.
@@ -164,4 +184,10 @@ pub fn parse(text: &str, path: &Path) -> Result<ProjectFileV1, ProjectError> {
 pub fn default_project_path() -> PathBuf {
     let local = PathBuf::from("projects/default.ron");
     if local.exists() { local } else { Path::new(env!("CARGO_MANIFEST_DIR")).join("projects/default.ron") }
+}
+
+/// Validates `desc` against `scene`'s loaded resources without replacing anything.
+fn desc_validate(desc: &SceneDesc, scene: &Scene) -> Result<(), ResolveError> {
+    Scene::new(desc.clone(), scene.resources().clone())?;
+    Ok(())
 }

@@ -321,6 +321,13 @@ impl Renderer {
         Ok(crate::image_io::HdrImage { width: texture.width(), height: texture.height(), pixels })
     }
 
+    /// The object under pixel (x, y) of the last frame, through the object-id buffer.
+    pub fn pick(&self, x: u32, y: u32) -> Result<Option<usize>, RenderError> {
+        let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
+        let id = readback::read_texel_u32(&self.device, &self.queue, &t.object_id.texture, x, y)?;
+        Ok(id.checked_sub(1).map(|i| i as usize))
+    }
+
     /// Forgets temporal state (motion vectors restart from zero).
     pub fn reset_history(&mut self) {
         self.prev_clip_from_world = None;

@@ -108,7 +108,7 @@ impl GbufferPass {
             let (Some(mesh), Some(material)) = (gpu.meshes.get(object.mesh), gpu.materials.get(object.material)) else {
                 continue;
             };
-            if !object.visible || mesh.index_count == 0 {
+            if !object.is_rendered() || mesh.index_count == 0 {
                 continue;
             }
             pass.set_bind_group(1, &gpu.object_bind_group, &[(i as u64 * OBJECT_SLOT) as u32]);

@@ -108,3 +108,48 @@ pub fn read_as_rgba_f32(
     };
     Ok(out)
 }
+
+/// Reads one texel of an `R32Uint` texture (object-id picking).
+pub fn read_texel_u32(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    x: u32,
+    y: u32,
+) -> Result<u32, ReadbackError> {
+    if texture.format() != wgpu::TextureFormat::R32Uint {
+        return Err(ReadbackError::Format(texture.format()));
+    }
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("pick staging"),
+        size: 4,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("pick encoder") });
+    encoder.copy_texture_to_buffer(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d { x: x.min(texture.width() - 1), y: y.min(texture.height() - 1), z: 0 },
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyBufferInfo {
+            buffer: &buffer,
+            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: None, rows_per_image: None },
+        },
+        wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
+    );
+    queue.submit([encoder.finish()]);
+    let (tx, rx) = std::sync::mpsc::channel();
+    buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| ReadbackError::Map(e.to_string()))?;
+    rx.recv().map_err(|e| ReadbackError::Map(e.to_string()))?.map_err(|e| ReadbackError::Map(e.to_string()))?;
+    let data = buffer.slice(..).get_mapped_range().map_err(|e| ReadbackError::Map(e.to_string()))?;
+    let v = u32::from_le_bytes([data[0], data[1], data[2], data[3]]);
+    drop(data);
+    buffer.unmap();
+    Ok(v)
+}

@@ -244,7 +244,7 @@ impl ShadowPass {
         let objects: Vec<_> = scene
             .objects()
             .iter()
-            .filter(|o| o.visible)
+            .filter(|o| o.is_rendered())
             .filter_map(|o| gpu.meshes.get(o.mesh).map(|m| (o.transform.matrix(), m)))
             .collect();
         let draws = (self.layer_matrices.len() * objects.len()) as u64;

@@ -152,7 +152,7 @@ impl Scene {
     /// The world-space bounds of every object, or `None` for an empty scene.
     pub fn bounds(&self) -> Option<Aabb> {
         let mut out: Option<Aabb> = None;
-        for object in &self.desc.objects {
+        for object in self.desc.objects.iter().filter(|o| o.is_rendered()) {
             let Some(mesh) = self.resources.meshes.get(object.mesh) else {
                 continue;
             };

@@ -106,6 +106,12 @@ pub struct Object {
 }
 
 impl Object {
+    /// Whether the object is drawn and traced as geometry. Proxy blocks are approximations
+    /// of the level for MRT and show only as wireframes.
+    pub fn is_rendered(&self) -> bool {
+        self.visible && self.role != ObjectRole::ProxyBlock
+    }
+
     /// Checks numbers and ranges.
     pub fn validate(&self) -> Result<(), SceneError> {
         let what = format!("object {:?}", self.name);

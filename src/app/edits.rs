@@ -1,0 +1,157 @@
+//! Structural edits of a project (add, delete, duplicate lights and objects), each recorded as
+//! one undo step. Property edits happen in place between `History::begin` and `commit`.
+//! Pure (no egui), so the undo property test drives them directly.
+
+use glam::Vec3;
+
+use super::history::{History, Snapshot};
+use crate::project_file::Project;
+use crate::scene::{Light, LightKind, Material, MeshSource, Object, ObjectRole, Transform};
+
+/// What is selected in the outliner and viewport.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Selection {
+    /// Nothing.
+    #[default]
+    None,
+    /// An object by index.
+    Object(usize),
+    /// A light by index.
+    Light(usize),
+}
+
+/// Why an edit was refused.
+#[derive(Debug, thiserror::Error)]
+pub enum EditError {
+    /// The index does not exist.
+    #[error("nothing to edit at index {0}")]
+    Missing(usize),
+    /// The resulting scene is invalid.
+    #[error(transparent)]
+    Resolve(#[from] crate::import::ResolveError),
+}
+
+fn structural(
+    project: &mut Project,
+    history: &mut History,
+    label: &str,
+    f: impl FnOnce(&mut crate::scene::SceneDesc) -> Result<(), EditError>,
+) -> Result<(), EditError> {
+    let before = Snapshot::of(project);
+    let mut desc = before.desc.clone();
+    f(&mut desc)?;
+    project.set_desc(desc)?;
+    history.record(label, before, project);
+    Ok(())
+}
+
+fn unique_name(base: &str, taken: impl Iterator<Item = String>) -> String {
+    let taken: Vec<String> = taken.collect();
+    (1..).map(|i| format!("{base} {i}")).find(|n| !taken.contains(n)).unwrap_or_else(|| base.to_owned())
+}
+
+/// Adds a light of `kind` at the scene's centre (under the ceiling for point and spot lights).
+pub fn add_light(project: &mut Project, history: &mut History, kind: LightKind) -> Result<Selection, EditError> {
+    let b = project.scene.bounds();
+    let centre = b.map_or(Vec3::new(0.0, 1.0, 0.0), |b| {
+        Vec3::new(b.center().x, b.max.y - 0.1 * (b.max.y - b.min.y), b.center().z)
+    });
+    let names = project.scene.lights().iter().map(|l| l.name.clone());
+    let light = match kind {
+        LightKind::Point => Light::point(&unique_name("Point light", names), centre, 1.0),
+        LightKind::Spot { .. } => Light::spot(&unique_name("Spot light", names), centre, Vec3::NEG_Y, 4.0, 0.3, 0.6),
+        LightKind::Directional => {
+            Light::directional(&unique_name("Sun", names), Vec3::new(0.3, -1.0, -0.4).normalize(), 1.0)
+        }
+    };
+    let index = project.scene.lights().len();
+    structural(project, history, "Add light", |d| {
+        d.lights.push(light);
+        Ok(())
+    })?;
+    Ok(Selection::Light(index))
+}
+
+fn material_for(desc: &mut crate::scene::SceneDesc, name: &str, albedo: [f32; 3]) -> usize {
+    if let Some(i) = desc.materials.iter().position(|m| m.name == name) {
+        return i;
+    }
+    desc.materials.push(Material::diffuse(name, albedo));
+    desc.materials.len() - 1
+}
+
+/// Adds a proxy block (an MRT box) or a clutter box at the scene's centre.
+pub fn add_box(project: &mut Project, history: &mut History, role: ObjectRole) -> Result<Selection, EditError> {
+    let centre = project.scene.bounds().map_or(Vec3::ZERO, |b| b.center());
+    let (base, size, label) = match role {
+        ObjectRole::ProxyBlock => {
+            ("Proxy block", project.scene.bounds().map_or(Vec3::ONE, |b| b.max - b.min), "Add proxy block")
+        }
+        _ => ("Clutter", Vec3::splat(0.3), "Add clutter"),
+    };
+    let name = unique_name(base, project.scene.objects().iter().map(|o| o.name.clone()));
+    let index = project.scene.objects().len();
+    structural(project, history, label, |d| {
+        let material = material_for(d, "clutter", [0.7, 0.7, 0.7]);
+        d.objects.push(Object {
+            name,
+            source: MeshSource::Cuboid { size },
+            mesh: 0,
+            material,
+            transform: Transform { translation: centre, ..Transform::default() },
+            sampling_weight: 1.0,
+            role,
+            visible: true,
+        });
+        Ok(())
+    })?;
+    Ok(Selection::Object(index))
+}
+
+/// Deletes the selected light or object.
+pub fn delete(project: &mut Project, history: &mut History, selection: Selection) -> Result<Selection, EditError> {
+    match selection {
+        Selection::None => Ok(Selection::None),
+        Selection::Light(i) => {
+            structural(project, history, "Delete light", |d| {
+                (i < d.lights.len()).then(|| d.lights.remove(i)).map(|_| ()).ok_or(EditError::Missing(i))
+            })?;
+            Ok(Selection::None)
+        }
+        Selection::Object(i) => {
+            structural(project, history, "Delete object", |d| {
+                (i < d.objects.len()).then(|| d.objects.remove(i)).map(|_| ()).ok_or(EditError::Missing(i))
+            })?;
+            Ok(Selection::None)
+        }
+    }
+}
+
+/// Duplicates the selected light or object (offset slightly so both are visible).
+pub fn duplicate(project: &mut Project, history: &mut History, selection: Selection) -> Result<Selection, EditError> {
+    match selection {
+        Selection::None => Ok(Selection::None),
+        Selection::Light(i) => {
+            let mut light = project.scene.lights().get(i).cloned().ok_or(EditError::Missing(i))?;
+            light.name = unique_name(&light.name, project.scene.lights().iter().map(|l| l.name.clone()));
+            light.position += Vec3::new(0.1, 0.0, 0.1);
+            let index = project.scene.lights().len();
+            structural(project, history, "Duplicate light", |d| {
+                d.lights.push(light);
+                Ok(())
+            })?;
+            Ok(Selection::Light(index))
+        }
+        Selection::Object(i) => {
+            let mut object = project.scene.objects().get(i).cloned().ok_or(EditError::Missing(i))?;
+            object.name = unique_name(&object.name, project.scene.objects().iter().map(|o| o.name.clone()));
+            object.transform.translation += Vec3::new(0.1, 0.0, 0.1);
+            let index = project.scene.objects().len();
+            structural(project, history, "Duplicate object", |d| {
+                d.objects.push(object);
+                Ok(())
+            })?;
+            Ok(Selection::Object(index))
+        }
+    }
+}

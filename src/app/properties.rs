@@ -1,0 +1,147 @@
+//! The properties panel: every field of the selected light or object. Widgets edit a copy; a
+//! change writes it back inside an undo step, and a drag or a text edit stays one step until
+//! the pointer is released and focus leaves (see `History::begin`).
+
+use glam::{EulerRot, Quat, Vec3};
+
+use super::edits::Selection;
+use super::state::EditorState;
+use crate::scene::{Light, LightKind, Object, ObjectRole};
+
+fn vec3_ui(ui: &mut egui::Ui, label: &str, v: &mut Vec3, speed: f32) {
+    ui.horizontal(|ui| {
+        ui.label(label);
+        ui.add(egui::DragValue::new(&mut v.x).speed(speed).prefix("x "));
+        ui.add(egui::DragValue::new(&mut v.y).speed(speed).prefix("y "));
+        ui.add(egui::DragValue::new(&mut v.z).speed(speed).prefix("z "));
+    });
+}
+
+fn light_ui(ui: &mut egui::Ui, light: &mut Light) {
+    ui.horizontal(|ui| {
+        ui.label("Name");
+        ui.text_edit_singleline(&mut light.name);
+    });
+    ui.horizontal(|ui| {
+        ui.label("Colour");
+        ui.color_edit_button_rgb(&mut light.color);
+    });
+    let unit = if light.kind == LightKind::Directional { "W/m²" } else { "W/sr" };
+    ui.add(egui::Slider::new(&mut light.intensity, 0.0..=100.0).logarithmic(true).text(format!("intensity ({unit})")))
+        .on_hover_text(
+            "Radiant intensity (point, spot) or irradiance (directional), linear, no photometric conversion.",
+        );
+    if light.kind != LightKind::Directional {
+        vec3_ui(ui, "Position", &mut light.position, 0.01);
+        let mut has_range = light.range.is_some();
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut has_range, "Range")
+                .on_hover_text("Smooth cut-off distance (KHR window); off = pure inverse-square.");
+            if has_range {
+                let mut r = light.range.unwrap_or(5.0);
+                ui.add(egui::DragValue::new(&mut r).speed(0.05).range(0.01..=1.0e4).suffix(" m"));
+                light.range = Some(r);
+            } else {
+                light.range = None;
+            }
+        });
+    }
+    if light.kind != LightKind::Point {
+        let mut d = light.direction;
+        vec3_ui(ui, "Direction", &mut d, 0.01);
+        if let Some(n) = d.try_normalize() {
+            light.direction = n;
+        }
+    }
+    if let LightKind::Spot { inner_cone_angle, outer_cone_angle } = &mut light.kind {
+        let (mut inner, mut outer) = (inner_cone_angle.to_degrees(), outer_cone_angle.to_degrees());
+        ui.add(egui::Slider::new(&mut outer, 1.0..=90.0).text("outer cone (°)"));
+        ui.add(egui::Slider::new(&mut inner, 0.0..=outer - 0.5).text("inner cone (°)"));
+        *outer_cone_angle = outer.to_radians();
+        *inner_cone_angle = inner.clamp(0.0, outer - 0.5).to_radians();
+    }
+    ui.checkbox(&mut light.cast_shadows, "Cast shadows").on_hover_text("Costs one shadow map (six for a point light).");
+}
+
+fn object_ui(ui: &mut egui::Ui, object: &mut Object, materials: &[String]) {
+    ui.horizontal(|ui| {
+        ui.label("Name");
+        ui.text_edit_singleline(&mut object.name);
+    });
+    ui.checkbox(&mut object.visible, "Visible");
+    egui::ComboBox::from_label("Role").selected_text(format!("{:?}", object.role)).show_ui(ui, |ui| {
+        for role in [ObjectRole::Static, ObjectRole::ProxyBlock, ObjectRole::Clutter] {
+            ui.selectable_value(&mut object.role, role, format!("{role:?}"));
+        }
+    });
+    egui::ComboBox::from_label("Material")
+        .selected_text(materials.get(object.material).cloned().unwrap_or_default())
+        .show_ui(ui, |ui| {
+            for (i, name) in materials.iter().enumerate() {
+                ui.selectable_value(&mut object.material, i, name);
+            }
+        });
+    ui.add(egui::Slider::new(&mut object.sampling_weight, 0.0..=10.0).text("sampling weight")).on_hover_text(
+        "Multiplies this object's triangle area when scene sample points (ISM points, VPL sampling) are \
+         distributed: more points here, fewer elsewhere. 0 excludes the object.",
+    );
+    let t = &mut object.transform;
+    vec3_ui(ui, "Position", &mut t.translation, 0.01);
+    let (y, x, z) = t.rotation.to_euler(EulerRot::YXZ);
+    let mut euler = Vec3::new(x.to_degrees(), y.to_degrees(), z.to_degrees());
+    let before = euler;
+    vec3_ui(ui, "Rotation (°)", &mut euler, 0.5);
+    if euler != before {
+        t.rotation = Quat::from_euler(EulerRot::YXZ, euler.y.to_radians(), euler.x.to_radians(), euler.z.to_radians());
+    }
+    let mut s = t.scale;
+    vec3_ui(ui, "Scale", &mut s, 0.01);
+    t.scale = s.max(Vec3::splat(1e-3));
+    if let crate::scene::MeshSource::Cuboid { size } = &mut object.source {
+        let mut sz = *size;
+        vec3_ui(ui, "Box size", &mut sz, 0.01);
+        *size = sz.max(Vec3::splat(1e-3));
+    }
+}
+
+/// Draws the properties of the selection and records edits.
+pub fn properties_ui(state: &mut EditorState, ui: &mut egui::Ui) {
+    egui::ScrollArea::vertical().show(ui, |ui| match state.selection {
+        Selection::None => {
+            ui.label("Select a light or an object in the outliner or the viewport.");
+        }
+        Selection::Light(i) => {
+            let Some(original) = state.project.scene.lights().get(i).cloned() else { return };
+            let mut light = original.clone();
+            light_ui(ui, &mut light);
+            if light != original && light.validate().is_ok() {
+                state.history.begin("Edit light", &state.project);
+                state.project.scene.desc_mut().lights[i] = light;
+            }
+        }
+        Selection::Object(i) => {
+            let Some(original) = state.project.scene.objects().get(i).cloned() else { return };
+            let materials: Vec<String> = state.project.scene.materials().iter().map(|m| m.name.clone()).collect();
+            let mut object = original.clone();
+            object_ui(ui, &mut object, &materials);
+            if object != original && object.validate().is_ok() {
+                state.history.begin("Edit object", &state.project);
+                if object.source == original.source {
+                    state.project.scene.desc_mut().objects[i] = object;
+                } else {
+                    // A new box size needs a new mesh.
+                    let mut desc = state.project.scene.desc().clone();
+                    desc.objects[i] = object;
+                    if let Err(e) = state.project.set_desc(desc) {
+                        state.report("edit failed", &e);
+                    }
+                }
+            }
+        }
+    });
+    // A drag or a text edit is one undo step: commit once the pointer is up and nothing has focus.
+    let idle = ui.input(|i| !i.pointer.any_down()) && ui.memory(|m| m.focused().is_none());
+    if idle {
+        state.history.commit(&state.project);
+    }
+}

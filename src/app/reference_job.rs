@@ -1,0 +1,60 @@
+//! A progressive reference render on a background thread, restarted when the scene, its
+//! settings or the view size change, cancelled when dropped.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+
+use crate::image_io::HdrImage;
+use crate::precompute::pathtracer::{PathTracer, Progress};
+use crate::project_file::Project;
+
+type Latest = Arc<Mutex<Option<(HdrImage, Progress)>>>;
+
+/// A running reference render.
+pub struct ReferenceJob {
+    cancel: Arc<AtomicBool>,
+    latest: Latest,
+    revision: u64,
+    settings: crate::settings::ReferenceSettings,
+    size: (u32, u32),
+}
+
+impl ReferenceJob {
+    /// Starts rendering `project` at `size` until its reference spp.
+    pub fn start(project: &Project, size: (u32, u32)) -> Self {
+        let cancel = Arc::new(AtomicBool::new(false));
+        let latest: Latest = Arc::new(Mutex::new(None));
+        let settings = project.render.reference.clone();
+        let mut tracer = PathTracer::new(&project.scene, size, settings.clone());
+        let (c, l, spp) = (cancel.clone(), latest.clone(), settings.spp);
+        let spawned = std::thread::Builder::new().name("reference".into()).spawn(move || {
+            while tracer.spp() < spp && !c.load(Ordering::Relaxed) {
+                if let Some(p) = tracer.add_sample(&c)
+                    && let Ok(mut slot) = l.lock()
+                {
+                    *slot = Some((HdrImage { width: size.0, height: size.1, pixels: tracer.image() }, p));
+                }
+            }
+        });
+        if let Err(e) = spawned {
+            log::error!("cannot start the reference render: {e}");
+        }
+        Self { cancel, latest, revision: project.scene.revision(), settings, size }
+    }
+
+    /// Whether this job renders the current state of `project` at `size`.
+    pub fn matches(&self, project: &Project, size: (u32, u32)) -> bool {
+        self.revision == project.scene.revision() && self.settings == project.render.reference && self.size == size
+    }
+
+    /// The newest image and progress, if a pass has finished.
+    pub fn latest(&self) -> Option<(HdrImage, Progress)> {
+        self.latest.lock().ok().and_then(|s| s.clone())
+    }
+}
+
+impl Drop for ReferenceJob {
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+}
