@@ -226,7 +226,7 @@ impl Inspector {
             self.compared_spp = 0;
         }
         let Some((reference, progress)) = job.latest() else {
-            ui.label("Reference: starting…");
+            ui.label("Reference: starting...");
             ui.ctx().request_repaint();
             return;
         };

@@ -270,7 +270,7 @@ impl EditorApp {
                 if ui.add(egui::Button::new("New").shortcut_text(sc(ui, cmd, egui::Key::N))).clicked() {
                     self.new_project();
                 }
-                if ui.add(egui::Button::new("Open…").shortcut_text(sc(ui, cmd, egui::Key::O))).clicked() {
+                if ui.add(egui::Button::new("Open...").shortcut_text(sc(ui, cmd, egui::Key::O))).clicked() {
                     self.open_dialog();
                 }
                 ui.menu_button("Open recent", |ui| {
@@ -284,7 +284,7 @@ impl EditorApp {
                     self.save();
                 }
                 if ui
-                    .add(egui::Button::new("Save As…").shortcut_text(sc(
+                    .add(egui::Button::new("Save As...").shortcut_text(sc(
                         ui,
                         cmd | egui::Modifiers::SHIFT,
                         egui::Key::S,
@@ -293,7 +293,7 @@ impl EditorApp {
                 {
                     self.save_as_dialog();
                 }
-                if ui.button("Export viewport image…").clicked() {
+                if ui.button("Export viewport image...").clicked() {
                     self.export_dialog();
                 }
             });
@@ -442,7 +442,7 @@ impl eframe::App for EditorApp {
         egui::Panel::top("menu bar").show(ui, |ui| self.menu_bar(ui));
         egui::Panel::bottom("status bar").show(ui, |ui| {
             ui.horizontal(|ui| {
-                ui.label(if self.state.history.is_dirty() { "● unsaved" } else { "saved" });
+                ui.label(if self.state.history.is_dirty() { "* unsaved" } else { "saved" });
                 ui.separator();
                 ui.label(&self.state.status);
             });

@@ -43,7 +43,7 @@ impl EditorState {
             .as_ref()
             .and_then(|p| p.file_name())
             .map_or("untitled".into(), |n| n.to_string_lossy().into_owned());
-        format!("{}{} — Bounce Lab", name, if self.history.is_dirty() { " •" } else { "" })
+        format!("{}{} — Bounce Lab", name, if self.history.is_dirty() { " *" } else { "" })
     }
 
     /// Opens a project or glTF file, replacing the current one.
