@@ -27,6 +27,7 @@ pub struct Inspector {
     auto_range: bool,
     false_colour: bool,
     zoom: f32,
+    fit: bool,
     image: Option<HdrImage>,
     texture: Option<egui::TextureHandle>,
     live: bool,
@@ -38,6 +39,8 @@ pub struct Inspector {
     flip_map: Option<egui::TextureHandle>,
     reference_tex: Option<egui::TextureHandle>,
     compared_spp: u32,
+    compared_at: Option<std::time::Instant>,
+    current_tex: Option<egui::TextureHandle>,
 }
 
 impl Default for Inspector {
@@ -49,6 +52,7 @@ impl Default for Inspector {
             auto_range: true,
             false_colour: false,
             zoom: 1.0,
+            fit: true,
             image: None,
             texture: None,
             live: true,
@@ -60,6 +64,8 @@ impl Default for Inspector {
             flip_map: None,
             reference_tex: None,
             compared_spp: 0,
+            compared_at: None,
+            current_tex: None,
         }
     }
 }
@@ -178,7 +184,8 @@ impl Inspector {
             ui.add(egui::Slider::new(&mut self.exposure_ev, -10.0..=10.0).text("EV"));
             ui.checkbox(&mut self.auto_range, "auto range").on_hover_text("Map the buffer's min..max to black..white.");
             ui.checkbox(&mut self.false_colour, "false colour");
-            ui.add(egui::Slider::new(&mut self.zoom, 0.25..=8.0).logarithmic(true).text("zoom"));
+            ui.checkbox(&mut self.fit, "fit");
+            ui.add_enabled(!self.fit, egui::Slider::new(&mut self.zoom, 0.25..=8.0).logarithmic(true).text("zoom"));
             ui.checkbox(&mut self.live, "live")
                 .on_hover_text("Read the buffer back every 10 frames (costs a GPU stall).");
             let refresh = ui.button("Refresh").clicked();
@@ -202,6 +209,9 @@ impl Inspector {
             return;
         }
         if let (Some(tex), Some(img)) = (&self.texture, &self.image) {
+            if self.fit {
+                self.zoom = (0.97 * ui.available_width() / img.width.max(1) as f32).max(0.01);
+            }
             egui::ScrollArea::both().show(ui, |ui| {
                 let size = egui::vec2(img.width as f32, img.height as f32) * self.zoom;
                 let resp = ui.add(egui::Image::new((tex.id(), size)).sense(egui::Sense::hover()));
@@ -218,8 +228,7 @@ impl Inspector {
     }
 
     fn compare_ui(&mut self, ui: &mut egui::Ui, renderer: &Renderer, project: &Project) {
-        let Ok(current) = renderer.read_buffer("hdr") else { return };
-        let size = (current.width, current.height);
+        let Some(size) = renderer.targets().map(|t| t.size) else { return };
         let job = self.job.get_or_insert_with(|| ReferenceJob::start(project, size));
         if !job.matches(project, size) {
             *job = ReferenceJob::start(project, size);
@@ -230,8 +239,19 @@ impl Inspector {
             ui.ctx().request_repaint();
             return;
         };
-        if progress.spp != self.compared_spp {
+        // Metrics and FLIP cost a readback and a full-image pass: at most every two seconds.
+        let due = self.compared_at.is_none_or(|t| t.elapsed().as_secs_f32() > 2.0);
+        if progress.spp != self.compared_spp && due {
             self.compared_spp = progress.spp;
+            self.compared_at = Some(std::time::Instant::now());
+            let current = match renderer.read_buffer("hdr") {
+                Ok(c) => c,
+                Err(e) => {
+                    self.metrics_text = format!("cannot read the current image: {e}");
+                    return;
+                }
+            };
+            self.current_tex = Some(renderer_display(ui, &current, project));
             match metrics::compare(&current, &reference, project.render.view.exposure_ev) {
                 Ok(c) => {
                     self.metrics_text = format!(
@@ -267,7 +287,7 @@ impl Inspector {
         }
         ui.label(&self.metrics_text);
         ui.add(egui::Slider::new(&mut self.swipe, 0.0..=1.0).text("swipe (left: current, right: reference)"));
-        let current_tex = renderer_display(ui, &current, project);
+        let Some(current_tex) = self.current_tex.clone() else { return };
         let avail = ui.available_width().min(size.0 as f32);
         let scale = avail / size.0 as f32;
         let draw_size = egui::vec2(size.0 as f32, size.1 as f32) * scale;

@@ -27,14 +27,29 @@ impl ReferenceJob {
         let settings = project.render.reference.clone();
         let mut tracer = PathTracer::new(&project.scene, size, settings.clone());
         let (c, l, spp) = (cancel.clone(), latest.clone(), settings.spp);
+        // Leave a core for the UI and the GPU driver (a software adapter renders on the CPU too).
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get().saturating_sub(1).max(1));
         let spawned = std::thread::Builder::new().name("reference".into()).spawn(move || {
-            while tracer.spp() < spp && !c.load(Ordering::Relaxed) {
-                if let Some(p) = tracer.add_sample(&c)
-                    && let Ok(mut slot) = l.lock()
-                {
-                    *slot = Some((HdrImage { width: size.0, height: size.1, pixels: tracer.image() }, p));
+            let pool = match rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .thread_name(|i| format!("reference {i}"))
+                .build()
+            {
+                Ok(p) => p,
+                Err(e) => {
+                    log::error!("reference thread pool: {e}");
+                    return;
                 }
-            }
+            };
+            pool.install(|| {
+                while tracer.spp() < spp && !c.load(Ordering::Relaxed) {
+                    if let Some(p) = tracer.add_sample(&c)
+                        && let Ok(mut slot) = l.lock()
+                    {
+                        *slot = Some((HdrImage { width: size.0, height: size.1, pixels: tracer.image() }, p));
+                    }
+                }
+            });
         });
         if let Err(e) = spawned {
             log::error!("cannot start the reference render: {e}");

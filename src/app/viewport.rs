@@ -156,23 +156,23 @@ impl Viewport {
             .or(response.interact_pointer_pos())
             .map(|p| Vec2::new(p.x - rect.min.x, p.y - rect.min.y));
 
-        // Gizmo handles of the selection.
+        // Gizmo handles of the selection; a drag starts where the button went down.
         let target = Self::target(state);
-        let mut hovered_axis = None;
-        if let (Some((origin, rotation)), Some(m)) = (target, mouse) {
+        let axis_at = |m: Vec2| -> Option<(usize, Vec3)> {
+            let (origin, rotation) = target?;
             let len = view.world_size(origin, 70.0);
-            for (k, axis) in gizmo::axes(rotation, self.gizmo.local).into_iter().enumerate() {
-                if let (Some(a), Some(b)) = (view.project(origin), view.project(origin + axis * len))
-                    && gizmo::segment_distance(m, a, b) < 8.0
-                {
-                    hovered_axis = Some((k, axis));
-                }
+            gizmo::axes(rotation, self.gizmo.local).into_iter().enumerate().find(|(_, axis)| {
+                matches!((view.project(origin), view.project(origin + *axis * len)), (Some(a), Some(b)) if gizmo::segment_distance(m, a, b) < 8.0)
+            })
+        };
+        let hovered_axis = mouse.and_then(axis_at);
+        if response.drag_started_by(egui::PointerButton::Primary) {
+            let press = ui.input(|i| i.pointer.press_origin()).map(|p| Vec2::new(p.x - rect.min.x, p.y - rect.min.y));
+            if let (Some(p), Some((origin, rotation))) = (press, target)
+                && let Some((_, axis)) = axis_at(p)
+            {
+                self.drag = Drag::begin(&view, self.gizmo.mode, axis, origin, rotation, p);
             }
-        }
-        if response.drag_started_by(egui::PointerButton::Primary)
-            && let (Some((_, axis)), Some((origin, rotation)), Some(m)) = (hovered_axis, target, mouse)
-        {
-            self.drag = Drag::begin(&view, self.gizmo.mode, axis, origin, rotation, m);
         }
         if let (Some(drag), Some(m)) = (self.drag, mouse)
             && response.dragged_by(egui::PointerButton::Primary)
