@@ -22,11 +22,23 @@ pub struct GizmoOptions {
     pub step: f32,
     /// Snap step for rotation (degrees).
     pub angle_step: f32,
+    /// Show the scene sample points (where ISM points and VPL samples land).
+    pub show_points: bool,
+    /// How many sample points to distribute for the overlay.
+    pub point_count: usize,
 }
 
 impl Default for GizmoOptions {
     fn default() -> Self {
-        Self { mode: GizmoMode::Translate, local: false, snap: false, step: 0.1, angle_step: 15.0 }
+        Self {
+            mode: GizmoMode::Translate,
+            local: false,
+            snap: false,
+            step: 0.1,
+            angle_step: 15.0,
+            show_points: false,
+            point_count: 4096,
+        }
     }
 }
 
@@ -44,6 +56,7 @@ pub struct Viewport {
     pub frames: u64,
     /// Per-pass timing history.
     pub timings: Timings,
+    points: Option<(Vec<(f32, bool, [f32; 3])>, u64, crate::precompute::sample_points::SamplePoints)>,
 }
 
 const AXIS_COLOURS: [egui::Color32; 3] =
@@ -67,6 +80,7 @@ impl Viewport {
             gizmo: GizmoOptions::default(),
             frames: 0,
             timings: Timings::default(),
+            points: None,
         };
         v.reset_orbit(state);
         v
@@ -134,6 +148,29 @@ impl Viewport {
         }
     }
 
+    /// Draws the scene sample points, redistributing them when weights or geometry change.
+    fn draw_points(&mut self, painter: &egui::Painter, rect: egui::Rect, view: &View, state: &EditorState) {
+        let scene = &state.project.scene;
+        let key: Vec<(f32, bool, [f32; 3])> = scene
+            .objects()
+            .iter()
+            .map(|o| (o.sampling_weight, o.is_rendered(), o.transform.scale.to_array()))
+            .collect();
+        let stale = self.points.as_ref().is_none_or(|(k, rev, _)| *k != key || *rev != scene.resources_revision());
+        if stale {
+            let pts = crate::precompute::sample_points::distribute(scene, self.gizmo.point_count, 1);
+            self.points = Some((key, scene.resources_revision(), pts));
+        }
+        let Some((_, _, pts)) = &self.points else { return };
+        for (sp, (p, _)) in pts.points.iter().zip(pts.world(scene)) {
+            if let Some(s) = view.project(p) {
+                let [r, g, b] =
+                    super::inspector::false_colour(((sp.object.wrapping_mul(2_654_435_761)) >> 24) as f32 / 255.0);
+                painter.circle_filled(rect.min + egui::vec2(s.x, s.y), 1.5, egui::Color32::from_rgb(r, g, b));
+            }
+        }
+    }
+
     /// Toolbar, input, rendering and painting into the remaining space.
     pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame, state: &mut EditorState) -> Result<(), RenderError> {
         if let Some(e) = &self.init_error {
@@ -145,6 +182,8 @@ impl Viewport {
             ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Rotate, "Rotate (R)");
             ui.checkbox(&mut self.gizmo.local, "local axes");
             ui.checkbox(&mut self.gizmo.snap, "snap");
+            ui.checkbox(&mut self.gizmo.show_points, "sample points")
+                .on_hover_text("Where scene sample points land: area x sampling weight per object.");
             ui.label(format!("mode: {}", state.project.render.mode.name()));
         });
         let (rect, response) = ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
@@ -283,6 +322,9 @@ impl Viewport {
         }
         let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
         overlays::draw(&painter, rect, &view, &state.project.scene, state.selection);
+        if self.gizmo.show_points {
+            self.draw_points(&painter, rect, &view, state);
+        }
         if let Some((origin, rotation)) = Self::target(state) {
             let len = view.world_size(origin, 70.0);
             for (k, axis) in gizmo::axes(rotation, self.gizmo.local).into_iter().enumerate() {

@@ -5,3 +5,4 @@ pub mod brdf;
 pub mod bvh;
 pub mod pathtracer;
 pub mod rng;
+pub mod sample_points;

@@ -1,0 +1,161 @@
+//! Scene sample points (Knecht 2009, section 5.1): points distributed over the triangles of all
+//! rendered objects in proportion to triangle area times the object's sampling weight. They are
+//! stored in object space (triangle + barycentrics), so moving objects carry their points and
+//! only a change of geometry or weights needs a new distribution. Used for imperfect shadow maps
+//! and shown in the editor so artists see where the points land.
+
+use glam::{Vec2, Vec3};
+
+use super::rng::Pcg32;
+use crate::scene::Scene;
+
+/// One point on a triangle of an object.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SamplePoint {
+    /// Object index in the scene.
+    pub object: u32,
+    /// Triangle index within the object's mesh.
+    pub triangle: u32,
+    /// Barycentric weights of the second and third vertex.
+    pub bary: Vec2,
+}
+
+/// A distribution of points and what it was made from.
+#[derive(Clone, Debug, Default)]
+pub struct SamplePoints {
+    /// The points, grouped by object.
+    pub points: Vec<SamplePoint>,
+    /// Weighted area each object contributed (world-space area x sampling weight).
+    pub weighted_area: Vec<f64>,
+}
+
+/// Distributes `total` points with stratified sampling of the weighted-area CDF (one point per
+/// equal-probability stratum), deterministic for a seed.
+pub fn distribute(scene: &Scene, total: usize, seed: u64) -> SamplePoints {
+    let mut cdf: Vec<(u32, u32, f64)> = Vec::new();
+    let mut sum = 0.0f64;
+    let mut weighted_area = vec![0.0; scene.objects().len()];
+    for (oi, object) in scene.objects().iter().enumerate() {
+        let Some(mesh) = scene.resources().meshes.get(object.mesh).filter(|_| object.is_rendered()) else { continue };
+        if object.sampling_weight <= 0.0 {
+            continue;
+        }
+        let m = object.transform.matrix();
+        for t in 0..mesh.triangle_count() {
+            let [a, b, c] = mesh.triangle(t).map(|p| m.transform_point3(p));
+            let area = 0.5 * f64::from((b - a).cross(c - a).length()) * f64::from(object.sampling_weight);
+            if area > 0.0 {
+                sum += area;
+                weighted_area[oi] += area;
+                cdf.push((oi as u32, t as u32, sum));
+            }
+        }
+    }
+    if cdf.is_empty() || total == 0 {
+        return SamplePoints { points: Vec::new(), weighted_area };
+    }
+    let mut rng = Pcg32::new(seed, 0x5a3d, 0);
+    let points = (0..total)
+        .map(|i| {
+            let u = (i as f64 + f64::from(rng.next_f32())) / total as f64 * sum;
+            let k = cdf.partition_point(|e| e.2 < u).min(cdf.len() - 1);
+            let (r1, r2) = (rng.next_f32(), rng.next_f32());
+            let s = r1.sqrt();
+            SamplePoint { object: cdf[k].0, triangle: cdf[k].1, bary: Vec2::new(s * (1.0 - r2), s * r2) }
+        })
+        .collect();
+    SamplePoints { points, weighted_area }
+}
+
+impl SamplePoints {
+    /// World-space position and geometric normal of every point with the objects' current
+    /// transforms (call per frame for moving objects).
+    pub fn world(&self, scene: &Scene) -> Vec<(Vec3, Vec3)> {
+        let objects = scene.objects();
+        let meshes = &scene.resources().meshes;
+        self.points
+            .iter()
+            .filter_map(|p| {
+                let object = objects.get(p.object as usize)?;
+                let mesh = meshes.get(object.mesh)?;
+                if p.triangle as usize >= mesh.triangle_count() {
+                    return None;
+                }
+                let m = object.transform.matrix();
+                let [a, b, c] = mesh.triangle(p.triangle as usize).map(|v| m.transform_point3(v));
+                let pos = a + (b - a) * p.bary.x + (c - a) * p.bary.y;
+                let n = (b - a).cross(c - a).normalize_or_zero();
+                Some((pos, n))
+            })
+            .collect()
+    }
+
+    /// Points per object.
+    pub fn counts(&self, objects: usize) -> Vec<usize> {
+        let mut c = vec![0; objects];
+        for p in &self.points {
+            if let Some(slot) = c.get_mut(p.object as usize) {
+                *slot += 1;
+            }
+        }
+        c
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Material, Mesh, MeshSource, Object, ObjectRole, Resources, SceneDesc, Transform};
+
+    fn two_planes(w0: f32, w1: f32) -> Scene {
+        let obj = |name: &str, x: f32, w: f32, mesh: usize| Object {
+            name: name.into(),
+            source: MeshSource::Plane { size: 1.0 },
+            mesh,
+            material: 0,
+            transform: Transform { translation: Vec3::new(x, 0.0, 0.0), ..Transform::default() },
+            sampling_weight: w,
+            role: ObjectRole::Static,
+            visible: true,
+        };
+        let desc = SceneDesc {
+            materials: vec![Material::default()],
+            objects: vec![obj("a", -1.0, w0, 0), obj("b", 1.0, w1, 1)],
+            ..SceneDesc::default()
+        };
+        Scene::new(desc, Resources { meshes: vec![Mesh::plane("a", 1.0), Mesh::plane("b", 1.0)], images: vec![] })
+            .expect("scene")
+    }
+
+    #[test]
+    fn weights_shift_counts_in_proportion() {
+        for (w0, w1) in [(1.0, 1.0), (1.0, 3.0), (0.5, 2.0)] {
+            let pts = distribute(&two_planes(w0, w1), 4000, 1);
+            let c = pts.counts(2);
+            let want = 4000.0 * w1 / (w0 + w1);
+            assert!((c[1] as f32 - want).abs() <= 2.0, "weights {w0}:{w1}: counts {c:?}, want {want} on b");
+        }
+        let none = distribute(&two_planes(0.0, 1.0), 1000, 1);
+        assert_eq!(none.counts(2), vec![0, 1000], "weight 0 gets no points");
+    }
+
+    #[test]
+    fn points_lie_on_their_objects_and_follow_them() {
+        let mut scene = two_planes(1.0, 1.0);
+        let pts = distribute(&scene, 500, 7);
+        for (p, n) in pts.world(&scene) {
+            assert!(
+                p.y.abs() < 1e-6 && (n - Vec3::Y).length() < 1e-5 && p.x.abs() >= 0.5 - 1e-5 && p.x.abs() <= 1.5 + 1e-5
+            );
+        }
+        scene.desc_mut().objects[1].transform.translation.y = 2.0;
+        let moved = pts.world(&scene);
+        let on_b = pts.points.iter().zip(&moved).filter(|(sp, _)| sp.object == 1);
+        assert!(on_b.clone().count() > 200 && on_b.into_iter().all(|(_, (p, _))| (p.y - 2.0).abs() < 1e-5));
+        assert_eq!(
+            distribute(&scene, 500, 7).points,
+            pts.points,
+            "deterministic for a seed (area unchanged by moving)"
+        );
+    }
+}
