@@ -56,7 +56,15 @@ pub struct Viewport {
     pub frames: u64,
     /// Per-pass timing history.
     pub timings: Timings,
-    points: Option<(Vec<(f32, bool, [f32; 3])>, u64, crate::precompute::sample_points::SamplePoints)>,
+    points: Option<PointsCache>,
+}
+
+/// The sample-point overlay's distribution and what it was computed from.
+struct PointsCache {
+    /// Per object: sampling weight, rendered, scale (what changes the distribution).
+    key: Vec<(f32, bool, [f32; 3])>,
+    resources_revision: u64,
+    points: crate::precompute::sample_points::SamplePoints,
 }
 
 const AXIS_COLOURS: [egui::Color32; 3] =
@@ -156,12 +164,13 @@ impl Viewport {
             .iter()
             .map(|o| (o.sampling_weight, o.is_rendered(), o.transform.scale.to_array()))
             .collect();
-        let stale = self.points.as_ref().is_none_or(|(k, rev, _)| *k != key || *rev != scene.resources_revision());
+        let stale =
+            self.points.as_ref().is_none_or(|c| c.key != key || c.resources_revision != scene.resources_revision());
         if stale {
-            let pts = crate::precompute::sample_points::distribute(scene, self.gizmo.point_count, 1);
-            self.points = Some((key, scene.resources_revision(), pts));
+            let points = crate::precompute::sample_points::distribute(scene, self.gizmo.point_count, 1);
+            self.points = Some(PointsCache { key, resources_revision: scene.resources_revision(), points });
         }
-        let Some((_, _, pts)) = &self.points else { return };
+        let Some(PointsCache { points: pts, .. }) = &self.points else { return };
         for (sp, (p, _)) in pts.points.iter().zip(pts.world(scene)) {
             if let Some(s) = view.project(p) {
                 let [r, g, b] =
