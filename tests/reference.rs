@@ -98,25 +98,43 @@ fn closed_box_matches_the_geometric_series() {
     assert!((measured / expected - 1.0).abs() < 0.01, "measured {measured}, analytic {expected}");
 }
 
+/// Raster direct light (supersampled `k` x `k`, box-filtered) against two one-bounce
+/// references with different seeds: the mean luminance within 2% and the per-pixel difference
+/// within the references' own noise.
+fn assert_raster_matches_one_bounce(
+    ctx: &bouncelab::render::GpuContext,
+    project: &Project,
+    size: (u32, u32),
+    k: u32,
+    label: &str,
+) {
+    let big = common::render(ctx, &project.scene, &project.render, (size.0 * k, size.1 * k));
+    let raster =
+        HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * k, size.1 * k), k) };
+    let one = ReferenceSettings { spp: 256, max_bounces: 1, ..Default::default() };
+    let a = render(project, size, one.clone());
+    let b = render(project, size, ReferenceSettings { seed: 7, ..one });
+    let ratio = metrics::luminance_ratio(&raster, &a).expect("ratio");
+    let (err, noise) = (metrics::rmse(&raster, &a).expect("rmse"), metrics::rmse(&a, &b).expect("rmse"));
+    eprintln!("{label}: raster/reference luminance {ratio:.4}, rmse {err:.4}, reference noise {noise:.4}");
+    assert!((ratio - 1.0).abs() < 0.02, "{label}: mean luminance differs by {:.2}%", (ratio - 1.0) * 100.0);
+    assert!(
+        err < 1.5 * noise + 1e-3,
+        "{label}: raster differs from the reference by {err}, more than its noise {noise}"
+    );
+}
+
 #[test]
 fn one_bounce_reference_agrees_with_raster_direct() {
     let Some(ctx) = common::gpu() else { return };
     let project = default_project();
-    let size = (64, 36);
-    // Raster supersampled 4x4 and box-filtered, like the path tracer's pixel filter.
-    let big = common::render(&ctx, &project.scene, &project.render, (size.0 * 4, size.1 * 4));
-    let raster =
-        HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * 4, size.1 * 4), 4) };
-    let one = ReferenceSettings { spp: 256, max_bounces: 1, ..Default::default() };
-    let a = render(&project, size, one.clone());
-    let b = render(&project, size, ReferenceSettings { seed: 7, ..one });
-    let ratio = metrics::luminance_ratio(&raster, &a).expect("ratio");
-    let noise = metrics::rmse(&a, &b).expect("rmse");
-    let err = metrics::rmse(&raster, &a).expect("rmse");
-    eprintln!("raster/reference luminance {ratio:.4}, rmse {err:.4}, reference noise {noise:.4}");
-    assert!((ratio - 1.0).abs() < 0.02, "mean luminance differs by {:.2}%", (ratio - 1.0) * 100.0);
-    assert!(err < 1.5 * noise, "raster differs from the reference by {err}, more than its noise {noise}");
-    let flip = metrics::flip(&raster, &a, 0.0).expect("flip").0;
+    assert_raster_matches_one_bounce(&ctx, &project, (64, 36), 4, "point light");
+    let flip = {
+        let a = render(&project, (64, 36), ReferenceSettings { spp: 64, max_bounces: 1, ..Default::default() });
+        let big = common::render(&ctx, &project.scene, &project.render, (256, 144));
+        let raster = HdrImage { width: 64, height: 36, pixels: image_io::box_downsample(&big, (256, 144), 4) };
+        metrics::flip(&raster, &a, 0.0).expect("flip").0
+    };
     assert!(flip < 0.08, "FLIP {flip}");
 }
 
@@ -167,18 +185,7 @@ fn spot_and_directional_lights_agree_with_raster() {
         Light::spot("spot", Vec3::new(0.2, 1.9, 0.3), Vec3::new(-0.2, -1.0, -0.3).normalize(), 6.0, 0.3, 0.7),
         Light::directional("sun", Vec3::new(0.25, -0.35, -1.0).normalize(), 1.5),
     ];
-    let size = (48, 27);
-    let big = common::render(&ctx, &project.scene, &project.render, (size.0 * 8, size.1 * 8));
-    let raster =
-        HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * 8, size.1 * 8), 8) };
-    let one = ReferenceSettings { spp: 256, max_bounces: 1, ..Default::default() };
-    let a = render(&project, size, one.clone());
-    let b = render(&project, size, ReferenceSettings { seed: 11, ..one });
-    let ratio = metrics::luminance_ratio(&raster, &a).expect("ratio");
-    let (err, noise) = (metrics::rmse(&raster, &a).expect("rmse"), metrics::rmse(&a, &b).expect("rmse"));
-    eprintln!("spot + sun: raster/reference luminance {ratio:.4}, rmse {err:.4}, reference noise {noise:.4}");
-    assert!((ratio - 1.0).abs() < 0.02, "mean luminance differs by {:.2}%", (ratio - 1.0) * 100.0);
-    assert!(err < 1.5 * noise, "raster differs from the reference by {err}, more than its noise {noise}");
+    assert_raster_matches_one_bounce(&ctx, &project, (48, 27), 8, "spot + sun");
 }
 
 #[test]
@@ -192,16 +199,5 @@ fn glossy_materials_agree_with_raster() {
             *c *= 0.6;
         }
     }
-    let size = (48, 27);
-    let big = common::render(&ctx, &project.scene, &project.render, (size.0 * 8, size.1 * 8));
-    let raster =
-        HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * 8, size.1 * 8), 8) };
-    let one = ReferenceSettings { spp: 256, max_bounces: 1, ..Default::default() };
-    let a = render(&project, size, one.clone());
-    let b = render(&project, size, ReferenceSettings { seed: 13, ..one });
-    let ratio = metrics::luminance_ratio(&raster, &a).expect("ratio");
-    let (err, noise) = (metrics::rmse(&raster, &a).expect("rmse"), metrics::rmse(&a, &b).expect("rmse"));
-    eprintln!("glossy: raster/reference luminance {ratio:.4}, rmse {err:.4}, reference noise {noise:.4}");
-    assert!((ratio - 1.0).abs() < 0.02, "mean luminance differs by {:.2}%", (ratio - 1.0) * 100.0);
-    assert!(err < 1.5 * noise + 1e-3, "raster differs from the reference by {err}, more than its noise {noise}");
+    assert_raster_matches_one_bounce(&ctx, &project, (48, 27), 8, "glossy");
 }

@@ -12,35 +12,48 @@ use crate::project_file::Project;
 use crate::render::{GpuContext, Renderer};
 use crate::settings::{GiMode, Tonemap, ViewSettings};
 
-/// Options of one headless render.
-#[derive(Clone, Debug, Default)]
+/// Options of one headless render (also the `render` subcommand's arguments).
+#[derive(Clone, Debug, Default, clap::Args)]
 pub struct RenderArgs {
-    /// Project (`.ron`) or scene (`.gltf`, `.glb`).
+    /// Project (.ron) or scene (.gltf/.glb).
     pub input: PathBuf,
-    /// GI mode (overrides the project's).
+    /// GI mode (default: the project's).
+    #[arg(long, value_enum)]
     pub mode: Option<GiMode>,
-    /// Output file.
+    /// Output file (.exr or .png).
+    #[arg(long)]
     pub out: PathBuf,
     /// Width in pixels.
+    #[arg(long, default_value_t = 640)]
     pub width: u32,
     /// Height in pixels.
+    #[arg(long, default_value_t = 360)]
     pub height: u32,
-    /// Frames to render (temporal techniques converge); the last is written.
+    /// Frames to render (temporal techniques converge); the last one is written.
+    #[arg(long, default_value_t = 1)]
     pub frames: u32,
-    /// Exposure override in stops (PNG only).
+    /// Exposure in stops for the PNG view.
+    #[arg(long)]
     pub exposure: Option<f32>,
-    /// Samples per pixel for `reference`.
+    /// Samples per pixel (reference mode).
+    #[arg(long)]
     pub spp: Option<u32>,
-    /// Longest path for `reference` (1 = direct only).
+    /// Longest path in bounces, 1 = direct light only (reference mode).
+    #[arg(long)]
     pub max_bounces: Option<u32>,
-    /// Seed for `reference`.
+    /// Random seed (reference mode).
+    #[arg(long)]
     pub seed: Option<u64>,
-    /// Russian roulette start for `reference`.
+    /// Bounce from which Russian roulette may end paths (reference mode).
+    #[arg(long)]
     pub rr_start: Option<u32>,
-    /// Write this intermediate buffer instead of the final image.
+    /// Write an intermediate buffer instead of the final image (albedo, normal, material,
+    /// motion, object_id, depth, indirect, hdr, ldr, shadow_map).
+    #[arg(long)]
     pub buffer: Option<String>,
-    /// Supersampling factor per axis for raster modes (the image is rendered at `ssaa` times the
-    /// size and box-filtered down, like a path tracer's pixel filter).
+    /// Supersampling per axis for raster modes: renders at N times the size and box-filters
+    /// down, as a path tracer's pixel filter does (1 = one sample at each pixel centre).
+    #[arg(long, default_value_t = 3)]
     pub ssaa: u32,
 }
 

@@ -41,21 +41,26 @@ pub fn read_texture(
         wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
     );
     queue.submit([encoder.finish()]);
+    let data = map_blocking(device, &buffer)?;
+    let mut out = Vec::with_capacity((row * h) as usize);
+    for y in 0..h as usize {
+        let start = y * padded as usize;
+        out.extend_from_slice(&data[start..start + row as usize]);
+    }
+    Ok(out)
+}
+
+/// Maps a readback buffer, waits for the GPU and copies its bytes out.
+fn map_blocking(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, ReadbackError> {
     let (tx, rx) = std::sync::mpsc::channel();
     buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
     });
     device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| ReadbackError::Map(e.to_string()))?;
     rx.recv().map_err(|e| ReadbackError::Map(e.to_string()))?.map_err(|e| ReadbackError::Map(e.to_string()))?;
-    let data = buffer.slice(..).get_mapped_range().map_err(|e| ReadbackError::Map(e.to_string()))?;
-    let mut out = Vec::with_capacity((row * h) as usize);
-    for y in 0..h as usize {
-        let start = y * padded as usize;
-        out.extend_from_slice(&data[start..start + row as usize]);
-    }
-    drop(data);
+    let bytes = buffer.slice(..).get_mapped_range().map_err(|e| ReadbackError::Map(e.to_string()))?.to_vec();
     buffer.unmap();
-    Ok(out)
+    Ok(bytes)
 }
 
 /// Reads an `Rgba32Float` texture as RGBA texels.
@@ -141,15 +146,6 @@ pub fn read_texel_u32(
         wgpu::Extent3d { width: 1, height: 1, depth_or_array_layers: 1 },
     );
     queue.submit([encoder.finish()]);
-    let (tx, rx) = std::sync::mpsc::channel();
-    buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| ReadbackError::Map(e.to_string()))?;
-    rx.recv().map_err(|e| ReadbackError::Map(e.to_string()))?.map_err(|e| ReadbackError::Map(e.to_string()))?;
-    let data = buffer.slice(..).get_mapped_range().map_err(|e| ReadbackError::Map(e.to_string()))?;
-    let v = u32::from_le_bytes([data[0], data[1], data[2], data[3]]);
-    drop(data);
-    buffer.unmap();
-    Ok(v)
+    let data = map_blocking(device, &buffer)?;
+    Ok(u32::from_le_bytes([data[0], data[1], data[2], data[3]]))
 }
