@@ -77,6 +77,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     if size.0 == 0 || size.1 == 0 || size.0 > 16384 || size.1 > 16384 {
         anyhow::bail!("image size {}x{} is outside 1..=16384 pixels per side", size.0, size.1);
     }
+    if let Some(name) = &args.buffer
+        && !Renderer::buffer_names().contains(&name.as_str())
+    {
+        anyhow::bail!("unknown buffer {name:?}; available: {}", Renderer::buffer_names().join(", "));
+    }
     if project.render.mode == GiMode::Reference {
         if args.buffer.is_some() {
             anyhow::bail!("--buffer is for raster modes; the reference mode has no intermediate buffers");

@@ -1,0 +1,62 @@
+//! The command line as scripts use it: headless renders to EXR and PNG, buffers, `compare`, and
+//! clear errors (non-zero exit, the file named) for bad input.
+
+use std::process::Command;
+
+fn bouncelab(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_bouncelab")).args(args).output().expect("runs")
+}
+
+fn has_gpu() -> bool {
+    std::env::var_os("CI").is_some() || bouncelab::render::GpuContext::new_headless().is_ok()
+}
+
+#[test]
+fn renders_and_compares() {
+    if !has_gpu() {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("bouncelab-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let p = |n: &str| dir.join(n).to_string_lossy().into_owned();
+    let size = ["--width", "32", "--height", "18"];
+    for (mode, out) in [("direct", p("d.exr")), ("direct", p("d.png")), ("reference", p("r.exr"))] {
+        let mut args = vec!["render", "projects/default.ron", "--mode", mode, "--out", &out, "--spp", "8"];
+        args.extend(size);
+        let o = bouncelab(&args);
+        assert!(o.status.success(), "{mode} {out}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(std::path::Path::new(&out).exists());
+    }
+    let normal = p("n.exr");
+    let mut args = vec!["render", "assets/cornell_box.gltf", "--buffer", "normal", "--out", &normal];
+    args.extend(size);
+    assert!(bouncelab(&args).status.success());
+    let heat = p("heat.png");
+    let o = bouncelab(&["compare", &p("d.exr"), &p("r.exr"), "--heatmap", &heat]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert!(lines[0].starts_with("rmse: ") && lines[1].starts_with("relmse: ") && lines[2].starts_with("flip: "));
+    assert!(lines[3].starts_with("luminance_ratio: "));
+    let json: serde_json::Value = serde_json::from_str(lines[4]).expect("last line is JSON");
+    assert!(json["flip"].as_f64().is_some_and(|f| (0.0..=1.0).contains(&f)));
+    assert!(std::path::Path::new(&heat).exists());
+}
+
+#[test]
+fn bad_input_fails_with_the_file_named() {
+    let cases: [(&[&str], &str); 5] = [
+        (&["render", "nowhere.gltf", "--out", "/tmp/x.png"], "nowhere.gltf"),
+        (&["render", "assets/cornell_box.gltf", "--out", "/tmp/x.bmp"], "x.bmp"),
+        (&["render", "projects/default.ron", "--out", "/tmp/x.png", "--width", "0"], "0x360"),
+        (&["render", "projects/default.ron", "--out", "/tmp/x.png", "--buffer", "bogus"], "bogus"),
+        (&["compare", "/tmp/does-not-exist-a.exr", "/tmp/does-not-exist-b.exr"], "does-not-exist-a.exr"),
+    ];
+    for (args, needle) in cases {
+        let o = bouncelab(args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} should fail");
+        assert!(err.contains(needle), "{args:?}: stderr does not name {needle:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+    }
+}
