@@ -201,3 +201,25 @@ fn glossy_materials_agree_with_raster() {
     }
     assert_raster_matches_one_bounce(&ctx, &project, (48, 27), 8, "glossy");
 }
+
+#[test]
+fn large_scenes_with_a_tiny_near_plane_stay_exact() {
+    // The Cornell box scaled 100x (200 m) seen through a 1 mm near plane: reversed depth keeps
+    // reconstructed positions, and so lighting and shadows, exact.
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = default_project();
+    let k = 100.0;
+    let desc = project.scene.desc_mut();
+    for o in &mut desc.objects {
+        o.transform.translation *= k;
+        o.transform.scale *= k;
+    }
+    for l in &mut desc.lights {
+        l.position *= k;
+        l.intensity *= k * k;
+    }
+    desc.camera.position *= k;
+    desc.camera.znear = 0.001;
+    desc.camera.zfar = None;
+    assert_raster_matches_one_bounce(&ctx, &project, (64, 36), 4, "scaled 100x");
+}

@@ -29,7 +29,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pixel = id.xy;
     let depth = textureLoad(depth_tex, pixel, 0);
-    if depth >= 1.0 {
+    // Reversed depth: 0 is the far plane (nothing drawn).
+    if depth <= 0.0 {
         textureStore(out_radiance, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
         return;
     }

@@ -1,5 +1,5 @@
 //! The G-buffer pass: rasterises every visible object into the view targets (back faces culled:
-//! surfaces are one-sided, CCW front).
+//! surfaces are one-sided, CCW front; reversed depth, cleared to 0, nearest wins).
 
 use super::layouts::Layouts;
 use super::scene_gpu::{OBJECT_SLOT, SceneGpu, Vertex};
@@ -40,7 +40,7 @@ impl GbufferPass {
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: formats::DEPTH,
                 depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
                 stencil: Default::default(),
                 bias: Default::default(),
             }),
@@ -95,7 +95,7 @@ impl GbufferPass {
             ],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth.view,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(0.0), store: wgpu::StoreOp::Store }),
                 stencil_ops: None,
             }),
             timestamp_writes: timestamps,

@@ -8,7 +8,8 @@
 //! - `material` Rgba8Unorm: specular colour and roughness;
 //! - `motion` Rg16Float: screen-uv motion to the previous frame;
 //! - `object_id` R32Uint: object index + 1, 0 for background;
-//! - `depth` Depth32Float: hardware depth (0 near, 1 far), positions are reconstructed from it.
+//! - `depth` Depth32Float: reversed hardware depth (1 near, 0 far); positions are reconstructed
+//!   from it.
 
 /// Formats of the targets.
 pub mod formats {

@@ -46,11 +46,13 @@ impl Camera {
         self.world_from_view().inverse()
     }
 
-    /// Clip-from-camera matrix with wgpu depth (0..1) for the given aspect ratio.
+    /// Clip-from-camera matrix for the given aspect ratio, with reversed depth (near = 1,
+    /// far = 0): float depth then keeps metre-scale precision at any distance, so positions
+    /// reconstructed from depth stay exact even with a tiny near plane.
     pub fn clip_from_view(&self, aspect: f32) -> Mat4 {
         match self.zfar {
-            Some(far) => directx::perspective(self.yfov, aspect, self.znear, far),
-            None => directx::perspective_infinite(self.yfov, aspect, self.znear),
+            Some(far) => directx::perspective(self.yfov, aspect, far, self.znear),
+            None => directx::perspective_infinite_reverse(self.yfov, aspect, self.znear),
         }
     }
 
@@ -110,6 +112,19 @@ mod tests {
         let d = cam.ray_direction(32.0, 16.0, 64, 32);
         assert!((d - cam.forward()).length() < 1e-5);
         assert!((cam.forward() - (-Vec3::new(1.0, 2.0, 3.0)).normalize()).length() < 1e-5);
+    }
+
+    #[test]
+    fn depth_is_reversed() {
+        for zfar in [Some(100.0), None] {
+            let cam = Camera { zfar, ..Camera::default() };
+            let m = cam.clip_from_view(1.5);
+            let depth = |z: f32| {
+                let c = m * glam::Vec4::new(0.0, 0.0, -z, 1.0);
+                c.z / c.w
+            };
+            assert!((depth(cam.znear) - 1.0).abs() < 1e-5 && depth(50.0) < depth(1.0) && depth(50.0) > 0.0);
+        }
     }
 
     #[test]
