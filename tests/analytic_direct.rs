@@ -115,7 +115,7 @@ fn box_shadow_is_black_with_clean_edges() {
     let center = Vec3::new(0.0, 0.25, -0.3);
     let cube = common::object(
         "box",
-        MeshSource::Cuboid { size },
+        MeshSource::Cuboid { size, openings: [false; 6] },
         1,
         Transform { translation: center, ..Transform::default() },
     );

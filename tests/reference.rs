@@ -63,7 +63,12 @@ fn closed_box_matches_the_geometric_series() {
         m
     };
     let mut scene = common::scene(
-        vec![common::object("room", MeshSource::Cuboid { size: Vec3::splat(side) }, 0, Transform::default())],
+        vec![common::object(
+            "room",
+            MeshSource::Cuboid { size: Vec3::splat(side), openings: [false; 6] },
+            0,
+            Transform::default(),
+        )],
         vec![Material::diffuse("grey", [rho; 3])],
         vec![Light::point("bulb", Vec3::new(0.3, 0.2, -0.1), intensity)],
         Camera::default(),

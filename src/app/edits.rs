@@ -95,7 +95,7 @@ pub fn add_box(project: &mut Project, history: &mut History, role: ObjectRole) -
         let material = material_for(d, "clutter", [0.7, 0.7, 0.7]);
         d.objects.push(Object {
             name,
-            source: MeshSource::Cuboid { size },
+            source: MeshSource::Cuboid { size, openings: [false; 6] },
             mesh: 0,
             material,
             transform: Transform { translation: centre, ..Transform::default() },

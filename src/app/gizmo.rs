@@ -15,6 +15,8 @@ pub enum GizmoMode {
     Translate,
     /// Rotate about an axis.
     Rotate,
+    /// Scale along an axis (objects only).
+    Scale,
 }
 
 /// A camera looking at a viewport of `size` (any units, e.g. egui points).
@@ -97,7 +99,9 @@ pub struct Drag {
     pub axis: Vec3,
     pub origin: Vec3,
     pub start_rotation: Quat,
-    /// Translate: the line parameter at the start; rotate: the start angle.
+    /// The object's scale when the drag started (set by the caller for scale drags).
+    pub start_scale: Vec3,
+    /// Translate and scale: the line parameter at the start; rotate: the start angle.
     pub start: f32,
 }
 
@@ -112,10 +116,10 @@ impl Drag {
     pub fn begin(view: &View, mode: GizmoMode, axis: Vec3, origin: Vec3, rotation: Quat, s: Vec2) -> Option<Self> {
         let (o, d) = view.ray(s);
         let start = match mode {
-            GizmoMode::Translate => closest_on_line(o, d, origin, axis)?,
+            GizmoMode::Translate | GizmoMode::Scale => closest_on_line(o, d, origin, axis)?,
             GizmoMode::Rotate => angle_about(axis, origin, ray_plane(o, d, origin, axis)?),
         };
-        Some(Self { mode, axis, origin, start_rotation: rotation, start })
+        Some(Self { mode, axis, origin, start_rotation: rotation, start_scale: Vec3::ONE, start })
     }
 
     /// The translation offset (translate) for the current screen position, snapped.
@@ -123,6 +127,14 @@ impl Drag {
         let (o, d) = view.ray(s);
         let t = closest_on_line(o, d, self.origin, self.axis)?;
         Some(self.axis * snap(t - self.start, step))
+    }
+
+    /// The scale factor along the axis (scale): dragging the handle end `handle` metres away
+    /// from the origin doubles the size; snapped to `step` (e.g. 0.1 = 10% steps).
+    pub fn scale_factor(&self, view: &View, s: Vec2, handle: f32, step: f32) -> Option<f32> {
+        let (o, d) = view.ray(s);
+        let t = closest_on_line(o, d, self.origin, self.axis)?;
+        Some(snap(1.0 + (t - self.start) / handle.max(1e-6), step).max(0.01))
     }
 
     /// The new rotation (rotate) for the current screen position, snapped to `step_deg`.
@@ -183,6 +195,21 @@ mod tests {
         assert!((q * Vec3::X - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-3, "{}", q * Vec3::X);
         let snapped = drag.rotation(&v, b, 15.0).expect("rotates");
         assert!((snapped * Vec3::X - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-3);
+    }
+
+    #[test]
+    fn scale_doubles_at_one_handle_length() {
+        let v = view();
+        let origin = Vec3::new(0.0, 1.0, 0.0);
+        let start = v.project(origin + Vec3::X * 0.5).expect("visible");
+        let drag = Drag::begin(&v, GizmoMode::Scale, Vec3::X, origin, Quat::IDENTITY, start).expect("drag");
+        let end = v.project(origin + Vec3::X * 1.0).expect("visible");
+        let f = drag.scale_factor(&v, end, 0.5, 0.0).expect("scales");
+        assert!((f - 2.0).abs() < 1e-3, "{f}");
+        assert!(
+            drag.scale_factor(&v, v.project(origin - Vec3::X * 2.0).expect("visible"), 0.5, 0.0).expect("scales")
+                >= 0.01
+        );
     }
 
     #[test]

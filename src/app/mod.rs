@@ -257,6 +257,9 @@ impl EditorApp {
             if pressed(K::new(M::NONE, Key::R)) {
                 self.viewport.gizmo.mode = gizmo::GizmoMode::Rotate;
             }
+            if pressed(K::new(M::NONE, Key::S)) {
+                self.viewport.gizmo.mode = gizmo::GizmoMode::Scale;
+            }
         }
     }
 
@@ -434,6 +437,13 @@ impl egui_tiles::Behavior<Pane> for Behavior<'_> {
 impl eframe::App for EditorApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         self.shortcuts(ui);
+        // Drag and drop a project or glTF onto the window to open it.
+        let dropped: Vec<PathBuf> = ui.input(|i| {
+            i.raw.dropped_files.iter().map(|f| f.path().to_owned()).filter(|p| !p.as_os_str().is_empty()).collect()
+        });
+        if let Some(path) = dropped.first() {
+            self.open(path);
+        }
         if ui.input(|i| i.viewport().close_requested()) && self.state.history.is_dirty() && !self.allow_close {
             ui.ctx().send_viewport_cmd(egui::ViewportCommand::CancelClose);
             self.modal = Modal::ConfirmClose;

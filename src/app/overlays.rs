@@ -6,12 +6,13 @@ use glam::{Vec2, Vec3};
 
 use super::edits::Selection;
 use super::gizmo::View;
-use crate::scene::{LightKind, ObjectRole, Scene};
+use crate::scene::{LightKind, MeshSource, ObjectRole, Scene};
 
 const LIGHT: egui::Color32 = egui::Color32::from_rgb(255, 220, 90);
 const PROXY: egui::Color32 = egui::Color32::from_rgb(90, 200, 255);
 const CLUTTER: egui::Color32 = egui::Color32::from_rgb(255, 140, 40);
 const SELECTED: egui::Color32 = egui::Color32::from_rgb(255, 255, 255);
+const OPENING: egui::Color32 = egui::Color32::from_rgb(120, 255, 160);
 
 fn to_pos(rect: egui::Rect, s: Vec2) -> egui::Pos2 {
     rect.min + egui::vec2(s.x, s.y)
@@ -56,6 +57,20 @@ fn wire_box(painter: &egui::Painter, rect: egui::Rect, view: &View, c: &[Vec3; 8
     }
 }
 
+/// Corner indices of each face (+X, -X, +Y, -Y, +Z, -Z) of `box_corners`.
+const FACES: [[usize; 4]; 6] = [[1, 3, 7, 5], [0, 2, 6, 4], [2, 3, 7, 6], [0, 1, 5, 4], [4, 5, 7, 6], [0, 1, 3, 2]];
+
+/// Marks open faces of a proxy block with a cross (its interfaces to neighbouring blocks).
+fn open_faces(painter: &egui::Painter, rect: egui::Rect, view: &View, c: &[Vec3; 8], openings: &[bool; 6]) {
+    let stroke = egui::Stroke::new(2.0, OPENING);
+    for (face, open) in FACES.iter().zip(openings) {
+        if *open {
+            line(painter, rect, view, c[face[0]], c[face[2]], stroke);
+            line(painter, rect, view, c[face[1]], c[face[3]], stroke);
+        }
+    }
+}
+
 /// Draws all overlays.
 pub fn draw(painter: &egui::Painter, rect: egui::Rect, view: &View, scene: &Scene, selection: Selection) {
     for (i, object) in scene.objects().iter().enumerate() {
@@ -63,7 +78,10 @@ pub fn draw(painter: &egui::Painter, rect: egui::Rect, view: &View, scene: &Scen
         let selected = selection == Selection::Object(i);
         match object.role {
             ObjectRole::ProxyBlock => {
-                wire_box(painter, rect, view, &c, egui::Stroke::new(if selected { 2.5 } else { 1.5 }, PROXY))
+                wire_box(painter, rect, view, &c, egui::Stroke::new(if selected { 2.5 } else { 1.5 }, PROXY));
+                if let MeshSource::Cuboid { openings, .. } = &object.source {
+                    open_faces(painter, rect, view, &c, openings);
+                }
             }
             ObjectRole::Clutter => {
                 wire_box(painter, rect, view, &c, egui::Stroke::new(if selected { 2.5 } else { 1.0 }, CLUTTER))

@@ -97,10 +97,52 @@ fn object_ui(ui: &mut egui::Ui, object: &mut Object, materials: &[String]) {
     let mut s = t.scale;
     vec3_ui(ui, "Scale", &mut s, 0.01);
     t.scale = s.max(Vec3::splat(1e-3));
-    if let crate::scene::MeshSource::Cuboid { size } = &mut object.source {
+    let proxy = object.role == ObjectRole::ProxyBlock;
+    if let crate::scene::MeshSource::Cuboid { size, openings } = &mut object.source {
         let mut sz = *size;
         vec3_ui(ui, "Box size", &mut sz, 0.01);
         *size = sz.max(Vec3::splat(1e-3));
+        if proxy {
+            ui.horizontal_wrapped(|ui| {
+                ui.label("Open faces")
+                    .on_hover_text("Interfaces through which light passes to neighbouring blocks (MRT).");
+                for (open, name) in openings.iter_mut().zip(["+X", "-X", "+Y", "-Y", "+Z", "-Z"]) {
+                    ui.checkbox(open, name);
+                }
+            });
+        }
+    }
+}
+
+/// Edits the object's material (shared by every object that uses it).
+fn material_ui(ui: &mut egui::Ui, state: &mut EditorState, index: usize) {
+    let Some(original) = state.project.scene.materials().get(index).cloned() else { return };
+    let users = state.project.scene.objects().iter().filter(|o| o.material == index).count();
+    let mut m = original.clone();
+    egui::CollapsingHeader::new(format!("Material \"{}\" ({users} objects)", m.name)).default_open(false).show(
+        ui,
+        |ui| {
+            ui.horizontal(|ui| {
+                ui.label("Albedo");
+                let mut rgb = [m.base_color[0], m.base_color[1], m.base_color[2]];
+                ui.color_edit_button_rgb(&mut rgb)
+                    .on_hover_text("Linear Lambertian albedo (x the base colour texture, if any).");
+                m.base_color[..3].copy_from_slice(&rgb);
+            });
+            ui.horizontal(|ui| {
+                ui.label("Specular");
+                ui.color_edit_button_rgb(&mut m.specular)
+                    .on_hover_text("Colour of the Blinn-Phong lobe; black = purely diffuse.");
+            });
+            ui.add(egui::Slider::new(&mut m.roughness, 0.02..=1.0).text("roughness"));
+            if m.base_color_texture.is_some() || m.normal_texture.is_some() {
+                ui.label("Textured (base colour and/or normal map from the glTF).");
+            }
+        },
+    );
+    if m != original && m.validate().is_ok() {
+        state.history.begin("Edit material", &state.project);
+        state.project.scene.desc_mut().materials[index] = m;
     }
 }
 
@@ -124,6 +166,7 @@ pub fn properties_ui(state: &mut EditorState, ui: &mut egui::Ui) {
             let materials: Vec<String> = state.project.scene.materials().iter().map(|m| m.name.clone()).collect();
             let mut object = original.clone();
             object_ui(ui, &mut object, &materials);
+            material_ui(ui, state, original.material);
             if object != original && object.validate().is_ok() {
                 state.history.begin("Edit object", &state.project);
                 if object.source == original.source {

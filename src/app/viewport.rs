@@ -142,6 +142,20 @@ impl Viewport {
                     _ => {}
                 }
             }
+            GizmoMode::Scale => {
+                let handle = view.world_size(drag.origin, 70.0);
+                let Some(f) = drag.scale_factor(view, s, handle, if opts.snap { 0.1 } else { 0.0 }) else { return };
+                if let Selection::Object(i) = state.selection {
+                    let Some(o) = state.project.scene.objects().get(i) else { return };
+                    // Scale along the object's local axis closest to the dragged one.
+                    let local = o.transform.rotation.inverse() * drag.axis;
+                    let k = local.abs().max_position();
+                    let mut scale = drag.start_scale;
+                    scale[k] = (scale[k] * f).max(1e-3);
+                    state.history.begin("Scale", &state.project);
+                    state.project.scene.desc_mut().objects[i].transform.scale = scale;
+                }
+            }
             GizmoMode::Rotate => {
                 let Some(rot) = drag.rotation(view, s, if opts.snap { opts.angle_step } else { 0.0 }) else { return };
                 state.history.begin("Rotate", &state.project);
@@ -189,6 +203,7 @@ impl Viewport {
         ui.horizontal(|ui| {
             ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Translate, "Move (G)");
             ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Rotate, "Rotate (R)");
+            ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Scale, "Scale (S)");
             ui.checkbox(&mut self.gizmo.local, "local axes");
             ui.checkbox(&mut self.gizmo.snap, "snap");
             ui.checkbox(&mut self.gizmo.show_points, "sample points")
@@ -219,7 +234,14 @@ impl Viewport {
             if let (Some(p), Some((origin, rotation))) = (press, target)
                 && let Some((_, axis)) = axis_at(p)
             {
-                self.drag = Drag::begin(&view, self.gizmo.mode, axis, origin, rotation, p);
+                self.drag = Drag::begin(&view, self.gizmo.mode, axis, origin, rotation, p).map(|mut d| {
+                    if let Selection::Object(i) = state.selection
+                        && let Some(o) = state.project.scene.objects().get(i)
+                    {
+                        d.start_scale = o.transform.scale;
+                    }
+                    d
+                });
             }
         }
         if let (Some(drag), Some(m)) = (self.drag, mouse)
@@ -342,10 +364,20 @@ impl Viewport {
                     let stroke = egui::Stroke::new(if hot { 4.0 } else { 2.5 }, AXIS_COLOURS[k]);
                     let (pa, pb) = (rect.min + egui::vec2(a.x, a.y), rect.min + egui::vec2(b.x, b.y));
                     painter.line_segment([pa, pb], stroke);
-                    if self.gizmo.mode == GizmoMode::Translate {
-                        painter.circle_filled(pb, 4.0, AXIS_COLOURS[k]);
-                    } else {
-                        painter.circle_stroke(pb, 6.0, stroke);
+                    match self.gizmo.mode {
+                        GizmoMode::Translate => {
+                            painter.circle_filled(pb, 4.0, AXIS_COLOURS[k]);
+                        }
+                        GizmoMode::Rotate => {
+                            painter.circle_stroke(pb, 6.0, stroke);
+                        }
+                        GizmoMode::Scale => {
+                            painter.rect_filled(
+                                egui::Rect::from_center_size(pb, egui::vec2(8.0, 8.0)),
+                                0.0,
+                                AXIS_COLOURS[k],
+                            );
+                        }
                     }
                 }
             }

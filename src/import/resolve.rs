@@ -41,7 +41,7 @@ pub fn resolve(mut desc: SceneDesc, assets: &[Asset]) -> Result<Scene, ResolveEr
                 }
                 m
             }
-            MeshSource::Cuboid { size } => Mesh::cuboid(&object.name, *size),
+            MeshSource::Cuboid { size, .. } => Mesh::cuboid(&object.name, *size),
             MeshSource::Plane { size } => Mesh::plane(&object.name, *size),
         };
         object.mesh = resources.meshes.len();

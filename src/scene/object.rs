@@ -74,6 +74,10 @@ pub enum MeshSource {
     Cuboid {
         /// Full size along X, Y, Z.
         size: Vec3,
+        /// Faces that are open (+X, -X, +Y, -Y, +Z, -Z): for proxy blocks, the interfaces
+        /// through which light passes to a neighbouring block.
+        #[serde(default)]
+        openings: [bool; 6],
     },
     /// A generated square facing +Y.
     Plane {
@@ -124,7 +128,7 @@ impl Object {
             return Err(SceneError::BadValue { what, why: "sampling weight must be >= 0".into() });
         }
         match &self.source {
-            MeshSource::Cuboid { size } if size.min_element() <= 0.0 || !size.is_finite() => {
+            MeshSource::Cuboid { size, .. } if size.min_element() <= 0.0 || !size.is_finite() => {
                 Err(SceneError::BadValue { what, why: format!("box size {size} must be positive") })
             }
             MeshSource::Plane { size } if *size <= 0.0 || !size.is_finite() => {
