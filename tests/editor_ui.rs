@@ -90,3 +90,46 @@ fn save_and_reopen_to_the_same_state() {
     assert_eq!(reopened.to_ron(&path).expect("ron"), saved);
     assert_eq!(reopened.scene.lights().len(), 2);
 }
+
+#[test]
+fn move_a_spot_light_with_the_gizmo() {
+    use bouncelab::app::gizmo::View;
+    use glam::{Vec2, Vec3};
+    if std::env::var_os("CI").is_none() && bouncelab::render::GpuContext::new_headless().is_err() {
+        return;
+    }
+    let mut h = harness();
+    h.get_by_label("Add").click();
+    h.run_steps(2);
+    h.get_by_label("Spot light").click();
+    h.run_steps(3);
+    let rect = h.state().viewport_rect().expect("viewport drawn");
+    let state = h.state().state();
+    let before = state.project.scene.lights()[1].position;
+    let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
+    let to_screen = |p: Vec3| {
+        let s = view.project(p).expect("visible");
+        rect.min + egui::vec2(s.x, s.y)
+    };
+    // Grab the X handle near its tip and drag it 0.4 m along +X.
+    let len = view.world_size(before, 70.0);
+    let grab = to_screen(before + Vec3::X * len * 0.8);
+    let target = to_screen(before + Vec3::X * (len * 0.8 + 0.4));
+    h.hover_at(grab);
+    h.run_steps(1);
+    h.drag_at(grab);
+    h.run_steps(1);
+    for k in 1..=4 {
+        h.hover_at(grab + (target - grab) * (k as f32 / 4.0));
+        h.run_steps(1);
+    }
+    h.drop_at(target);
+    h.run_steps(2);
+    let after = h.state().state().project.scene.lights()[1].position;
+    assert!((after.x - before.x - 0.4).abs() < 0.02, "moved by {} (want 0.4)", after.x - before.x);
+    assert!((after.y - before.y).abs() < 1e-4 && (after.z - before.z).abs() < 1e-4, "only along X");
+    assert_eq!(h.state().state().history.undo_label(), Some("Move"), "the drag is one undo step");
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().state().project.scene.lights()[1].position, before);
+}

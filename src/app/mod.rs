@@ -105,6 +105,11 @@ impl EditorApp {
         Self { state, viewport, inspector: inspector::Inspector::default(), tree, modal, allow_close: false, recovery }
     }
 
+    /// Where the viewport image was drawn last frame (tests aim the gizmo with it).
+    pub fn viewport_rect(&self) -> Option<egui::Rect> {
+        self.viewport.rect
+    }
+
     /// The editor state (tests read it).
     pub fn state(&self) -> &EditorState {
         &self.state

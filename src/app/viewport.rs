@@ -57,6 +57,8 @@ pub struct Viewport {
     /// Per-pass timing history.
     pub timings: Timings,
     points: Option<PointsCache>,
+    /// Screen rectangle of the last drawn image (egui points).
+    pub rect: Option<egui::Rect>,
 }
 
 /// The sample-point overlay's distribution and what it was computed from.
@@ -89,6 +91,7 @@ impl Viewport {
             frames: 0,
             timings: Timings::default(),
             points: None,
+            rect: None,
         };
         v.reset_orbit(state);
         v
@@ -211,6 +214,7 @@ impl Viewport {
             ui.label(format!("mode: {}", state.project.render.mode.name()));
         });
         let (rect, response) = ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
+        self.rect = Some(rect);
         let ppp = ui.ctx().pixels_per_point();
         let size = ((rect.width() * ppp).round().max(1.0) as u32, (rect.height() * ppp).round().max(1.0) as u32);
         let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
