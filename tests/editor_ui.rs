@@ -133,3 +133,16 @@ fn move_a_spot_light_with_the_gizmo() {
     h.run_steps(2);
     assert_eq!(h.state().state().project.scene.lights()[1].position, before);
 }
+
+#[test]
+fn snapshot_of_the_default_layout() {
+    if std::env::var_os("CI").is_none() && bouncelab::render::GpuContext::new_headless().is_err() {
+        return;
+    }
+    let mut h = harness();
+    h.run_steps(2);
+    // Timings and frame times change from run to run: mask the bottom dock and status bar.
+    let timings = h.get_by_label("Timings").rect();
+    h.mask(egui::Rect::from_min_max(egui::pos2(0.0, timings.min.y), egui::pos2(1280.0, 800.0)));
+    h.snapshot("editor_default_layout");
+}
