@@ -55,6 +55,12 @@ fn switch_mode_and_inspect_buffers() {
     h.get_by_label("reference").click();
     h.run_steps(2);
     assert_eq!(h.state().state().project.render.mode, GiMode::Reference);
+    h.run_steps(3);
+    assert!(
+        !h.state().state().status.contains("failed"),
+        "the viewport shows the path tracer: {}",
+        h.state().state().status
+    );
     h.get_by_label("direct").click();
     h.run_steps(2);
     assert_eq!(h.state().state().project.render.mode, GiMode::Direct);

@@ -8,6 +8,7 @@ use super::Orbit;
 use super::edits::Selection;
 use super::gizmo::{self, Drag, GizmoMode, View};
 use super::overlays;
+use super::reference_job::ReferenceJob;
 use super::state::EditorState;
 use super::timings::Timings;
 use crate::render::{RenderError, Renderer};
@@ -59,6 +60,9 @@ pub struct Viewport {
     points: Option<PointsCache>,
     /// Screen rectangle of the last drawn image (egui points).
     pub rect: Option<egui::Rect>,
+    reference: Option<ReferenceJob>,
+    reference_spp: u32,
+    reference_tex: Option<egui::TextureHandle>,
 }
 
 /// The sample-point overlay's distribution and what it was computed from.
@@ -92,6 +96,9 @@ impl Viewport {
             timings: Timings::default(),
             points: None,
             rect: None,
+            reference: None,
+            reference_spp: 0,
+            reference_tex: None,
         };
         v.reset_orbit(state);
         v
@@ -324,7 +331,14 @@ impl Viewport {
             state.project.scene.set_camera(cam);
         }
         let (Some(renderer), Some(rs)) = (self.renderer.as_mut(), frame.wgpu_render_state()) else { return Ok(()) };
-        renderer.render(&state.project.scene, &state.project.render, size)?;
+        // In reference mode the rasteriser still draws direct light (G-buffer for picking and the
+        // inspector); the image shown is the progressive path tracer's, at half resolution.
+        let reference_mode = state.project.render.mode == crate::settings::GiMode::Reference;
+        let mut raster_settings = state.project.render.clone();
+        if reference_mode {
+            raster_settings.mode = crate::settings::GiMode::Direct;
+        }
+        renderer.render(&state.project.scene, &raster_settings, size)?;
         self.frames += 1;
         let now = std::time::Instant::now();
         let frame_ms = self.last.map_or(0.0, |l| (now - l).as_secs_f64() * 1e3);
@@ -351,9 +365,38 @@ impl Viewport {
             }
         }
         let painter = ui.painter_at(rect);
-        if let Some((id, _)) = self.texture {
-            let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-            painter.image(id, rect, uv, egui::Color32::WHITE);
+        let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+        if reference_mode {
+            let half = ((size.0 / 2).max(1), (size.1 / 2).max(1));
+            let job = self.reference.get_or_insert_with(|| ReferenceJob::start(&state.project, half));
+            if !job.matches(&state.project, half) {
+                *job = ReferenceJob::start(&state.project, half);
+            }
+            if let Some((img, progress)) = job.latest() {
+                if self.reference_spp != progress.spp {
+                    self.reference_spp = progress.spp;
+                    let rgba = crate::image_io::tonemap_srgb8(&img, &state.project.render.view);
+                    let ci = egui::ColorImage::from_rgba_unmultiplied([img.width as usize, img.height as usize], &rgba);
+                    self.reference_tex =
+                        Some(ui.ctx().load_texture("viewport reference", ci, egui::TextureOptions::LINEAR));
+                }
+                if let Some(t) = &self.reference_tex {
+                    painter.image(t.id(), rect, uv, egui::Color32::WHITE);
+                }
+                painter.text(
+                    rect.left_top() + egui::vec2(8.0, 8.0),
+                    egui::Align2::LEFT_TOP,
+                    format!("reference: {} spp, {:.1} Mrays/s", progress.spp, progress.rays_per_second * 1e-6),
+                    egui::FontId::proportional(13.0),
+                    egui::Color32::WHITE,
+                );
+            }
+        } else {
+            self.reference = None;
+            self.reference_spp = 0;
+            if let Some((id, _)) = self.texture {
+                painter.image(id, rect, uv, egui::Color32::WHITE);
+            }
         }
         let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
         overlays::draw(&painter, rect, &view, &state.project.scene, state.selection);
