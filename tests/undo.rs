@@ -154,3 +154,26 @@ fn a_drag_is_one_step_and_dirty_tracks_saves() {
     assert_eq!(sel, Selection::Light(1));
     assert!(history.is_dirty());
 }
+
+#[test]
+fn clutter_from_a_gltf_joins_the_project_and_saves() {
+    let path = default_project_path();
+    let mut project = Project::load(&path).expect("default project");
+    let mut history = History::default();
+    let objects = project.scene.objects().len();
+    let sel = edits::add_clutter_asset(&mut project, &mut history, std::path::Path::new("assets/cornell_box.gltf"))
+        .expect("adds");
+    assert_eq!(sel, Selection::Object(objects));
+    assert_eq!(project.scene.objects().len(), 2 * objects);
+    assert!(project.scene.objects()[objects..].iter().all(|o| o.role == ObjectRole::Clutter));
+    let dir = std::env::temp_dir().join(format!("bouncelab-clutter-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let saved = dir.join("with_clutter.ron");
+    project.save(&saved).expect("saves");
+    let reopened = Project::load(&saved).expect("reopens");
+    assert_eq!(reopened.scene.desc(), project.scene.desc());
+    assert_eq!(reopened.assets.len(), 2);
+    history.undo(&mut project);
+    assert_eq!(project.scene.objects().len(), objects);
+    assert!(edits::add_clutter_asset(&mut project, &mut history, std::path::Path::new("nowhere.gltf")).is_err());
+}

@@ -29,6 +29,9 @@ pub enum EditError {
     /// The resulting scene is invalid.
     #[error(transparent)]
     Resolve(#[from] crate::import::ResolveError),
+    /// A glTF to add could not be imported.
+    #[error("{0}")]
+    Import(String),
 }
 
 fn structural(
@@ -154,4 +157,49 @@ pub fn duplicate(project: &mut Project, history: &mut History, selection: Select
             Ok(Selection::Object(index))
         }
     }
+}
+
+/// Imports every mesh of a glTF file as clutter at the scene's centre (its materials and images
+/// are appended; the asset joins the project's asset list).
+pub fn add_clutter_asset(
+    project: &mut Project,
+    history: &mut History,
+    path: &std::path::Path,
+) -> Result<Selection, EditError> {
+    let asset = crate::import::import_gltf(path).map_err(|e| EditError::Import(e.to_string()))?;
+    let asset_index = project.imported.len();
+    let image_offset: usize = project.imported.iter().map(|a| a.images.len()).sum();
+    let centre = project.scene.bounds().map_or(Vec3::ZERO, |b| b.center());
+    let first = project.scene.objects().len();
+    project.assets.push(path.to_owned());
+    project.imported.push(asset.clone());
+    let stem = path.file_stem().map_or("clutter".into(), |s| s.to_string_lossy().into_owned());
+    let result = structural(project, history, "Add clutter from glTF", |d| {
+        let material_offset = d.materials.len();
+        for m in &asset.scene.materials {
+            let mut m = m.clone();
+            for t in [&mut m.base_color_texture, &mut m.normal_texture].into_iter().flatten() {
+                t.image += image_offset;
+            }
+            d.materials.push(m);
+        }
+        for o in &asset.scene.objects {
+            let mut o = o.clone();
+            if let MeshSource::Asset { asset, .. } = &mut o.source {
+                *asset = asset_index;
+            }
+            o.name = format!("{stem}/{}", o.name);
+            o.material += material_offset;
+            o.role = ObjectRole::Clutter;
+            o.transform.translation += centre;
+            d.objects.push(o);
+        }
+        Ok(())
+    });
+    if result.is_err() {
+        project.assets.pop();
+        project.imported.pop();
+    }
+    result?;
+    Ok(if project.scene.objects().len() > first { Selection::Object(first) } else { Selection::None })
 }

@@ -189,6 +189,9 @@ impl Inspector {
             ui.checkbox(&mut self.live, "live")
                 .on_hover_text("Read the buffer back every 10 frames (costs a GPU stall).");
             let refresh = ui.button("Refresh").clicked();
+            if ui.button("Export...").on_hover_text("EXR: the raw values; PNG: what you see").clicked() {
+                self.export();
+            }
             if refresh || self.image.is_none() || (self.live && frame.is_multiple_of(10)) {
                 match renderer.read_buffer(&self.buffer) {
                     Ok(img) => self.image = Some(img),
@@ -224,6 +227,31 @@ impl Inspector {
                     }
                 }
             });
+        }
+    }
+
+    fn export(&self) {
+        let Some(img) = &self.image else { return };
+        let Some(path) = rfd::FileDialog::new()
+            .add_filter("Image", &["exr", "png"])
+            .set_file_name(format!("{}.exr", self.buffer))
+            .save_file()
+        else {
+            return;
+        };
+        let result = match crate::image_io::output_kind(&path) {
+            Ok(crate::image_io::OutputKind::Exr) => crate::image_io::write_exr(&path, img),
+            Ok(crate::image_io::OutputKind::Png) => {
+                let ci =
+                    visualize(img, &self.buffer, self.channel, self.exposure_ev, self.auto_range, self.false_colour);
+                let rgba = ci.pixels.iter().flat_map(|c| c.to_array()).collect();
+                crate::image_io::write_png(&path, img.width, img.height, rgba)
+            }
+            Err(e) => Err(e),
+        };
+        match result {
+            Ok(()) => log::info!("exported {} to {}", self.buffer, path.display()),
+            Err(e) => log::error!("export failed: {e}"),
         }
     }
 

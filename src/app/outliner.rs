@@ -34,6 +34,11 @@ pub fn outliner_ui(state: &mut EditorState, ui: &mut egui::Ui) {
             if ui.button("Clutter box").clicked() {
                 result = Some(edits::add_box(&mut state.project, &mut state.history, ObjectRole::Clutter));
             }
+            if ui.button("Clutter from glTF...").clicked()
+                && let Some(path) = rfd::FileDialog::new().add_filter("glTF", &["gltf", "glb"]).pick_file()
+            {
+                result = Some(edits::add_clutter_asset(&mut state.project, &mut state.history, &path));
+            }
         });
         let has_selection = state.selection != Selection::None;
         if ui.add_enabled(has_selection, egui::Button::new("Duplicate")).on_hover_text("Ctrl+D").clicked() {
