@@ -54,6 +54,30 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut s.normal_bias_texels, 0.0..=4.0).text("normal bias (texels)"))
             .on_hover_text("Receiver offset along the normal on top of the receiver-plane bias. Free; too large leaks light at contacts.");
     });
+    egui::CollapsingHeader::new("ISM (Knecht 2009)").default_open(false).show(ui, |ui| {
+        let m = &mut render.ism;
+        ui.add(egui::Slider::new(&mut m.vpl_count, 4..=1024).logarithmic(true).text("VPLs"))
+            .on_hover_text("Cost: shading and ISM splatting grow linearly; quality: fewer blotches, less flicker (256 for flicker-free).");
+        egui::ComboBox::from_label("ISM resolution").selected_text(m.ism_resolution.to_string()).show_ui(ui, |ui| {
+            for r in [64, 128, 256] {
+                ui.selectable_value(&mut m.ism_resolution, r, r.to_string());
+            }
+        });
+        ui.add(egui::Slider::new(&mut m.total_points, 1024..=1 << 20).logarithmic(true).text("sample points"))
+            .on_hover_text("Split over the ISMs (points per ISM = points / VPLs). Too few: holes and light leaks.");
+        ui.add(egui::Slider::new(&mut m.interleave, 1..=8).text("interleave n"))
+            .on_hover_text("Each pixel sees VPLs / n² VPLs; the n x n filter hides the pattern.");
+        ui.add(egui::Slider::new(&mut m.bounces, 1..=6).text("bounces")).on_hover_text("Each extra bounce: one VPL, ISM and shading pass.");
+        ui.add(egui::Slider::new(&mut m.base_confidence, 0.0..=0.99).text("base confidence"))
+            .on_hover_text("Higher: smoother over time, more afterglow after lighting changes.");
+        ui.add(egui::Slider::new(&mut m.w_position, 0.0..=100.0).text("w position"));
+        ui.add(egui::Slider::new(&mut m.w_normal, 0.0..=100.0).text("w normal"));
+        ui.add(egui::Slider::new(&mut m.w_illumination, 0.0..=100.0).text("w illumination"))
+            .on_hover_text("Higher: reacts faster to lighting changes, but lets VPL resampling noise through.");
+        ui.add(egui::Slider::new(&mut m.clamp_distance, 0.0..=2.0).text("clamp distance (m)"))
+            .on_hover_text("Minimum VPL distance: fewer spikes near VPLs, darker corners (bias).");
+        ui.checkbox(&mut m.sh_filter, "SH filter (Segovia & Wald)").on_hover_text("Keeps glossy and normal-mapped detail; 27 coefficients per pixel.");
+    });
     egui::CollapsingHeader::new("Reference path tracer").default_open(false).show(ui, |ui| {
         let r = &mut render.reference;
         ui.add(egui::Slider::new(&mut r.spp, 1..=16384).logarithmic(true).text("samples per pixel"))

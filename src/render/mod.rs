@@ -7,6 +7,7 @@
 mod context;
 mod frame;
 mod gbuffer;
+pub mod gi;
 mod layouts;
 mod lighting;
 pub mod readback;

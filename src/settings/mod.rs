@@ -119,6 +119,69 @@ impl Default for ReferenceSettings {
     }
 }
 
+/// Settings of the ISM techniques (`ism`, `ism-ritschel`; Knecht 2009). Defaults are the
+/// thesis's where it gives them (256 VPLs, 128^2 ISMs, 32k points, c_base 0.9, alpha 0.01,
+/// beta 0.8, d^2 >= 1) and the digest's recommendations elsewhere.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct IsmSettings {
+    /// VPLs per set (4..=1024). Cost: shading and ISM splatting grow linearly; quality: fewer
+    /// blotches and less flicker (the thesis needs 256 for flicker-free results).
+    pub vpl_count: u32,
+    /// Side of each VPL's paraboloid ISM (64..=256). Cost: atlas memory and pull-push grow with
+    /// its square; quality: sharper indirect shadows (needs enough points per ISM).
+    pub ism_resolution: u32,
+    /// Scene sample points splatted into the ISMs in all (each ISM gets total / VPLs). Cost:
+    /// linear splatting; quality: fewer holes and light leaks.
+    pub total_points: u32,
+    /// Interleave size n (the G-buffer splits into n x n tiles; 1..=8). Cost: none; quality:
+    /// each pixel sees N/n^2 VPLs, the n x n filter hides the pattern but blurs detail.
+    pub interleave: u32,
+    /// Base confidence c_base of the temporal blend (0..1). Higher: smoother, more afterglow.
+    pub base_confidence: f32,
+    /// Weight of the screen-space/depth movement in the confidence. Higher: history dropped
+    /// sooner under motion (less ghosting, more noise).
+    pub w_position: f32,
+    /// Weight of the normal change in the confidence.
+    pub w_normal: f32,
+    /// Weight of the illumination change in the confidence. Higher: reacts faster to lighting
+    /// changes (less afterglow) but lets VPL resampling noise through.
+    pub w_illumination: f32,
+    /// Light bounces (1..=6); each extra bounce costs one VPL generation, ISM and shading pass.
+    pub bounces: u32,
+    /// Geometry-aware filter depth threshold alpha (normalised depth). Lower: sharper edges,
+    /// more visible interleave pattern.
+    pub filter_depth: f32,
+    /// Geometry-aware filter normal threshold beta (minimum cosine).
+    pub filter_normal: f32,
+    /// Filter spherical harmonics of incoming radiance instead of radiance (Segovia & Wald):
+    /// keeps glossy and normal-mapped detail. Cost: 27 coefficients per pixel.
+    pub sh_filter: bool,
+    /// Minimum VPL distance in metres (the thesis's d^2 >= 1). Larger: fewer spikes near VPLs,
+    /// darker corners (bias).
+    pub clamp_distance: f32,
+}
+
+impl Default for IsmSettings {
+    fn default() -> Self {
+        Self {
+            vpl_count: 256,
+            ism_resolution: 128,
+            total_points: 32 * 1024,
+            interleave: 4,
+            base_confidence: 0.9,
+            w_position: 20.0,
+            w_normal: 10.0,
+            w_illumination: 4.0,
+            bounces: 1,
+            filter_depth: 0.01,
+            filter_normal: 0.8,
+            sh_filter: false,
+            clamp_distance: 1.0,
+        }
+    }
+}
+
 /// Everything that selects and tunes the renderer.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -131,6 +194,8 @@ pub struct RenderSettings {
     pub view: ViewSettings,
     /// The reference path tracer.
     pub reference: ReferenceSettings,
+    /// ISM temporal GI.
+    pub ism: IsmSettings,
 }
 
 /// A settings value outside its valid range.
@@ -179,6 +244,41 @@ impl RenderSettings {
         }
         if r.clamp.is_some_and(|c| !(c > 0.0 && c.is_finite())) {
             return Err(SettingsError { name: "reference.clamp", value: format!("{:?}", r.clamp), range: "> 0" });
+        }
+        let m = &self.ism;
+        let checks: [(&'static str, bool, String, &'static str); 9] = [
+            ("ism.vpl_count", (4..=1024).contains(&m.vpl_count), m.vpl_count.to_string(), "4..=1024"),
+            (
+                "ism.ism_resolution",
+                (64..=256).contains(&m.ism_resolution) && m.ism_resolution.is_power_of_two(),
+                m.ism_resolution.to_string(),
+                "64, 128 or 256",
+            ),
+            (
+                "ism.total_points",
+                (1024..=1 << 22).contains(&m.total_points),
+                m.total_points.to_string(),
+                "1024..=4194304",
+            ),
+            ("ism.interleave", (1..=8).contains(&m.interleave), m.interleave.to_string(), "1..=8"),
+            ("ism.base_confidence", (0.0..=1.0).contains(&m.base_confidence), m.base_confidence.to_string(), "0..=1"),
+            ("ism.bounces", (1..=6).contains(&m.bounces), m.bounces.to_string(), "1..=6"),
+            ("ism.filter_normal", (-1.0..=1.0).contains(&m.filter_normal), m.filter_normal.to_string(), "-1..=1"),
+            (
+                "ism.clamp_distance",
+                m.clamp_distance.is_finite() && m.clamp_distance >= 0.0,
+                m.clamp_distance.to_string(),
+                ">= 0",
+            ),
+            (
+                "ism confidence weights",
+                [m.w_position, m.w_normal, m.w_illumination, m.filter_depth].iter().all(|w| w.is_finite() && *w >= 0.0),
+                format!("{} {} {} {}", m.w_position, m.w_normal, m.w_illumination, m.filter_depth),
+                ">= 0",
+            ),
+        ];
+        if let Some((name, _, value, range)) = checks.into_iter().find(|c| !c.1) {
+            return Err(SettingsError { name, value, range });
         }
         if !(-32.0..=32.0).contains(&self.view.exposure_ev) {
             return Err(SettingsError {

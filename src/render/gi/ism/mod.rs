@@ -1,0 +1,11 @@
+//! ISM temporal GI (Knecht 2009; digest `technique-ism-temporal.md`). This module holds the
+//! technique's CPU-side math, the test oracle for the WGSL passes:
+//! - [`halton`]: the per-frame-shifted Halton sample set (P4);
+//! - [`warp`]: hierarchical warping of samples to an importance map, with the pdf (P3, P5);
+//! - [`paraboloid`]: the VPL frame and paraboloid map used by the ISM splat and lookup (P7, P10);
+//! - [`power`]: the unbiased VPL power the thesis leaves out (digest section 7.3).
+
+pub mod halton;
+pub mod paraboloid;
+pub mod power;
+pub mod warp;
