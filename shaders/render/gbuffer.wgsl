@@ -6,24 +6,7 @@
 //   4 object id r32uint          object index + 1 (0 = background)
 #import common/frame.wgsl
 #import common/octahedral.wgsl
-
-struct Object {
-    world_from_local: mat4x4<f32>,
-    normal_from_local: mat4x4<f32>,
-    prev_world_from_local: mat4x4<f32>,
-    // object id + 1, material index, unused, unused.
-    ids: vec4<u32>,
-}
-
-struct MaterialParams {
-    base_color: vec4<f32>,
-    // rgb specular, a roughness.
-    specular: vec4<f32>,
-    // has base texture, has normal texture, unused, unused.
-    flags: vec4<u32>,
-    // normal scale, unused...
-    params: vec4<f32>,
-}
+#import common/object.wgsl
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(1) @binding(0) var<uniform> object: Object;

@@ -43,6 +43,17 @@ pub enum RenderError {
     Readback(#[from] ReadbackError),
 }
 
+/// Read-back results of the ISM VPL generation.
+#[derive(Clone, Debug)]
+pub struct IsmVpls {
+    /// The generated VPLs.
+    pub vpls: Vec<super::gi::ism::vpl_pass::GpuVpl>,
+    /// Importance per light-G-buffer texel (mip 0), row-major.
+    pub importance: Vec<f32>,
+    /// Reflected power (rgb) and importance (a) per texel.
+    pub power: Vec<[f32; 4]>,
+}
+
 struct SizedResources {
     targets: ViewTargets,
     lighting_targets: wgpu::BindGroup,
@@ -67,6 +78,7 @@ pub struct Renderer {
     scene_gpu: Option<SceneGpu>,
     sized: Option<SizedResources>,
     timer: GpuTimer,
+    vpl_pass: Option<super::gi::ism::vpl_pass::VplPass>,
     prev_clip_from_world: Option<Mat4>,
     frame_index: u32,
 }
@@ -114,6 +126,7 @@ impl Renderer {
             scene_gpu: None,
             sized: None,
             timer: GpuTimer::new(device, queue),
+            vpl_pass: None,
             prev_clip_from_world: None,
             frame_index: 0,
             device: device.clone(),
@@ -326,6 +339,42 @@ impl Renderer {
         let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
         let id = readback::read_texel_u32(&self.device, &self.queue, &t.object_id.texture, x, y)?;
         Ok(id.checked_sub(1).map(|i| i as usize))
+    }
+
+    /// Runs the ISM light G-buffer, importance pyramid and VPL generation for spot light
+    /// `light` at `frame`, and reads the results back (tests and the inspector use this while
+    /// the `ism` mode is being built).
+    pub fn ism_vpls(
+        &mut self,
+        scene: &Scene,
+        settings: &crate::settings::IsmSettings,
+        light: usize,
+        frame: u32,
+    ) -> Result<IsmVpls, RenderError> {
+        let (device, queue) = (self.device.clone(), self.queue.clone());
+        match &mut self.scene_gpu {
+            Some(gpu) => gpu.sync(&device, &queue, &self.layouts, scene),
+            None => self.scene_gpu = Some(SceneGpu::new(&device, &queue, &self.layouts, scene)),
+        }
+        if self.vpl_pass.is_none() {
+            self.vpl_pass = Some(super::gi::ism::vpl_pass::VplPass::new(&device, &self.layouts)?);
+        }
+        let (Some(gpu), Some(pass)) = (&self.scene_gpu, &mut self.vpl_pass) else {
+            return Err(RenderError::Size(0, 0, 0));
+        };
+        let mut encoder =
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("ism vpl encoder") });
+        if !pass.record(&device, &queue, &mut encoder, scene, gpu, light, settings, frame) {
+            return Err(RenderError::Unsupported { mode: "ism", reason: format!("light {light} is not a spot light") });
+        }
+        queue.submit([encoder.finish()]);
+        let bytes = readback::read_buffer(&device, &queue, &pass.vpls)?;
+        let mut vpls: Vec<super::gi::ism::vpl_pass::GpuVpl> = bytemuck::pod_collect_to_vec(&bytes);
+        vpls.truncate(settings.vpl_count as usize);
+        let importance =
+            readback::read_as_rgba_f32(&device, &queue, &pass.importance)?.into_iter().map(|p| p[0]).collect();
+        let power = readback::read_as_rgba_f32(&device, &queue, &pass.power.texture)?;
+        Ok(IsmVpls { vpls, importance, power })
     }
 
     /// Forgets temporal state (motion vectors restart from zero).

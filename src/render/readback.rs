@@ -149,3 +149,22 @@ pub fn read_texel_u32(
     let data = map_blocking(device, &buffer)?;
     Ok(u32::from_le_bytes([data[0], data[1], data[2], data[3]]))
 }
+
+/// Reads a whole buffer (it needs `COPY_SRC`).
+pub fn read_buffer(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    source: &wgpu::Buffer,
+) -> Result<Vec<u8>, ReadbackError> {
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("buffer readback staging"),
+        size: source.size(),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder =
+        device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("buffer readback encoder") });
+    encoder.copy_buffer_to_buffer(source, 0, &staging, 0, source.size());
+    queue.submit([encoder.finish()]);
+    map_blocking(device, &staging)
+}

@@ -11,17 +11,28 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("common/color.wgsl", include_str!("../../shaders/common/color.wgsl")),
     ("common/frame.wgsl", include_str!("../../shaders/common/frame.wgsl")),
     ("common/lights.wgsl", include_str!("../../shaders/common/lights.wgsl")),
+    ("common/object.wgsl", include_str!("../../shaders/common/object.wgsl")),
     ("common/octahedral.wgsl", include_str!("../../shaders/common/octahedral.wgsl")),
     ("common/shadow.wgsl", include_str!("../../shaders/common/shadow.wgsl")),
     ("render/gbuffer.wgsl", include_str!("../../shaders/render/gbuffer.wgsl")),
+    ("render/gi/ism/importance.wgsl", include_str!("../../shaders/render/gi/ism/importance.wgsl")),
+    ("render/gi/ism/light_gbuffer.wgsl", include_str!("../../shaders/render/gi/ism/light_gbuffer.wgsl")),
+    ("render/gi/ism/vpl_generate.wgsl", include_str!("../../shaders/render/gi/ism/vpl_generate.wgsl")),
     ("render/lighting.wgsl", include_str!("../../shaders/render/lighting.wgsl")),
     ("render/shadow_depth.wgsl", include_str!("../../shaders/render/shadow_depth.wgsl")),
     ("render/tonemap.wgsl", include_str!("../../shaders/render/tonemap.wgsl")),
 ];
 
 /// Shader entry files (the others are only imported).
-pub const ENTRY_SHADERS: &[&str] =
-    &["render/gbuffer.wgsl", "render/lighting.wgsl", "render/shadow_depth.wgsl", "render/tonemap.wgsl"];
+pub const ENTRY_SHADERS: &[&str] = &[
+    "render/gbuffer.wgsl",
+    "render/lighting.wgsl",
+    "render/shadow_depth.wgsl",
+    "render/tonemap.wgsl",
+    "render/gi/ism/importance.wgsl",
+    "render/gi/ism/light_gbuffer.wgsl",
+    "render/gi/ism/vpl_generate.wgsl",
+];
 
 /// A shader that could not be assembled.
 #[derive(Debug, thiserror::Error, PartialEq)]

@@ -8,4 +8,5 @@
 pub mod halton;
 pub mod paraboloid;
 pub mod power;
+pub mod vpl_pass;
 pub mod warp;

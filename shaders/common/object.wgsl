@@ -1,0 +1,19 @@
+// Per-object and per-material uniforms shared by every pass that rasterises the scene
+// (mirrors render::uniforms::ObjectUniforms and MaterialUniforms).
+struct Object {
+    world_from_local: mat4x4<f32>,
+    normal_from_local: mat4x4<f32>,
+    prev_world_from_local: mat4x4<f32>,
+    // object id + 1, material index, unused, unused.
+    ids: vec4<u32>,
+}
+
+struct MaterialParams {
+    base_color: vec4<f32>,
+    // rgb specular, a roughness.
+    specular: vec4<f32>,
+    // has base texture, has normal texture, unused, unused.
+    flags: vec4<u32>,
+    // normal scale, unused...
+    params: vec4<f32>,
+}

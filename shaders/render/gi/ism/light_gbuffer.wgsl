@@ -1,0 +1,80 @@
+// ISM pass P2: the light G-buffer (an RSM without stored flux, Knecht 2009 section 4.3) of one
+// spot light. Outputs per texel:
+//   0 albedo     rgba8unorm   base colour x texture, a = specular luminance
+//   1 normal     rgba16float  world-space shading normal
+//   2 power      rgba16float  rgb = power reflected by the patch this texel sees,
+//                             rho * I(w) * dOmega (the cosine cancels), a = importance
+// Back faces (the light reaches the back of a one-sided surface) reflect nothing.
+#import common/lights.wgsl
+#import common/object.wgsl
+
+struct LightView {
+    clip_from_world: mat4x4<f32>,
+    light: GpuLight,
+    // tan(half fov), texels per side, unused, unused.
+    params: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> view: LightView;
+@group(1) @binding(0) var<uniform> object: Object;
+@group(2) @binding(0) var<uniform> material: MaterialParams;
+@group(2) @binding(1) var base_texture: texture_2d<f32>;
+@group(2) @binding(2) var normal_texture: texture_2d<f32>;
+@group(2) @binding(3) var material_sampler: sampler;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+}
+
+@vertex
+fn vs_main(v: VertexIn) -> VertexOut {
+    var out: VertexOut;
+    let world = object.world_from_local * vec4<f32>(v.position, 1.0);
+    out.world = world.xyz;
+    out.clip = view.clip_from_world * world;
+    out.normal = (object.normal_from_local * vec4<f32>(v.normal, 0.0)).xyz;
+    out.uv = v.uv;
+    return out;
+}
+
+struct LightGbufferOut {
+    @location(0) albedo: vec4<f32>,
+    @location(1) normal: vec4<f32>,
+    @location(2) power: vec4<f32>,
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> LightGbufferOut {
+    var out: LightGbufferOut;
+    var albedo = material.base_color.rgb;
+    if material.flags.x != 0u {
+        albedo = albedo * textureSample(base_texture, material_sampler, in.uv).rgb;
+    }
+    let spec = dot(material.specular.rgb, vec3<f32>(0.2126, 0.7152, 0.0722));
+    let n = normalize(in.normal);
+    out.albedo = vec4<f32>(albedo, spec);
+    out.normal = vec4<f32>(n, 0.0);
+    let inc = light_incident(view.light, in.world);
+    // Solid angle of this texel seen from the light: (2 t / L)^2 cos^3 of the angle off axis.
+    let cos_axis = max(dot(view.light.direction.xyz, -inc.dir), 0.0);
+    let texel = 2.0 * view.params.x / view.params.y;
+    let d_omega = texel * texel * cos_axis * cos_axis * cos_axis;
+    // irradiance * d^2 = radiant intensity towards this texel (spot falloff and range included).
+    var reflected = albedo * inc.irradiance * inc.distance * inc.distance * d_omega;
+    if !front {
+        reflected = vec3<f32>(0.0);
+    }
+    let importance = dot(reflected, vec3<f32>(0.2126, 0.7152, 0.0722)) * (0.5 + spec);
+    out.power = vec4<f32>(reflected, importance);
+    return out;
+}

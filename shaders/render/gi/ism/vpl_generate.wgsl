@@ -1,0 +1,134 @@
+// ISM pass P5: first-bounce VPLs by hierarchical warping (Knecht 2009 section 3.3). One thread
+// per VPL: a Halton point of this frame's window descends the importance pyramid from the 2x2
+// level to the finest (rows first, then the column within the row), lands in texel t with
+// probability p(t) = importance(t) / total, and becomes a VPL on the surface that texel sees,
+// carrying the unbiased power rho I dOmega n^2 / (N p(t)) (digest section 7.3).
+
+struct GenParams {
+    world_from_clip: mat4x4<f32>,
+    // xyz light position, w unused.
+    light_position: vec4<f32>,
+    // VPL count, frame index, interleave n, pyramid levels K (finest side = 2^K).
+    counts: vec4<u32>,
+}
+
+struct Vpl {
+    // xyz position, w = 1 when valid (the warp found a lit texel).
+    position: vec4<f32>,
+    // xyz surface normal, w = specular luminance.
+    normal: vec4<f32>,
+    // rgb power (W), a = pdf of the chosen texel.
+    power: vec4<f32>,
+    // xyz unit direction towards the light (the incident direction), w = texel index.
+    incident: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> params: GenParams;
+@group(0) @binding(1) var importance: texture_2d<f32>;
+@group(0) @binding(2) var albedo_tex: texture_2d<f32>;
+@group(0) @binding(3) var normal_tex: texture_2d<f32>;
+@group(0) @binding(4) var power_tex: texture_2d<f32>;
+@group(0) @binding(5) var depth_tex: texture_depth_2d;
+@group(0) @binding(6) var<storage, read_write> vpls: array<Vpl>;
+
+fn radical_inverse_2(i: u32) -> f32 {
+    return f32(reverseBits(i) >> 8u) / 16777216.0;
+}
+
+fn radical_inverse_3(i_in: u32) -> f32 {
+    var i = i_in;
+    var f = 1.0 / 3.0;
+    var r = 0.0;
+    while i > 0u {
+        r = r + f * f32(i % 3u);
+        i = i / 3u;
+        f = f / 3.0;
+    }
+    return r;
+}
+
+fn imp(level: u32, c: vec2<u32>) -> f32 {
+    return textureLoad(importance, c, i32(params.counts.w - level)).r;
+}
+
+@compute @workgroup_size(64, 1, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n_vpl = params.counts.x;
+    let k = id.x;
+    if k >= n_vpl {
+        return;
+    }
+    let index = params.counts.y * n_vpl + k + 1u;
+    var s = vec2<f32>(radical_inverse_2(index), radical_inverse_3(index));
+    var lo = vec2<f32>(0.0);
+    var hi = vec2<f32>(1.0);
+    var cell = vec2<u32>(0u);
+    for (var l = 1u; l <= params.counts.w; l = l + 1u) {
+        let c = cell * 2u;
+        let q00 = imp(l, c);
+        let q10 = imp(l, c + vec2<u32>(1u, 0u));
+        let q01 = imp(l, c + vec2<u32>(0u, 1u));
+        let q11 = imp(l, c + vec2<u32>(1u, 1u));
+        let sum = q00 + q10 + q01 + q11;
+        var p_row0 = 0.5;
+        if sum > 0.0 {
+            p_row0 = (q00 + q10) / sum;
+        }
+        let mid = 0.5 * (lo + hi);
+        var t = (s.y - lo.y) / (hi.y - lo.y);
+        var dy = 0u;
+        if t < p_row0 {
+            t = t / p_row0;
+            hi.y = mid.y;
+        } else {
+            t = (t - p_row0) / (1.0 - p_row0);
+            lo.y = mid.y;
+            dy = 1u;
+        }
+        s.y = lo.y + t * (hi.y - lo.y);
+        var a = q00;
+        var b = q10;
+        if dy == 1u {
+            a = q01;
+            b = q11;
+        }
+        var p_col0 = 0.5;
+        if a + b > 0.0 {
+            p_col0 = a / (a + b);
+        }
+        var u = (s.x - lo.x) / (hi.x - lo.x);
+        var dx = 0u;
+        if u < p_col0 {
+            u = u / p_col0;
+            hi.x = mid.x;
+        } else {
+            u = (u - p_col0) / (1.0 - p_col0);
+            lo.x = mid.x;
+            dx = 1u;
+        }
+        s.x = lo.x + u * (hi.x - lo.x);
+        cell = c + vec2<u32>(dx, dy);
+    }
+    let size = 1u << params.counts.w;
+    let total = textureLoad(importance, vec2<u32>(0u), i32(params.counts.w)).r;
+    let texel_imp = textureLoad(importance, cell, 0).r;
+    var out: Vpl;
+    out.incident = vec4<f32>(0.0, 0.0, 0.0, f32(cell.y * size + cell.x));
+    if total <= 0.0 || texel_imp <= 0.0 {
+        vpls[k] = out;
+        return;
+    }
+    let pdf = texel_imp / total;
+    let uv = (vec2<f32>(cell) + 0.5) / f32(size);
+    let depth = textureLoad(depth_tex, cell, 0);
+    let ndc = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
+    let h = params.world_from_clip * ndc;
+    let p = h.xyz / h.w;
+    let interleave = f32(params.counts.z);
+    let reflected = textureLoad(power_tex, cell, 0).rgb;
+    out.position = vec4<f32>(p, 1.0);
+    out.normal = vec4<f32>(normalize(textureLoad(normal_tex, cell, 0).xyz), textureLoad(albedo_tex, cell, 0).a);
+    out.power = vec4<f32>(reflected * interleave * interleave / (f32(n_vpl) * pdf), pdf);
+    out.incident = vec4<f32>(normalize(params.light_position.xyz - p), f32(cell.y * size + cell.x));
+    vpls[k] = out;
+}
