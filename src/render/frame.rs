@@ -43,6 +43,14 @@ pub enum RenderError {
     Readback(#[from] ReadbackError),
 }
 
+/// What the ISM sample-point distribution depends on.
+#[derive(Clone, Debug, PartialEq)]
+struct IsmPointsKey {
+    resources: u64,
+    total: u32,
+    objects: Vec<(f32, bool, [f32; 3])>,
+}
+
 /// Read-back results of the ISM VPL generation.
 #[derive(Clone, Debug)]
 pub struct IsmVpls {
@@ -79,6 +87,8 @@ pub struct Renderer {
     sized: Option<SizedResources>,
     timer: GpuTimer,
     vpl_pass: Option<super::gi::ism::vpl_pass::VplPass>,
+    gather: Option<super::gi::ism::gather::IsmGather>,
+    ism_points: Option<(IsmPointsKey, crate::precompute::sample_points::SamplePoints)>,
     prev_clip_from_world: Option<Mat4>,
     frame_index: u32,
 }
@@ -127,6 +137,8 @@ impl Renderer {
             sized: None,
             timer: GpuTimer::new(device, queue),
             vpl_pass: None,
+            gather: None,
+            ism_points: None,
             prev_clip_from_world: None,
             frame_index: 0,
             device: device.clone(),
@@ -137,7 +149,7 @@ impl Renderer {
     /// The modes this renderer can draw now.
     pub fn supports(mode: GiMode) -> Result<(), String> {
         match mode {
-            GiMode::Direct => Ok(()),
+            GiMode::Direct | GiMode::IsmRitschel => Ok(()),
             other => Err(format!("{} is not implemented yet in this build", other.name())),
         }
     }
@@ -196,6 +208,17 @@ impl Renderer {
         self.prev_clip_from_world = Some(clip_from_world);
         self.frame_index = self.frame_index.wrapping_add(1);
 
+        let ism = settings.mode == GiMode::IsmRitschel;
+        let spot = scene.lights().iter().position(|l| matches!(l.kind, crate::scene::LightKind::Spot { .. }));
+        if ism {
+            if self.vpl_pass.is_none() {
+                self.vpl_pass = Some(super::gi::ism::vpl_pass::VplPass::new(device, &self.layouts)?);
+            }
+            if self.gather.is_none() {
+                self.gather = Some(super::gi::ism::gather::IsmGather::new(device)?);
+            }
+            self.update_ism_points(scene, &settings.ism);
+        }
         let (Some(gpu), Some(sized)) = (&self.scene_gpu, &self.sized) else {
             return Ok(());
         };
@@ -227,7 +250,33 @@ impl Renderer {
         let shadow_ts = if self.shadows.layer_matrices.is_empty() { None } else { self.timer.scope("shadows") };
         self.shadows.record(device, queue, &mut encoder, scene, gpu, shadow_ts);
         // The active GI technique writes `targets.indirect` here; `direct` leaves it black.
-        clear(&mut encoder, &sized.targets.indirect.view);
+        let mut wrote_indirect = false;
+        if let (true, Some(light), Some(vpl_pass), Some(gather), Some((_, points))) =
+            (ism, spot, self.vpl_pass.as_mut(), self.gather.as_mut(), self.ism_points.as_ref())
+        {
+            let frame = self.frame_index;
+            if vpl_pass.record(device, queue, &mut encoder, scene, gpu, light, &settings.ism, frame) {
+                let world: Vec<glam::Vec3> = points.world(scene).into_iter().map(|(p, _)| p).collect();
+                let area = points.weighted_area.iter().sum::<f64>() as f32;
+                let diameter = 2.0 * scene.bounds().map_or(1.0, |b| b.radius());
+                gather.record(
+                    device,
+                    queue,
+                    &mut encoder,
+                    &self.frame_buffer,
+                    &sized.targets,
+                    &vpl_pass.vpls,
+                    &world,
+                    area,
+                    diameter,
+                    &settings.ism,
+                );
+                wrote_indirect = true;
+            }
+        }
+        if !wrote_indirect {
+            clear(&mut encoder, &sized.targets.indirect.view);
+        }
         self.lighting.record(
             &mut encoder,
             lighting_inputs,
@@ -240,6 +289,22 @@ impl Renderer {
         queue.submit([encoder.finish()]);
         self.timer.after_submit();
         Ok(())
+    }
+
+    fn update_ism_points(&mut self, scene: &Scene, ism: &crate::settings::IsmSettings) {
+        let key = IsmPointsKey {
+            resources: scene.resources_revision(),
+            total: ism.total_points,
+            objects: scene
+                .objects()
+                .iter()
+                .map(|o| (o.sampling_weight, o.is_rendered(), o.transform.scale.to_array()))
+                .collect(),
+        };
+        if self.ism_points.as_ref().is_none_or(|(k, _)| *k != key) {
+            let points = crate::precompute::sample_points::distribute(scene, ism.total_points as usize, 1);
+            self.ism_points = Some((key, points));
+        }
     }
 
     fn ensure_size(&mut self, size: (u32, u32)) {

@@ -5,6 +5,7 @@
 //! - [`paraboloid`]: the VPL frame and paraboloid map used by the ISM splat and lookup (P7, P10);
 //! - [`power`]: the unbiased VPL power the thesis leaves out (digest section 7.3).
 
+pub mod gather;
 pub mod halton;
 pub mod paraboloid;
 pub mod power;

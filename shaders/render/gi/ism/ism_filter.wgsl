@@ -1,0 +1,58 @@
+// ISM pass P13: the geometry-aware n x n box filter (Laine et al. 2007 as used by Knecht 2009):
+// offsets [-n/2, n/2 - 1] cover each of the n^2 interleave phases once; a neighbour is rejected
+// when its normalised depth differs by more than alpha or its normal by a cosine below beta.
+#import common/frame.wgsl
+#import common/octahedral.wgsl
+
+struct FilterParams {
+    // interleave n, unused...
+    counts: vec4<u32>,
+    // alpha (normalised depth), beta (min cosine), depth range (metres), unused.
+    params: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> fp: FilterParams;
+@group(0) @binding(2) var raw: texture_2d<f32>;
+@group(0) @binding(3) var depth_tex: texture_depth_2d;
+@group(0) @binding(4) var normal_tex: texture_2d<f32>;
+@group(0) @binding(5) var out_indirect: texture_storage_2d<rgba32float, write>;
+
+fn view_depth(pixel: vec2<u32>) -> f32 {
+    let d = textureLoad(depth_tex, pixel, 0);
+    if d <= 0.0 {
+        return -1.0;
+    }
+    return length(world_from_pixel(frame, pixel, d) - frame.camera_position.xyz) / fp.params.z;
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = vec2<i32>(frame.size.xy);
+    let p = vec2<i32>(id.xy);
+    if p.x >= size.x || p.y >= size.y {
+        return;
+    }
+    let zp = view_depth(id.xy);
+    if zp < 0.0 {
+        textureStore(out_indirect, id.xy, vec4<f32>(0.0));
+        return;
+    }
+    let np = oct_decode(textureLoad(normal_tex, id.xy, 0).xy);
+    let half = i32(fp.counts.x / 2u);
+    let n = i32(fp.counts.x);
+    var acc = vec3<f32>(0.0);
+    var w = 0.0;
+    for (var dy = -half; dy < n - half; dy = dy + 1) {
+        for (var dx = -half; dx < n - half; dx = dx + 1) {
+            let q = clamp(p + vec2<i32>(dx, dy), vec2<i32>(0), size - 1);
+            let zq = view_depth(vec2<u32>(q));
+            let nq = oct_decode(textureLoad(normal_tex, vec2<u32>(q), 0).xy);
+            if zq >= 0.0 && abs(zq - zp) < fp.params.x && dot(nq, np) > fp.params.y {
+                acc = acc + textureLoad(raw, vec2<u32>(q), 0).rgb;
+                w = w + 1.0;
+            }
+        }
+    }
+    textureStore(out_indirect, id.xy, vec4<f32>(acc / max(w, 1.0), 1.0));
+}

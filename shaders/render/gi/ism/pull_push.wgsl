@@ -1,0 +1,65 @@
+// ISM pass P8: pull-push hole filling of the ISM atlas (Grossman & Dally 1998, Marroquim et al.
+// 2008, thresholds of Ritschel et al. 2008: 5% of the scene extent, times 2^level). Depths are
+// f32 bit patterns in u32 storage; 1.0 is empty. Tiles are powers of two, so 2x2 reductions never
+// mix two VPLs' maps.
+struct PullPushParams {
+    // fine side (texels), level of the fine side (0 = finest), unused, unused.
+    counts: vec4<u32>,
+    // threshold tau (normalised distance), unused...
+    params: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> pp: PullPushParams;
+@group(0) @binding(1) var<storage, read_write> fine: array<u32>;
+@group(0) @binding(2) var<storage, read_write> coarse: array<u32>;
+
+fn threshold() -> f32 {
+    return pp.params.x * f32(1u << pp.counts.y);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn pull(@builtin(global_invocation_id) id: vec3<u32>) {
+    let fs = pp.counts.x;
+    let cs = fs / 2u;
+    if id.x >= cs || id.y >= cs {
+        return;
+    }
+    let b = id.xy * 2u;
+    let v = array<f32, 4>(
+        bitcast<f32>(fine[b.y * fs + b.x]),
+        bitcast<f32>(fine[b.y * fs + b.x + 1u]),
+        bitcast<f32>(fine[(b.y + 1u) * fs + b.x]),
+        bitcast<f32>(fine[(b.y + 1u) * fs + b.x + 1u]),
+    );
+    var nearest = 1.0;
+    for (var i = 0; i < 4; i = i + 1) {
+        nearest = min(nearest, v[i]);
+    }
+    var sum = 0.0;
+    var count = 0.0;
+    for (var i = 0; i < 4; i = i + 1) {
+        if v[i] < 1.0 && v[i] - nearest <= threshold() {
+            sum = sum + v[i];
+            count = count + 1.0;
+        }
+    }
+    var out = 1.0;
+    if count > 0.0 {
+        out = sum / count;
+    }
+    coarse[id.y * cs + id.x] = bitcast<u32>(out);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn push(@builtin(global_invocation_id) id: vec3<u32>) {
+    let fs = pp.counts.x;
+    if id.x >= fs || id.y >= fs {
+        return;
+    }
+    let c = bitcast<f32>(coarse[(id.y / 2u) * (fs / 2u) + id.x / 2u]);
+    let i = id.y * fs + id.x;
+    let v = bitcast<f32>(fine[i]);
+    if c < 1.0 && (v >= 1.0 || v - c > threshold()) {
+        fine[i] = bitcast<u32>(c);
+    }
+}

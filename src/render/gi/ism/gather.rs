@@ -1,0 +1,352 @@
+//! ISM passes P7, P8, P10 and P13 on the GPU: splat the scene sample points into the imperfect
+//! shadow map atlas, fill holes by pull-push, gather the interleaved VPLs per pixel with ISM
+//! visibility, and apply the geometry-aware n x n filter into the view's indirect target.
+
+use glam::Vec3;
+use wgpu::util::DeviceExt as _;
+
+use crate::render::layouts::{storage_entry, storage_texture_entry, texture_entry, uniform_entry};
+use crate::render::shaders::{self, ShaderError};
+use crate::render::targets::{Target, ViewTargets, formats};
+use crate::settings::IsmSettings;
+
+/// Pull-push levels below the finest (the thesis: "at least two mip levels").
+const PULL_LEVELS: usize = 2;
+/// ISM lookup bias in normalised distance (fraction of the scene diameter).
+const DEPTH_BIAS: f32 = 0.01;
+
+fn storage_rw(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: false },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn uniform(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytes,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
+fn pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+) -> wgpu::ComputePipeline {
+    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(&pl),
+        module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// Sizes the atlas and view resources were made for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Key {
+    vpls: u32,
+    r: u32,
+    points: u32,
+    view: (u32, u32),
+}
+
+struct Sized {
+    key: Key,
+    points: wgpu::Buffer,
+    atlas: Vec<wgpu::Buffer>,
+    raw: Target,
+    splat_group: wgpu::BindGroup,
+    pull_groups: Vec<wgpu::BindGroup>,
+    push_groups: Vec<wgpu::BindGroup>,
+    shade_group: wgpu::BindGroup,
+    filter_group: wgpu::BindGroup,
+}
+
+/// Pipelines and resources of the ISM gather.
+pub struct IsmGather {
+    splat_layout: wgpu::BindGroupLayout,
+    clear: wgpu::ComputePipeline,
+    splat: wgpu::ComputePipeline,
+    pp_layout: wgpu::BindGroupLayout,
+    pull: wgpu::ComputePipeline,
+    push: wgpu::ComputePipeline,
+    shade_layout: wgpu::BindGroupLayout,
+    shade: wgpu::ComputePipeline,
+    filter_layout: wgpu::BindGroupLayout,
+    filter: wgpu::ComputePipeline,
+    splat_params: wgpu::Buffer,
+    pp_params: Vec<wgpu::Buffer>,
+    shade_params: wgpu::Buffer,
+    filter_params: wgpu::Buffer,
+    sized: Option<Sized>,
+}
+
+impl IsmGather {
+    /// Creates the pipelines.
+    pub fn new(device: &wgpu::Device) -> Result<Self, ShaderError> {
+        let c = wgpu::ShaderStages::COMPUTE;
+        let splat_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism splat layout"),
+            entries: &[uniform_entry(0, c, false), storage_entry(1, c), storage_entry(2, c), storage_rw(3)],
+        });
+        let splat_module = shaders::module(device, "render/gi/ism/ism_splat.wgsl")?;
+        let pp_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism pull-push layout"),
+            entries: &[uniform_entry(0, c, false), storage_rw(1), storage_rw(2)],
+        });
+        let pp_module = shaders::module(device, "render/gi/ism/pull_push.wgsl")?;
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let shade_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism shade layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                uniform_entry(1, c, false),
+                storage_entry(2, c),
+                storage_entry(3, c),
+                texture_entry(4, c, wgpu::TextureSampleType::Depth),
+                texture_entry(5, c, unfilterable),
+                storage_texture_entry(6, formats::HDR),
+            ],
+        });
+        let shade_module = shaders::module(device, "render/gi/ism/ism_shade.wgsl")?;
+        let filter_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism filter layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                uniform_entry(1, c, false),
+                texture_entry(2, c, unfilterable),
+                texture_entry(3, c, wgpu::TextureSampleType::Depth),
+                texture_entry(4, c, unfilterable),
+                storage_texture_entry(5, formats::HDR),
+            ],
+        });
+        let filter_module = shaders::module(device, "render/gi/ism/ism_filter.wgsl")?;
+        Ok(Self {
+            clear: pipeline(device, "ism atlas clear", &splat_layout, &splat_module, "clear"),
+            splat: pipeline(device, "ism splat", &splat_layout, &splat_module, "splat"),
+            pull: pipeline(device, "ism pull", &pp_layout, &pp_module, "pull"),
+            push: pipeline(device, "ism push", &pp_layout, &pp_module, "push"),
+            shade: pipeline(device, "ism shade", &shade_layout, &shade_module, "cs_main"),
+            filter: pipeline(device, "ism filter", &filter_layout, &filter_module, "cs_main"),
+            splat_params: uniform(device, "ism splat params", &[0u8; 32]),
+            pp_params: (0..2 * PULL_LEVELS).map(|_| uniform(device, "ism pull-push params", &[0u8; 32])).collect(),
+            shade_params: uniform(device, "ism shade params", &[0u8; 32]),
+            filter_params: uniform(device, "ism filter params", &[0u8; 32]),
+            splat_layout,
+            pp_layout,
+            shade_layout,
+            filter_layout,
+            sized: None,
+        })
+    }
+
+    fn tiles_per_row(vpls: u32) -> u32 {
+        (f64::from(vpls).sqrt().ceil() as u32).max(1)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn ensure(
+        &mut self,
+        device: &wgpu::Device,
+        key: Key,
+        frame_buffer: &wgpu::Buffer,
+        targets: &ViewTargets,
+        vpls: &wgpu::Buffer,
+    ) {
+        if self.sized.as_ref().is_some_and(|s| s.key == key) {
+            return;
+        }
+        let side = key.r * Self::tiles_per_row(key.vpls);
+        let buffer = |label: &str, texels: u32| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: u64::from(texels.max(1)) * 4,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        };
+        let atlas: Vec<wgpu::Buffer> =
+            (0..=PULL_LEVELS).map(|l| buffer("ism atlas level", (side >> l) * (side >> l))).collect();
+        let points = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ism scene sample points"),
+            size: u64::from(key.points.max(1)) * 16,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let raw = Target::new(
+            device,
+            "ism raw indirect",
+            key.view,
+            formats::HDR,
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        );
+        fn buf(b: u32, x: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry { binding: b, resource: x.as_entire_binding() }
+        }
+        fn tex(b: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry { binding: b, resource: wgpu::BindingResource::TextureView(v) }
+        }
+        let splat_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism splat bind group"),
+            layout: &self.splat_layout,
+            entries: &[buf(0, &self.splat_params), buf(1, &points), buf(2, vpls), buf(3, &atlas[0])],
+        });
+        let pp = |params: &wgpu::Buffer, fine: &wgpu::Buffer, coarse: &wgpu::Buffer| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("ism pull-push bind group"),
+                layout: &self.pp_layout,
+                entries: &[buf(0, params), buf(1, fine), buf(2, coarse)],
+            })
+        };
+        let pull_groups = (0..PULL_LEVELS).map(|l| pp(&self.pp_params[l], &atlas[l], &atlas[l + 1])).collect();
+        let push_groups =
+            (0..PULL_LEVELS).rev().map(|l| pp(&self.pp_params[PULL_LEVELS + l], &atlas[l], &atlas[l + 1])).collect();
+        let shade_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism shade bind group"),
+            layout: &self.shade_layout,
+            entries: &[
+                buf(0, frame_buffer),
+                buf(1, &self.shade_params),
+                buf(2, vpls),
+                buf(3, &atlas[0]),
+                tex(4, &targets.depth.view),
+                tex(5, &targets.normal.view),
+                tex(6, &raw.view),
+            ],
+        });
+        let filter_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism filter bind group"),
+            layout: &self.filter_layout,
+            entries: &[
+                buf(0, frame_buffer),
+                buf(1, &self.filter_params),
+                tex(2, &raw.view),
+                tex(3, &targets.depth.view),
+                tex(4, &targets.normal.view),
+                tex(5, &targets.indirect.view),
+            ],
+        });
+        self.sized =
+            Some(Sized { key, points, atlas, raw, splat_group, pull_groups, push_groups, shade_group, filter_group });
+    }
+
+    /// The ISM atlas levels (f32 bit patterns, 1.0 = empty) of the last frame, for the inspector.
+    pub fn atlas(&self) -> Option<(&[wgpu::Buffer], u32)> {
+        self.sized.as_ref().map(|s| (s.atlas.as_slice(), s.key.r * Self::tiles_per_row(s.key.vpls)))
+    }
+
+    /// The unfiltered interleaved result of the last frame, for the inspector.
+    pub fn raw(&self) -> Option<&Target> {
+        self.sized.as_ref().map(|s| &s.raw)
+    }
+
+    /// Forgets size-dependent resources (the view targets or the VPL buffer were recreated).
+    pub fn invalidate(&mut self) {
+        self.sized = None;
+    }
+
+    /// Records splat, pull-push, shading and filter into `targets.indirect`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        frame_buffer: &wgpu::Buffer,
+        targets: &ViewTargets,
+        vpls: &wgpu::Buffer,
+        points: &[Vec3],
+        total_area: f32,
+        scene_diameter: f32,
+        settings: &IsmSettings,
+    ) {
+        let key = Key {
+            vpls: settings.vpl_count,
+            r: settings.ism_resolution,
+            points: points.len() as u32,
+            view: targets.size,
+        };
+        self.ensure(device, key, frame_buffer, targets, vpls);
+        let Some(s) = &self.sized else { return };
+        let c = Self::tiles_per_row(key.vpls);
+        let side = key.r * c;
+        let d_max = scene_diameter.max(1e-3);
+        // A point stands for the area its ISM's points share; its splat covers that patch seen
+        // from the VPL: sqrt(area) / d radians, r / 4 texels per radian near the centre.
+        let per_ism = (key.points / key.vpls.max(1)).max(1) as f32;
+        let k_size = (total_area / per_ism).sqrt() * key.r as f32 / (4.0 * d_max);
+        let data: Vec<[f32; 4]> = points.iter().map(|p| p.extend(1.0).to_array()).collect();
+        queue.write_buffer(&s.points, 0, bytemuck::cast_slice(&data));
+        let u32s = |a: [u32; 4], b: [f32; 4]| {
+            let mut v = bytemuck::cast_slice::<u32, u8>(&a).to_vec();
+            v.extend_from_slice(bytemuck::cast_slice(&b));
+            v
+        };
+        queue.write_buffer(
+            &self.splat_params,
+            0,
+            &u32s([key.vpls, key.points, key.r, c], [1.0 / d_max, k_size, 8.0, 0.0]),
+        );
+        for l in 0..PULL_LEVELS {
+            let params = u32s([side >> l, l as u32, 0, 0], [0.05, 0.0, 0.0, 0.0]);
+            queue.write_buffer(&self.pp_params[l], 0, &params);
+            queue.write_buffer(&self.pp_params[PULL_LEVELS + l], 0, &params);
+        }
+        let d_min = settings.clamp_distance;
+        queue.write_buffer(
+            &self.shade_params,
+            0,
+            &u32s([key.vpls, key.r, c, settings.interleave], [1.0 / d_max, DEPTH_BIAS, d_min * d_min, 0.0]),
+        );
+        queue.write_buffer(
+            &self.filter_params,
+            0,
+            &u32s([settings.interleave, 0, 0, 0], [settings.filter_depth, settings.filter_normal, d_max, 0.0]),
+        );
+
+        let mut pass = encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("ism gather"), timestamp_writes: None });
+        pass.set_bind_group(0, &s.splat_group, &[]);
+        pass.set_pipeline(&self.clear);
+        pass.dispatch_workgroups(side.div_ceil(8), side.div_ceil(8), 1);
+        pass.set_pipeline(&self.splat);
+        pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
+        pass.set_pipeline(&self.pull);
+        for (l, g) in s.pull_groups.iter().enumerate() {
+            pass.set_bind_group(0, g, &[]);
+            let coarse = (side >> (l + 1)).max(1);
+            pass.dispatch_workgroups(coarse.div_ceil(8), coarse.div_ceil(8), 1);
+        }
+        pass.set_pipeline(&self.push);
+        for (i, g) in s.push_groups.iter().enumerate() {
+            let l = PULL_LEVELS - 1 - i;
+            pass.set_bind_group(0, g, &[]);
+            let fine = (side >> l).max(1);
+            pass.dispatch_workgroups(fine.div_ceil(8), fine.div_ceil(8), 1);
+        }
+        let (w, h) = targets.size;
+        pass.set_pipeline(&self.shade);
+        pass.set_bind_group(0, &s.shade_group, &[]);
+        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        pass.set_pipeline(&self.filter);
+        pass.set_bind_group(0, &s.filter_group, &[]);
+        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+    }
+}

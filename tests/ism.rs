@@ -1,0 +1,64 @@
+//! `ism-ritschel` (instant radiosity with imperfect shadow maps, no temporal reuse) against the
+//! reference path tracer with two bounces (direct + one indirect, what first-bounce VPLs model):
+//! it must be much closer to the reference than `direct`, with the mean luminance close.
+
+mod common;
+
+use std::sync::atomic::AtomicBool;
+
+use bouncelab::image_io::{self, HdrImage};
+use bouncelab::metrics;
+use bouncelab::precompute::pathtracer::PathTracer;
+use bouncelab::project_file::{Project, default_project_path};
+use bouncelab::scene::Light;
+use bouncelab::settings::{GiMode, ReferenceSettings};
+use glam::Vec3;
+
+fn spot_cornell() -> Project {
+    let mut project = Project::load(&default_project_path()).expect("default project");
+    project.scene.desc_mut().lights =
+        vec![Light::spot("spot", Vec3::new(0.0, 1.9, 0.2), Vec3::new(0.1, -1.0, -0.15).normalize(), 6.0, 0.5, 0.9)];
+    project
+}
+
+fn raster(ctx: &bouncelab::render::GpuContext, project: &Project, mode: GiMode, size: (u32, u32), k: u32) -> HdrImage {
+    let mut settings = project.render.clone();
+    settings.mode = mode;
+    let big = common::render(ctx, &project.scene, &settings, (size.0 * k, size.1 * k));
+    HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * k, size.1 * k), k) }
+}
+
+#[test]
+fn ism_ritschel_is_much_closer_to_the_reference_than_direct() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = spot_cornell();
+    let size = (64, 36);
+    let mut tracer =
+        PathTracer::new(&project.scene, size, ReferenceSettings { spp: 512, max_bounces: 2, ..Default::default() });
+    tracer.render(512, &AtomicBool::new(false), |_| {});
+    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let direct = raster(&ctx, &project, GiMode::Direct, size, 2);
+    let ism = raster(&ctx, &project, GiMode::IsmRitschel, size, 2);
+    let out = std::env::temp_dir();
+    for (name, img) in [("ref", &reference), ("direct", &direct), ("ism", &ism)] {
+        image_io::write_exr(&out.join(format!("bouncelab-ism-{name}.exr")), img).expect("exr");
+    }
+    let (fd, fi) = (
+        metrics::flip(&direct, &reference, 0.0).expect("flip").0,
+        metrics::flip(&ism, &reference, 0.0).expect("flip").0,
+    );
+    let (rd, ri) = (
+        metrics::relmse(&direct, &reference, 0.01).expect("relmse"),
+        metrics::relmse(&ism, &reference, 0.01).expect("relmse"),
+    );
+    let (ld, li) = (
+        metrics::luminance_ratio(&direct, &reference).expect("ratio"),
+        metrics::luminance_ratio(&ism, &reference).expect("ratio"),
+    );
+    eprintln!(
+        "direct: FLIP {fd:.4} relMSE {rd:.4} luminance {ld:.3}; ism-ritschel: FLIP {fi:.4} relMSE {ri:.4} luminance {li:.3}"
+    );
+    assert!(fi < 0.75 * fd, "ISM FLIP {fi} vs direct {fd}");
+    assert!(ri < 0.5 * rd, "ISM relMSE {ri} vs direct {rd}");
+    assert!((li - 1.0).abs() < 0.1, "ISM mean luminance off by {:.1}%", (li - 1.0) * 100.0);
+}
