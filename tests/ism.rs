@@ -28,20 +28,18 @@ fn raster(ctx: &bouncelab::render::GpuContext, project: &Project, mode: GiMode, 
     HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * k, size.1 * k), k) }
 }
 
-#[test]
-fn ism_ritschel_is_much_closer_to_the_reference_than_direct() {
+fn check_against_reference(project: &Project, label: &str) {
     let Some(ctx) = common::gpu() else { return };
-    let project = spot_cornell();
     let size = (64, 36);
     let mut tracer =
         PathTracer::new(&project.scene, size, ReferenceSettings { spp: 512, max_bounces: 2, ..Default::default() });
     tracer.render(512, &AtomicBool::new(false), |_| {});
     let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
-    let direct = raster(&ctx, &project, GiMode::Direct, size, 2);
-    let ism = raster(&ctx, &project, GiMode::IsmRitschel, size, 2);
+    let direct = raster(&ctx, project, GiMode::Direct, size, 2);
+    let ism = raster(&ctx, project, GiMode::IsmRitschel, size, 2);
     let out = std::env::temp_dir();
     for (name, img) in [("ref", &reference), ("direct", &direct), ("ism", &ism)] {
-        image_io::write_exr(&out.join(format!("bouncelab-ism-{name}.exr")), img).expect("exr");
+        image_io::write_exr(&out.join(format!("bouncelab-ism-{label}-{name}.exr")), img).expect("exr");
     }
     let (fd, fi) = (
         metrics::flip(&direct, &reference, 0.0).expect("flip").0,
@@ -61,4 +59,14 @@ fn ism_ritschel_is_much_closer_to_the_reference_than_direct() {
     assert!(fi < 0.75 * fd, "ISM FLIP {fi} vs direct {fd}");
     assert!(ri < 0.5 * rd, "ISM relMSE {ri} vs direct {rd}");
     assert!((li - 1.0).abs() < 0.1, "ISM mean luminance off by {:.1}%", (li - 1.0) * 100.0);
+}
+
+#[test]
+fn ism_ritschel_with_a_spot_light() {
+    check_against_reference(&spot_cornell(), "spot");
+}
+
+#[test]
+fn ism_ritschel_with_a_point_light() {
+    check_against_reference(&Project::load(&default_project_path()).expect("default project"), "point");
 }

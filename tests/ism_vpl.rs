@@ -53,3 +53,34 @@ fn gpu_vpls_match_the_cpu_warp_and_carry_the_reflected_power() {
     eprintln!("reflected {reflected:.5} W (green), VPL mean {mean:.5} W, agreement on {same}/256 texels");
     assert!((mean / reflected - 1.0).abs() < 0.03, "VPL power {mean} vs reflected {reflected}");
 }
+
+#[test]
+fn point_light_vpls_come_from_the_six_cube_faces_and_carry_the_reflected_power() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = Project::load(&default_project_path()).expect("default project (one point light)");
+    let settings = IsmSettings { vpl_count: 256, interleave: 1, ..IsmSettings::default() };
+    let mut renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let first = renderer.ism_vpls(&project.scene, &settings, 0, 0).expect("vpls");
+    // The light sits under the ceiling of a closed box open to the front: everything it
+    // reaches reflects, 4 pi I * albedo at most.
+    let reflected: f64 = first.power.iter().map(|p| f64::from(p[1])).sum();
+    let bound = 4.0 * std::f64::consts::PI * 2.5 * 0.73;
+    assert!(reflected > 0.3 * bound && reflected < bound, "reflected {reflected} W of at most {bound}");
+    let mut faces = std::collections::BTreeSet::new();
+    let frames = 16;
+    let mut total = 0.0f64;
+    for frame in 0..frames {
+        let r = renderer.ism_vpls(&project.scene, &settings, 0, frame).expect("vpls");
+        for v in &r.vpls {
+            assert_eq!(v.position[3], 1.0);
+            let size = 256usize;
+            let texel = v.incident[3] as usize;
+            faces.insert((texel / size) / 64 * 4 + (texel % size) / 64);
+        }
+        total += r.vpls.iter().map(|v| f64::from(v.power[1])).sum::<f64>();
+    }
+    let mean = total / f64::from(frames);
+    eprintln!("point light: reflected {reflected:.4} W, VPL mean {mean:.4} W, faces used {faces:?}");
+    assert!(faces.len() >= 5, "VPLs from the cube faces that see the room: {faces:?}");
+    assert!((mean / reflected - 1.0).abs() < 0.03, "VPL power {mean} vs reflected {reflected}");
+}

@@ -209,7 +209,14 @@ impl Renderer {
         self.frame_index = self.frame_index.wrapping_add(1);
 
         let ism = settings.mode == GiMode::IsmRitschel;
-        let spot = scene.lights().iter().position(|l| matches!(l.kind, crate::scene::LightKind::Spot { .. }));
+        // The brightest spot or point light feeds the VPLs.
+        let spot = scene
+            .lights()
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| !matches!(l.kind, crate::scene::LightKind::Directional))
+            .max_by(|a, b| a.1.intensity.total_cmp(&b.1.intensity))
+            .map(|(i, _)| i);
         if ism {
             if self.vpl_pass.is_none() {
                 self.vpl_pass = Some(super::gi::ism::vpl_pass::VplPass::new(device, &self.layouts)?);
@@ -430,7 +437,7 @@ impl Renderer {
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("ism vpl encoder") });
         if !pass.record(&device, &queue, &mut encoder, scene, gpu, light, settings, frame) {
-            return Err(RenderError::Unsupported { mode: "ism", reason: format!("light {light} is not a spot light") });
+            return Err(RenderError::Unsupported { mode: "ism", reason: format!("light {light} is directional") });
         }
         queue.submit([encoder.finish()]);
         let bytes = readback::read_buffer(&device, &queue, &pass.vpls)?;

@@ -13,7 +13,7 @@ mod lighting;
 pub mod readback;
 pub(crate) mod scene_gpu;
 pub mod shaders;
-mod shadows;
+pub(crate) mod shadows;
 pub mod targets;
 mod timing;
 mod tonemap;

@@ -47,7 +47,7 @@ pub struct ShadowAssignment {
     pub lights: Vec<GpuLight>,
 }
 
-fn face_views(position: Vec3) -> [Mat4; 6] {
+pub(crate) fn face_views(position: Vec3) -> [Mat4; 6] {
     let dirs = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z];
     dirs.map(|d| {
         let up = if d.y.abs() > 0.5 { Vec3::Z } else { Vec3::Y };

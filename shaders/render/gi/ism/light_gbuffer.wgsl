@@ -1,5 +1,5 @@
 // ISM pass P2: the light G-buffer (an RSM without stored flux, Knecht 2009 section 4.3) of one
-// spot light. Outputs per texel:
+// tile: a spot light's frustum or one face of a point light's cube. Outputs per texel:
 //   0 albedo     rgba8unorm   base colour x texture, a = specular luminance
 //   1 normal     rgba16float  world-space shading normal
 //   2 power      rgba16float  rgb = power reflected by the patch this texel sees,
@@ -13,6 +13,8 @@ struct LightView {
     light: GpuLight,
     // tan(half fov), texels per side, unused, unused.
     params: vec4<f32>,
+    // xyz view axis of this tile (the spot direction or a cube face), w unused.
+    axis: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> view: LightView;
@@ -66,7 +68,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> LightGbufferOut
     out.normal = vec4<f32>(n, 0.0);
     let inc = light_incident(view.light, in.world);
     // Solid angle of this texel seen from the light: (2 t / L)^2 cos^3 of the angle off axis.
-    let cos_axis = max(dot(view.light.direction.xyz, -inc.dir), 0.0);
+    let cos_axis = max(dot(view.axis.xyz, -inc.dir), 0.0);
     let texel = 2.0 * view.params.x / view.params.y;
     let d_omega = texel * texel * cos_axis * cos_axis * cos_axis;
     // irradiance * d^2 = radiant intensity towards this texel (spot falloff and range included).

@@ -5,11 +5,14 @@
 // carrying the unbiased power rho I dOmega n^2 / (N p(t)) (digest section 7.3).
 
 struct GenParams {
-    world_from_clip: mat4x4<f32>,
+    // Per light-G-buffer tile (one for a spot light, six cube faces for a point light).
+    world_from_clip: array<mat4x4<f32>, 6>,
     // xyz light position, w unused.
     light_position: vec4<f32>,
     // VPL count, frame index, interleave n, pyramid levels K (finest side = 2^K).
     counts: vec4<u32>,
+    // tiles per row, tile side in texels, tile count, unused.
+    tiles: vec4<u32>,
 }
 
 struct Vpl {
@@ -119,10 +122,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let pdf = texel_imp / total;
-    let uv = (vec2<f32>(cell) + 0.5) / f32(size);
+    let ts = params.tiles.y;
+    let tile = (cell.y / ts) * params.tiles.x + cell.x / ts;
+    let uv = (vec2<f32>(cell % vec2<u32>(ts)) + 0.5) / f32(ts);
     let depth = textureLoad(depth_tex, cell, 0);
     let ndc = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-    let h = params.world_from_clip * ndc;
+    let h = params.world_from_clip[min(tile, 5u)] * ndc;
     let p = h.xyz / h.w;
     let interleave = f32(params.counts.z);
     let reflected = textureLoad(power_tex, cell, 0).rgb;

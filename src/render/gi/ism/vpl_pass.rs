@@ -1,4 +1,4 @@
-//! ISM passes P2, P3 and P5 on the GPU: the light G-buffer of a spot light, its importance sum
+//! ISM passes P2, P3 and P5 on the GPU: the light G-buffer of a spot or point light, its importance sum
 //! pyramid, and first-bounce VPL generation by hierarchical warping. The CPU oracles in
 //! [`super::warp`] and [`super::power`] define what these passes must produce.
 
@@ -25,15 +25,38 @@ struct LightViewUniforms {
     clip_from_world: [[f32; 4]; 4],
     light: GpuLight,
     params: [f32; 4],
+    /// The tile's view axis (xyz).
+    axis: [f32; 4],
 }
 
 /// `GenParams` in `vpl_generate.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 struct GenParams {
-    world_from_clip: [[f32; 4]; 4],
+    world_from_clip: [[[f32; 4]; 4]; 6],
     light_position: [f32; 4],
     counts: [u32; 4],
+    /// Tiles per row, tile side (texels), tile count, unused.
+    tiles: [u32; 4],
+}
+
+/// Dynamic-offset slot of one tile's `LightView`.
+const VIEW_SLOT: u64 = 256;
+
+/// How a light's G-buffer is laid out in the square atlas: one tile for a spot light (its
+/// frustum), six cube faces in a 4 x 4 grid for a point light (the other tiles stay empty and
+/// have zero importance, so the warp never picks them).
+pub struct LightLayout {
+    /// Clip-from-world per tile.
+    pub tiles: Vec<Mat4>,
+    /// Tile side in texels.
+    pub tile_size: u32,
+    /// Tiles per atlas row.
+    pub per_row: u32,
+    /// tan(half field of view) of each tile's frustum.
+    pub tan_half: f32,
+    /// View axis per tile.
+    pub axes: Vec<Vec3>,
 }
 
 /// `Vpl` in `vpl_generate.wgsl`.
@@ -113,18 +136,25 @@ impl VplPass {
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let view_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ism light view layout"),
-            entries: &[uniform_entry(0, vf, false)],
+            entries: &[uniform_entry(0, vf, true)],
         });
         let view_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("ism light view"),
-            size: std::mem::size_of::<LightViewUniforms>() as u64,
+            size: 6 * VIEW_SLOT,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let view_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism light view bind group"),
             layout: &view_layout,
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: view_buffer.as_entire_binding() }],
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &view_buffer,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(std::mem::size_of::<LightViewUniforms>() as u64),
+                }),
+            }],
         });
         let module = shaders::module(device, "render/gi/ism/light_gbuffer.wgsl")?;
         let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -304,18 +334,39 @@ impl VplPass {
 
     /// The light's clip-from-world for the light G-buffer of spot light `light` (a frustum that
     /// holds the outer cone), or `None` if it is not a spot light.
-    pub fn light_clip_from_world(scene: &Scene, light: usize) -> Option<(Mat4, f32)> {
+    pub fn light_layout(scene: &Scene, light: usize) -> Option<LightLayout> {
         let l = scene.lights().get(light)?;
-        let LightKind::Spot { outer_cone_angle, .. } = l.kind else { return None };
-        let fov = (2.0 * outer_cone_angle).min(170f32.to_radians());
         let radius = scene.bounds().map_or(10.0, |b| b.radius() + (b.center() - l.position).length());
-        let up = if l.direction.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
-        let view = look_at_mat4(l.position, l.position + l.direction, up);
-        Some((directx::perspective(fov, 1.0, 0.01f32.min(0.1 * radius), radius + 0.01) * view, (0.5 * fov).tan()))
+        let (near, far) = (0.01f32.min(0.1 * radius), radius + 0.01);
+        match l.kind {
+            LightKind::Spot { outer_cone_angle, .. } => {
+                let fov = (2.0 * outer_cone_angle).min(170f32.to_radians());
+                let up = if l.direction.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+                let view = look_at_mat4(l.position, l.position + l.direction, up);
+                Some(LightLayout {
+                    tiles: vec![directx::perspective(fov, 1.0, near, far) * view],
+                    tile_size: LIGHT_GBUFFER_SIZE,
+                    per_row: 1,
+                    tan_half: (0.5 * fov).tan(),
+                    axes: vec![l.direction],
+                })
+            }
+            LightKind::Point => {
+                let proj = directx::perspective(std::f32::consts::FRAC_PI_2, 1.0, near, far);
+                Some(LightLayout {
+                    tiles: crate::render::shadows::face_views(l.position).iter().map(|v| proj * *v).collect(),
+                    tile_size: LIGHT_GBUFFER_SIZE / 4,
+                    per_row: 4,
+                    tan_half: 1.0,
+                    axes: vec![Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z],
+                })
+            }
+            LightKind::Directional => None,
+        }
     }
 
-    /// Records P2, P3 and P5 for spot light `light`; returns false (nothing recorded) if it is
-    /// not a spot light.
+    /// Records P2, P3 and P5 for spot or point light `light`; returns false (nothing recorded)
+    /// for a directional light.
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -328,19 +379,27 @@ impl VplPass {
         settings: &IsmSettings,
         frame: u32,
     ) -> bool {
-        let Some((clip_from_world, tan_half)) = Self::light_clip_from_world(scene, light) else { return false };
+        let Some(layout) = Self::light_layout(scene, light) else { return false };
         let Some(l) = scene.lights().get(light) else { return false };
         self.ensure_capacity(device, settings.vpl_count);
-        let view = LightViewUniforms {
-            clip_from_world: clip_from_world.to_cols_array_2d(),
-            light: GpuLight::new(l, None, 0.0),
-            params: [tan_half, LIGHT_GBUFFER_SIZE as f32, 0.0, 0.0],
-        };
-        queue.write_buffer(&self.view_buffer, 0, bytemuck::bytes_of(&view));
+        for (t, clip) in layout.tiles.iter().enumerate() {
+            let view = LightViewUniforms {
+                clip_from_world: clip.to_cols_array_2d(),
+                light: GpuLight::new(l, None, 0.0),
+                params: [layout.tan_half, layout.tile_size as f32, 0.0, 0.0],
+                axis: layout.axes.get(t).copied().unwrap_or(l.direction).extend(0.0).to_array(),
+            };
+            queue.write_buffer(&self.view_buffer, t as u64 * VIEW_SLOT, bytemuck::bytes_of(&view));
+        }
+        let mut world_from_clip = [[[0.0f32; 4]; 4]; 6];
+        for (slot, clip) in world_from_clip.iter_mut().zip(&layout.tiles) {
+            *slot = clip.inverse().to_cols_array_2d();
+        }
         let params = GenParams {
-            world_from_clip: clip_from_world.inverse().to_cols_array_2d(),
+            world_from_clip,
             light_position: l.position.extend(1.0).to_array(),
             counts: [settings.vpl_count, frame, settings.interleave, LEVELS],
+            tiles: [layout.per_row, layout.tile_size, layout.tiles.len() as u32, 0],
         };
         queue.write_buffer(&self.gen_params, 0, bytemuck::bytes_of(&params));
         {
@@ -369,20 +428,26 @@ impl VplPass {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.gbuffer_pipeline);
-            pass.set_bind_group(0, &self.view_bind_group, &[]);
-            for (i, object) in scene.objects().iter().enumerate() {
-                let (Some(mesh), Some(material)) = (gpu.meshes.get(object.mesh), gpu.materials.get(object.material))
-                else {
-                    continue;
-                };
-                if !object.is_rendered() || mesh.index_count == 0 {
-                    continue;
+            for t in 0..layout.tiles.len() as u32 {
+                let size = layout.tile_size as f32;
+                let (x, y) = ((t % layout.per_row) as f32 * size, (t / layout.per_row) as f32 * size);
+                pass.set_viewport(x, y, size, size, 0.0, 1.0);
+                pass.set_bind_group(0, &self.view_bind_group, &[(u64::from(t) * VIEW_SLOT) as u32]);
+                for (i, object) in scene.objects().iter().enumerate() {
+                    let (Some(mesh), Some(material)) =
+                        (gpu.meshes.get(object.mesh), gpu.materials.get(object.material))
+                    else {
+                        continue;
+                    };
+                    if !object.is_rendered() || mesh.index_count == 0 {
+                        continue;
+                    }
+                    pass.set_bind_group(1, &gpu.object_bind_group, &[(i as u64 * OBJECT_SLOT) as u32]);
+                    pass.set_bind_group(2, material, &[]);
+                    pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..mesh.index_count, 0, 0..1);
                 }
-                pass.set_bind_group(1, &gpu.object_bind_group, &[(i as u64 * OBJECT_SLOT) as u32]);
-                pass.set_bind_group(2, material, &[]);
-                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..mesh.index_count, 0, 0..1);
             }
         }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
