@@ -65,9 +65,15 @@ fn switch_mode_and_inspect_buffers() {
     h.run_steps(2);
     assert_eq!(h.state().state().project.render.mode, GiMode::Direct);
     // Modes not built yet are shown but disabled.
-    h.get_by_label("ism").click();
+    h.get_by_label("mrt").click();
     h.run_steps(2);
     assert_eq!(h.state().state().project.render.mode, GiMode::Direct, "a disabled mode cannot be chosen");
+    h.get_by_label("ism").click();
+    h.run_steps(3);
+    assert_eq!(h.state().state().project.render.mode, GiMode::Ism);
+    assert!(!h.state().state().status.contains("failed"), "{}", h.state().state().status);
+    h.get_by_label("direct").click();
+    h.run_steps(2);
     h.get_by_label("Buffer inspector").click();
     h.run_steps(3);
     h.get_by_label("auto range");

@@ -87,6 +87,7 @@ pub struct Renderer {
     sized: Option<SizedResources>,
     timer: GpuTimer,
     vpl_pass: Option<super::gi::ism::vpl_pass::VplPass>,
+    last_mode: Option<GiMode>,
     gather: Option<super::gi::ism::gather::IsmGather>,
     ism_points: Option<(IsmPointsKey, crate::precompute::sample_points::SamplePoints)>,
     prev_clip_from_world: Option<Mat4>,
@@ -137,6 +138,7 @@ impl Renderer {
             sized: None,
             timer: GpuTimer::new(device, queue),
             vpl_pass: None,
+            last_mode: None,
             gather: None,
             ism_points: None,
             prev_clip_from_world: None,
@@ -149,7 +151,7 @@ impl Renderer {
     /// The modes this renderer can draw now.
     pub fn supports(mode: GiMode) -> Result<(), String> {
         match mode {
-            GiMode::Direct | GiMode::IsmRitschel => Ok(()),
+            GiMode::Direct | GiMode::Ism | GiMode::IsmRitschel => Ok(()),
             other => Err(format!("{} is not implemented yet in this build", other.name())),
         }
     }
@@ -208,7 +210,13 @@ impl Renderer {
         self.prev_clip_from_world = Some(clip_from_world);
         self.frame_index = self.frame_index.wrapping_add(1);
 
-        let ism = settings.mode == GiMode::IsmRitschel;
+        let ism = matches!(settings.mode, GiMode::Ism | GiMode::IsmRitschel);
+        if self.last_mode != Some(settings.mode) {
+            if let Some(g) = &mut self.gather {
+                g.reset_history();
+            }
+            self.last_mode = Some(settings.mode);
+        }
         // The brightest spot or point light feeds the VPLs.
         let spot = scene
             .lights()
@@ -277,6 +285,8 @@ impl Renderer {
                     area,
                     diameter,
                     &settings.ism,
+                    settings.mode == GiMode::Ism,
+                    settings.view.exposure_ev.exp2(),
                 );
                 wrote_indirect = true;
             }
@@ -378,7 +388,26 @@ impl Renderer {
     /// Names of the buffers [`Renderer::read_buffer`] can read (G-buffer channels, lighting
     /// inputs and outputs).
     pub fn buffer_names() -> &'static [&'static str] {
-        &["albedo", "normal", "material", "motion", "object_id", "depth", "indirect", "hdr", "ldr", "shadow_map"]
+        &[
+            "albedo",
+            "normal",
+            "material",
+            "motion",
+            "object_id",
+            "depth",
+            "indirect",
+            "hdr",
+            "ldr",
+            "shadow_map",
+            "ism_light_albedo",
+            "ism_light_normal",
+            "ism_light_power",
+            "ism_importance",
+            "ism_atlas",
+            "ism_raw",
+            "ism_confidence",
+            "ism_history",
+        ]
     }
 
     /// Reads a named buffer of the last frame as RGBA floats with its size.
@@ -395,6 +424,32 @@ impl Renderer {
             "hdr" => &t.hdr.texture,
             "ldr" => &t.ldr.texture,
             "shadow_map" => &self.shadows.texture,
+            "ism_atlas" => {
+                let missing =
+                    || RenderError::UnknownBuffer { name: name.into(), known: "render an ism mode first".into() };
+                let (levels, side) = self.gather.as_ref().and_then(|g| g.atlas()).ok_or_else(missing)?;
+                let level = levels.first().ok_or_else(missing)?;
+                let bytes = readback::read_buffer(&self.device, &self.queue, level)?;
+                let pixels =
+                    bytemuck::pod_collect_to_vec::<u8, f32>(&bytes).into_iter().map(|v| [v, v, v, 1.0]).collect();
+                return Ok(crate::image_io::HdrImage { width: side, height: side, pixels });
+            }
+            ism if ism.starts_with("ism_") => {
+                let missing =
+                    || RenderError::UnknownBuffer { name: name.into(), known: "render an ism mode first".into() };
+                let light = self.vpl_pass.as_ref();
+                let gather = self.gather.as_ref();
+                match ism {
+                    "ism_light_albedo" => &light.ok_or_else(missing)?.albedo.texture,
+                    "ism_light_normal" => &light.ok_or_else(missing)?.normal.texture,
+                    "ism_light_power" => &light.ok_or_else(missing)?.power.texture,
+                    "ism_importance" => &light.ok_or_else(missing)?.importance,
+                    "ism_raw" => &gather.and_then(|g| g.raw()).ok_or_else(missing)?.texture,
+                    "ism_confidence" => &gather.and_then(|g| g.confidence()).ok_or_else(missing)?.texture,
+                    "ism_history" => &gather.and_then(|g| g.history()).ok_or_else(missing)?.texture,
+                    _ => return Err(missing()),
+                }
+            }
             other => {
                 return Err(RenderError::UnknownBuffer {
                     name: other.to_owned(),

@@ -76,7 +76,13 @@ struct Sized {
     pull_groups: Vec<wgpu::BindGroup>,
     push_groups: Vec<wgpu::BindGroup>,
     shade_group: wgpu::BindGroup,
-    filter_group: wgpu::BindGroup,
+    history: [Target; 2],
+    prev_normal: Target,
+    confidence: Target,
+    /// Temporal merge reading history[p], writing history[1 - p].
+    temporal_groups: [wgpu::BindGroup; 2],
+    /// Filter input: 0 = raw (no temporal reuse), 1 + p = history[p].
+    filter_groups: [wgpu::BindGroup; 3],
 }
 
 /// Pipelines and resources of the ISM gather.
@@ -95,6 +101,11 @@ pub struct IsmGather {
     pp_params: Vec<wgpu::Buffer>,
     shade_params: wgpu::Buffer,
     filter_params: wgpu::Buffer,
+    temporal_layout: wgpu::BindGroupLayout,
+    temporal: wgpu::ComputePipeline,
+    temporal_params: wgpu::Buffer,
+    parity: usize,
+    reset: bool,
     sized: Option<Sized>,
 }
 
@@ -138,7 +149,28 @@ impl IsmGather {
             ],
         });
         let filter_module = shaders::module(device, "render/gi/ism/ism_filter.wgsl")?;
+        let temporal_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism temporal layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                uniform_entry(1, c, false),
+                texture_entry(2, c, unfilterable),
+                texture_entry(3, c, unfilterable),
+                texture_entry(4, c, wgpu::TextureSampleType::Depth),
+                texture_entry(5, c, unfilterable),
+                texture_entry(6, c, unfilterable),
+                texture_entry(7, c, unfilterable),
+                storage_texture_entry(8, formats::HDR),
+                storage_texture_entry(9, formats::HDR),
+            ],
+        });
+        let temporal_module = shaders::module(device, "render/gi/ism/ism_temporal.wgsl")?;
         Ok(Self {
+            temporal: pipeline(device, "ism temporal merge", &temporal_layout, &temporal_module, "cs_main"),
+            temporal_params: uniform(device, "ism temporal params", &[0u8; 48]),
+            temporal_layout,
+            parity: 0,
+            reset: true,
             clear: pipeline(device, "ism atlas clear", &splat_layout, &splat_module, "clear"),
             splat: pipeline(device, "ism splat", &splat_layout, &splat_module, "splat"),
             pull: pipeline(device, "ism pull", &pp_layout, &pp_module, "pull"),
@@ -231,20 +263,86 @@ impl IsmGather {
                 tex(6, &raw.view),
             ],
         });
-        let filter_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ism filter bind group"),
-            layout: &self.filter_layout,
-            entries: &[
-                buf(0, frame_buffer),
-                buf(1, &self.filter_params),
-                tex(2, &raw.view),
-                tex(3, &targets.depth.view),
-                tex(4, &targets.normal.view),
-                tex(5, &targets.indirect.view),
-            ],
+        use wgpu::TextureUsages as U;
+        let rw = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
+        let history = [
+            Target::new(device, "ism history a", key.view, formats::HDR, rw),
+            Target::new(device, "ism history b", key.view, formats::HDR, rw),
+        ];
+        let confidence = Target::new(device, "ism confidence", key.view, formats::HDR, rw);
+        let prev_normal = Target::new(
+            device,
+            "ism previous normals",
+            key.view,
+            formats::NORMAL,
+            U::TEXTURE_BINDING | U::COPY_DST | U::COPY_SRC,
+        );
+        let filter_group = |input: &wgpu::TextureView| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("ism filter bind group"),
+                layout: &self.filter_layout,
+                entries: &[
+                    buf(0, frame_buffer),
+                    buf(1, &self.filter_params),
+                    tex(2, input),
+                    tex(3, &targets.depth.view),
+                    tex(4, &targets.normal.view),
+                    tex(5, &targets.indirect.view),
+                ],
+            })
+        };
+        let filter_groups = [filter_group(&raw.view), filter_group(&history[0].view), filter_group(&history[1].view)];
+        let temporal_group = |p: usize| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("ism temporal bind group"),
+                layout: &self.temporal_layout,
+                entries: &[
+                    buf(0, frame_buffer),
+                    buf(1, &self.temporal_params),
+                    tex(2, &raw.view),
+                    tex(3, &history[p].view),
+                    tex(4, &targets.depth.view),
+                    tex(5, &targets.normal.view),
+                    tex(6, &prev_normal.view),
+                    tex(7, &targets.motion.view),
+                    tex(8, &history[1 - p].view),
+                    tex(9, &confidence.view),
+                ],
+            })
+        };
+        let temporal_groups = [temporal_group(0), temporal_group(1)];
+        self.reset = true;
+        self.sized = Some(Sized {
+            key,
+            points,
+            atlas,
+            raw,
+            splat_group,
+            pull_groups,
+            push_groups,
+            shade_group,
+            history,
+            prev_normal,
+            confidence,
+            temporal_groups,
+            filter_groups,
         });
-        self.sized =
-            Some(Sized { key, points, atlas, raw, splat_group, pull_groups, push_groups, shade_group, filter_group });
+    }
+
+    /// Drops the temporal history (the next frame uses only new VPLs).
+    pub fn reset_history(&mut self) {
+        self.reset = true;
+    }
+
+    /// The confidence buffer of the last temporal frame: r = position change, g = normal
+    /// change, b = illumination change (each saturated), a = confidence.
+    pub fn confidence(&self) -> Option<&Target> {
+        self.sized.as_ref().map(|s| &s.confidence)
+    }
+
+    /// The history written by the last temporal frame.
+    pub fn history(&self) -> Option<&Target> {
+        self.sized.as_ref().map(|s| &s.history[self.parity])
     }
 
     /// The ISM atlas levels (f32 bit patterns, 1.0 = empty) of the last frame, for the inspector.
@@ -276,6 +374,8 @@ impl IsmGather {
         total_area: f32,
         scene_diameter: f32,
         settings: &IsmSettings,
+        temporal: bool,
+        exposure: f32,
     ) {
         let key = Key {
             vpls: settings.vpl_count,
@@ -286,6 +386,7 @@ impl IsmGather {
         self.ensure(device, key, frame_buffer, targets, vpls);
         let Some(s) = &self.sized else { return };
         let c = Self::tiles_per_row(key.vpls);
+        let reset = u32::from(self.reset || !temporal);
         let side = key.r * c;
         let d_max = scene_diameter.max(1e-3);
         // A point stands for the area its ISM's points share; its splat covers that patch seen
@@ -309,6 +410,12 @@ impl IsmGather {
             queue.write_buffer(&self.pp_params[l], 0, &params);
             queue.write_buffer(&self.pp_params[PULL_LEVELS + l], 0, &params);
         }
+        let mut tparams = u32s(
+            [reset, 0, 0, 0],
+            [settings.base_confidence, settings.w_position, settings.w_normal, settings.w_illumination],
+        );
+        tparams.extend_from_slice(bytemuck::cast_slice(&[d_max, exposure, 0.0f32, 0.0]));
+        queue.write_buffer(&self.temporal_params, 0, &tparams);
         let d_min = settings.clamp_distance;
         queue.write_buffer(
             &self.shade_params,
@@ -345,8 +452,28 @@ impl IsmGather {
         pass.set_pipeline(&self.shade);
         pass.set_bind_group(0, &s.shade_group, &[]);
         pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        let p = self.parity;
+        let filter_input = if temporal {
+            pass.set_pipeline(&self.temporal);
+            pass.set_bind_group(0, &s.temporal_groups[p], &[]);
+            pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+            2 - p
+        } else {
+            0
+        };
         pass.set_pipeline(&self.filter);
-        pass.set_bind_group(0, &s.filter_group, &[]);
+        pass.set_bind_group(0, &s.filter_groups[filter_input], &[]);
         pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        drop(pass);
+        if temporal {
+            // Keep this frame's normals for the next frame's confidence, then swap the history.
+            encoder.copy_texture_to_texture(
+                targets.normal.texture.as_image_copy(),
+                s.prev_normal.texture.as_image_copy(),
+                s.prev_normal.texture.size(),
+            );
+            self.parity = 1 - p;
+            self.reset = false;
+        }
     }
 }
