@@ -70,3 +70,38 @@ fn ism_ritschel_with_a_spot_light() {
 fn ism_ritschel_with_a_point_light() {
     check_against_reference(&Project::load(&default_project_path()).expect("default project"), "point");
 }
+
+#[test]
+fn bounces_add_energy_monotonically_and_converge() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = Project::load(&default_project_path()).expect("default project");
+    let size = (64, 36);
+    let mut tracer = PathTracer::new(&project.scene, size, ReferenceSettings { spp: 256, ..Default::default() });
+    tracer.render(256, &AtomicBool::new(false), |_| {});
+    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let full = metrics::mean_luminance(&reference);
+    let mut lums = Vec::new();
+    for bounces in 1..=4u32 {
+        project.render.ism.bounces = bounces;
+        project.render.mode = GiMode::IsmRitschel;
+        // Average a few frames (new VPLs each frame) to keep the comparison above the noise.
+        let mut r = bouncelab::render::Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        let mut sum = 0.0;
+        for _ in 0..6 {
+            r.render(&project.scene, &project.render, size).expect("render");
+            sum += metrics::mean_luminance(&HdrImage {
+                width: size.0,
+                height: size.1,
+                pixels: r.read_hdr().expect("hdr"),
+            });
+        }
+        lums.push(sum / 6.0);
+    }
+    let ratios: Vec<f64> = lums.iter().map(|l| l / full).collect();
+    eprintln!("mean luminance / full-GI reference by bounces 1..4: {ratios:.3?}");
+    for w in lums.windows(2) {
+        assert!(w[1] >= 0.99 * w[0], "a bounce removed energy: {lums:?}");
+    }
+    assert!(lums[3] - lums[2] < lums[1] - lums[0], "added energy shrinks with each bounce: {lums:?}");
+    assert!(ratios[3] > ratios[0], "more bounces come closer to the full reference");
+}

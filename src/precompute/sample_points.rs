@@ -55,7 +55,7 @@ pub fn distribute(scene: &Scene, total: usize, seed: u64) -> SamplePoints {
         return SamplePoints { points: Vec::new(), weighted_area };
     }
     let mut rng = Pcg32::new(seed, 0x5a3d, 0);
-    let points = (0..total)
+    let mut points: Vec<SamplePoint> = (0..total)
         .map(|i| {
             let u = (i as f64 + f64::from(rng.next_f32())) / total as f64 * sum;
             let k = cdf.partition_point(|e| e.2 < u).min(cdf.len() - 1);
@@ -64,6 +64,13 @@ pub fn distribute(scene: &Scene, total: usize, seed: u64) -> SamplePoints {
             SamplePoint { object: cdf[k].0, triangle: cdf[k].1, bary: Vec2::new(s * (1.0 - r2), s * r2) }
         })
         .collect();
+    // The strata come out in CDF order, i.e. grouped by object and triangle. Consumers split the
+    // list into contiguous blocks (one block of points per ISM, digest PF7), so shuffle it: every
+    // block is then a random sample of the whole scene, not one wall.
+    for i in (1..points.len()).rev() {
+        let j = (rng.next_u32() as usize) % (i + 1);
+        points.swap(i, j);
+    }
     SamplePoints { points, weighted_area }
 }
 
@@ -137,6 +144,15 @@ mod tests {
         }
         let none = distribute(&two_planes(0.0, 1.0), 1000, 1);
         assert_eq!(none.counts(2), vec![0, 1000], "weight 0 gets no points");
+    }
+
+    #[test]
+    fn contiguous_blocks_sample_the_whole_scene() {
+        let pts = distribute(&two_planes(1.0, 1.0), 1024, 3);
+        for block in pts.points.chunks(64) {
+            let on_b = block.iter().filter(|p| p.object == 1).count();
+            assert!((16..=48).contains(&on_b), "a block of 64 points has {on_b} on one of two equal planes");
+        }
     }
 
     #[test]

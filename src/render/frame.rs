@@ -271,7 +271,11 @@ impl Renderer {
         {
             let frame = self.frame_index;
             if vpl_pass.record(device, queue, &mut encoder, scene, gpu, light, &settings.ism, frame) {
-                let world: Vec<glam::Vec3> = points.world(scene).into_iter().map(|(p, _)| p).collect();
+                let world_points = points.world(scene);
+                let world: Vec<glam::Vec3> = world_points.iter().map(|(p, _)| *p).collect();
+                let (albedo, weights) = point_materials(scene, points);
+                let normals: Vec<[f32; 4]> =
+                    world_points.iter().zip(&weights).map(|((_, n), w)| n.extend(*w).to_array()).collect();
                 let area = points.weighted_area.iter().sum::<f64>() as f32;
                 let diameter = 2.0 * scene.bounds().map_or(1.0, |b| b.radius());
                 gather.record(
@@ -282,6 +286,8 @@ impl Renderer {
                     &sized.targets,
                     &vpl_pass.vpls,
                     &world,
+                    &normals,
+                    &albedo,
                     area,
                     diameter,
                     &settings.ism,
@@ -504,6 +510,15 @@ impl Renderer {
         Ok(IsmVpls { vpls, importance, power })
     }
 
+    /// The VPLs of every bounce of the last ISM frame (inspector overlay and tests).
+    pub fn ism_all_vpls(&self) -> Result<Vec<super::gi::ism::vpl_pass::GpuVpl>, RenderError> {
+        let buffer = self.gather.as_ref().and_then(|g| g.all_vpls()).ok_or_else(|| RenderError::UnknownBuffer {
+            name: "ism vpls".into(),
+            known: "render an ism mode first".into(),
+        })?;
+        Ok(bytemuck::pod_collect_to_vec(&readback::read_buffer(&self.device, &self.queue, buffer)?))
+    }
+
     /// Forgets temporal state (motion vectors restart from zero).
     pub fn reset_history(&mut self) {
         self.prev_clip_from_world = None;
@@ -532,4 +547,34 @@ fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
         occlusion_query_set: None,
         multiview_mask: None,
     });
+}
+
+/// Albedo and sampling weight of each sample point's object (base colour factor; textures are
+/// averaged over the image).
+fn point_materials(
+    scene: &Scene,
+    points: &crate::precompute::sample_points::SamplePoints,
+) -> (Vec<[f32; 4]>, Vec<f32>) {
+    let mean_texture = |image: usize| {
+        scene.resources().images.get(image).map_or([1.0; 3], |img| {
+            let n = (img.rgba8.len() / 4).max(1) as f32;
+            let mut sum = [0.0f32; 3];
+            for px in img.rgba8.chunks_exact(4) {
+                for c in 0..3 {
+                    sum[c] += crate::image_io::srgb_to_linear(f32::from(px[c]) / 255.0);
+                }
+            }
+            sum.map(|v| v / n)
+        })
+    };
+    let per_object: Vec<([f32; 4], f32)> = scene
+        .objects()
+        .iter()
+        .map(|o| {
+            let m = scene.materials().get(o.material).cloned().unwrap_or_default();
+            let t = m.base_color_texture.map_or([1.0; 3], |t| mean_texture(t.image));
+            ([m.base_color[0] * t[0], m.base_color[1] * t[1], m.base_color[2] * t[2], 1.0], o.sampling_weight)
+        })
+        .collect();
+    points.points.iter().map(|p| per_object.get(p.object as usize).copied().unwrap_or(([0.0; 4], 1.0))).unzip()
 }

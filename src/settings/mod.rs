@@ -157,8 +157,9 @@ pub struct IsmSettings {
     /// Filter spherical harmonics of incoming radiance instead of radiance (Segovia & Wald):
     /// keeps glossy and normal-mapped detail. Cost: 27 coefficients per pixel.
     pub sh_filter: bool,
-    /// Minimum VPL distance in metres (the thesis's d^2 >= 1). Larger: fewer spikes near VPLs,
-    /// darker corners (bias).
+    /// Minimum VPL distance in metres. Larger: fewer spikes near VPLs, darker corners (bias).
+    /// The thesis clamps d^2 >= 1 in world units, which assumes large scenes; in a 2 m Cornell
+    /// box that loses 9-11% of the one-bounce light (measured), so the default is 0.1 m.
     pub clamp_distance: f32,
 }
 
@@ -172,12 +173,12 @@ impl Default for IsmSettings {
             base_confidence: 0.9,
             w_position: 20.0,
             w_normal: 10.0,
-            w_illumination: 4.0,
+            w_illumination: 0.5,
             bounces: 1,
             filter_depth: 0.01,
             filter_normal: 0.8,
             sh_filter: false,
-            clamp_distance: 1.0,
+            clamp_distance: 0.1,
         }
     }
 }

@@ -1,6 +1,6 @@
 // ISM pass P10 (interleaved VPL shading, Knecht 2009 section 3.4): pixel (x, y) belongs to
 // interleave tile (x mod n, y mod n) and gathers only that tile's contiguous block of N / n^2
-// VPLs, each tested against its imperfect shadow map. Output is E / pi (the lighting composite
+// VPLs of every bounce's set, each tested against its imperfect shadow map. Output is E / pi (the lighting composite
 // multiplies by albedo): sum of V Phi cos_s cos_r / (pi^2 max(d^2, d_min^2)).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
@@ -11,6 +11,8 @@ struct ShadeParams {
     counts: vec4<u32>,
     // 1 / d_max, depth bias (normalised), d_min^2, unused.
     params: vec4<f32>,
+    // VPL sets (bounces), unused x3.
+    sets: vec4<u32>,
 }
 
 struct Vpl {
@@ -52,11 +54,13 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let c = sh.counts.z;
     let side = r * c;
     var sum = vec3<f32>(0.0);
-    for (var j = 0u; j < per; j = j + 1u) {
-        let k = tile * per + j;
-        if k >= sh.counts.x {
-            break;
+    for (var i = 0u; i < per * sh.sets.x; i = i + 1u) {
+        let bounce = i / per;
+        let j = i % per;
+        if tile * per + j >= sh.counts.x {
+            continue;
         }
+        let k = bounce * sh.counts.x + tile * per + j;
         let vpl = vpls[k];
         if vpl.position.w < 0.5 {
             continue;

@@ -2,6 +2,7 @@
 // 2009). Each scene sample point belongs to one VPL (contiguous blocks of points per VPL) and is
 // splatted as a small box of normalised distance into that VPL's paraboloid tile of the atlas
 // with an atomic min (positive floats keep their order as u32). `clear` empties the atlas (1.0).
+// Each bounce's VPL set has its own block of tiles (`sets.x` is the set's first VPL).
 #import common/onb.wgsl
 
 struct SplatParams {
@@ -9,6 +10,8 @@ struct SplatParams {
     counts: vec4<u32>,
     // 1 / d_max (normalised distance), splat size constant, max splat texels, unused.
     params: vec4<f32>,
+    // first VPL (and atlas tile) of the set being splatted, unused x3.
+    sets: vec4<u32>,
 }
 
 struct Vpl {
@@ -43,7 +46,8 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     if k >= n_vpl {
         return;
     }
-    let vpl = vpls[k];
+    let tile = sp.sets.x + k;
+    let vpl = vpls[tile];
     if vpl.position.w < 0.5 {
         return;
     }
@@ -55,7 +59,7 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     let c = sp.counts.w;
     let side = r * c;
     let depth = min(pb.z * sp.params.x, 1.0);
-    let origin = vec2<i32>(i32((k % c) * r), i32((k / c) * r));
+    let origin = vec2<i32>(i32((tile % c) * r), i32((tile / c) * r));
     let texel = vec2<i32>(pb.xy * f32(r));
     // Closer points cover more texels: size ~ constant / distance, clamped.
     let size = i32(clamp(sp.params.y / max(pb.z * sp.params.x, 1.0e-4), 1.0, sp.params.z));

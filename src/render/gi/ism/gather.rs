@@ -12,8 +12,10 @@ use crate::settings::IsmSettings;
 
 /// Pull-push levels below the finest (the thesis: "at least two mip levels").
 const PULL_LEVELS: usize = 2;
-/// ISM lookup bias in normalised distance (fraction of the scene diameter).
-const DEPTH_BIAS: f32 = 0.01;
+/// ISM lookup bias in normalised distance (fraction of the scene diameter). Splats are several
+/// texels wide, so a receiver's own surface shadows it without a bias of about a splat's depth
+/// extent (digest PF5); 0.06 was the best of 0.01/0.03/0.06 against the reference.
+const DEPTH_BIAS: f32 = 0.06;
 
 fn storage_rw(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
@@ -62,10 +64,16 @@ fn pipeline(
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Key {
     vpls: u32,
+    bounces: u32,
     r: u32,
     points: u32,
     view: (u32, u32),
 }
+
+/// Dynamic-offset slot size of per-set parameters.
+const SLOT: u64 = 256;
+/// Most VPL sets (bounces).
+const MAX_SETS: u64 = 6;
 
 struct Sized {
     key: Key,
@@ -73,6 +81,10 @@ struct Sized {
     atlas: Vec<wgpu::Buffer>,
     raw: Target,
     splat_group: wgpu::BindGroup,
+    all_vpls: wgpu::Buffer,
+    normals: wgpu::Buffer,
+    albedo: wgpu::Buffer,
+    bounce_group: wgpu::BindGroup,
     pull_groups: Vec<wgpu::BindGroup>,
     push_groups: Vec<wgpu::BindGroup>,
     shade_group: wgpu::BindGroup,
@@ -98,6 +110,11 @@ pub struct IsmGather {
     filter_layout: wgpu::BindGroupLayout,
     filter: wgpu::ComputePipeline,
     splat_params: wgpu::Buffer,
+    bounce_layout: wgpu::BindGroupLayout,
+    bounce_clear: wgpu::ComputePipeline,
+    bounce_select: wgpu::ComputePipeline,
+    bounce_write: wgpu::ComputePipeline,
+    bounce_params: wgpu::Buffer,
     pp_params: Vec<wgpu::Buffer>,
     shade_params: wgpu::Buffer,
     filter_params: wgpu::Buffer,
@@ -115,7 +132,7 @@ impl IsmGather {
         let c = wgpu::ShaderStages::COMPUTE;
         let splat_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ism splat layout"),
-            entries: &[uniform_entry(0, c, false), storage_entry(1, c), storage_entry(2, c), storage_rw(3)],
+            entries: &[uniform_entry(0, c, true), storage_entry(1, c), storage_entry(2, c), storage_rw(3)],
         });
         let splat_module = shaders::module(device, "render/gi/ism/ism_splat.wgsl")?;
         let pp_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -165,7 +182,34 @@ impl IsmGather {
             ],
         });
         let temporal_module = shaders::module(device, "render/gi/ism/ism_temporal.wgsl")?;
+        let bounce_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism bounce layout"),
+            entries: &[
+                uniform_entry(0, c, true),
+                storage_entry(1, c),
+                storage_entry(2, c),
+                storage_entry(3, c),
+                storage_rw(4),
+                storage_entry(5, c),
+                storage_rw(6),
+                storage_rw(7),
+            ],
+        });
+        let bounce_module = shaders::module(device, "render/gi/ism/ism_bounce.wgsl")?;
+        let slots = |label: &str| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: SLOT * MAX_SETS,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
         Ok(Self {
+            bounce_clear: pipeline(device, "ism bounce clear", &bounce_layout, &bounce_module, "clear"),
+            bounce_select: pipeline(device, "ism bounce select", &bounce_layout, &bounce_module, "select_brightest"),
+            bounce_write: pipeline(device, "ism bounce write", &bounce_layout, &bounce_module, "write_winner"),
+            bounce_params: slots("ism bounce params"),
+            bounce_layout,
             temporal: pipeline(device, "ism temporal merge", &temporal_layout, &temporal_module, "cs_main"),
             temporal_params: uniform(device, "ism temporal params", &[0u8; 48]),
             temporal_layout,
@@ -177,9 +221,9 @@ impl IsmGather {
             push: pipeline(device, "ism push", &pp_layout, &pp_module, "push"),
             shade: pipeline(device, "ism shade", &shade_layout, &shade_module, "cs_main"),
             filter: pipeline(device, "ism filter", &filter_layout, &filter_module, "cs_main"),
-            splat_params: uniform(device, "ism splat params", &[0u8; 32]),
+            splat_params: slots("ism splat params"),
             pp_params: (0..2 * PULL_LEVELS).map(|_| uniform(device, "ism pull-push params", &[0u8; 32])).collect(),
-            shade_params: uniform(device, "ism shade params", &[0u8; 32]),
+            shade_params: uniform(device, "ism shade params", &[0u8; 48]),
             filter_params: uniform(device, "ism filter params", &[0u8; 32]),
             splat_layout,
             pp_layout,
@@ -205,7 +249,7 @@ impl IsmGather {
         if self.sized.as_ref().is_some_and(|s| s.key == key) {
             return;
         }
-        let side = key.r * Self::tiles_per_row(key.vpls);
+        let side = key.r * Self::tiles_per_row(key.vpls * key.bounces);
         let buffer = |label: &str, texels: u32| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -235,10 +279,48 @@ impl IsmGather {
         fn tex(b: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
             wgpu::BindGroupEntry { binding: b, resource: wgpu::BindingResource::TextureView(v) }
         }
+        let _ = vpls;
+        let storage = |label: &str, bytes: u64| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: bytes.max(16),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            })
+        };
+        let all_vpls = storage("ism vpls of every bounce", u64::from(key.vpls * key.bounces) * 64);
+        let normals = storage("ism sample point normals", u64::from(key.points) * 16);
+        let albedo = storage("ism sample point albedo", u64::from(key.points) * 16);
+        let keys = storage("ism bounce keys", u64::from(key.vpls) * 4);
+        let sums = storage("ism bounce sums", u64::from(key.vpls) * 4);
+        fn slot(b: u32, x: &wgpu::Buffer, size: u64) -> wgpu::BindGroupEntry<'_> {
+            wgpu::BindGroupEntry {
+                binding: b,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: x,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(size),
+                }),
+            }
+        }
         let splat_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism splat bind group"),
             layout: &self.splat_layout,
-            entries: &[buf(0, &self.splat_params), buf(1, &points), buf(2, vpls), buf(3, &atlas[0])],
+            entries: &[slot(0, &self.splat_params, 48), buf(1, &points), buf(2, &all_vpls), buf(3, &atlas[0])],
+        });
+        let bounce_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism bounce bind group"),
+            layout: &self.bounce_layout,
+            entries: &[
+                slot(0, &self.bounce_params, 64),
+                buf(1, &points),
+                buf(2, &normals),
+                buf(3, &albedo),
+                buf(4, &all_vpls),
+                buf(5, &atlas[0]),
+                buf(6, &keys),
+                buf(7, &sums),
+            ],
         });
         let pp = |params: &wgpu::Buffer, fine: &wgpu::Buffer, coarse: &wgpu::Buffer| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -256,7 +338,7 @@ impl IsmGather {
             entries: &[
                 buf(0, frame_buffer),
                 buf(1, &self.shade_params),
-                buf(2, vpls),
+                buf(2, &all_vpls),
                 buf(3, &atlas[0]),
                 tex(4, &targets.depth.view),
                 tex(5, &targets.normal.view),
@@ -318,6 +400,10 @@ impl IsmGather {
             atlas,
             raw,
             splat_group,
+            all_vpls,
+            normals,
+            albedo,
+            bounce_group,
             pull_groups,
             push_groups,
             shade_group,
@@ -327,6 +413,11 @@ impl IsmGather {
             temporal_groups,
             filter_groups,
         });
+    }
+
+    /// The VPLs of every bounce of the last frame (set b at `b * vpl_count`).
+    pub fn all_vpls(&self) -> Option<&wgpu::Buffer> {
+        self.sized.as_ref().map(|s| &s.all_vpls)
     }
 
     /// Drops the temporal history (the next frame uses only new VPLs).
@@ -347,7 +438,7 @@ impl IsmGather {
 
     /// The ISM atlas levels (f32 bit patterns, 1.0 = empty) of the last frame, for the inspector.
     pub fn atlas(&self) -> Option<(&[wgpu::Buffer], u32)> {
-        self.sized.as_ref().map(|s| (s.atlas.as_slice(), s.key.r * Self::tiles_per_row(s.key.vpls)))
+        self.sized.as_ref().map(|s| (s.atlas.as_slice(), s.key.r * Self::tiles_per_row(s.key.vpls * s.key.bounces)))
     }
 
     /// The unfiltered interleaved result of the last frame, for the inspector.
@@ -371,6 +462,8 @@ impl IsmGather {
         targets: &ViewTargets,
         vpls: &wgpu::Buffer,
         points: &[Vec3],
+        normals: &[[f32; 4]],
+        albedo: &[[f32; 4]],
         total_area: f32,
         scene_diameter: f32,
         settings: &IsmSettings,
@@ -379,13 +472,14 @@ impl IsmGather {
     ) {
         let key = Key {
             vpls: settings.vpl_count,
+            bounces: settings.bounces.clamp(1, MAX_SETS as u32),
             r: settings.ism_resolution,
             points: points.len() as u32,
             view: targets.size,
         };
         self.ensure(device, key, frame_buffer, targets, vpls);
         let Some(s) = &self.sized else { return };
-        let c = Self::tiles_per_row(key.vpls);
+        let c = Self::tiles_per_row(key.vpls * key.bounces);
         let reset = u32::from(self.reset || !temporal);
         let side = key.r * c;
         let d_max = scene_diameter.max(1e-3);
@@ -395,16 +489,29 @@ impl IsmGather {
         let k_size = (total_area / per_ism).sqrt() * key.r as f32 / (4.0 * d_max);
         let data: Vec<[f32; 4]> = points.iter().map(|p| p.extend(1.0).to_array()).collect();
         queue.write_buffer(&s.points, 0, bytemuck::cast_slice(&data));
+        queue.write_buffer(&s.normals, 0, bytemuck::cast_slice(normals));
+        queue.write_buffer(&s.albedo, 0, bytemuck::cast_slice(albedo));
+        encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(key.vpls) * 64);
         let u32s = |a: [u32; 4], b: [f32; 4]| {
             let mut v = bytemuck::cast_slice::<u32, u8>(&a).to_vec();
             v.extend_from_slice(bytemuck::cast_slice(&b));
             v
         };
-        queue.write_buffer(
-            &self.splat_params,
-            0,
-            &u32s([key.vpls, key.points, key.r, c], [1.0 / d_max, k_size, 8.0, 0.0]),
-        );
+        let n2 = (settings.interleave * settings.interleave) as f32;
+        let d_min = settings.clamp_distance;
+        for b in 0..key.bounces {
+            let mut splat = u32s([key.vpls, key.points, key.r, c], [1.0 / d_max, k_size, 8.0, 0.0]);
+            splat.extend_from_slice(bytemuck::cast_slice(&[b * key.vpls, 0, 0, 0]));
+            queue.write_buffer(&self.splat_params, u64::from(b) * SLOT, &splat);
+            if b > 0 {
+                let mut bounce = u32s([key.vpls, key.points, key.r, c], [0.0; 4]);
+                bounce.truncate(16);
+                bounce.extend_from_slice(bytemuck::cast_slice(&[(b - 1) * key.vpls, b * key.vpls, 0, 0]));
+                bounce.extend_from_slice(bytemuck::cast_slice(&[1.0 / d_max, DEPTH_BIAS, d_min * d_min, n2]));
+                bounce.extend_from_slice(bytemuck::cast_slice(&[total_area, 0.0, 0.0, 0.0]));
+                queue.write_buffer(&self.bounce_params, u64::from(b - 1) * SLOT, &bounce);
+            }
+        }
         for l in 0..PULL_LEVELS {
             let params = u32s([side >> l, l as u32, 0, 0], [0.05, 0.0, 0.0, 0.0]);
             queue.write_buffer(&self.pp_params[l], 0, &params);
@@ -416,12 +523,9 @@ impl IsmGather {
         );
         tparams.extend_from_slice(bytemuck::cast_slice(&[d_max, exposure, 0.0f32, 0.0]));
         queue.write_buffer(&self.temporal_params, 0, &tparams);
-        let d_min = settings.clamp_distance;
-        queue.write_buffer(
-            &self.shade_params,
-            0,
-            &u32s([key.vpls, key.r, c, settings.interleave], [1.0 / d_max, DEPTH_BIAS, d_min * d_min, 0.0]),
-        );
+        let mut shade = u32s([key.vpls, key.r, c, settings.interleave], [1.0 / d_max, DEPTH_BIAS, d_min * d_min, 0.0]);
+        shade.extend_from_slice(bytemuck::cast_slice(&[key.bounces, 0, 0, 0]));
+        queue.write_buffer(&self.shade_params, 0, &shade);
         queue.write_buffer(
             &self.filter_params,
             0,
@@ -430,23 +534,38 @@ impl IsmGather {
 
         let mut pass = encoder
             .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("ism gather"), timestamp_writes: None });
-        pass.set_bind_group(0, &s.splat_group, &[]);
+        pass.set_bind_group(0, &s.splat_group, &[0]);
         pass.set_pipeline(&self.clear);
         pass.dispatch_workgroups(side.div_ceil(8), side.div_ceil(8), 1);
-        pass.set_pipeline(&self.splat);
-        pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
-        pass.set_pipeline(&self.pull);
-        for (l, g) in s.pull_groups.iter().enumerate() {
-            pass.set_bind_group(0, g, &[]);
-            let coarse = (side >> (l + 1)).max(1);
-            pass.dispatch_workgroups(coarse.div_ceil(8), coarse.div_ceil(8), 1);
-        }
-        pass.set_pipeline(&self.push);
-        for (i, g) in s.push_groups.iter().enumerate() {
-            let l = PULL_LEVELS - 1 - i;
-            pass.set_bind_group(0, g, &[]);
-            let fine = (side >> l).max(1);
-            pass.dispatch_workgroups(fine.div_ceil(8), fine.div_ceil(8), 1);
+        for b in 0..key.bounces {
+            if b > 0 {
+                // One-pass multi-bounce: the brightest lit point per VPL of set b-1 (tested
+                // against the filled ISMs of that set) becomes a VPL of set b.
+                let offset = [((b - 1) as u64 * SLOT) as u32];
+                pass.set_bind_group(0, &s.bounce_group, &offset);
+                pass.set_pipeline(&self.bounce_clear);
+                pass.dispatch_workgroups(key.vpls.div_ceil(64), 1, 1);
+                pass.set_pipeline(&self.bounce_select);
+                pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
+                pass.set_pipeline(&self.bounce_write);
+                pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
+            }
+            pass.set_bind_group(0, &s.splat_group, &[(u64::from(b) * SLOT) as u32]);
+            pass.set_pipeline(&self.splat);
+            pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
+            pass.set_pipeline(&self.pull);
+            for (l, g) in s.pull_groups.iter().enumerate() {
+                pass.set_bind_group(0, g, &[]);
+                let coarse = (side >> (l + 1)).max(1);
+                pass.dispatch_workgroups(coarse.div_ceil(8), coarse.div_ceil(8), 1);
+            }
+            pass.set_pipeline(&self.push);
+            for (i, g) in s.push_groups.iter().enumerate() {
+                let l = PULL_LEVELS - 1 - i;
+                pass.set_bind_group(0, g, &[]);
+                let fine = (side >> l).max(1);
+                pass.dispatch_workgroups(fine.div_ceil(8), fine.div_ceil(8), 1);
+            }
         }
         let (w, h) = targets.size;
         pass.set_pipeline(&self.shade);

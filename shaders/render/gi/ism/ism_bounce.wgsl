@@ -1,0 +1,137 @@
+// ISM pass P11: one-pass multi-bounce VPL generation (Knecht 2009 section 3.6). Every scene
+// sample point belongs to one VPL of the source set (the same blocks as its ISM); it is lit by
+// that VPL (ISM-tested), and per source VPL the brightest lit point becomes the new VPL (the
+// thesis's >= depth test, here an atomic max on the luminance). The new VPL carries the source
+// VPL's whole reflected power in the winner's colour (digest section 6.2), so the estimate of
+// the next bounce's power is unbiased in expectation over the point distribution.
+#import common/onb.wgsl
+
+struct BounceParams {
+    // VPLs per set, points, tile side r, tiles per row C.
+    counts: vec4<u32>,
+    // source set's first VPL, destination set's first VPL, unused x2.
+    sets: vec4<u32>,
+    // 1 / d_max, ISM depth bias, d_min^2, interleave n^2.
+    params: vec4<f32>,
+    // sum over the scene of area x weight, unused x3.
+    area: vec4<f32>,
+}
+
+struct Vpl {
+    position: vec4<f32>,
+    normal: vec4<f32>,
+    power: vec4<f32>,
+    incident: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> bp: BounceParams;
+@group(0) @binding(1) var<storage, read> points: array<vec4<f32>>;
+// xyz normal, w = the object's sampling weight.
+@group(0) @binding(2) var<storage, read> point_normals: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read> point_albedo: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read_write> vpls: array<Vpl>;
+@group(0) @binding(5) var<storage, read> atlas: array<u32>;
+@group(0) @binding(6) var<storage, read_write> keys: array<atomic<u32>>;
+@group(0) @binding(7) var<storage, read_write> sums: array<atomic<u32>>;
+
+const PI: f32 = 3.14159265358979;
+
+// Reflected power (rgb) of point j lit by its source VPL, and that VPL's index within the set.
+fn reflected(j: u32) -> vec4<f32> {
+    let per = max(bp.counts.y / bp.counts.x, 1u);
+    let k = j / per;
+    if k >= bp.counts.x {
+        return vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    }
+    let src = bp.sets.x + k;
+    let vpl = vpls[src];
+    if vpl.position.w < 0.5 {
+        return vec4<f32>(0.0, 0.0, 0.0, f32(k));
+    }
+    let p = points[j].xyz;
+    let n = point_normals[j].xyz;
+    let to_p = p - vpl.position.xyz;
+    let d2 = max(dot(to_p, to_p), 1.0e-8);
+    let dir = to_p * inverseSqrt(d2);
+    let cos_s = dot(vpl.normal.xyz, dir);
+    let cos_r = dot(n, -dir);
+    if cos_s <= 0.0 || cos_r <= 0.0 {
+        return vec4<f32>(0.0, 0.0, 0.0, f32(k));
+    }
+    let r = bp.counts.z;
+    let c = bp.counts.w;
+    let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p);
+    let texel = min(vec2<u32>(pb.xy * f32(r)), vec2<u32>(r - 1u));
+    let a = vec2<u32>((src % c) * r, (src / c) * r) + texel;
+    if pb.z * bp.params.x > bitcast<f32>(atlas[a.y * r * c + a.x]) + bp.params.y {
+        return vec4<f32>(0.0, 0.0, 0.0, f32(k));
+    }
+    // Physical power of the source VPL (its shading power carries the interleave factor n^2).
+    let phi = vpl.power.rgb / bp.params.w;
+    let e = phi / PI * cos_s * cos_r / max(d2, bp.params.z);
+    // The area this point stands for among its VPL's points: sum(wA) / (per * w).
+    let area = bp.area.x / (f32(per) * max(point_normals[j].w, 1.0e-6));
+    return vec4<f32>(point_albedo[j].rgb * e * area, f32(k));
+}
+
+fn luminance(c: vec3<f32>) -> f32 {
+    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+}
+
+@compute @workgroup_size(64, 1, 1)
+fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= bp.counts.x {
+        return;
+    }
+    atomicStore(&keys[id.x], 0u);
+    atomicStore(&sums[id.x], bitcast<u32>(0.0));
+    vpls[bp.sets.y + id.x] = Vpl(vec4<f32>(0.0), vec4<f32>(0.0, 0.0, 1.0, 0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+}
+
+@compute @workgroup_size(64, 1, 1)
+fn select_brightest(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= bp.counts.y {
+        return;
+    }
+    let r = reflected(id.x);
+    let y = luminance(r.rgb);
+    if r.w < 0.0 || y <= 0.0 {
+        return;
+    }
+    let k = u32(r.w);
+    atomicMax(&keys[k], bitcast<u32>(y));
+    // Float add by compare-and-swap.
+    var old = atomicLoad(&sums[k]);
+    loop {
+        let res = atomicCompareExchangeWeak(&sums[k], old, bitcast<u32>(bitcast<f32>(old) + y));
+        if res.exchanged {
+            break;
+        }
+        old = res.old_value;
+    }
+}
+
+@compute @workgroup_size(64, 1, 1)
+fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= bp.counts.y {
+        return;
+    }
+    let r = reflected(id.x);
+    let y = luminance(r.rgb);
+    if r.w < 0.0 || y <= 0.0 {
+        return;
+    }
+    let k = u32(r.w);
+    if bitcast<u32>(y) != atomicLoad(&keys[k]) {
+        return;
+    }
+    let total = bitcast<f32>(atomicLoad(&sums[k]));
+    let src = vpls[bp.sets.x + k];
+    let p = points[id.x].xyz;
+    var out: Vpl;
+    out.position = vec4<f32>(p, 1.0);
+    out.normal = vec4<f32>(point_normals[id.x].xyz, 0.0);
+    out.power = vec4<f32>(r.rgb * (total / y) * bp.params.w, 1.0);
+    out.incident = vec4<f32>(normalize(src.position.xyz - p), 0.0);
+    vpls[bp.sets.y + k] = out;
+}
