@@ -29,6 +29,10 @@ fn raster(ctx: &bouncelab::render::GpuContext, project: &Project, mode: GiMode, 
 }
 
 fn check_against_reference(project: &Project, label: &str) {
+    // First-bounce VPLs against direct + one indirect bounce.
+    let mut project = project.clone();
+    project.render.ism.bounces = 1;
+    let project = &project;
     let Some(ctx) = common::gpu() else { return };
     let size = (64, 36);
     let mut tracer =
@@ -104,4 +108,32 @@ fn bounces_add_energy_monotonically_and_converge() {
     }
     assert!(lums[3] - lums[2] < lums[1] - lums[0], "added energy shrinks with each bounce: {lums:?}");
     assert!(ratios[3] > ratios[0], "more bounces come closer to the full reference");
+}
+
+#[test]
+fn ism_with_defaults_after_32_frames_halves_the_flip_of_direct_against_full_gi() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = Project::load(&default_project_path()).expect("default project");
+    let size = (64, 36);
+    let mut tracer = PathTracer::new(&project.scene, size, ReferenceSettings { spp: 512, ..Default::default() });
+    tracer.render(512, &AtomicBool::new(false), |_| {});
+    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let mut settings = project.render.clone();
+    settings.mode = GiMode::Ism;
+    let mut r = bouncelab::render::Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    for _ in 0..32 {
+        r.render(&project.scene, &settings, size).expect("render");
+    }
+    let ism = HdrImage { width: size.0, height: size.1, pixels: r.read_hdr().expect("hdr") };
+    settings.mode = GiMode::Direct;
+    r.render(&project.scene, &settings, size).expect("render");
+    let direct = HdrImage { width: size.0, height: size.1, pixels: r.read_hdr().expect("hdr") };
+    let (fd, fi) = (
+        metrics::flip(&direct, &reference, 0.0).expect("flip").0,
+        metrics::flip(&ism, &reference, 0.0).expect("flip").0,
+    );
+    let li = metrics::luminance_ratio(&ism, &reference).expect("ratio");
+    eprintln!("defaults, 32 frames, full GI: direct FLIP {fd:.4}; ism FLIP {fi:.4}, luminance {li:.3}");
+    assert!(fi < 0.5 * fd, "ism FLIP {fi} vs direct {fd}");
+    assert!((li - 1.0).abs() < 0.06, "ism mean luminance off by {:.1}%", (li - 1.0) * 100.0);
 }

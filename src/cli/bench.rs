@@ -89,6 +89,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
         let _ = writeln!(md, "| {} | {}x{} | {:.2} | {} |", r.mode.name(), r.size.0, r.size.1, r.frame_ms, passes);
     }
     reference_rows(&mut md, &project, quick);
+    ism_rows(&mut md, &ctx, &project, quick)?;
     // Anything after the manual marker (hand-run external comparisons) survives a rerun.
     if let Ok(old) = std::fs::read_to_string(out)
         && let Some(i) = old.find(MANUAL_MARKER)
@@ -134,4 +135,78 @@ fn reference_rows(md: &mut String, project: &Project, quick: bool) {
             start.elapsed().as_secs_f64()
         );
     }
+}
+
+/// The thesis's sweeps (VPLs, ISM resolution, bounces) as frame-time ratios to `direct` in the
+/// same run, with the error against the reference path tracer after 16 frames.
+fn ism_rows(md: &mut String, ctx: &GpuContext, project: &Project, quick: bool) -> anyhow::Result<()> {
+    use crate::image_io::HdrImage;
+    use crate::metrics;
+    let size = if quick { (160, 90) } else { (320, 180) };
+    let frames = 16;
+    let mut tracer = PathTracer::new(
+        &project.scene,
+        size,
+        ReferenceSettings { spp: if quick { 16 } else { 64 }, ..ReferenceSettings::default() },
+    );
+    let spp = tracer.settings_spp();
+    tracer.render(spp, &std::sync::atomic::AtomicBool::new(false), |_| {});
+    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let direct_ms = measure(ctx, project, GiMode::Direct, size, 8)?.frame_ms;
+    let run =
+        |mode: GiMode, edit: &dyn Fn(&mut crate::settings::IsmSettings)| -> anyhow::Result<(f64, f64, f64, f64)> {
+            let mut settings = project.render.clone();
+            settings.mode = mode;
+            edit(&mut settings.ism);
+            settings.validate()?;
+            let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
+            let mut times = Vec::new();
+            for _ in 0..frames {
+                let t = Instant::now();
+                r.render(&project.scene, &settings, size)?;
+                let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
+                times.push(t.elapsed().as_secs_f64() * 1e3);
+            }
+            let img = HdrImage { width: size.0, height: size.1, pixels: r.read_hdr()? };
+            let c = metrics::compare(&img, &reference, 0.0)?;
+            Ok((median(times[frames / 2..].to_vec()), c.flip, c.relmse, c.luminance_ratio))
+        };
+    let _ = writeln!(md, "\n## ISM (Knecht 2009) sweeps\n");
+    let _ = writeln!(
+        md,
+        "Default project (point light), {}x{}, frame time relative to `direct` ({direct_ms:.1} ms) in the same run; error after {frames} \
+         frames against the reference path tracer ({spp} spp, full GI). Other settings at their defaults.\n",
+        size.0, size.1
+    );
+    let _ = writeln!(md, "| sweep | setting | mode | frame / direct | FLIP | relMSE | luminance ratio |");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|");
+    let vpls: &[u32] = if quick { &[16, 256] } else { &[4, 16, 64, 256, 1024] };
+    for &n in vpls {
+        for mode in [GiMode::Ism, GiMode::IsmRitschel] {
+            let (ms, flip, rel, lum) = run(mode, &|m| m.vpl_count = n)?;
+            let _ = writeln!(
+                md,
+                "| VPLs | {n} | {} | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |",
+                mode.name(),
+                ms / direct_ms
+            );
+        }
+    }
+    let resolutions: &[u32] = if quick { &[128] } else { &[64, 128, 256] };
+    for &res in resolutions {
+        let (ms, flip, rel, lum) = run(GiMode::Ism, &|m| m.ism_resolution = res)?;
+        let _ =
+            writeln!(md, "| ISM resolution | {res} | ism | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |", ms / direct_ms);
+    }
+    let bounces: &[u32] = if quick { &[1, 2] } else { &[1, 2, 3, 4, 5, 6] };
+    for &b in bounces {
+        let (ms, flip, rel, lum) = run(GiMode::Ism, &|m| {
+            m.bounces = b;
+            m.ism_resolution = if b > 4 { 64 } else { 128 };
+        })?;
+        let _ = writeln!(md, "| bounces | {b} | ism | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |", ms / direct_ms);
+    }
+    let (ms, flip, rel, lum) = run(GiMode::Direct, &|_| {})?;
+    let _ = writeln!(md, "| baseline | - | direct | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |", ms / direct_ms);
+    Ok(())
 }

@@ -90,6 +90,11 @@ impl PathTracer {
         }
     }
 
+    /// The target samples per pixel of its settings.
+    pub fn settings_spp(&self) -> u32 {
+        self.settings.spp
+    }
+
     /// Samples per pixel so far.
     pub fn spp(&self) -> u32 {
         self.spp

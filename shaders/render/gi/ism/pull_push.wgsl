@@ -3,7 +3,7 @@
 // f32 bit patterns in u32 storage; 1.0 is empty. Tiles are powers of two, so 2x2 reductions never
 // mix two VPLs' maps.
 struct PullPushParams {
-    // fine side (texels), level of the fine side (0 = finest), unused, unused.
+    // fine side (texels), level of the fine side (0 = finest), first fine row, unused.
     counts: vec4<u32>,
     // threshold tau (normalised distance), unused...
     params: vec4<f32>,
@@ -18,9 +18,10 @@ fn threshold() -> f32 {
 }
 
 @compute @workgroup_size(8, 8, 1)
-fn pull(@builtin(global_invocation_id) id: vec3<u32>) {
+fn pull(@builtin(global_invocation_id) gid: vec3<u32>) {
     let fs = pp.counts.x;
     let cs = fs / 2u;
+    let id = vec2<u32>(gid.x, gid.y + pp.counts.z / 2u);
     if id.x >= cs || id.y >= cs {
         return;
     }
@@ -51,8 +52,9 @@ fn pull(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 @compute @workgroup_size(8, 8, 1)
-fn push(@builtin(global_invocation_id) id: vec3<u32>) {
+fn push(@builtin(global_invocation_id) gid: vec3<u32>) {
     let fs = pp.counts.x;
+    let id = vec2<u32>(gid.x, gid.y + pp.counts.z);
     if id.x >= fs || id.y >= fs {
         return;
     }

@@ -115,7 +115,7 @@ pub struct IsmGather {
     bounce_select: wgpu::ComputePipeline,
     bounce_write: wgpu::ComputePipeline,
     bounce_params: wgpu::Buffer,
-    pp_params: Vec<wgpu::Buffer>,
+    pp_params: wgpu::Buffer,
     shade_params: wgpu::Buffer,
     filter_params: wgpu::Buffer,
     temporal_layout: wgpu::BindGroupLayout,
@@ -137,7 +137,7 @@ impl IsmGather {
         let splat_module = shaders::module(device, "render/gi/ism/ism_splat.wgsl")?;
         let pp_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ism pull-push layout"),
-            entries: &[uniform_entry(0, c, false), storage_rw(1), storage_rw(2)],
+            entries: &[uniform_entry(0, c, true), storage_rw(1), storage_rw(2)],
         });
         let pp_module = shaders::module(device, "render/gi/ism/pull_push.wgsl")?;
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
@@ -222,7 +222,12 @@ impl IsmGather {
             shade: pipeline(device, "ism shade", &shade_layout, &shade_module, "cs_main"),
             filter: pipeline(device, "ism filter", &filter_layout, &filter_module, "cs_main"),
             splat_params: slots("ism splat params"),
-            pp_params: (0..2 * PULL_LEVELS).map(|_| uniform(device, "ism pull-push params", &[0u8; 32])).collect(),
+            pp_params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ism pull-push params"),
+                size: SLOT * MAX_SETS * PULL_LEVELS as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
             shade_params: uniform(device, "ism shade params", &[0u8; 48]),
             filter_params: uniform(device, "ism filter params", &[0u8; 32]),
             splat_layout,
@@ -322,16 +327,15 @@ impl IsmGather {
                 buf(7, &sums),
             ],
         });
-        let pp = |params: &wgpu::Buffer, fine: &wgpu::Buffer, coarse: &wgpu::Buffer| {
+        let pp = |fine: &wgpu::Buffer, coarse: &wgpu::Buffer| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("ism pull-push bind group"),
                 layout: &self.pp_layout,
-                entries: &[buf(0, params), buf(1, fine), buf(2, coarse)],
+                entries: &[slot(0, &self.pp_params, 32), buf(1, fine), buf(2, coarse)],
             })
         };
-        let pull_groups = (0..PULL_LEVELS).map(|l| pp(&self.pp_params[l], &atlas[l], &atlas[l + 1])).collect();
-        let push_groups =
-            (0..PULL_LEVELS).rev().map(|l| pp(&self.pp_params[PULL_LEVELS + l], &atlas[l], &atlas[l + 1])).collect();
+        let pull_groups = (0..PULL_LEVELS).map(|l| pp(&atlas[l], &atlas[l + 1])).collect();
+        let push_groups = (0..PULL_LEVELS).rev().map(|l| pp(&atlas[l], &atlas[l + 1])).collect();
         let shade_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism shade bind group"),
             layout: &self.shade_layout,
@@ -512,10 +516,19 @@ impl IsmGather {
                 queue.write_buffer(&self.bounce_params, u64::from(b - 1) * SLOT, &bounce);
             }
         }
-        for l in 0..PULL_LEVELS {
-            let params = u32s([side >> l, l as u32, 0, 0], [0.05, 0.0, 0.0, 0.0]);
-            queue.write_buffer(&self.pp_params[l], 0, &params);
-            queue.write_buffer(&self.pp_params[PULL_LEVELS + l], 0, &params);
+        // Pull-push per set: only the tile rows the set occupies (slots: set b, level l).
+        let set_rows = |b: u32| {
+            let first = (b * key.vpls) / c;
+            let last = ((b + 1) * key.vpls - 1) / c;
+            (first * key.r, (last + 1 - first) * key.r)
+        };
+        for b in 0..key.bounces {
+            let (row0, _) = set_rows(b);
+            for l in 0..PULL_LEVELS {
+                let params = u32s([side >> l, l as u32, row0 >> l, 0], [0.05, 0.0, 0.0, 0.0]);
+                let slot = (u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT;
+                queue.write_buffer(&self.pp_params, slot, &params);
+            }
         }
         let mut tparams = u32s(
             [reset, 0, 0, 0],
@@ -553,18 +566,21 @@ impl IsmGather {
             pass.set_bind_group(0, &s.splat_group, &[(u64::from(b) * SLOT) as u32]);
             pass.set_pipeline(&self.splat);
             pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
+            let (_, rows) = set_rows(b);
             pass.set_pipeline(&self.pull);
             for (l, g) in s.pull_groups.iter().enumerate() {
-                pass.set_bind_group(0, g, &[]);
+                let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
+                pass.set_bind_group(0, g, &[slot]);
                 let coarse = (side >> (l + 1)).max(1);
-                pass.dispatch_workgroups(coarse.div_ceil(8), coarse.div_ceil(8), 1);
+                pass.dispatch_workgroups(coarse.div_ceil(8), (rows >> (l + 1)).max(1).div_ceil(8), 1);
             }
             pass.set_pipeline(&self.push);
             for (i, g) in s.push_groups.iter().enumerate() {
                 let l = PULL_LEVELS - 1 - i;
-                pass.set_bind_group(0, g, &[]);
+                let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
+                pass.set_bind_group(0, g, &[slot]);
                 let fine = (side >> l).max(1);
-                pass.dispatch_workgroups(fine.div_ceil(8), fine.div_ceil(8), 1);
+                pass.dispatch_workgroups(fine.div_ceil(8), (rows >> l).max(1).div_ceil(8), 1);
             }
         }
         let (w, h) = targets.size;
