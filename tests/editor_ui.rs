@@ -158,3 +158,28 @@ fn snapshot_of_the_default_layout() {
     h.mask(egui::Rect::from_min_max(egui::pos2(0.0, timings.min.y), egui::pos2(1280.0, 800.0)));
     h.snapshot("editor_default_layout");
 }
+
+#[test]
+fn ism_confidence_and_reference_comparison_in_the_inspector() {
+    if std::env::var_os("CI").is_none() && bouncelab::render::GpuContext::new_headless().is_err() {
+        return;
+    }
+    let mut h = harness();
+    h.get_by_label("ism").click();
+    h.run_steps(4);
+    assert_eq!(h.state().state().project.render.mode, GiMode::Ism);
+    h.get_by_label("VPLs").click();
+    h.get_by_label("Buffer inspector").click();
+    h.run_steps(2);
+    h.state_mut().inspect("ism_confidence");
+    h.get_by_label("Refresh").click();
+    h.run_steps(3);
+    let (name, size) = h.state().inspected();
+    assert_eq!(name, "ism_confidence");
+    assert!(size.is_some_and(|(w, h)| w > 0 && h > 0), "the confidence buffer was read back");
+    h.get_by_label("Compare with the reference path tracer").click();
+    h.run_steps(6);
+    assert!(!h.state().state().status.contains("failed"), "{}", h.state().state().status);
+    let img = h.render().expect("renders");
+    assert_eq!((img.width(), img.height()), (1280, 800));
+}

@@ -162,6 +162,17 @@ fn rgba8_to_color_image(w: u32, h: u32, rgba: &[u8]) -> egui::ColorImage {
 }
 
 impl Inspector {
+    /// Shows buffer `name` (what choosing it in the combo box does).
+    pub fn select(&mut self, name: &str) {
+        self.buffer = name.to_owned();
+        self.image = None;
+    }
+
+    /// The buffer shown and its last read-back image, if any.
+    pub fn shown(&self) -> (&str, Option<&HdrImage>) {
+        (&self.buffer, self.image.as_ref())
+    }
+
     /// Draws the inspector; `renderer` is the viewport's (absent when the GPU is unavailable).
     pub fn ui(&mut self, ui: &mut egui::Ui, renderer: Option<&Renderer>, project: &Project, frame: u64) {
         let Some(renderer) = renderer else {
@@ -169,7 +180,7 @@ impl Inspector {
             return;
         };
         ui.horizontal_wrapped(|ui| {
-            egui::ComboBox::from_label("buffer").selected_text(&self.buffer).show_ui(ui, |ui| {
+            egui::ComboBox::from_label("buffer").height(800.0).selected_text(&self.buffer).show_ui(ui, |ui| {
                 for name in Renderer::buffer_names() {
                     ui.selectable_value(&mut self.buffer, (*name).to_owned(), *name);
                 }

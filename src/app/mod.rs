@@ -105,6 +105,17 @@ impl EditorApp {
         Self { state, viewport, inspector: inspector::Inspector::default(), tree, modal, allow_close: false, recovery }
     }
 
+    /// Shows buffer `name` in the inspector (tests; the combo box does the same).
+    pub fn inspect(&mut self, name: &str) {
+        self.inspector.select(name);
+    }
+
+    /// The inspected buffer's name and the size of its last read-back image.
+    pub fn inspected(&self) -> (String, Option<(u32, u32)>) {
+        let (name, img) = self.inspector.shown();
+        (name.to_owned(), img.map(|i| (i.width, i.height)))
+    }
+
     /// Where the viewport image was drawn last frame (tests aim the gizmo with it).
     pub fn viewport_rect(&self) -> Option<egui::Rect> {
         self.viewport.rect

@@ -27,6 +27,8 @@ pub struct GizmoOptions {
     pub show_points: bool,
     /// How many sample points to distribute for the overlay.
     pub point_count: usize,
+    /// Show the VPLs of the ISM modes (every bounce; refreshed every 10 frames).
+    pub show_vpls: bool,
 }
 
 impl Default for GizmoOptions {
@@ -39,6 +41,7 @@ impl Default for GizmoOptions {
             angle_step: 15.0,
             show_points: false,
             point_count: 4096,
+            show_vpls: false,
         }
     }
 }
@@ -61,6 +64,7 @@ pub struct Viewport {
     /// Screen rectangle of the last drawn image (egui points).
     pub rect: Option<egui::Rect>,
     reference: Option<ReferenceJob>,
+    vpls: Vec<(Vec3, usize)>,
     reference_spp: u32,
     reference_tex: Option<egui::TextureHandle>,
 }
@@ -97,6 +101,7 @@ impl Viewport {
             points: None,
             rect: None,
             reference: None,
+            vpls: Vec::new(),
             reference_spp: 0,
             reference_tex: None,
         };
@@ -216,6 +221,8 @@ impl Viewport {
             ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Scale, "Scale (S)");
             ui.checkbox(&mut self.gizmo.local, "local axes");
             ui.checkbox(&mut self.gizmo.snap, "snap");
+            ui.checkbox(&mut self.gizmo.show_vpls, "VPLs")
+                .on_hover_text("The ISM modes' virtual point lights, coloured by bounce (refreshed every 10 frames).");
             ui.checkbox(&mut self.gizmo.show_points, "sample points")
                 .on_hover_text("Where scene sample points land: area x sampling weight per object.");
             ui.label(format!("mode: {}", state.project.render.mode.name()));
@@ -402,6 +409,28 @@ impl Viewport {
         overlays::draw(&painter, rect, &view, &state.project.scene, state.selection);
         if self.gizmo.show_points {
             self.draw_points(&painter, rect, &view, state);
+        }
+        let ism =
+            matches!(state.project.render.mode, crate::settings::GiMode::Ism | crate::settings::GiMode::IsmRitschel);
+        if self.gizmo.show_vpls && ism {
+            if self.frames % 10 == 1
+                && let Some(r) = &self.renderer
+                && let Ok(v) = r.ism_all_vpls()
+            {
+                let per_set = state.project.render.ism.vpl_count.max(1) as usize;
+                self.vpls = v
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, v)| v.position[3] > 0.5)
+                    .map(|(i, v)| (Vec3::new(v.position[0], v.position[1], v.position[2]), i / per_set))
+                    .collect();
+            }
+            for (p, bounce) in &self.vpls {
+                if let Some(s) = view.project(*p) {
+                    let [r, g, b] = super::inspector::false_colour(*bounce as f32 / 5.0);
+                    painter.circle_filled(rect.min + egui::vec2(s.x, s.y), 2.5, egui::Color32::from_rgb(r, g, b));
+                }
+            }
         }
         if let Some((origin, rotation)) = Self::target(state) {
             let len = view.world_size(origin, 70.0);

@@ -213,7 +213,11 @@ fn ism_rows(md: &mut String, ctx: &GpuContext, project: &Project, quick: bool) -
             m.ism_resolution = if b > 4 { 64 } else { 128 };
         })?;
         let res = if b > 4 { 64 } else { 128 };
-        let _ = writeln!(md, "| bounces (ISM {res}²) | {b} | ism | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |", ms / direct_ms);
+        let _ = writeln!(
+            md,
+            "| bounces (ISM {res}²) | {b} | ism | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |",
+            ms / direct_ms
+        );
     }
     let (ms, flip, rel, lum) = run(GiMode::Direct, &|_| {})?;
     let _ = writeln!(md, "| baseline | - | direct | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |", ms / direct_ms);
