@@ -15,6 +15,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("common/octahedral.wgsl", include_str!("../../shaders/common/octahedral.wgsl")),
     ("common/onb.wgsl", include_str!("../../shaders/common/onb.wgsl")),
     ("common/shadow.wgsl", include_str!("../../shaders/common/shadow.wgsl")),
+    ("common/vpl.wgsl", include_str!("../../shaders/common/vpl.wgsl")),
     ("render/gbuffer.wgsl", include_str!("../../shaders/render/gbuffer.wgsl")),
     ("render/gi/ism/importance.wgsl", include_str!("../../shaders/render/gi/ism/importance.wgsl")),
     ("render/gi/ism/ism_bounce.wgsl", include_str!("../../shaders/render/gi/ism/ism_bounce.wgsl")),

@@ -5,6 +5,7 @@
 // VPL's whole reflected power in the winner's colour (digest section 6.2), so the estimate of
 // the next bounce's power is unbiased in expectation over the point distribution.
 #import common/onb.wgsl
+#import common/vpl.wgsl
 
 struct BounceParams {
     // VPLs per set, points, tile side r, tiles per row C.
@@ -17,12 +18,6 @@ struct BounceParams {
     area: vec4<f32>,
 }
 
-struct Vpl {
-    position: vec4<f32>,
-    normal: vec4<f32>,
-    power: vec4<f32>,
-    incident: vec4<f32>,
-}
 
 @group(0) @binding(0) var<uniform> bp: BounceParams;
 @group(0) @binding(1) var<storage, read> points: array<vec4<f32>>;

@@ -5,6 +5,7 @@
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/onb.wgsl
+#import common/vpl.wgsl
 
 struct ShadeParams {
     // VPL count, tile side r, tiles per row C, interleave n.
@@ -15,12 +16,6 @@ struct ShadeParams {
     sets: vec4<u32>,
 }
 
-struct Vpl {
-    position: vec4<f32>,
-    normal: vec4<f32>,
-    power: vec4<f32>,
-    incident: vec4<f32>,
-}
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<uniform> sh: ShadeParams;

@@ -4,6 +4,7 @@
 // with an atomic min (positive floats keep their order as u32). `clear` empties the atlas (1.0).
 // Each bounce's VPL set has its own block of tiles (`sets.x` is the set's first VPL).
 #import common/onb.wgsl
+#import common/vpl.wgsl
 
 struct SplatParams {
     // VPL count, points, tile side r, tiles per row C.
@@ -14,12 +15,6 @@ struct SplatParams {
     sets: vec4<u32>,
 }
 
-struct Vpl {
-    position: vec4<f32>,
-    normal: vec4<f32>,
-    power: vec4<f32>,
-    incident: vec4<f32>,
-}
 
 @group(0) @binding(0) var<uniform> sp: SplatParams;
 @group(0) @binding(1) var<storage, read> points: array<vec4<f32>>;

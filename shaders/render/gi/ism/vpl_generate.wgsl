@@ -3,6 +3,7 @@
 // level to the finest (rows first, then the column within the row), lands in texel t with
 // probability p(t) = importance(t) / total, and becomes a VPL on the surface that texel sees,
 // carrying the unbiased power rho I dOmega n^2 / (N p(t)) (digest section 7.3).
+#import common/vpl.wgsl
 
 struct GenParams {
     // Per light-G-buffer tile (one for a spot light, six cube faces for a point light).
@@ -15,16 +16,6 @@ struct GenParams {
     tiles: vec4<u32>,
 }
 
-struct Vpl {
-    // xyz position, w = 1 when valid (the warp found a lit texel).
-    position: vec4<f32>,
-    // xyz surface normal, w = specular luminance.
-    normal: vec4<f32>,
-    // rgb power (W), a = pdf of the chosen texel.
-    power: vec4<f32>,
-    // xyz unit direction towards the light (the incident direction), w = texel index.
-    incident: vec4<f32>,
-}
 
 @group(0) @binding(0) var<uniform> params: GenParams;
 @group(0) @binding(1) var importance: texture_2d<f32>;

@@ -5,7 +5,7 @@
 use glam::Vec3;
 use wgpu::util::DeviceExt as _;
 
-use crate::render::layouts::{storage_entry, storage_texture_entry, texture_entry, uniform_entry};
+use crate::render::layouts::{compute_pipeline, storage_entry, storage_texture_entry, texture_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::{Target, ViewTargets, formats};
 use crate::settings::IsmSettings;
@@ -35,28 +35,6 @@ fn uniform(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
         label: Some(label),
         contents: bytes,
         usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-    })
-}
-
-fn pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    layout: &wgpu::BindGroupLayout,
-    module: &wgpu::ShaderModule,
-    entry: &str,
-) -> wgpu::ComputePipeline {
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(layout)],
-        immediate_size: 0,
-    });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pl),
-        module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
     })
 }
 
@@ -205,22 +183,28 @@ impl IsmGather {
             })
         };
         Ok(Self {
-            bounce_clear: pipeline(device, "ism bounce clear", &bounce_layout, &bounce_module, "clear"),
-            bounce_select: pipeline(device, "ism bounce select", &bounce_layout, &bounce_module, "select_brightest"),
-            bounce_write: pipeline(device, "ism bounce write", &bounce_layout, &bounce_module, "write_winner"),
+            bounce_clear: compute_pipeline(device, "ism bounce clear", &bounce_layout, &bounce_module, "clear"),
+            bounce_select: compute_pipeline(
+                device,
+                "ism bounce select",
+                &bounce_layout,
+                &bounce_module,
+                "select_brightest",
+            ),
+            bounce_write: compute_pipeline(device, "ism bounce write", &bounce_layout, &bounce_module, "write_winner"),
             bounce_params: slots("ism bounce params"),
             bounce_layout,
-            temporal: pipeline(device, "ism temporal merge", &temporal_layout, &temporal_module, "cs_main"),
+            temporal: compute_pipeline(device, "ism temporal merge", &temporal_layout, &temporal_module, "cs_main"),
             temporal_params: uniform(device, "ism temporal params", &[0u8; 48]),
             temporal_layout,
             parity: 0,
             reset: true,
-            clear: pipeline(device, "ism atlas clear", &splat_layout, &splat_module, "clear"),
-            splat: pipeline(device, "ism splat", &splat_layout, &splat_module, "splat"),
-            pull: pipeline(device, "ism pull", &pp_layout, &pp_module, "pull"),
-            push: pipeline(device, "ism push", &pp_layout, &pp_module, "push"),
-            shade: pipeline(device, "ism shade", &shade_layout, &shade_module, "cs_main"),
-            filter: pipeline(device, "ism filter", &filter_layout, &filter_module, "cs_main"),
+            clear: compute_pipeline(device, "ism atlas clear", &splat_layout, &splat_module, "clear"),
+            splat: compute_pipeline(device, "ism splat", &splat_layout, &splat_module, "splat"),
+            pull: compute_pipeline(device, "ism pull", &pp_layout, &pp_module, "pull"),
+            push: compute_pipeline(device, "ism push", &pp_layout, &pp_module, "push"),
+            shade: compute_pipeline(device, "ism shade", &shade_layout, &shade_module, "cs_main"),
+            filter: compute_pipeline(device, "ism filter", &filter_layout, &filter_module, "cs_main"),
             splat_params: slots("ism splat params"),
             pp_params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ism pull-push params"),

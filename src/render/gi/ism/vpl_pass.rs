@@ -6,7 +6,7 @@ use glam::camera::rh::proj::directx;
 use glam::camera::rh::view::look_at_mat4;
 use glam::{Mat4, Vec3};
 
-use crate::render::layouts::{Layouts, storage_texture_entry, texture_entry, uniform_entry};
+use crate::render::layouts::{Layouts, compute_pipeline, storage_texture_entry, texture_entry, uniform_entry};
 use crate::render::scene_gpu::{OBJECT_SLOT, SceneGpu, Vertex};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::Target;
@@ -98,28 +98,6 @@ pub struct VplPass {
     pub vpls: wgpu::Buffer,
     vpl_capacity: u32,
     gen_bind_group: wgpu::BindGroup,
-}
-
-fn compute_pipeline(
-    device: &wgpu::Device,
-    label: &str,
-    layout: &wgpu::BindGroupLayout,
-    module: &wgpu::ShaderModule,
-    entry: &str,
-) -> wgpu::ComputePipeline {
-    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some(label),
-        bind_group_layouts: &[Some(layout)],
-        immediate_size: 0,
-    });
-    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some(label),
-        layout: Some(&pl),
-        module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
-    })
 }
 
 impl VplPass {
