@@ -137,3 +137,33 @@ fn ism_with_defaults_after_32_frames_halves_the_flip_of_direct_against_full_gi()
     assert!(fi < 0.5 * fd, "ism FLIP {fi} vs direct {fd}");
     assert!((li - 1.0).abs() < 0.06, "ism mean luminance off by {:.1}%", (li - 1.0) * 100.0);
 }
+
+#[test]
+fn more_vpls_never_make_it_worse_on_average() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = Project::load(&default_project_path()).expect("default project");
+    let size = (64, 36);
+    let mut tracer = PathTracer::new(&project.scene, size, ReferenceSettings { spp: 256, ..Default::default() });
+    tracer.render(256, &AtomicBool::new(false), |_| {});
+    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let mut errors = Vec::new();
+    for n in [16u32, 64, 256] {
+        let mut settings = project.render.clone();
+        settings.mode = GiMode::IsmRitschel;
+        settings.ism.vpl_count = n;
+        settings.ism.bounces = 1;
+        let mut r = bouncelab::render::Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        // Average over frames: each frame draws a new VPL set.
+        let mut sum = 0.0;
+        for _ in 0..4 {
+            r.render(&project.scene, &settings, size).expect("render");
+            let img = HdrImage { width: size.0, height: size.1, pixels: r.read_hdr().expect("hdr") };
+            sum += metrics::relmse(&img, &reference, 0.01).expect("relmse");
+        }
+        errors.push(sum / 4.0);
+    }
+    eprintln!("relMSE against full GI at 16/64/256 VPLs: {errors:.4?}");
+    for w in errors.windows(2) {
+        assert!(w[1] <= 1.05 * w[0], "more VPLs made it worse: {errors:?}");
+    }
+}
