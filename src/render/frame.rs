@@ -270,7 +270,17 @@ impl Renderer {
             (ism, spot, self.vpl_pass.as_mut(), self.gather.as_mut(), self.ism_points.as_ref())
         {
             let frame = self.frame_index;
-            if vpl_pass.record(device, queue, &mut encoder, scene, gpu, light, &settings.ism, frame) {
+            if vpl_pass.record(
+                device,
+                queue,
+                &mut encoder,
+                scene,
+                gpu,
+                light,
+                &settings.ism,
+                frame,
+                self.timer.scope("ism vpls"),
+            ) {
                 let world_points = points.world(scene);
                 let world: Vec<glam::Vec3> = world_points.iter().map(|(p, _)| *p).collect();
                 let (albedo, weights) = point_materials(scene, points);
@@ -293,6 +303,7 @@ impl Renderer {
                     &settings.ism,
                     settings.mode == GiMode::Ism,
                     settings.view.exposure_ev.exp2(),
+                    self.timer.scope("ism gather"),
                 );
                 wrote_indirect = true;
             }
@@ -497,7 +508,7 @@ impl Renderer {
         };
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("ism vpl encoder") });
-        if !pass.record(&device, &queue, &mut encoder, scene, gpu, light, settings, frame) {
+        if !pass.record(&device, &queue, &mut encoder, scene, gpu, light, settings, frame, None) {
             return Err(RenderError::Unsupported { mode: "ism", reason: format!("light {light} is directional") });
         }
         queue.submit([encoder.finish()]);

@@ -15,7 +15,7 @@ pub(crate) mod scene_gpu;
 pub mod shaders;
 pub(crate) mod shadows;
 pub mod targets;
-mod timing;
+pub(crate) mod timing;
 mod tonemap;
 pub(crate) mod uniforms;
 

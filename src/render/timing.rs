@@ -25,6 +25,15 @@ impl<'a> TimestampPair<'a> {
         }
     }
 
+    /// Timestamp writes for a compute pass that ends a scope begun by an earlier pass.
+    pub fn compute_end_writes(&self) -> wgpu::ComputePassTimestampWrites<'a> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: self.query_set,
+            beginning_of_pass_write_index: None,
+            end_of_pass_write_index: Some(self.end),
+        }
+    }
+
     /// Timestamp writes for a single compute pass.
     pub fn compute_writes(&self) -> wgpu::ComputePassTimestampWrites<'a> {
         wgpu::ComputePassTimestampWrites {

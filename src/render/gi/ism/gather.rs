@@ -457,6 +457,7 @@ impl IsmGather {
         settings: &IsmSettings,
         temporal: bool,
         exposure: f32,
+        timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) {
         let key = Key {
             vpls: settings.vpl_count,
@@ -529,8 +530,10 @@ impl IsmGather {
             &u32s([settings.interleave, 0, 0, 0], [settings.filter_depth, settings.filter_normal, d_max, 0.0]),
         );
 
-        let mut pass = encoder
-            .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("ism gather"), timestamp_writes: None });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("ism gather"),
+            timestamp_writes: timestamps.as_ref().map(|t| t.compute_writes()),
+        });
         pass.set_bind_group(0, &s.splat_group, &[0]);
         pass.set_pipeline(&self.clear);
         pass.dispatch_workgroups(side.div_ceil(8), side.div_ceil(8), 1);

@@ -356,6 +356,7 @@ impl VplPass {
         light: usize,
         settings: &IsmSettings,
         frame: u32,
+        timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) -> bool {
         let Some(layout) = Self::light_layout(scene, light) else { return false };
         let Some(l) = scene.lights().get(light) else { return false };
@@ -401,7 +402,7 @@ impl VplPass {
                     depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
                     stencil_ops: None,
                 }),
-                timestamp_writes: None,
+                timestamp_writes: timestamps.as_ref().map(|t| t.render_writes(true, false)),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
@@ -430,7 +431,7 @@ impl VplPass {
         }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("ism importance pyramid"),
-            timestamp_writes: None,
+            timestamp_writes: timestamps.as_ref().map(|t| t.compute_end_writes()),
         });
         for (m, group) in self.pyramid_groups.iter().enumerate() {
             pass.set_pipeline(if m == 0 { &self.seed_pipeline } else { &self.reduce_pipeline });
