@@ -17,3 +17,11 @@ struct MaterialParams {
     // normal scale, unused...
     params: vec4<f32>,
 }
+
+// One scene-mesh vertex as every rasterising pass reads it (mirrors render::scene_gpu::Vertex).
+struct MeshVertex {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    @location(3) tangent: vec4<f32>,
+}

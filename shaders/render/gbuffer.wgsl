@@ -15,13 +15,6 @@
 @group(2) @binding(2) var normal_texture: texture_2d<f32>;
 @group(2) @binding(3) var material_sampler: sampler;
 
-struct VertexIn {
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) uv: vec2<f32>,
-    @location(3) tangent: vec4<f32>,
-}
-
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
@@ -33,7 +26,7 @@ struct VertexOut {
 }
 
 @vertex
-fn vs_main(v: VertexIn) -> VertexOut {
+fn vs_main(v: MeshVertex) -> VertexOut {
     var out: VertexOut;
     let world = object.world_from_local * vec4<f32>(v.position, 1.0);
     out.world = world.xyz;

@@ -20,12 +20,23 @@ pub struct Vertex {
 }
 
 impl Vertex {
-    /// The layout matching `VertexIn` in `render/gbuffer.wgsl`.
+    /// The layout matching `MeshVertex` in `common/object.wgsl`.
     pub const LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
         array_stride: std::mem::size_of::<Vertex>() as u64,
         step_mode: wgpu::VertexStepMode::Vertex,
         attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Float32x4],
     };
+
+    /// The vertex stage of every pass that rasterises scene meshes: entry point `vs_main` of
+    /// `module`, fed by one buffer of [`Vertex`].
+    pub fn state(module: &wgpu::ShaderModule) -> wgpu::VertexState<'_> {
+        wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[Some(Self::LAYOUT)],
+        }
+    }
 }
 
 /// One uploaded mesh.

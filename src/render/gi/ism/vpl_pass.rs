@@ -144,12 +144,7 @@ impl VplPass {
         let gbuffer_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("ism light gbuffer pipeline"),
             layout: Some(&pl),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(Vertex::LAYOUT)],
-            },
+            vertex: Vertex::state(&module),
             // No culling: the nearest surface wins even when the light sees its back (it then reflects nothing).
             primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
             depth_stencil: Some(wgpu::DepthStencilState {
