@@ -58,5 +58,9 @@ fn bad_input_fails_with_the_file_named() {
         assert!(!o.status.success(), "{args:?} should fail");
         assert!(err.contains(needle), "{args:?}: stderr does not name {needle:?}: {err}");
         assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+        // Each cause once: "x: no such file", not "x: no such file: no such file".
+        let line = err.lines().find(|l| l.starts_with("error: ")).unwrap_or_default();
+        let parts: Vec<&str> = line.split(": ").collect();
+        assert!(parts.windows(2).all(|w| w[0] != w[1]), "{args:?}: repeated cause in {line:?}");
     }
 }

@@ -5,3 +5,6 @@ pub mod bench;
 pub mod compare;
 pub mod generate;
 pub mod render;
+pub mod report;
+
+pub use report::error_report;
