@@ -64,3 +64,19 @@ fn bad_input_fails_with_the_file_named() {
         assert!(parts.windows(2).all(|w| w[0] != w[1]), "{args:?}: repeated cause in {line:?}");
     }
 }
+
+#[test]
+fn a_gltf_that_crashes_the_parser_is_a_quiet_error() {
+    // gltf-json's validation indexes `accessors` with the attribute's index unchecked.
+    let dir = std::env::temp_dir().join(format!("bouncelab-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("crash.gltf");
+    let doc = r#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":7}}]}]}"#;
+    std::fs::write(&path, doc).expect("write");
+    let path = path.to_str().expect("utf-8 temp path");
+    let o = bouncelab(&["render", path, "--out", "/tmp/x.png"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(err.contains("crash.gltf"), "{err}");
+    assert!(!err.contains("panicked") && !err.contains("backtrace"), "{err}");
+}

@@ -7,6 +7,7 @@
 
 mod accessor;
 mod build;
+mod guard;
 mod images;
 mod nodes;
 mod primitive;
@@ -99,18 +100,8 @@ pub fn import_gltf(path: &Path) -> Result<Asset, ImportError> {
 pub fn import_slice(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset, ImportError> {
     // Defence in depth: our own checks run before the gltf crate's readers, but a panic inside
     // the third-party parser must still become an error rather than take down the editor.
-    let result = std::panic::catch_unwind(|| build::build(bytes, base_dir, path));
-    match result {
-        Ok(r) => r,
-        Err(payload) => {
-            let message = payload
-                .downcast_ref::<&str>()
-                .map(|s| (*s).to_owned())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "panic".into());
-            Err(ImportError::Internal { path: path.to_owned(), message })
-        }
-    }
+    guard::catch_quietly(|| build::build(bytes, base_dir, path))
+        .unwrap_or_else(|message| Err(ImportError::Internal { path: path.to_owned(), message }))
 }
 
 pub use resolve::{ResolveError, framing_camera, resolve, scene_from_asset};

@@ -30,6 +30,9 @@ pub enum ProjectError {
     /// Written by a newer Bounce Lab.
     #[error("{path}: format_version {found} is newer than this build understands ({FORMAT_VERSION})")]
     TooNew { path: PathBuf, found: u32 },
+    /// A glTF opened on its own failed to import (its error names the file).
+    #[error(transparent)]
+    Import(Box<ImportError>),
     /// A referenced asset failed to import.
     #[error("{project}: asset {index}: {source}")]
     Asset { project: PathBuf, index: usize, source: Box<ImportError> },
@@ -79,11 +82,7 @@ pub struct Project {
 impl Project {
     /// A project made of a single glTF file with default settings.
     pub fn from_gltf(path: &Path) -> Result<Self, ProjectError> {
-        let asset = import::import_gltf(path).map_err(|e| ProjectError::Asset {
-            project: path.to_owned(),
-            index: 0,
-            source: Box::new(e),
-        })?;
+        let asset = import::import_gltf(path).map_err(|e| ProjectError::Import(Box::new(e)))?;
         let scene = import::scene_from_asset(&asset)
             .map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
         Ok(Self { assets: vec![path.to_owned()], scene, render: RenderSettings::default(), imported: vec![asset] })
