@@ -259,6 +259,11 @@ fn every_error_case_is_a_named_error() {
     ));
     expect_err(&dir, "index.gltf", &d, "out of range");
 
+    // An attribute naming a missing accessor (gltf-json itself would panic on POSITION).
+    let mut d = base.clone();
+    d["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(42);
+    expect_err(&dir, "attr.gltf", &d, "refers to accessor 42");
+
     // Float indices.
     let mut d = base.clone();
     d["accessors"][2]["componentType"] = json!(5126);

@@ -7,8 +7,13 @@ use super::{Asset, ImportError, SUPPORTED_REQUIRED_EXTENSIONS, images, nodes, pr
 use crate::scene::{Material, TextureRef};
 
 pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset, ImportError> {
-    let gltf = gltf::Gltf::from_slice(bytes)
-        .map_err(|e| ImportError::Parse { path: path.to_owned(), message: e.to_string() })?;
+    let parse = |e: gltf::Error| ImportError::Parse { path: path.to_owned(), message: e.to_string() };
+    let unvalidated = gltf::Gltf::from_slice_without_validation(bytes).map_err(parse)?;
+    check_attribute_indices(unvalidated.document.as_json(), path)?;
+    let gltf = gltf::Gltf {
+        document: gltf::Document::from_json(unvalidated.document.into_json()).map_err(parse)?,
+        blob: unvalidated.blob,
+    };
     let doc = &gltf.document;
     for ext in doc.extensions_required() {
         if !SUPPORTED_REQUIRED_EXTENSIONS.contains(&ext) {
@@ -26,6 +31,24 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset,
     let mut asset = Asset { primitives, images, materials, ..Asset::default() };
     nodes::build_scene(doc, &mut asset, path)?;
     Ok(asset)
+}
+
+/// gltf-json's validation indexes `accessors` with a primitive's POSITION index unchecked (and
+/// panics); checking every attribute first turns that into a plain error.
+fn check_attribute_indices(root: &gltf::json::Root, path: &Path) -> Result<(), ImportError> {
+    let count = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let indices = primitive.attributes.values().chain(primitive.indices.as_ref());
+            if let Some(bad) = indices.map(|i| i.value()).find(|&i| i >= count) {
+                return Err(ImportError::Parse {
+                    path: path.to_owned(),
+                    message: format!("mesh {m} primitive {p} refers to accessor {bad}, but there are {count}"),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 fn load_buffers(
