@@ -89,7 +89,9 @@ pub struct Renderer {
     vpl_pass: Option<super::gi::ism::vpl_pass::VplPass>,
     last_mode: Option<GiMode>,
     gather: Option<super::gi::ism::gather::IsmGather>,
-    ism_points: Option<(IsmPointsKey, crate::precompute::sample_points::SamplePoints)>,
+    /// ISM sample points and the mean linear colour of each scene image (the points' albedo
+    /// texture term), both rebuilt only when their key changes, never per frame.
+    ism_points: Option<(IsmPointsKey, crate::precompute::sample_points::SamplePoints, Vec<[f32; 3]>)>,
     prev_clip_from_world: Option<Mat4>,
     frame_index: u32,
 }
@@ -266,7 +268,7 @@ impl Renderer {
         self.shadows.record(device, queue, &mut encoder, scene, gpu, shadow_ts);
         // The active GI technique writes `targets.indirect` here; `direct` leaves it black.
         let mut wrote_indirect = false;
-        if let (true, Some(light), Some(vpl_pass), Some(gather), Some((_, points))) =
+        if let (true, Some(light), Some(vpl_pass), Some(gather), Some((_, points, means))) =
             (ism, spot, self.vpl_pass.as_mut(), self.gather.as_mut(), self.ism_points.as_ref())
         {
             let frame = self.frame_index;
@@ -283,7 +285,7 @@ impl Renderer {
             ) {
                 let world_points = points.world(scene);
                 let world: Vec<glam::Vec3> = world_points.iter().map(|(p, _)| *p).collect();
-                let (albedo, weights) = point_materials(scene, points);
+                let (albedo, weights) = point_materials(scene, points, means);
                 let normals: Vec<[f32; 4]> =
                     world_points.iter().zip(&weights).map(|((_, n), w)| n.extend(*w).to_array()).collect();
                 let area = points.weighted_area.iter().sum::<f64>() as f32;
@@ -335,9 +337,10 @@ impl Renderer {
                 .map(|o| (o.sampling_weight, o.is_rendered(), o.transform.scale.to_array()))
                 .collect(),
         };
-        if self.ism_points.as_ref().is_none_or(|(k, _)| *k != key) {
+        if self.ism_points.as_ref().is_none_or(|(k, _, _)| *k != key) {
             let points = crate::precompute::sample_points::distribute(scene, ism.total_points as usize, 1);
-            self.ism_points = Some((key, points));
+            let means = scene.resources().images.iter().map(mean_linear_colour).collect();
+            self.ism_points = Some((key, points, means));
         }
     }
 
@@ -560,24 +563,26 @@ fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
     });
 }
 
-/// Albedo and sampling weight of each sample point's object (base colour factor; textures are
-/// averaged over the image).
+/// The mean linear colour of an sRGB image.
+fn mean_linear_colour(img: &crate::scene::Image) -> [f32; 3] {
+    let n = (img.rgba8.len() / 4).max(1) as f32;
+    let mut sum = [0.0f32; 3];
+    for px in img.rgba8.chunks_exact(4) {
+        for c in 0..3 {
+            sum[c] += crate::image_io::srgb_to_linear(f32::from(px[c]) / 255.0);
+        }
+    }
+    sum.map(|v| v / n)
+}
+
+/// Albedo and sampling weight of each sample point's object (base colour factor times the mean
+/// of its texture, `texture_means` indexed by image).
 fn point_materials(
     scene: &Scene,
     points: &crate::precompute::sample_points::SamplePoints,
+    texture_means: &[[f32; 3]],
 ) -> (Vec<[f32; 4]>, Vec<f32>) {
-    let mean_texture = |image: usize| {
-        scene.resources().images.get(image).map_or([1.0; 3], |img| {
-            let n = (img.rgba8.len() / 4).max(1) as f32;
-            let mut sum = [0.0f32; 3];
-            for px in img.rgba8.chunks_exact(4) {
-                for c in 0..3 {
-                    sum[c] += crate::image_io::srgb_to_linear(f32::from(px[c]) / 255.0);
-                }
-            }
-            sum.map(|v| v / n)
-        })
-    };
+    let mean_texture = |image: usize| texture_means.get(image).copied().unwrap_or([1.0; 3]);
     let per_object: Vec<([f32; 4], f32)> = scene
         .objects()
         .iter()
