@@ -2,7 +2,7 @@
 //! surfaces are one-sided, CCW front; reversed depth, cleared to 0, nearest wins).
 
 use super::layouts::Layouts;
-use super::scene_gpu::{OBJECT_SLOT, SceneGpu, Vertex};
+use super::scene_gpu::{SceneGpu, Vertex};
 use super::shaders::{self, ShaderError};
 use super::targets::{ViewTargets, formats};
 use crate::scene::Scene;
@@ -99,18 +99,6 @@ impl GbufferPass {
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, frame_bind_group, &[]);
-        for (i, object) in scene.objects().iter().enumerate() {
-            let (Some(mesh), Some(material)) = (gpu.meshes.get(object.mesh), gpu.materials.get(object.material)) else {
-                continue;
-            };
-            if !object.is_rendered() || mesh.index_count == 0 {
-                continue;
-            }
-            pass.set_bind_group(1, &gpu.object_bind_group, &[(i as u64 * OBJECT_SLOT) as u32]);
-            pass.set_bind_group(2, material, &[]);
-            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
-        }
+        gpu.draw_objects(&mut pass, scene);
     }
 }

@@ -92,6 +92,25 @@ fn upload_image(
 }
 
 impl SceneGpu {
+    /// Draws every rendered object with its object uniforms in group 1 and its material in
+    /// group 2; the pass's pipeline and group 0 are the caller's.
+    pub fn draw_objects(&self, pass: &mut wgpu::RenderPass<'_>, scene: &Scene) {
+        for (i, object) in scene.objects().iter().enumerate() {
+            let (Some(mesh), Some(material)) = (self.meshes.get(object.mesh), self.materials.get(object.material))
+            else {
+                continue;
+            };
+            if !object.is_rendered() || mesh.index_count == 0 {
+                continue;
+            }
+            pass.set_bind_group(1, &self.object_bind_group, &[(i as u64 * OBJECT_SLOT) as u32]);
+            pass.set_bind_group(2, material, &[]);
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        }
+    }
+
     /// Uploads everything.
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, scene: &Scene) -> Self {
         let one = |rgba: [u8; 4]| Image { width: 1, height: 1, rgba8: rgba.to_vec() };

@@ -7,7 +7,7 @@ use glam::camera::rh::view::look_at_mat4;
 use glam::{Mat4, Vec3};
 
 use crate::render::layouts::{Layouts, compute_pipeline, storage_texture_entry, texture_entry, uniform_entry};
-use crate::render::scene_gpu::{OBJECT_SLOT, SceneGpu, Vertex};
+use crate::render::scene_gpu::{SceneGpu, Vertex};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::Target;
 use crate::render::uniforms::GpuLight;
@@ -407,21 +407,7 @@ impl VplPass {
                 let (x, y) = ((t % layout.per_row) as f32 * size, (t / layout.per_row) as f32 * size);
                 pass.set_viewport(x, y, size, size, 0.0, 1.0);
                 pass.set_bind_group(0, &self.view_bind_group, &[(u64::from(t) * VIEW_SLOT) as u32]);
-                for (i, object) in scene.objects().iter().enumerate() {
-                    let (Some(mesh), Some(material)) =
-                        (gpu.meshes.get(object.mesh), gpu.materials.get(object.material))
-                    else {
-                        continue;
-                    };
-                    if !object.is_rendered() || mesh.index_count == 0 {
-                        continue;
-                    }
-                    pass.set_bind_group(1, &gpu.object_bind_group, &[(i as u64 * OBJECT_SLOT) as u32]);
-                    pass.set_bind_group(2, material, &[]);
-                    pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                    pass.draw_indexed(0..mesh.index_count, 0, 0..1);
-                }
+                gpu.draw_objects(&mut pass, scene);
             }
         }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
