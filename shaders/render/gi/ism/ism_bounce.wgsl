@@ -4,6 +4,7 @@
 // thesis's >= depth test, here an atomic max on the luminance). The new VPL carries the source
 // VPL's whole reflected power in the winner's colour (digest section 6.2), so the estimate of
 // the next bounce's power is unbiased in expectation over the point distribution.
+#import common/color.wgsl
 #import common/onb.wgsl
 #import common/vpl.wgsl
 
@@ -67,10 +68,6 @@ fn reflected(j: u32) -> vec4<f32> {
     // The area this point stands for among its VPL's points: sum(wA) / (per * w).
     let area = bp.area.x / (f32(per) * max(point_normals[j].w, 1.0e-6));
     return vec4<f32>(point_albedo[j].rgb * e * area, f32(k));
-}
-
-fn luminance(c: vec3<f32>) -> f32 {
-    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
 }
 
 @compute @workgroup_size(64, 1, 1)

@@ -5,6 +5,7 @@
 //   2 power      rgba16float  rgb = power reflected by the patch this texel sees,
 //                             rho * I(w) * dOmega (the cosine cancels), a = importance
 // Back faces (the light reaches the back of a one-sided surface) reflect nothing.
+#import common/color.wgsl
 #import common/lights.wgsl
 #import common/object.wgsl
 
@@ -55,7 +56,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> LightGbufferOut
     if material.flags.x != 0u {
         albedo = albedo * textureSample(base_texture, material_sampler, in.uv).rgb;
     }
-    let spec = dot(material.specular.rgb, vec3<f32>(0.2126, 0.7152, 0.0722));
+    let spec = luminance(material.specular.rgb);
     let n = normalize(in.normal);
     out.albedo = vec4<f32>(albedo, spec);
     out.normal = vec4<f32>(n, 0.0);
@@ -69,7 +70,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> LightGbufferOut
     if !front {
         reflected = vec3<f32>(0.0);
     }
-    let importance = dot(reflected, vec3<f32>(0.2126, 0.7152, 0.0722)) * (0.5 + spec);
+    let importance = luminance(reflected) * (0.5 + spec);
     out.power = vec4<f32>(reflected, importance);
     return out;
 }
