@@ -9,7 +9,7 @@ struct Frame {
     size: vec4<f32>,
     // light count, frame index, PCF radius, shadow layer count.
     params: vec4<u32>,
-    // normal bias in texels, shadow map size, 1/size, unused.
+    // normal bias in texels, shadow map size, 1/size, 1 when `indirect` is outgoing radiance.
     shadow: vec4<f32>,
 }
 

@@ -9,3 +9,9 @@ struct Vpl {
     // xyz unit direction towards the light it came from, w = light-G-buffer texel index.
     incident: vec4<f32>,
 }
+
+// Radiant intensity (W/sr) VPL `vpl` emits along unit direction `dir` leaving it, where
+// cos_s = dot(normal, dir) > 0: the diffuse lobe power / pi cos_s.
+fn vpl_intensity(vpl: Vpl, dir: vec3<f32>, cos_s: f32) -> vec3<f32> {
+    return vpl.power.rgb / 3.14159265358979 * cos_s;
+}

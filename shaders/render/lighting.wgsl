@@ -1,6 +1,8 @@
 // Deferred direct lighting and composite: radiance = direct (shadowed punctual lights on the
 // Lambertian + glossy BRDF) + albedo x indirect, where `indirect` is the active GI technique's
-// output (zero for `direct`). One-sided surfaces: a light behind the geometric normal adds nothing.
+// output (zero for `direct`): E / pi, or outgoing radiance already shaded with the full BRDF
+// when frame.shadow.w = 1 (the ISM SH filter). One-sided surfaces: a light behind the geometric
+// normal adds nothing.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/lights.wgsl
@@ -56,6 +58,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         let f = brdf_eval(albedo, mat.rgb, mat.a, n, v, inc.dir);
         radiance = radiance + f * inc.irradiance * cos_s * vis;
     }
-    radiance = radiance + albedo * textureLoad(indirect_tex, pixel, 0).rgb;
+    let indirect = textureLoad(indirect_tex, pixel, 0).rgb;
+    radiance = radiance + select(albedo * indirect, indirect, frame.shadow.w > 0.5);
     textureStore(out_radiance, pixel, vec4<f32>(radiance, 1.0));
 }

@@ -206,7 +206,18 @@ impl Renderer {
                 settings.shadows.pcf_radius,
                 self.shadows.layer_matrices.len() as u32,
             ],
-            shadow: [settings.shadows.normal_bias_texels, res, 1.0 / res, 0.0],
+            // w: the indirect target holds outgoing radiance (the SH filter shades with the
+            // full BRDF) rather than E / pi for the composite to multiply by albedo.
+            shadow: [
+                settings.shadows.normal_bias_texels,
+                res,
+                1.0 / res,
+                if matches!(settings.mode, GiMode::Ism | GiMode::IsmRitschel) && settings.ism.sh_filter {
+                    1.0
+                } else {
+                    0.0
+                },
+            ],
         };
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
         self.prev_clip_from_world = Some(clip_from_world);
@@ -215,7 +226,7 @@ impl Renderer {
         let ism = matches!(settings.mode, GiMode::Ism | GiMode::IsmRitschel);
         if self.last_mode != Some(settings.mode) {
             if let Some(g) = &mut self.gather {
-                g.reset_history();
+                g.screen.reset_history();
             }
             self.last_mode = Some(settings.mode);
         }
@@ -290,12 +301,10 @@ impl Renderer {
                     world_points.iter().zip(&weights).map(|((_, n), w)| n.extend(*w).to_array()).collect();
                 let area = points.weighted_area.iter().sum::<f64>() as f32;
                 let diameter = 2.0 * scene.bounds().map_or(1.0, |b| b.radius());
-                gather.record(
+                gather.record_maps(
                     device,
                     queue,
                     &mut encoder,
-                    &self.frame_buffer,
-                    &sized.targets,
                     &vpl_pass.vpls,
                     &world,
                     &normals,
@@ -303,9 +312,19 @@ impl Renderer {
                     area,
                     diameter,
                     &settings.ism,
+                    self.timer.scope("ism maps"),
+                );
+                gather.record_screen(
+                    device,
+                    queue,
+                    &mut encoder,
+                    &self.frame_buffer,
+                    &sized.targets,
+                    diameter,
+                    &settings.ism,
                     settings.mode == GiMode::Ism,
                     settings.view.exposure_ev.exp2(),
-                    self.timer.scope("ism gather"),
+                    self.timer.scope("ism shade"),
                 );
                 wrote_indirect = true;
             }
@@ -424,9 +443,14 @@ impl Renderer {
             "ism_light_power",
             "ism_importance",
             "ism_atlas",
+            "ism_split_position",
+            "ism_split_normal",
             "ism_raw",
             "ism_confidence",
             "ism_history",
+            "ism_sh_shaded",
+            "ism_sh_dc",
+            "ism_sh_direction",
         ]
     }
 
@@ -458,15 +482,24 @@ impl Renderer {
                 let missing =
                     || RenderError::UnknownBuffer { name: name.into(), known: "render an ism mode first".into() };
                 let light = self.vpl_pass.as_ref();
-                let gather = self.gather.as_ref();
+                let screen = self.gather.as_ref().map(|g| &g.screen);
+                let sh_missing = || RenderError::UnknownBuffer {
+                    name: name.into(),
+                    known: "render an ism mode with the SH filter on first".into(),
+                };
                 match ism {
                     "ism_light_albedo" => &light.ok_or_else(missing)?.albedo.texture,
                     "ism_light_normal" => &light.ok_or_else(missing)?.normal.texture,
                     "ism_light_power" => &light.ok_or_else(missing)?.power.texture,
                     "ism_importance" => &light.ok_or_else(missing)?.importance,
-                    "ism_raw" => &gather.and_then(|g| g.raw()).ok_or_else(missing)?.texture,
-                    "ism_confidence" => &gather.and_then(|g| g.confidence()).ok_or_else(missing)?.texture,
-                    "ism_history" => &gather.and_then(|g| g.history()).ok_or_else(missing)?.texture,
+                    "ism_split_position" => &screen.and_then(|g| g.split_gbuffer()).ok_or_else(missing)?.0.texture,
+                    "ism_split_normal" => &screen.and_then(|g| g.split_gbuffer()).ok_or_else(missing)?.1.texture,
+                    "ism_raw" => &screen.and_then(|g| g.raw()).ok_or_else(missing)?.texture,
+                    "ism_confidence" => &screen.and_then(|g| g.confidence()).ok_or_else(missing)?.texture,
+                    "ism_history" => &screen.and_then(|g| g.history()).ok_or_else(missing)?.texture,
+                    "ism_sh_shaded" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.0.texture,
+                    "ism_sh_dc" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.1.texture,
+                    "ism_sh_direction" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.2.texture,
                     _ => return Err(missing()),
                 }
             }

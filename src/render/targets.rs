@@ -62,7 +62,8 @@ pub struct ViewTargets {
     pub motion: Target,
     pub object_id: Target,
     pub depth: Target,
-    /// Indirect radiance factor written by the active GI technique (multiplied by albedo).
+    /// Indirect light written by the active GI technique: E / pi (the composite multiplies by
+    /// albedo) or, with the ISM SH filter, outgoing radiance (frame uniform `shadow.w` = 1).
     pub indirect: Target,
     /// Linear radiance (the EXR output).
     pub hdr: Target,

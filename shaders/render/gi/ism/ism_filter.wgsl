@@ -3,9 +3,10 @@
 // when its normalised depth differs by more than alpha or its normal by a cosine below beta.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
+#import common/interleave.wgsl
 
 struct FilterParams {
-    // interleave n, unused...
+    // interleave n, n when `raw` is in the split layout (0: full layout), unused x2.
     counts: vec4<u32>,
     // alpha (normalised depth), beta (min cosine), depth range (metres), unused.
     params: vec4<f32>,
@@ -49,7 +50,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             let zq = view_depth(vec2<u32>(q));
             let nq = oct_decode(textureLoad(normal_tex, vec2<u32>(q), 0).xy);
             if zq >= 0.0 && abs(zq - zp) < fp.params.x && dot(nq, np) > fp.params.y {
-                acc = acc + textureLoad(raw, vec2<u32>(q), 0).rgb;
+                var at = vec2<u32>(q);
+                if fp.counts.y > 0u {
+                    at = split_address(at, vec2<u32>(size), fp.counts.y);
+                }
+                acc = acc + textureLoad(raw, at, 0).rgb;
                 w = w + 1.0;
             }
         }

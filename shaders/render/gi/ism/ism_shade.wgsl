@@ -1,10 +1,14 @@
-// ISM pass P10 (interleaved VPL shading, Knecht 2009 section 3.4): pixel (x, y) belongs to
-// interleave tile (x mod n, y mod n) and gathers only that tile's contiguous block of N / n^2
-// VPLs of every bounce's set, each tested against its imperfect shadow map. Output is E / pi (the lighting composite
-// multiplies by albedo): sum of V Phi cos_s cos_r / (pi^2 max(d^2, d_min^2)).
-#import common/frame.wgsl
+// ISM pass P10 (interleaved VPL shading, Knecht 2009 section 3.4) on the split G-buffer: one
+// thread per split texel, whose tile (i, j) gathers only its contiguous block of N / n^2 VPLs of
+// every bounce's set, each tested against its imperfect shadow map. Two outputs:
+// - `shade`: E / pi into the split accumulation buffer (the lighting composite multiplies by
+//   albedo): sum of V I(w) cos_r / (pi max(d^2, d_min^2)), with I the VPL's radiant intensity;
+// - `project_sh` (Segovia & Wald): the incident radiance projected on 9 SH coefficients per
+//   colour, sum of V I(w) / max(d^2, d_min^2) Y(w_to_vpl), packed as f16 (14 u32 per texel).
+#import common/interleave.wgsl
 #import common/octahedral.wgsl
 #import common/onb.wgsl
+#import common/sh9.wgsl
 #import common/vpl.wgsl
 
 struct ShadeParams {
@@ -12,71 +16,134 @@ struct ShadeParams {
     counts: vec4<u32>,
     // 1 / d_max, depth bias (normalised), d_min^2, unused.
     params: vec4<f32>,
-    // VPL sets (bounces), unused x3.
+    // VPL sets (bounces), view width, view height, unused.
     sets: vec4<u32>,
 }
 
-
-@group(0) @binding(0) var<uniform> frame: Frame;
-@group(0) @binding(1) var<uniform> sh: ShadeParams;
-@group(0) @binding(2) var<storage, read> vpls: array<Vpl>;
-@group(0) @binding(3) var<storage, read> atlas: array<u32>;
-@group(0) @binding(4) var depth_tex: texture_depth_2d;
-@group(0) @binding(5) var normal_tex: texture_2d<f32>;
-@group(0) @binding(6) var out_indirect: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(0) var<uniform> sh: ShadeParams;
+@group(0) @binding(1) var<storage, read> vpls: array<Vpl>;
+@group(0) @binding(2) var<storage, read> atlas: array<u32>;
+@group(0) @binding(3) var split_position: texture_2d<f32>;
+@group(0) @binding(4) var split_normal: texture_2d<f32>;
+@group(0) @binding(5) var out_indirect: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(6) var<storage, read_write> out_sh: array<u32>;
 
 const PI: f32 = 3.14159265358979;
+const SH_WORDS: u32 = 14u;
 
-@compute @workgroup_size(8, 8, 1)
-fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = vec2<u32>(frame.size.xy);
-    if id.x >= size.x || id.y >= size.y {
-        return;
+struct Incident {
+    // Unit direction from the receiver towards the VPL.
+    dir: vec3<f32>,
+    // Irradiance at normal incidence, V I(w) / max(d^2, d_min^2); zero when not lit.
+    e: vec3<f32>,
+}
+
+// The light VPL `k` sends to receiver `p` (geometric normal `ng`), ISM visibility included.
+fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
+    var out = Incident(vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(0.0));
+    let vpl = vpls[k];
+    if vpl.position.w < 0.5 {
+        return out;
     }
-    let depth = textureLoad(depth_tex, id.xy, 0);
-    if depth <= 0.0 {
-        textureStore(out_indirect, id.xy, vec4<f32>(0.0));
-        return;
+    let to_p = p - vpl.position.xyz;
+    let d2 = max(dot(to_p, to_p), 1.0e-8);
+    let dir = to_p * inverseSqrt(d2);
+    let cos_s = dot(vpl.normal.xyz, dir);
+    // One-sided receivers: light from behind the geometric normal adds nothing.
+    if cos_s <= 0.0 || dot(ng, -dir) <= 0.0 {
+        return out;
     }
-    let p = world_from_pixel(frame, id.xy, depth);
-    let enc = textureLoad(normal_tex, id.xy, 0);
-    let n = oct_decode(enc.xy);
-    let ng = oct_decode(enc.zw);
-    let ni = sh.counts.w;
-    let tile = (id.y % ni) * ni + (id.x % ni);
-    let per = max(sh.counts.x / (ni * ni), 1u);
     let r = sh.counts.y;
     let c = sh.counts.z;
-    let side = r * c;
+    let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p);
+    let texel = min(vec2<u32>(pb.xy * f32(r)), vec2<u32>(r - 1u));
+    let a = vec2<u32>((k % c) * r, (k / c) * r) + texel;
+    if pb.z * sh.params.x > bitcast<f32>(atlas[a.y * r * c + a.x]) + sh.params.y {
+        return out;
+    }
+    out.dir = -dir;
+    out.e = vpl_intensity(vpl, dir, cos_s) / max(d2, sh.params.z);
+    return out;
+}
+
+struct Texel {
+    // World position (w = 1 when the pixel sees geometry).
+    position: vec4<f32>,
+    shading_normal: vec3<f32>,
+    geometric_normal: vec3<f32>,
+    // First VPL of this texel's block in set 0, VPLs per block.
+    first: u32,
+    per: u32,
+}
+
+fn texel(s: vec2<u32>) -> Texel {
+    let size = sh.sets.yz;
+    let ni = sh.counts.w;
+    let tile = split_pixel(s, size, ni).z;
+    let per = max(sh.counts.x / (ni * ni), 1u);
+    let enc = textureLoad(split_normal, s, 0);
+    return Texel(textureLoad(split_position, s, 0), oct_decode(enc.xy), oct_decode(enc.zw), tile * per, per);
+}
+
+fn in_split(s: vec2<u32>) -> bool {
+    return all(s < split_block(sh.sets.yz, sh.counts.w) * sh.counts.w);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_split(id.xy) {
+        return;
+    }
+    let t = texel(id.xy);
     var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < per * sh.sets.x; i = i + 1u) {
-        let bounce = i / per;
-        let j = i % per;
-        if tile * per + j >= sh.counts.x {
-            continue;
+    if t.position.w > 0.5 {
+        for (var i = 0u; i < t.per * sh.sets.x; i = i + 1u) {
+            let j = t.first + i % t.per;
+            if j >= sh.counts.x {
+                continue;
+            }
+            let inc = incident((i / t.per) * sh.counts.x + j, t.position.xyz, t.geometric_normal);
+            sum = sum + inc.e * max(dot(t.shading_normal, inc.dir), 0.0) / PI;
         }
-        let k = bounce * sh.counts.x + tile * per + j;
-        let vpl = vpls[k];
-        if vpl.position.w < 0.5 {
-            continue;
-        }
-        let to_p = p - vpl.position.xyz;
-        let d2 = max(dot(to_p, to_p), 1.0e-8);
-        let dir = to_p * inverseSqrt(d2);
-        let cos_s = dot(vpl.normal.xyz, dir);
-        // One-sided receivers: light from behind the geometric normal adds nothing.
-        if cos_s <= 0.0 || dot(ng, -dir) <= 0.0 {
-            continue;
-        }
-        let cos_r = max(dot(n, -dir), 0.0);
-        let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p);
-        let texel = min(vec2<u32>(pb.xy * f32(r)), vec2<u32>(r - 1u));
-        let a = vec2<u32>((k % c) * r, (k / c) * r) + texel;
-        let stored = bitcast<f32>(atlas[a.y * side + a.x]);
-        if pb.z * sh.params.x > stored + sh.params.y {
-            continue;
-        }
-        sum = sum + vpl.power.rgb * cos_s * cos_r / (PI * PI * max(d2, sh.params.z));
     }
     textureStore(out_indirect, id.xy, vec4<f32>(sum, 1.0));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn project_sh(@builtin(global_invocation_id) id: vec3<u32>) {
+    if !in_split(id.xy) {
+        return;
+    }
+    let t = texel(id.xy);
+    var c = array<vec3<f32>, 9>();
+    if t.position.w > 0.5 {
+        for (var i = 0u; i < t.per * sh.sets.x; i = i + 1u) {
+            let j = t.first + i % t.per;
+            if j >= sh.counts.x {
+                continue;
+            }
+            let inc = incident((i / t.per) * sh.counts.x + j, t.position.xyz, t.geometric_normal);
+            if all(inc.e <= vec3<f32>(0.0)) {
+                continue;
+            }
+            let y = sh9_basis(inc.dir);
+            for (var b = 0u; b < 9u; b = b + 1u) {
+                c[b] = c[b] + inc.e * y[b];
+            }
+        }
+    }
+    let width = split_block(sh.sets.yz, sh.counts.w).x * sh.counts.w;
+    let base = (id.y * width + id.x) * SH_WORDS;
+    // 27 floats as 14 f16 pairs: coefficient b channel ch is float number 3 b + ch.
+    var f = array<f32, 28>();
+    for (var b = 0u; b < 9u; b = b + 1u) {
+        f[3u * b] = c[b].x;
+        f[3u * b + 1u] = c[b].y;
+        f[3u * b + 2u] = c[b].z;
+    }
+    for (var w = 0u; w < SH_WORDS; w = w + 1u) {
+        // f16 saturates at 65504: clamp so that absurd light powers cannot write infinities.
+        let pair = clamp(vec2<f32>(f[2u * w], f[2u * w + 1u]), vec2<f32>(-65000.0), vec2<f32>(65000.0));
+        out_sh[base + w] = pack2x16float(pair);
+    }
 }

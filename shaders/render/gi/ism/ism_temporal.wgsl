@@ -1,4 +1,4 @@
-// ISM pass P12 (Knecht 2009 section 3.5): merge the new interleaved indirect with the history
+// ISM pass P12 (Knecht 2009 section 3.5): undo the split and merge the new interleaved indirect with the history
 // reprojected through the movement buffer, weighted by a confidence
 //   conf = c_base * saturate(1 - max(d_pos, d_normal, d_illum))
 //   d_pos = |(motion, depth - depth_prev) * w_pos|, d_normal = (1 - n . n_prev) w_normal,
@@ -6,9 +6,10 @@
 // zero off screen and after a reset. History rgb = blended indirect, a = normalised depth.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
+#import common/interleave.wgsl
 
 struct TemporalParams {
-    // reset (1 = ignore history), unused x3.
+    // reset (1 = ignore history), n when `raw` is in the split layout (0: full layout), unused x2.
     flags: vec4<u32>,
     // c_base, w_pos, w_normal, w_illum.
     weights: vec4<f32>,
@@ -34,7 +35,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let d = textureLoad(depth_tex, id.xy, 0);
-    let i_new = textureLoad(raw, id.xy, 0).rgb;
+    var raw_at = id.xy;
+    if tp.flags.y > 0u {
+        raw_at = split_address(id.xy, size, tp.flags.y);
+    }
+    let i_new = textureLoad(raw, raw_at, 0).rgb;
     if d <= 0.0 {
         textureStore(history_out, id.xy, vec4<f32>(0.0, 0.0, 0.0, -1.0));
         textureStore(confidence_out, id.xy, vec4<f32>(0.0));

@@ -1,23 +1,20 @@
-//! ISM passes P7, P8, P10 and P13 on the GPU: splat the scene sample points into the imperfect
-//! shadow map atlas, fill holes by pull-push, gather the interleaved VPLs per pixel with ISM
-//! visibility, and apply the geometry-aware n x n filter into the view's indirect target.
+//! ISM passes P7, P8 and P11 on the GPU: splat the scene sample points into the imperfect
+//! shadow map atlas, fill holes by pull-push, and grow each further bounce's VPL set from the
+//! previous one (one-pass multi-bounce). The screen passes that shade with these VPLs and maps
+//! live in [`super::screen`], which this type owns and feeds.
 
 use glam::Vec3;
-use wgpu::util::DeviceExt as _;
 
-use crate::render::layouts::{compute_pipeline, storage_entry, storage_texture_entry, texture_entry, uniform_entry};
+use crate::render::layouts::{compute_pipeline, storage_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};
-use crate::render::targets::{Target, ViewTargets, formats};
+use crate::render::targets::ViewTargets;
 use crate::settings::IsmSettings;
+
+use super::screen::{DEPTH_BIAS, IsmInputs, IsmScreen};
 
 /// Pull-push levels below the finest (the thesis: "at least two mip levels").
 const PULL_LEVELS: usize = 2;
-/// ISM lookup bias in normalised distance (fraction of the scene diameter). Splats are several
-/// texels wide, so a receiver's own surface shadows it without a bias of about a splat's depth
-/// extent (digest PF5); 0.06 was the best of 0.01/0.03/0.06 against the reference.
-const DEPTH_BIAS: f32 = 0.06;
-
-fn storage_rw(binding: u32) -> wgpu::BindGroupLayoutEntry {
+pub(super) fn storage_rw(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
@@ -30,14 +27,6 @@ fn storage_rw(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-fn uniform(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: bytes,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-    })
-}
-
 /// Sizes the atlas and view resources were made for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Key {
@@ -45,7 +34,6 @@ struct Key {
     bounces: u32,
     r: u32,
     points: u32,
-    view: (u32, u32),
 }
 
 /// Dynamic-offset slot size of per-set parameters.
@@ -57,7 +45,6 @@ struct Sized {
     key: Key,
     points: wgpu::Buffer,
     atlas: Vec<wgpu::Buffer>,
-    raw: Target,
     splat_group: wgpu::BindGroup,
     all_vpls: wgpu::Buffer,
     normals: wgpu::Buffer,
@@ -65,14 +52,8 @@ struct Sized {
     bounce_group: wgpu::BindGroup,
     pull_groups: Vec<wgpu::BindGroup>,
     push_groups: Vec<wgpu::BindGroup>,
-    shade_group: wgpu::BindGroup,
-    history: [Target; 2],
-    prev_normal: Target,
-    confidence: Target,
-    /// Temporal merge reading history[p], writing history[1 - p].
-    temporal_groups: [wgpu::BindGroup; 2],
-    /// Filter input: 0 = raw (no temporal reuse), 1 + p = history[p].
-    filter_groups: [wgpu::BindGroup; 3],
+    /// Counts recreations, so that the screen passes rebind.
+    generation: u64,
 }
 
 /// Pipelines and resources of the ISM gather.
@@ -83,10 +64,6 @@ pub struct IsmGather {
     pp_layout: wgpu::BindGroupLayout,
     pull: wgpu::ComputePipeline,
     push: wgpu::ComputePipeline,
-    shade_layout: wgpu::BindGroupLayout,
-    shade: wgpu::ComputePipeline,
-    filter_layout: wgpu::BindGroupLayout,
-    filter: wgpu::ComputePipeline,
     splat_params: wgpu::Buffer,
     bounce_layout: wgpu::BindGroupLayout,
     bounce_clear: wgpu::ComputePipeline,
@@ -94,13 +71,9 @@ pub struct IsmGather {
     bounce_write: wgpu::ComputePipeline,
     bounce_params: wgpu::Buffer,
     pp_params: wgpu::Buffer,
-    shade_params: wgpu::Buffer,
-    filter_params: wgpu::Buffer,
-    temporal_layout: wgpu::BindGroupLayout,
-    temporal: wgpu::ComputePipeline,
-    temporal_params: wgpu::Buffer,
-    parity: usize,
-    reset: bool,
+    /// The screen passes that shade with this frame's VPLs and maps.
+    pub screen: IsmScreen,
+    generation: u64,
     sized: Option<Sized>,
 }
 
@@ -118,48 +91,6 @@ impl IsmGather {
             entries: &[uniform_entry(0, c, true), storage_rw(1), storage_rw(2)],
         });
         let pp_module = shaders::module(device, "render/gi/ism/pull_push.wgsl")?;
-        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
-        let shade_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("ism shade layout"),
-            entries: &[
-                uniform_entry(0, c, false),
-                uniform_entry(1, c, false),
-                storage_entry(2, c),
-                storage_entry(3, c),
-                texture_entry(4, c, wgpu::TextureSampleType::Depth),
-                texture_entry(5, c, unfilterable),
-                storage_texture_entry(6, formats::HDR),
-            ],
-        });
-        let shade_module = shaders::module(device, "render/gi/ism/ism_shade.wgsl")?;
-        let filter_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("ism filter layout"),
-            entries: &[
-                uniform_entry(0, c, false),
-                uniform_entry(1, c, false),
-                texture_entry(2, c, unfilterable),
-                texture_entry(3, c, wgpu::TextureSampleType::Depth),
-                texture_entry(4, c, unfilterable),
-                storage_texture_entry(5, formats::HDR),
-            ],
-        });
-        let filter_module = shaders::module(device, "render/gi/ism/ism_filter.wgsl")?;
-        let temporal_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("ism temporal layout"),
-            entries: &[
-                uniform_entry(0, c, false),
-                uniform_entry(1, c, false),
-                texture_entry(2, c, unfilterable),
-                texture_entry(3, c, unfilterable),
-                texture_entry(4, c, wgpu::TextureSampleType::Depth),
-                texture_entry(5, c, unfilterable),
-                texture_entry(6, c, unfilterable),
-                texture_entry(7, c, unfilterable),
-                storage_texture_entry(8, formats::HDR),
-                storage_texture_entry(9, formats::HDR),
-            ],
-        });
-        let temporal_module = shaders::module(device, "render/gi/ism/ism_temporal.wgsl")?;
         let bounce_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ism bounce layout"),
             entries: &[
@@ -194,17 +125,10 @@ impl IsmGather {
             bounce_write: compute_pipeline(device, "ism bounce write", &bounce_layout, &bounce_module, "write_winner"),
             bounce_params: slots("ism bounce params"),
             bounce_layout,
-            temporal: compute_pipeline(device, "ism temporal merge", &temporal_layout, &temporal_module, "cs_main"),
-            temporal_params: uniform(device, "ism temporal params", &[0u8; 48]),
-            temporal_layout,
-            parity: 0,
-            reset: true,
             clear: compute_pipeline(device, "ism atlas clear", &splat_layout, &splat_module, "clear"),
             splat: compute_pipeline(device, "ism splat", &splat_layout, &splat_module, "splat"),
             pull: compute_pipeline(device, "ism pull", &pp_layout, &pp_module, "pull"),
             push: compute_pipeline(device, "ism push", &pp_layout, &pp_module, "push"),
-            shade: compute_pipeline(device, "ism shade", &shade_layout, &shade_module, "cs_main"),
-            filter: compute_pipeline(device, "ism filter", &filter_layout, &filter_module, "cs_main"),
             splat_params: slots("ism splat params"),
             pp_params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ism pull-push params"),
@@ -212,12 +136,10 @@ impl IsmGather {
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
-            shade_params: uniform(device, "ism shade params", &[0u8; 48]),
-            filter_params: uniform(device, "ism filter params", &[0u8; 32]),
             splat_layout,
             pp_layout,
-            shade_layout,
-            filter_layout,
+            screen: IsmScreen::new(device)?,
+            generation: 0,
             sized: None,
         })
     }
@@ -226,15 +148,7 @@ impl IsmGather {
         (f64::from(vpls).sqrt().ceil() as u32).max(1)
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn ensure(
-        &mut self,
-        device: &wgpu::Device,
-        key: Key,
-        frame_buffer: &wgpu::Buffer,
-        targets: &ViewTargets,
-        vpls: &wgpu::Buffer,
-    ) {
+    fn ensure(&mut self, device: &wgpu::Device, key: Key) {
         if self.sized.as_ref().is_some_and(|s| s.key == key) {
             return;
         }
@@ -255,20 +169,7 @@ impl IsmGather {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let raw = Target::new(
-            device,
-            "ism raw indirect",
-            key.view,
-            formats::HDR,
-            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
-        );
-        fn buf(b: u32, x: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-            wgpu::BindGroupEntry { binding: b, resource: x.as_entire_binding() }
-        }
-        fn tex(b: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
-            wgpu::BindGroupEntry { binding: b, resource: wgpu::BindingResource::TextureView(v) }
-        }
-        let _ = vpls;
+        use super::screen::buf;
         let storage = |label: &str, bytes: u64| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -320,73 +221,11 @@ impl IsmGather {
         };
         let pull_groups = (0..PULL_LEVELS).map(|l| pp(&atlas[l], &atlas[l + 1])).collect();
         let push_groups = (0..PULL_LEVELS).rev().map(|l| pp(&atlas[l], &atlas[l + 1])).collect();
-        let shade_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ism shade bind group"),
-            layout: &self.shade_layout,
-            entries: &[
-                buf(0, frame_buffer),
-                buf(1, &self.shade_params),
-                buf(2, &all_vpls),
-                buf(3, &atlas[0]),
-                tex(4, &targets.depth.view),
-                tex(5, &targets.normal.view),
-                tex(6, &raw.view),
-            ],
-        });
-        use wgpu::TextureUsages as U;
-        let rw = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
-        let history = [
-            Target::new(device, "ism history a", key.view, formats::HDR, rw),
-            Target::new(device, "ism history b", key.view, formats::HDR, rw),
-        ];
-        let confidence = Target::new(device, "ism confidence", key.view, formats::HDR, rw);
-        let prev_normal = Target::new(
-            device,
-            "ism previous normals",
-            key.view,
-            formats::NORMAL,
-            U::TEXTURE_BINDING | U::COPY_DST | U::COPY_SRC,
-        );
-        let filter_group = |input: &wgpu::TextureView| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("ism filter bind group"),
-                layout: &self.filter_layout,
-                entries: &[
-                    buf(0, frame_buffer),
-                    buf(1, &self.filter_params),
-                    tex(2, input),
-                    tex(3, &targets.depth.view),
-                    tex(4, &targets.normal.view),
-                    tex(5, &targets.indirect.view),
-                ],
-            })
-        };
-        let filter_groups = [filter_group(&raw.view), filter_group(&history[0].view), filter_group(&history[1].view)];
-        let temporal_group = |p: usize| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("ism temporal bind group"),
-                layout: &self.temporal_layout,
-                entries: &[
-                    buf(0, frame_buffer),
-                    buf(1, &self.temporal_params),
-                    tex(2, &raw.view),
-                    tex(3, &history[p].view),
-                    tex(4, &targets.depth.view),
-                    tex(5, &targets.normal.view),
-                    tex(6, &prev_normal.view),
-                    tex(7, &targets.motion.view),
-                    tex(8, &history[1 - p].view),
-                    tex(9, &confidence.view),
-                ],
-            })
-        };
-        let temporal_groups = [temporal_group(0), temporal_group(1)];
-        self.reset = true;
+        self.generation += 1;
         self.sized = Some(Sized {
             key,
             points,
             atlas,
-            raw,
             splat_group,
             all_vpls,
             normals,
@@ -394,12 +233,7 @@ impl IsmGather {
             bounce_group,
             pull_groups,
             push_groups,
-            shade_group,
-            history,
-            prev_normal,
-            confidence,
-            temporal_groups,
-            filter_groups,
+            generation: self.generation,
         });
     }
 
@@ -408,46 +242,25 @@ impl IsmGather {
         self.sized.as_ref().map(|s| &s.all_vpls)
     }
 
-    /// Drops the temporal history (the next frame uses only new VPLs).
-    pub fn reset_history(&mut self) {
-        self.reset = true;
-    }
-
-    /// The confidence buffer of the last temporal frame: r = position change, g = normal
-    /// change, b = illumination change (each saturated), a = confidence.
-    pub fn confidence(&self) -> Option<&Target> {
-        self.sized.as_ref().map(|s| &s.confidence)
-    }
-
-    /// The history written by the last temporal frame.
-    pub fn history(&self) -> Option<&Target> {
-        self.sized.as_ref().map(|s| &s.history[self.parity])
-    }
-
     /// The ISM atlas levels (f32 bit patterns, 1.0 = empty) of the last frame, for the inspector.
     pub fn atlas(&self) -> Option<(&[wgpu::Buffer], u32)> {
         self.sized.as_ref().map(|s| (s.atlas.as_slice(), s.key.r * Self::tiles_per_row(s.key.vpls * s.key.bounces)))
     }
 
-    /// The unfiltered interleaved result of the last frame, for the inspector.
-    pub fn raw(&self) -> Option<&Target> {
-        self.sized.as_ref().map(|s| &s.raw)
-    }
-
     /// Forgets size-dependent resources (the view targets or the VPL buffer were recreated).
     pub fn invalidate(&mut self) {
         self.sized = None;
+        self.screen.invalidate();
     }
 
-    /// Records splat, pull-push, shading and filter into `targets.indirect`.
+    /// Records splat, pull-push and the further bounces' VPL sets; [`Self::record_screen`]
+    /// then shades with them.
     #[allow(clippy::too_many_arguments)]
-    pub fn record(
+    pub fn record_maps(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        frame_buffer: &wgpu::Buffer,
-        targets: &ViewTargets,
         vpls: &wgpu::Buffer,
         points: &[Vec3],
         normals: &[[f32; 4]],
@@ -455,8 +268,6 @@ impl IsmGather {
         total_area: f32,
         scene_diameter: f32,
         settings: &IsmSettings,
-        temporal: bool,
-        exposure: f32,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) {
         let key = Key {
@@ -464,12 +275,10 @@ impl IsmGather {
             bounces: settings.bounces.clamp(1, MAX_SETS as u32),
             r: settings.ism_resolution,
             points: points.len() as u32,
-            view: targets.size,
         };
-        self.ensure(device, key, frame_buffer, targets, vpls);
+        self.ensure(device, key);
         let Some(s) = &self.sized else { return };
         let c = Self::tiles_per_row(key.vpls * key.bounces);
-        let reset = u32::from(self.reset || !temporal);
         let side = key.r * c;
         let d_max = scene_diameter.max(1e-3);
         // A point stands for the area its ISM's points share; its splat covers that patch seen
@@ -515,23 +324,8 @@ impl IsmGather {
                 queue.write_buffer(&self.pp_params, slot, &params);
             }
         }
-        let mut tparams = u32s(
-            [reset, 0, 0, 0],
-            [settings.base_confidence, settings.w_position, settings.w_normal, settings.w_illumination],
-        );
-        tparams.extend_from_slice(bytemuck::cast_slice(&[d_max, exposure, 0.0f32, 0.0]));
-        queue.write_buffer(&self.temporal_params, 0, &tparams);
-        let mut shade = u32s([key.vpls, key.r, c, settings.interleave], [1.0 / d_max, DEPTH_BIAS, d_min * d_min, 0.0]);
-        shade.extend_from_slice(bytemuck::cast_slice(&[key.bounces, 0, 0, 0]));
-        queue.write_buffer(&self.shade_params, 0, &shade);
-        queue.write_buffer(
-            &self.filter_params,
-            0,
-            &u32s([settings.interleave, 0, 0, 0], [settings.filter_depth, settings.filter_normal, d_max, 0.0]),
-        );
-
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("ism gather"),
+            label: Some("ism maps"),
             timestamp_writes: timestamps.as_ref().map(|t| t.compute_writes()),
         });
         pass.set_bind_group(0, &s.splat_group, &[0]);
@@ -570,32 +364,36 @@ impl IsmGather {
                 pass.dispatch_workgroups(fine.div_ceil(8), (rows >> l).max(1).div_ceil(8), 1);
             }
         }
-        let (w, h) = targets.size;
-        pass.set_pipeline(&self.shade);
-        pass.set_bind_group(0, &s.shade_group, &[]);
-        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
-        let p = self.parity;
-        let filter_input = if temporal {
-            pass.set_pipeline(&self.temporal);
-            pass.set_bind_group(0, &s.temporal_groups[p], &[]);
-            pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
-            2 - p
-        } else {
-            0
+    }
+
+    /// Records the screen passes of [`IsmScreen`] with this frame's VPLs and maps into
+    /// `targets.indirect`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_screen(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        frame_buffer: &wgpu::Buffer,
+        targets: &ViewTargets,
+        scene_diameter: f32,
+        settings: &IsmSettings,
+        temporal: bool,
+        exposure: f32,
+        timestamps: Option<crate::render::timing::TimestampPair<'_>>,
+    ) {
+        let Self { screen, sized, .. } = self;
+        let Some(s) = sized.as_ref() else { return };
+        let inputs = IsmInputs {
+            vpls: &s.all_vpls,
+            atlas: &s.atlas[0],
+            generation: s.generation,
+            vpl_count: s.key.vpls,
+            sets: s.key.bounces,
+            r: s.key.r,
+            tiles_per_row: Self::tiles_per_row(s.key.vpls * s.key.bounces),
+            d_max: scene_diameter.max(1e-3),
         };
-        pass.set_pipeline(&self.filter);
-        pass.set_bind_group(0, &s.filter_groups[filter_input], &[]);
-        pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
-        drop(pass);
-        if temporal {
-            // Keep this frame's normals for the next frame's confidence, then swap the history.
-            encoder.copy_texture_to_texture(
-                targets.normal.texture.as_image_copy(),
-                s.prev_normal.texture.as_image_copy(),
-                s.prev_normal.texture.size(),
-            );
-            self.parity = 1 - p;
-            self.reset = false;
-        }
+        screen.record(device, queue, encoder, frame_buffer, targets, &inputs, settings, temporal, exposure, timestamps);
     }
 }

@@ -4,10 +4,16 @@
 //! - [`warp`]: hierarchical warping of samples to an importance map, with the pdf (P3, P5);
 //! - [`paraboloid`]: the VPL frame and paraboloid map used by the ISM splat and lookup (P7, P10);
 //! - [`power`]: the unbiased VPL power the thesis leaves out (digest section 7.3).
+//!
+//! The GPU passes: [`vpl_pass`] (light G-buffer, importance, VPLs), [`gather`] (ISM atlas and
+//! further bounces), [`screen`] (split G-buffer, shading, temporal merge, filter) and
+//! [`sh_filter`] (Segovia & Wald's SH filter).
 
 pub mod gather;
 pub mod halton;
 pub mod paraboloid;
 pub mod power;
+pub mod screen;
+pub mod sh_filter;
 pub mod vpl_pass;
 pub mod warp;

@@ -1,0 +1,457 @@
+//! The screen-space half of the ISM technique: the split G-buffer (P9), interleaved VPL
+//! shading (P10) or Segovia & Wald's SH projection, the SH filter with per-pixel BRDF
+//! evaluation, the temporal merge with its confidence (P12) and the geometry-aware filter
+//! (P13). The VPL sets and imperfect shadow maps it reads come from [`super::gather`].
+
+use crate::render::layouts::{compute_pipeline, storage_entry, storage_texture_entry, texture_entry, uniform_entry};
+use crate::render::shaders::{self, ShaderError};
+use crate::render::targets::{Target, ViewTargets, formats};
+use crate::settings::IsmSettings;
+
+use super::sh_filter::ShFilter;
+
+/// ISM lookup bias in normalised distance (fraction of the scene diameter). Splats are several
+/// texels wide, so a receiver's own surface shadows it without a bias of about a splat's depth
+/// extent (digest PF5); 0.06 was the best of 0.01/0.03/0.06 against the reference.
+pub const DEPTH_BIAS: f32 = 0.06;
+
+/// What the screen passes read from the ISM stage of this frame.
+pub struct IsmInputs<'a> {
+    /// VPLs of every set (set b at `b * vpl_count`).
+    pub vpls: &'a wgpu::Buffer,
+    /// The finest ISM atlas level (f32 bit patterns).
+    pub atlas: &'a wgpu::Buffer,
+    /// Changes whenever `vpls` or `atlas` were recreated.
+    pub generation: u64,
+    /// VPLs per set.
+    pub vpl_count: u32,
+    /// VPL sets (bounces).
+    pub sets: u32,
+    /// ISM side r.
+    pub r: u32,
+    /// ISM tiles per atlas row.
+    pub tiles_per_row: u32,
+    /// Scene diameter (the ISM depth normalisation and the filters' depth range), metres.
+    pub d_max: f32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Key {
+    view: (u32, u32),
+    n: u32,
+    sh: bool,
+    generation: u64,
+}
+
+/// View-sized resources.
+struct Sized {
+    key: Key,
+    split_position: Target,
+    split_normal: Target,
+    raw: Target,
+    split_group: wgpu::BindGroup,
+    shade_group: wgpu::BindGroup,
+    history: [Target; 2],
+    prev_normal: Target,
+    confidence: Target,
+    /// Temporal merge reading history[p], writing history[1 - p].
+    temporal_groups: [wgpu::BindGroup; 2],
+    /// Filter input: 0 = raw (no temporal reuse), 1 + p = history[p].
+    filter_groups: [wgpu::BindGroup; 3],
+}
+
+/// Pipelines and view-sized resources of the ISM screen passes.
+pub struct IsmScreen {
+    split_layout: wgpu::BindGroupLayout,
+    split: wgpu::ComputePipeline,
+    split_params: wgpu::Buffer,
+    shade_layout: wgpu::BindGroupLayout,
+    shade: wgpu::ComputePipeline,
+    project_sh: wgpu::ComputePipeline,
+    shade_params: wgpu::Buffer,
+    sh: ShFilter,
+    temporal_layout: wgpu::BindGroupLayout,
+    temporal: wgpu::ComputePipeline,
+    temporal_params: wgpu::Buffer,
+    filter_layout: wgpu::BindGroupLayout,
+    filter: wgpu::ComputePipeline,
+    filter_params: wgpu::Buffer,
+    parity: usize,
+    reset: bool,
+    sized: Option<Sized>,
+}
+
+pub(super) fn uniform(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+pub(super) fn buf(b: u32, x: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry { binding: b, resource: x.as_entire_binding() }
+}
+
+pub(super) fn tex(b: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry { binding: b, resource: wgpu::BindingResource::TextureView(v) }
+}
+
+/// Bytes of 4-component u32 and f32 vectors, as the WGSL parameter blocks lay them out.
+pub(super) fn words(u: &[[u32; 4]], f: &[[f32; 4]]) -> Vec<u8> {
+    let mut v: Vec<u8> = bytemuck::cast_slice(u).to_vec();
+    v.extend_from_slice(bytemuck::cast_slice(f));
+    v
+}
+
+/// Size of the split layout: n x n blocks of ceil(W / n) x ceil(H / n) (common/interleave.wgsl).
+pub fn split_size(view: (u32, u32), n: u32) -> (u32, u32) {
+    let n = n.max(1);
+    (view.0.div_ceil(n) * n, view.1.div_ceil(n) * n)
+}
+
+impl IsmScreen {
+    /// Creates the pipelines.
+    pub fn new(device: &wgpu::Device) -> Result<Self, ShaderError> {
+        let c = wgpu::ShaderStages::COMPUTE;
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let depth = wgpu::TextureSampleType::Depth;
+        let split_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism split layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                uniform_entry(1, c, false),
+                texture_entry(2, c, depth),
+                texture_entry(3, c, unfilterable),
+                storage_texture_entry(4, formats::HDR),
+                storage_texture_entry(5, formats::NORMAL),
+            ],
+        });
+        let split_module = shaders::module(device, "render/gi/ism/ism_split.wgsl")?;
+        let shade_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism shade layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                storage_entry(1, c),
+                storage_entry(2, c),
+                texture_entry(3, c, unfilterable),
+                texture_entry(4, c, unfilterable),
+                storage_texture_entry(5, formats::HDR),
+                super::gather::storage_rw(6),
+            ],
+        });
+        let shade_module = shaders::module(device, "render/gi/ism/ism_shade.wgsl")?;
+        let filter_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism filter layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                uniform_entry(1, c, false),
+                texture_entry(2, c, unfilterable),
+                texture_entry(3, c, depth),
+                texture_entry(4, c, unfilterable),
+                storage_texture_entry(5, formats::HDR),
+            ],
+        });
+        let filter_module = shaders::module(device, "render/gi/ism/ism_filter.wgsl")?;
+        let temporal_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism temporal layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                uniform_entry(1, c, false),
+                texture_entry(2, c, unfilterable),
+                texture_entry(3, c, unfilterable),
+                texture_entry(4, c, depth),
+                texture_entry(5, c, unfilterable),
+                texture_entry(6, c, unfilterable),
+                texture_entry(7, c, unfilterable),
+                storage_texture_entry(8, formats::HDR),
+                storage_texture_entry(9, formats::HDR),
+            ],
+        });
+        let temporal_module = shaders::module(device, "render/gi/ism/ism_temporal.wgsl")?;
+        Ok(Self {
+            split: compute_pipeline(device, "ism split g-buffer", &split_layout, &split_module, "cs_main"),
+            split_params: uniform(device, "ism split params", 16),
+            split_layout,
+            shade: compute_pipeline(device, "ism shade", &shade_layout, &shade_module, "shade"),
+            project_sh: compute_pipeline(device, "ism sh projection", &shade_layout, &shade_module, "project_sh"),
+            shade_params: uniform(device, "ism shade params", 48),
+            shade_layout,
+            sh: ShFilter::new(device)?,
+            temporal: compute_pipeline(device, "ism temporal merge", &temporal_layout, &temporal_module, "cs_main"),
+            temporal_params: uniform(device, "ism temporal params", 48),
+            temporal_layout,
+            filter: compute_pipeline(device, "ism filter", &filter_layout, &filter_module, "cs_main"),
+            filter_params: uniform(device, "ism filter params", 32),
+            filter_layout,
+            parity: 0,
+            reset: true,
+            sized: None,
+        })
+    }
+
+    fn ensure(
+        &mut self,
+        device: &wgpu::Device,
+        key: Key,
+        frame_buffer: &wgpu::Buffer,
+        targets: &ViewTargets,
+        ism: &IsmInputs<'_>,
+    ) {
+        if self.sized.as_ref().is_some_and(|s| s.key == key) {
+            return;
+        }
+        use wgpu::TextureUsages as U;
+        let rw = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
+        let split = split_size(key.view, key.n);
+        let split_position = Target::new(device, "ism split positions", split, formats::HDR, rw);
+        let split_normal = Target::new(device, "ism split normals", split, formats::NORMAL, rw);
+        let raw = Target::new(device, "ism split accumulation", split, formats::HDR, rw);
+        if key.sh {
+            self.sh.ensure(device, split, frame_buffer, targets);
+        }
+        let split_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism split bind group"),
+            layout: &self.split_layout,
+            entries: &[
+                buf(0, frame_buffer),
+                buf(1, &self.split_params),
+                tex(2, &targets.depth.view),
+                tex(3, &targets.normal.view),
+                tex(4, &split_position.view),
+                tex(5, &split_normal.view),
+            ],
+        });
+        let dummy;
+        let sh_buffer = match self.sh.raw().filter(|_| key.sh) {
+            Some(b) => b,
+            None => {
+                dummy = device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("ism sh projection (unused)"),
+                    size: 16,
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                });
+                &dummy
+            }
+        };
+        let shade_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism shade bind group"),
+            layout: &self.shade_layout,
+            entries: &[
+                buf(0, &self.shade_params),
+                buf(1, ism.vpls),
+                buf(2, ism.atlas),
+                tex(3, &split_position.view),
+                tex(4, &split_normal.view),
+                tex(5, &raw.view),
+                buf(6, sh_buffer),
+            ],
+        });
+        let history = [
+            Target::new(device, "ism history a", key.view, formats::HDR, rw),
+            Target::new(device, "ism history b", key.view, formats::HDR, rw),
+        ];
+        let confidence = Target::new(device, "ism confidence", key.view, formats::HDR, rw);
+        let prev_normal = Target::new(
+            device,
+            "ism previous normals",
+            key.view,
+            formats::NORMAL,
+            U::TEXTURE_BINDING | U::COPY_DST | U::COPY_SRC,
+        );
+        let filter_group = |input: &wgpu::TextureView| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("ism filter bind group"),
+                layout: &self.filter_layout,
+                entries: &[
+                    buf(0, frame_buffer),
+                    buf(1, &self.filter_params),
+                    tex(2, input),
+                    tex(3, &targets.depth.view),
+                    tex(4, &targets.normal.view),
+                    tex(5, &targets.indirect.view),
+                ],
+            })
+        };
+        let filter_groups = [filter_group(&raw.view), filter_group(&history[0].view), filter_group(&history[1].view)];
+        // The temporal merge reads the split accumulation, or the SH-shaded radiance.
+        let new_input = self.sh.shaded().filter(|_| key.sh).map_or(&raw.view, |t| &t.view);
+        let temporal_group = |p: usize| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("ism temporal bind group"),
+                layout: &self.temporal_layout,
+                entries: &[
+                    buf(0, frame_buffer),
+                    buf(1, &self.temporal_params),
+                    tex(2, new_input),
+                    tex(3, &history[p].view),
+                    tex(4, &targets.depth.view),
+                    tex(5, &targets.normal.view),
+                    tex(6, &prev_normal.view),
+                    tex(7, &targets.motion.view),
+                    tex(8, &history[1 - p].view),
+                    tex(9, &confidence.view),
+                ],
+            })
+        };
+        let temporal_groups = [temporal_group(0), temporal_group(1)];
+        self.reset = true;
+        self.sized = Some(Sized {
+            key,
+            split_position,
+            split_normal,
+            raw,
+            split_group,
+            shade_group,
+            history,
+            prev_normal,
+            confidence,
+            temporal_groups,
+            filter_groups,
+        });
+    }
+
+    /// Drops the temporal history (the next frame uses only new VPLs).
+    pub fn reset_history(&mut self) {
+        self.reset = true;
+    }
+
+    /// Forgets view-sized resources (the view targets were recreated).
+    pub fn invalidate(&mut self) {
+        self.sized = None;
+    }
+
+    /// The confidence buffer of the last temporal frame: r = position change, g = normal
+    /// change, b = illumination change (each saturated), a = confidence.
+    pub fn confidence(&self) -> Option<&Target> {
+        self.sized.as_ref().map(|s| &s.confidence)
+    }
+
+    /// The history written by the last temporal frame.
+    pub fn history(&self) -> Option<&Target> {
+        self.sized.as_ref().map(|s| &s.history[self.parity])
+    }
+
+    /// The split accumulation buffer (the unfiltered interleaved result in the split layout).
+    pub fn raw(&self) -> Option<&Target> {
+        self.sized.as_ref().map(|s| &s.raw)
+    }
+
+    /// The split G-buffer: world positions and octahedral normals.
+    pub fn split_gbuffer(&self) -> Option<(&Target, &Target)> {
+        self.sized.as_ref().map(|s| (&s.split_position, &s.split_normal))
+    }
+
+    /// The SH filter's views of the last SH frame: (shaded, DC, band-1 direction).
+    pub fn sh_views(&self) -> Option<(&Target, &Target, &Target)> {
+        self.sized.as_ref().filter(|s| s.key.sh).and_then(|_| self.sh.views())
+    }
+
+    /// Records the screen passes into `targets.indirect` (E / pi for the composite to multiply
+    /// by albedo, or outgoing radiance when `settings.sh_filter` is on).
+    #[allow(clippy::too_many_arguments)]
+    pub fn record(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        frame_buffer: &wgpu::Buffer,
+        targets: &ViewTargets,
+        ism: &IsmInputs<'_>,
+        settings: &IsmSettings,
+        temporal: bool,
+        exposure: f32,
+        timestamps: Option<crate::render::timing::TimestampPair<'_>>,
+    ) {
+        let n = settings.interleave.max(1);
+        let key = Key { view: targets.size, n, sh: settings.sh_filter, generation: ism.generation };
+        self.ensure(device, key, frame_buffer, targets, ism);
+        let Some(s) = &self.sized else { return };
+        let d_min = settings.clamp_distance;
+        let (w, h) = targets.size;
+        queue.write_buffer(&self.split_params, 0, &words(&[[n, 0, 0, 0]], &[]));
+        queue.write_buffer(
+            &self.shade_params,
+            0,
+            &words(
+                &[[ism.vpl_count, ism.r, ism.tiles_per_row, n]],
+                &[[1.0 / ism.d_max, DEPTH_BIAS, d_min * d_min, 0.0]],
+            ),
+        );
+        // 48 bytes: the third vec4 (sets, view size) follows the floats.
+        queue.write_buffer(&self.shade_params, 32, bytemuck::cast_slice(&[ism.sets, w, h, 0]));
+        let reset = u32::from(self.reset || !temporal);
+        let raw_split = if settings.sh_filter { 0 } else { n };
+        queue.write_buffer(
+            &self.temporal_params,
+            0,
+            &words(
+                &[[reset, raw_split, 0, 0]],
+                &[
+                    [settings.base_confidence, settings.w_position, settings.w_normal, settings.w_illumination],
+                    [ism.d_max, exposure, 0.0, 0.0],
+                ],
+            ),
+        );
+        let filter_split = if temporal { 0 } else { n };
+        queue.write_buffer(
+            &self.filter_params,
+            0,
+            &words(&[[n, filter_split, 0, 0]], &[[settings.filter_depth, settings.filter_normal, ism.d_max, 0.0]]),
+        );
+        if settings.sh_filter {
+            self.sh.write_params(queue, n, settings, ism.d_max);
+        }
+        let (sw, sh) = split_size(targets.size, n);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("ism shade"),
+            timestamp_writes: timestamps.as_ref().map(|t| t.compute_writes()),
+        });
+        pass.set_pipeline(&self.split);
+        pass.set_bind_group(0, &s.split_group, &[]);
+        pass.dispatch_workgroups(sw.div_ceil(8), sh.div_ceil(8), 1);
+        pass.set_pipeline(if settings.sh_filter { &self.project_sh } else { &self.shade });
+        pass.set_bind_group(0, &s.shade_group, &[]);
+        pass.dispatch_workgroups(sw.div_ceil(8), sh.div_ceil(8), 1);
+        if settings.sh_filter {
+            self.sh.dispatch(&mut pass, targets.size);
+        }
+        let p = self.parity;
+        if temporal {
+            pass.set_pipeline(&self.temporal);
+            pass.set_bind_group(0, &s.temporal_groups[p], &[]);
+            pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        }
+        if !settings.sh_filter {
+            let input = if temporal { 2 - p } else { 0 };
+            pass.set_pipeline(&self.filter);
+            pass.set_bind_group(0, &s.filter_groups[input], &[]);
+            pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        }
+        drop(pass);
+        if settings.sh_filter {
+            // The SH path filters before shading, so its result (merged with the history when
+            // temporal) is the indirect radiance itself.
+            let result = if temporal { Some(&s.history[1 - p]) } else { self.sh.shaded() };
+            if let Some(result) = result {
+                encoder.copy_texture_to_texture(
+                    result.texture.as_image_copy(),
+                    targets.indirect.texture.as_image_copy(),
+                    targets.indirect.texture.size(),
+                );
+            }
+        }
+        if temporal {
+            // Keep this frame's normals for the next frame's confidence, then swap the history.
+            encoder.copy_texture_to_texture(
+                targets.normal.texture.as_image_copy(),
+                s.prev_normal.texture.as_image_copy(),
+                s.prev_normal.texture.size(),
+            );
+            self.parity = 1 - p;
+            self.reset = false;
+        }
+    }
+}
