@@ -119,6 +119,9 @@ impl Default for ReferenceSettings {
     }
 }
 
+/// Largest ISM atlas side: a u32 atlas of this side stays within 128 MiB.
+pub const MAX_ATLAS_SIDE: u32 = 5792;
+
 /// Settings of the ISM techniques (`ism`, `ism-ritschel`; Knecht 2009). Defaults are the
 /// thesis's where it gives them (256 VPLs, 128^2 ISMs, 32k points, c_base 0.9, alpha 0.01,
 /// beta 0.8, d^2 >= 1) and the digest's recommendations elsewhere.
@@ -147,9 +150,10 @@ pub struct IsmSettings {
     /// Weight of the illumination change in the confidence. Higher: reacts faster to lighting
     /// changes (less afterglow) but lets VPL resampling noise through.
     pub w_illumination: f32,
-    /// Light bounces (1..=6); each extra bounce costs one VPL generation, ISM and shading pass.
-    /// The thesis's figures use 1; the default is 4, which brings the Cornell box within 5% of
-    /// the path tracer's energy (1: 77%, 2: 88%, 3: 93%, 4: 96%; docs/BENCHMARKS.md).
+    /// Light bounces (1..=6); each extra bounce costs one VPL generation, ISM and shading pass
+    /// (shading time grows linearly). The thesis's figures use 1; the default is 6, which
+    /// brings the white Cornell box within 2-3% of the path tracer's energy (ism-ritschel at
+    /// 128x72: 4 bounces 93%, 5: 96%, 6: 98%; each bounce adds about 70% of the last).
     pub bounces: u32,
     /// Geometry-aware filter depth threshold alpha (normalised depth). Lower: sharper edges,
     /// more visible interleave pattern.
@@ -176,7 +180,7 @@ impl Default for IsmSettings {
             w_position: 20.0,
             w_normal: 10.0,
             w_illumination: 0.5,
-            bounces: 4,
+            bounces: 6,
             filter_depth: 0.01,
             filter_normal: 0.8,
             sh_filter: false,
@@ -283,14 +287,15 @@ impl RenderSettings {
         if let Some((name, _, value, range)) = checks.into_iter().find(|c| !c.1) {
             return Err(SettingsError { name, value, range });
         }
-        // The ISM atlas holds one tile per VPL of every bounce; keep its side within 4096 texels
-        // (a 4096^2 u32 atlas is 64 MiB, the portable storage-binding budget; digest PF24).
+        // The ISM atlas holds one tile per VPL of every bounce; keep its side within 5792 texels
+        // (a 5792^2 u32 atlas is just under 128 MiB, WebGPU's default storage-binding limit;
+        // digest PF24), which fits 256 VPLs x 6 bounces at 128^2.
         let tiles = f64::from(m.vpl_count * m.bounces).sqrt().ceil() as u32;
-        if m.ism_resolution * tiles > 4096 {
+        if m.ism_resolution * tiles > MAX_ATLAS_SIDE {
             return Err(SettingsError {
                 name: "ism atlas (ism_resolution x sqrt(vpl_count x bounces))",
                 value: format!("{} x {tiles} = {}", m.ism_resolution, m.ism_resolution * tiles),
-                range: "<= 4096 texels",
+                range: "<= 5792 texels",
             });
         }
         if !(-32.0..=32.0).contains(&self.view.exposure_ev) {

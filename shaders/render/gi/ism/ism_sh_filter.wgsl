@@ -1,8 +1,8 @@
 // Segovia & Wald's screen-space SH filter (digest technique-rcs-shfilter-sshgi part B): average
 // the incident-radiance SH coefficients of the n x n window that holds each interleave phase
 // once (offsets [-n/2, n/2 - 1]), rejecting taps across geometric discontinuities only (other
-// object, normalised depth difference >= alpha, geometric normals with a cosine <= beta); the
-// shading normal is never tested. Then shade each pixel with its own projected BRDF:
+// object, distance from this pixel's tangent plane >= alpha x scene diameter, geometric normals
+// with a cosine <= beta); the shading normal is never tested. Then shade each pixel with its own projected BRDF:
 //   L_r = sum_lm L~_lm (k_d Lambda^d_l Y_lm(n_s) + k_s Lambda^phong_l Y_lm(R)),
 // R = reflect(-v, n_s), the Blinn-Phong exponent e taken as a Phong lobe of e / 4 around R.
 // Outputs: outgoing indirect radiance (rgb, clamped >= 0; a = accepted taps / n^2), and two
@@ -36,12 +36,13 @@ struct ShFilterParams {
 
 const SH_WORDS: u32 = 14u;
 
-fn view_depth(pixel: vec2<u32>) -> f32 {
+// World position of `pixel` (w = 1 where it sees geometry).
+fn position(pixel: vec2<u32>) -> vec4<f32> {
     let d = textureLoad(depth_tex, pixel, 0);
     if d <= 0.0 {
-        return -1.0;
+        return vec4<f32>(0.0);
     }
-    return length(world_from_pixel(frame, pixel, d) - frame.camera_position.xyz) / fp.params.z;
+    return vec4<f32>(world_from_pixel(frame, pixel, d), 1.0);
 }
 
 @compute @workgroup_size(8, 8, 1)
@@ -50,8 +51,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if any(id.xy >= size) {
         return;
     }
-    let zp = view_depth(id.xy);
-    if zp < 0.0 {
+    let pp = position(id.xy);
+    if pp.w < 0.5 {
         textureStore(out_radiance, id.xy, vec4<f32>(0.0));
         textureStore(out_dc, id.xy, vec4<f32>(0.0));
         textureStore(out_dir, id.xy, vec4<f32>(0.0));
@@ -61,6 +62,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let enc = textureLoad(normal_tex, id.xy, 0);
     let ngp = oct_decode(enc.zw);
     let idp = textureLoad(id_tex, id.xy, 0).r;
+    let tolerance = fp.params.x * fp.params.z;
     let width = split_block(size, n).x * n;
     let half = i32(n / 2u);
     var f = array<f32, 28>();
@@ -68,10 +70,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var dy = -half; dy < i32(n) - half; dy = dy + 1) {
         for (var dx = -half; dx < i32(n) - half; dx = dx + 1) {
             let q = vec2<u32>(clamp(vec2<i32>(id.xy) + vec2<i32>(dx, dy), vec2<i32>(0), vec2<i32>(size) - 1));
-            let zq = view_depth(q);
+            let pq = position(q);
             let ngq = oct_decode(textureLoad(normal_tex, q, 0).zw);
             let same = textureLoad(id_tex, q, 0).r == idp;
-            if zq < 0.0 || !same || abs(zq - zp) >= fp.params.x || dot(ngq, ngp) <= fp.params.y {
+            if pq.w < 0.5 || !same || abs(dot(pq.xyz - pp.xyz, ngp)) >= tolerance || dot(ngq, ngp) <= fp.params.y {
                 continue;
             }
             let s = split_address(q, size, n);
@@ -91,8 +93,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     // The projected BRDF of this pixel: its own (normal-mapped) shading normal and material.
     let ns = oct_decode(enc.xy);
-    let p = world_from_pixel(frame, id.xy, textureLoad(depth_tex, id.xy, 0));
-    let v = normalize(frame.camera_position.xyz - p);
+    let v = normalize(frame.camera_position.xyz - pp.xyz);
     let albedo = textureLoad(albedo_tex, id.xy, 0).rgb;
     let mat = textureLoad(material_tex, id.xy, 0);
     let yd = sh9_basis(ns);
