@@ -8,10 +8,22 @@ struct Vpl {
     power: vec4<f32>,
     // xyz unit direction towards the light it came from, w = light-G-buffer texel index.
     incident: vec4<f32>,
+    // Glossy lobe (Knecht 2009 Eq. 4.8 with the renderer's BRDF): rgb = specular reflectance x
+    // incident power (scaled like `power`), w = Blinn-Phong exponent (0: no lobe).
+    gloss: vec4<f32>,
 }
 
 // Radiant intensity (W/sr) VPL `vpl` emits along unit direction `dir` leaving it, where
-// cos_s = dot(normal, dir) > 0: the diffuse lobe power / pi cos_s.
+// cos_s = dot(normal, dir) > 0: f_r(incident, dir) Phi cos_s with the renderer's BRDF, i.e. the
+// diffuse lobe power / pi cos_s plus the energy-normalised Blinn-Phong lobe around the
+// reflection of the incident direction, gloss (e + 8) / (8 pi) (n.h)^e cos_s.
 fn vpl_intensity(vpl: Vpl, dir: vec3<f32>, cos_s: f32) -> vec3<f32> {
-    return vpl.power.rgb / 3.14159265358979 * cos_s;
+    let inv_pi = 0.318309886183791;
+    var i = vpl.power.rgb * inv_pi;
+    let e = vpl.gloss.w;
+    if e > 0.0 {
+        let h = normalize(vpl.incident.xyz + dir);
+        i = i + vpl.gloss.rgb * (e + 8.0) * 0.125 * inv_pi * pow(max(dot(vpl.normal.xyz, h), 0.0), e);
+    }
+    return i * cos_s;
 }

@@ -296,9 +296,9 @@ impl Renderer {
             ) {
                 let world_points = points.world(scene);
                 let world: Vec<glam::Vec3> = world_points.iter().map(|(p, _)| *p).collect();
-                let (albedo, weights) = point_materials(scene, points, means);
+                let materials = point_materials(scene, points, means);
                 let normals: Vec<[f32; 4]> =
-                    world_points.iter().zip(&weights).map(|((_, n), w)| n.extend(*w).to_array()).collect();
+                    world_points.iter().zip(&materials.weights).map(|((_, n), w)| n.extend(*w).to_array()).collect();
                 let area = points.weighted_area.iter().sum::<f64>() as f32;
                 let diameter = 2.0 * scene.bounds().map_or(1.0, |b| b.radius());
                 gather.record_maps(
@@ -308,7 +308,8 @@ impl Renderer {
                     &vpl_pass.vpls,
                     &world,
                     &normals,
-                    &albedo,
+                    &materials.albedo,
+                    &materials.specular,
                     area,
                     diameter,
                     &settings.ism,
@@ -614,16 +615,35 @@ fn point_materials(
     scene: &Scene,
     points: &crate::precompute::sample_points::SamplePoints,
     texture_means: &[[f32; 3]],
-) -> (Vec<[f32; 4]>, Vec<f32>) {
+) -> PointMaterials {
     let mean_texture = |image: usize| texture_means.get(image).copied().unwrap_or([1.0; 3]);
-    let per_object: Vec<([f32; 4], f32)> = scene
+    let per_object: Vec<([f32; 4], [f32; 4], f32)> = scene
         .objects()
         .iter()
         .map(|o| {
             let m = scene.materials().get(o.material).cloned().unwrap_or_default();
             let t = m.base_color_texture.map_or([1.0; 3], |t| mean_texture(t.image));
-            ([m.base_color[0] * t[0], m.base_color[1] * t[1], m.base_color[2] * t[2], 1.0], o.sampling_weight)
+            let albedo = [m.base_color[0] * t[0], m.base_color[1] * t[1], m.base_color[2] * t[2], 1.0];
+            let glossy = m.specular.iter().any(|s| *s > 0.0);
+            let exponent = if glossy { crate::precompute::brdf::phong_exponent(m.roughness).min(4096.0) } else { 0.0 };
+            (albedo, [m.specular[0], m.specular[1], m.specular[2], exponent], o.sampling_weight)
         })
         .collect();
-    points.points.iter().map(|p| per_object.get(p.object as usize).copied().unwrap_or(([0.0; 4], 1.0))).unzip()
+    let mut out = PointMaterials::default();
+    for p in &points.points {
+        let (a, s, w) = per_object.get(p.object as usize).copied().unwrap_or(([0.0; 4], [0.0; 4], 1.0));
+        out.albedo.push(a);
+        out.specular.push(s);
+        out.weights.push(w);
+    }
+    out
+}
+
+/// Per sample point: linear albedo (rgb), specular reflectance and Blinn-Phong exponent, and
+/// the object's sampling weight.
+#[derive(Default)]
+struct PointMaterials {
+    albedo: Vec<[f32; 4]>,
+    specular: Vec<[f32; 4]>,
+    weights: Vec<f32>,
 }

@@ -27,13 +27,18 @@ struct BounceParams {
 @group(0) @binding(3) var<storage, read> point_albedo: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read_write> vpls: array<Vpl>;
 @group(0) @binding(5) var<storage, read> atlas: array<u32>;
-@group(0) @binding(6) var<storage, read_write> keys: array<atomic<u32>>;
-@group(0) @binding(7) var<storage, read_write> sums: array<atomic<u32>>;
+// Per source VPL k: [2k] = the brightest luminance's bits, [2k + 1] = the luminance sum.
+@group(0) @binding(6) var<storage, read_write> selection: array<atomic<u32>>;
+// Per point j, written by `select_brightest` and read by `write_winner` (so the winner test
+// compares the very bits the atomic max saw, and each point does one ISM lookup):
+// [2j] = diffusely reflected power rgb, w = source VPL index (-1: none); [2j + 1] = incident power.
+@group(0) @binding(7) var<storage, read_write> lit: array<vec4<f32>>;
+// rgb specular reflectance, w = Blinn-Phong exponent (0: no lobe).
+@group(0) @binding(8) var<storage, read> point_specular: array<vec4<f32>>;
 
-const PI: f32 = 3.14159265358979;
 
-// Reflected power (rgb) of point j lit by its source VPL, and that VPL's index within the set.
-fn reflected(j: u32) -> vec4<f32> {
+// Power arriving at point j's patch from its source VPL (rgb) and that VPL's index (w).
+fn incident_power(j: u32) -> vec4<f32> {
     let per = max(bp.counts.y / bp.counts.x, 1u);
     let k = j / per;
     if k >= bp.counts.x {
@@ -63,11 +68,10 @@ fn reflected(j: u32) -> vec4<f32> {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     // Physical power of the source VPL (its shading power carries the interleave factor n^2).
-    let phi = vpl.power.rgb / bp.params.w;
-    let e = phi / PI * cos_s * cos_r / max(d2, bp.params.z);
+    let e = vpl_intensity(vpl, dir, cos_s) / bp.params.w * cos_r / max(d2, bp.params.z);
     // The area this point stands for among its VPL's points: sum(wA) / (per * w).
     let area = bp.area.x / (f32(per) * max(point_normals[j].w, 1.0e-6));
-    return vec4<f32>(point_albedo[j].rgb * e * area, f32(k));
+    return vec4<f32>(e * area, f32(k));
 }
 
 @compute @workgroup_size(64, 1, 1)
@@ -75,9 +79,9 @@ fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= bp.counts.x {
         return;
     }
-    atomicStore(&keys[id.x], 0u);
-    atomicStore(&sums[id.x], bitcast<u32>(0.0));
-    vpls[bp.sets.y + id.x] = Vpl(vec4<f32>(0.0), vec4<f32>(0.0, 0.0, 1.0, 0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+    atomicStore(&selection[2u * id.x], 0u);
+    atomicStore(&selection[2u * id.x + 1u], bitcast<u32>(0.0));
+    vpls[bp.sets.y + id.x] = Vpl(vec4<f32>(0.0), vec4<f32>(0.0, 0.0, 1.0, 0.0), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
 }
 
 @compute @workgroup_size(64, 1, 1)
@@ -85,17 +89,20 @@ fn select_brightest(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= bp.counts.y {
         return;
     }
-    let r = reflected(id.x);
+    let incident = incident_power(id.x);
+    let r = vec4<f32>(point_albedo[id.x].rgb * incident.rgb, incident.w);
+    lit[2u * id.x] = r;
+    lit[2u * id.x + 1u] = incident;
     let y = luminance(r.rgb);
     if r.w < 0.0 || y <= 0.0 {
         return;
     }
     let k = u32(r.w);
-    atomicMax(&keys[k], bitcast<u32>(y));
+    atomicMax(&selection[2u * k], bitcast<u32>(y));
     // Float add by compare-and-swap.
-    var old = atomicLoad(&sums[k]);
+    var old = atomicLoad(&selection[2u * k + 1u]);
     loop {
-        let res = atomicCompareExchangeWeak(&sums[k], old, bitcast<u32>(bitcast<f32>(old) + y));
+        let res = atomicCompareExchangeWeak(&selection[2u * k + 1u], old, bitcast<u32>(bitcast<f32>(old) + y));
         if res.exchanged {
             break;
         }
@@ -108,22 +115,25 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= bp.counts.y {
         return;
     }
-    let r = reflected(id.x);
+    let r = lit[2u * id.x];
     let y = luminance(r.rgb);
     if r.w < 0.0 || y <= 0.0 {
         return;
     }
     let k = u32(r.w);
-    if bitcast<u32>(y) != atomicLoad(&keys[k]) {
+    if bitcast<u32>(y) != atomicLoad(&selection[2u * k]) {
         return;
     }
-    let total = bitcast<f32>(atomicLoad(&sums[k]));
+    let total = bitcast<f32>(atomicLoad(&selection[2u * k + 1u]));
     let src = vpls[bp.sets.x + k];
     let p = points[id.x].xyz;
     var out: Vpl;
     out.position = vec4<f32>(p, 1.0);
     out.normal = vec4<f32>(point_normals[id.x].xyz, 0.0);
-    out.power = vec4<f32>(r.rgb * (total / y) * bp.params.w, 1.0);
+    let scale = (total / y) * bp.params.w;
+    out.power = vec4<f32>(r.rgb * scale, 1.0);
     out.incident = vec4<f32>(normalize(src.position.xyz - p), 0.0);
+    let spec = point_specular[id.x];
+    out.gloss = vec4<f32>(spec.rgb * lit[2u * id.x + 1u].rgb * scale, spec.w);
     vpls[bp.sets.y + k] = out;
 }

@@ -4,10 +4,13 @@
 //   1 normal     rgba16float  world-space shading normal
 //   2 power      rgba16float  rgb = power reflected by the patch this texel sees,
 //                             rho * I(w) * dOmega (the cosine cancels), a = importance
+//   3 specular   rgba16float  rgb = specular reflectance x I(w) dOmega (the incident power the
+//                             glossy lobe reflects), a = Blinn-Phong exponent (0: no lobe)
 // Back faces (the light reaches the back of a one-sided surface) reflect nothing.
 #import common/color.wgsl
 #import common/lights.wgsl
 #import common/object.wgsl
+#import common/brdf.wgsl
 
 struct LightView {
     clip_from_world: mat4x4<f32>,
@@ -47,6 +50,7 @@ struct LightGbufferOut {
     @location(0) albedo: vec4<f32>,
     @location(1) normal: vec4<f32>,
     @location(2) power: vec4<f32>,
+    @location(3) specular: vec4<f32>,
 }
 
 @fragment
@@ -66,10 +70,14 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> LightGbufferOut
     let texel = 2.0 * view.params.x / view.params.y;
     let d_omega = texel * texel * cos_axis * cos_axis * cos_axis;
     // irradiance * d^2 = radiant intensity towards this texel (spot falloff and range included).
-    var reflected = albedo * inc.irradiance * inc.distance * inc.distance * d_omega;
+    var incident = inc.irradiance * inc.distance * inc.distance * d_omega;
     if !front {
-        reflected = vec3<f32>(0.0);
+        incident = vec3<f32>(0.0);
     }
+    let reflected = albedo * incident;
+    // f16 holds exponents up to 65504; 4096 is already a mirror at light G-buffer resolution.
+    let exponent = select(0.0, min(phong_exponent(material.specular.a), 4096.0), spec > 0.0);
+    out.specular = vec4<f32>(material.specular.rgb * incident, exponent);
     let importance = luminance(reflected) * (0.5 + spec);
     out.power = vec4<f32>(reflected, importance);
     return out;

@@ -24,6 +24,7 @@ struct GenParams {
 @group(0) @binding(4) var power_tex: texture_2d<f32>;
 @group(0) @binding(5) var depth_tex: texture_depth_2d;
 @group(0) @binding(6) var<storage, read_write> vpls: array<Vpl>;
+@group(0) @binding(7) var specular_tex: texture_2d<f32>;
 
 fn radical_inverse_2(i: u32) -> f32 {
     return f32(reverseBits(i) >> 8u) / 16777216.0;
@@ -124,7 +125,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let reflected = textureLoad(power_tex, cell, 0).rgb;
     out.position = vec4<f32>(p, 1.0);
     out.normal = vec4<f32>(normalize(textureLoad(normal_tex, cell, 0).xyz), textureLoad(albedo_tex, cell, 0).a);
-    out.power = vec4<f32>(reflected * interleave * interleave / (f32(n_vpl) * pdf), pdf);
+    let scale = interleave * interleave / (f32(n_vpl) * pdf);
+    out.power = vec4<f32>(reflected * scale, pdf);
+    let spec = textureLoad(specular_tex, cell, 0);
+    out.gloss = vec4<f32>(spec.rgb * scale, spec.a);
     out.incident = vec4<f32>(normalize(params.light_position.xyz - p), f32(cell.y * size + cell.x));
     vpls[k] = out;
 }

@@ -36,6 +36,9 @@ struct Key {
     points: u32,
 }
 
+/// Bytes of one VPL (`GpuVpl`, WGSL `Vpl`).
+const VPL_BYTES: u64 = std::mem::size_of::<super::vpl_pass::GpuVpl>() as u64;
+
 /// Dynamic-offset slot size of per-set parameters.
 const SLOT: u64 = 256;
 /// Most VPL sets (bounces).
@@ -49,6 +52,7 @@ struct Sized {
     all_vpls: wgpu::Buffer,
     normals: wgpu::Buffer,
     albedo: wgpu::Buffer,
+    specular: wgpu::Buffer,
     bounce_group: wgpu::BindGroup,
     pull_groups: Vec<wgpu::BindGroup>,
     push_groups: Vec<wgpu::BindGroup>,
@@ -102,6 +106,7 @@ impl IsmGather {
                 storage_entry(5, c),
                 storage_rw(6),
                 storage_rw(7),
+                storage_entry(8, c),
             ],
         });
         let bounce_module = shaders::module(device, "render/gi/ism/ism_bounce.wgsl")?;
@@ -178,11 +183,12 @@ impl IsmGather {
                 mapped_at_creation: false,
             })
         };
-        let all_vpls = storage("ism vpls of every bounce", u64::from(key.vpls * key.bounces) * 64);
+        let all_vpls = storage("ism vpls of every bounce", u64::from(key.vpls * key.bounces) * VPL_BYTES);
         let normals = storage("ism sample point normals", u64::from(key.points) * 16);
         let albedo = storage("ism sample point albedo", u64::from(key.points) * 16);
-        let keys = storage("ism bounce keys", u64::from(key.vpls) * 4);
-        let sums = storage("ism bounce sums", u64::from(key.vpls) * 4);
+        let specular = storage("ism sample point specular", u64::from(key.points) * 16);
+        let selection = storage("ism bounce selection", u64::from(key.vpls) * 8);
+        let lit = storage("ism bounce lit points", u64::from(key.points) * 32);
         fn slot(b: u32, x: &wgpu::Buffer, size: u64) -> wgpu::BindGroupEntry<'_> {
             wgpu::BindGroupEntry {
                 binding: b,
@@ -208,8 +214,9 @@ impl IsmGather {
                 buf(3, &albedo),
                 buf(4, &all_vpls),
                 buf(5, &atlas[0]),
-                buf(6, &keys),
-                buf(7, &sums),
+                buf(6, &selection),
+                buf(7, &lit),
+                buf(8, &specular),
             ],
         });
         let pp = |fine: &wgpu::Buffer, coarse: &wgpu::Buffer| {
@@ -230,6 +237,7 @@ impl IsmGather {
             all_vpls,
             normals,
             albedo,
+            specular,
             bounce_group,
             pull_groups,
             push_groups,
@@ -265,6 +273,7 @@ impl IsmGather {
         points: &[Vec3],
         normals: &[[f32; 4]],
         albedo: &[[f32; 4]],
+        specular: &[[f32; 4]],
         total_area: f32,
         scene_diameter: f32,
         settings: &IsmSettings,
@@ -289,7 +298,8 @@ impl IsmGather {
         queue.write_buffer(&s.points, 0, bytemuck::cast_slice(&data));
         queue.write_buffer(&s.normals, 0, bytemuck::cast_slice(normals));
         queue.write_buffer(&s.albedo, 0, bytemuck::cast_slice(albedo));
-        encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(key.vpls) * 64);
+        queue.write_buffer(&s.specular, 0, bytemuck::cast_slice(specular));
+        encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(key.vpls) * VPL_BYTES);
         let u32s = |a: [u32; 4], b: [f32; 4]| {
             let mut v = bytemuck::cast_slice::<u32, u8>(&a).to_vec();
             v.extend_from_slice(bytemuck::cast_slice(&b));

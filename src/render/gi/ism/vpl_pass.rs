@@ -71,6 +71,9 @@ pub struct GpuVpl {
     pub power: [f32; 4],
     /// xyz direction towards the light, w = chosen texel index (row-major).
     pub incident: [f32; 4],
+    /// Glossy lobe: rgb = specular reflectance x incident power (scaled like `power`), w =
+    /// Blinn-Phong exponent (0 = no lobe).
+    pub gloss: [f32; 4],
 }
 
 /// The light G-buffer, importance pyramid and VPL buffer with their pipelines.
@@ -84,6 +87,8 @@ pub struct VplPass {
     pub normal: Target,
     /// Reflected power (rgb) and importance (a) per texel.
     pub power: Target,
+    /// Specular reflectance x incident power (rgb) and Blinn-Phong exponent (a) per texel.
+    pub specular: Target,
     depth: Target,
     /// The importance sum pyramid (mip 0 = per texel, last mip = total).
     pub importance: wgpu::Texture,
@@ -109,6 +114,7 @@ impl VplPass {
         let albedo = Target::new(device, "ism light albedo", size, wgpu::TextureFormat::Rgba8Unorm, rt);
         let normal = Target::new(device, "ism light normal", size, wgpu::TextureFormat::Rgba16Float, rt);
         let power = Target::new(device, "ism light power", size, wgpu::TextureFormat::Rgba16Float, rt);
+        let specular = Target::new(device, "ism light specular", size, wgpu::TextureFormat::Rgba16Float, rt);
         let depth = Target::new(device, "ism light depth", size, wgpu::TextureFormat::Depth32Float, rt);
 
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
@@ -161,6 +167,7 @@ impl VplPass {
                 compilation_options: Default::default(),
                 targets: &[
                     target(wgpu::TextureFormat::Rgba8Unorm),
+                    target(wgpu::TextureFormat::Rgba16Float),
                     target(wgpu::TextureFormat::Rgba16Float),
                     target(wgpu::TextureFormat::Rgba16Float),
                 ],
@@ -221,6 +228,7 @@ impl VplPass {
                 texture_entry(3, c, unfilterable),
                 texture_entry(4, c, unfilterable),
                 texture_entry(5, c, wgpu::TextureSampleType::Depth),
+                texture_entry(7, c, unfilterable),
                 wgpu::BindGroupLayoutEntry {
                     binding: 6,
                     visibility: c,
@@ -248,6 +256,7 @@ impl VplPass {
             albedo,
             normal,
             power,
+            specular,
             depth,
             importance,
             importance_full,
@@ -296,6 +305,7 @@ impl VplPass {
             view(3, &self.normal.view),
             view(4, &self.power.view),
             view(5, &self.depth.view),
+            view(7, &self.specular.view),
             wgpu::BindGroupEntry { binding: 6, resource: self.vpls.as_entire_binding() },
         ];
         self.gen_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -389,9 +399,10 @@ impl VplPass {
                 })
             }
             let (a, n, p) = (self.albedo.view.clone(), self.normal.view.clone(), self.power.view.clone());
+            let sp = self.specular.view.clone();
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("ism light gbuffer pass"),
-                color_attachments: &[color(&a), color(&n), color(&p)],
+                color_attachments: &[color(&a), color(&n), color(&p), color(&sp)],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &self.depth.view,
                     depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
