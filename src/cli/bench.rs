@@ -63,6 +63,14 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
     for &size in sizes {
         rows.push(measure(&ctx, &project, GiMode::Direct, size, frames)?);
     }
+    // ISM at its defaults, with the irradiance and the SH filter (1280x720 is too slow here).
+    let mut sh_project = project.clone();
+    sh_project.render.ism.sh_filter = true;
+    let mut ism_rows_timed = Vec::new();
+    for &size in sizes.iter().take(2) {
+        ism_rows_timed.push(("irradiance", measure(&ctx, &project, GiMode::Ism, size, frames)?));
+        ism_rows_timed.push(("SH", measure(&ctx, &sh_project, GiMode::Ism, size, frames)?));
+    }
     let mut md = String::new();
     let _ = writeln!(md, "# Benchmarks\n");
     let _ = writeln!(
@@ -80,13 +88,21 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
     let _ = writeln!(md, "## Direct lighting\n");
     let _ = writeln!(md, "| mode | size | frame ms | per-pass GPU ms |");
     let _ = writeln!(md, "|---|---|---|---|");
-    for r in &rows {
-        let passes = if r.passes.is_empty() {
+    let passes = |r: &Row| {
+        if r.passes.is_empty() {
             "(no timestamp queries on this adapter)".to_owned()
         } else {
             r.passes.iter().map(|p| format!("{} {:.2}", p.name, p.ms)).collect::<Vec<_>>().join(", ")
-        };
-        let _ = writeln!(md, "| {} | {}x{} | {:.2} | {} |", r.mode.name(), r.size.0, r.size.1, r.frame_ms, passes);
+        }
+    };
+    for r in &rows {
+        let _ = writeln!(md, "| {} | {}x{} | {:.2} | {} |", r.mode.name(), r.size.0, r.size.1, r.frame_ms, passes(r));
+    }
+    let _ = writeln!(md, "\n## ISM per pass (defaults: 256 VPLs, 6 bounces, 128² ISMs, n = 4)\n");
+    let _ = writeln!(md, "| filter | size | frame ms | per-pass GPU ms |");
+    let _ = writeln!(md, "|---|---|---|---|");
+    for (filter, r) in &ism_rows_timed {
+        let _ = writeln!(md, "| {filter} | {}x{} | {:.2} | {} |", r.size.0, r.size.1, r.frame_ms, passes(r));
     }
     reference_rows(&mut md, &project, quick);
     ism_rows(&mut md, &ctx, &project, quick)?;
@@ -176,8 +192,8 @@ fn ism_rows(md: &mut String, ctx: &GpuContext, project: &Project, quick: bool) -
         md,
         "Default project (point light), {}x{}, frame time relative to `direct` ({direct_ms:.1} ms) in the same run; error after {frames} \
          frames against the reference path tracer ({spp} spp, full GI). The VPL and ISM-resolution sweeps use one \
-         bounce (as the thesis's tables); the bounce sweep drops to 64² ISMs above 4 bounces to keep the atlas within \
-         4096². Other settings at their defaults.\n",
+         bounce (as the thesis's tables). Other settings at their defaults (6 bounces, 128² ISMs, irradiance \
+         filter).\n",
         size.0, size.1
     );
     let _ = writeln!(md, "| sweep | setting | mode | frame / direct | FLIP | relMSE | luminance ratio |");
@@ -208,16 +224,20 @@ fn ism_rows(md: &mut String, ctx: &GpuContext, project: &Project, quick: bool) -
     }
     let bounces: &[u32] = if quick { &[1, 2] } else { &[1, 2, 3, 4, 5, 6] };
     for &b in bounces {
-        let (ms, flip, rel, lum) = run(GiMode::Ism, &|m| {
-            m.bounces = b;
-            m.ism_resolution = if b > 4 { 64 } else { 128 };
-        })?;
-        let res = if b > 4 { 64 } else { 128 };
-        let _ = writeln!(
-            md,
-            "| bounces (ISM {res}²) | {b} | ism | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |",
-            ms / direct_ms
-        );
+        let (ms, flip, rel, lum) = run(GiMode::Ism, &|m| m.bounces = b)?;
+        let _ = writeln!(md, "| bounces | {b} | ism | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |", ms / direct_ms);
+    }
+    for mode in [GiMode::Ism, GiMode::IsmRitschel] {
+        for sh in [false, true] {
+            let (ms, flip, rel, lum) = run(mode, &|m| m.sh_filter = sh)?;
+            let filter = if sh { "SH (Segovia & Wald)" } else { "irradiance" };
+            let _ = writeln!(
+                md,
+                "| filter | {filter} | {} | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |",
+                mode.name(),
+                ms / direct_ms
+            );
+        }
     }
     let (ms, flip, rel, lum) = run(GiMode::Direct, &|_| {})?;
     let _ = writeln!(md, "| baseline | - | direct | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |", ms / direct_ms);

@@ -444,6 +444,7 @@ impl Renderer {
             "ism_light_power",
             "ism_importance",
             "ism_atlas",
+            "ism_atlas_splats",
             "ism_split_position",
             "ism_split_normal",
             "ism_raw",
@@ -469,14 +470,21 @@ impl Renderer {
             "hdr" => &t.hdr.texture,
             "ldr" => &t.ldr.texture,
             "shadow_map" => &self.shadows.texture,
-            "ism_atlas" => {
+            "ism_atlas" | "ism_atlas_splats" => {
                 let missing =
                     || RenderError::UnknownBuffer { name: name.into(), known: "render an ism mode first".into() };
                 let (levels, side) = self.gather.as_ref().and_then(|g| g.atlas()).ok_or_else(missing)?;
                 let level = levels.first().ok_or_else(missing)?;
                 let bytes = readback::read_buffer(&self.device, &self.queue, level)?;
-                let pixels =
-                    bytemuck::pod_collect_to_vec::<u8, f32>(&bytes).into_iter().map(|v| [v, v, v, 1.0]).collect();
+                // Texels filled by pull-push carry the lowest mantissa bit (pull_push.wgsl).
+                let splats_only = name == "ism_atlas_splats";
+                let pixels = bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)
+                    .into_iter()
+                    .map(|bits| {
+                        let v = if splats_only && bits & 1 == 1 { 1.0 } else { f32::from_bits(bits) };
+                        [v, v, v, 1.0]
+                    })
+                    .collect();
                 return Ok(crate::image_io::HdrImage { width: side, height: side, pixels });
             }
             ism if ism.starts_with("ism_") => {

@@ -66,7 +66,8 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
                 continue;
             }
             let a = origin + t;
-            atomicMin(&atlas[u32(a.y) * side + u32(a.x)], bitcast<u32>(depth));
+            // Even bit patterns: pull-push marks the texels it fills with the lowest bit.
+            atomicMin(&atlas[u32(a.y) * side + u32(a.x)], bitcast<u32>(depth) & ~1u);
         }
     }
 }

@@ -1,7 +1,9 @@
 // ISM pass P8: pull-push hole filling of the ISM atlas (Grossman & Dally 1998, Marroquim et al.
 // 2008, thresholds of Ritschel et al. 2008: 5% of the scene extent, times 2^level). Depths are
 // f32 bit patterns in u32 storage; 1.0 is empty. Tiles are powers of two, so 2x2 reductions never
-// mix two VPLs' maps.
+// mix two VPLs' maps. Splats store even bit patterns; the push marks the finest-level texels it
+// fills with the lowest mantissa bit (one ulp, far below any bias), so the inspector can show
+// the atlas before and after hole filling from the one buffer.
 struct PullPushParams {
     // fine side (texels), level of the fine side (0 = finest), first fine row, unused.
     counts: vec4<u32>,
@@ -62,6 +64,6 @@ fn push(@builtin(global_invocation_id) gid: vec3<u32>) {
     let i = id.y * fs + id.x;
     let v = bitcast<f32>(fine[i]);
     if c < 1.0 && (v >= 1.0 || v - c > threshold()) {
-        fine[i] = bitcast<u32>(c);
+        fine[i] = bitcast<u32>(c) | select(0u, 1u, pp.counts.y == 0u);
     }
 }
