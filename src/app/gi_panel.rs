@@ -76,7 +76,13 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui) {
             .on_hover_text("Higher: reacts faster to lighting changes, but lets VPL resampling noise through.");
         ui.add(egui::Slider::new(&mut m.clamp_distance, 0.0..=2.0).text("clamp distance (m)"))
             .on_hover_text("Minimum VPL distance: fewer spikes near VPLs, darker corners (bias).");
-        ui.checkbox(&mut m.sh_filter, "SH filter (Segovia & Wald)").on_hover_text("Keeps glossy and normal-mapped detail; 27 coefficients per pixel.");
+        ui.add(egui::Slider::new(&mut m.filter_depth, 0.001..=0.1).logarithmic(true).text("filter plane tolerance"))
+            .on_hover_text("Geometry-aware filter: neighbours farther than this x scene diameter from the pixel's tangent plane are rejected. Lower: sharper contacts, more interleave pattern.");
+        ui.add(egui::Slider::new(&mut m.filter_normal, 0.0..=1.0).text("filter normal cosine"))
+            .on_hover_text("Neighbours whose normal differs by a cosine below this are rejected (the SH filter tests geometric normals only).");
+        ui.checkbox(&mut m.sh_filter, "SH filter (Segovia & Wald)").on_hover_text(
+            "Filter incident radiance as 9 SH coefficients per colour, then shade with each pixel's own normal-mapped normal and glossy lobe. Cost: 56 bytes per pixel and 27-channel filtering (about +10-15% shading time).",
+        );
     });
     egui::CollapsingHeader::new("Reference path tracer").default_open(false).show(ui, |ui| {
         let r = &mut render.reference;
@@ -97,8 +103,14 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui) {
             }
         });
     });
-    if render != state.project.render && render.validate().is_ok() {
-        state.history.begin("GI settings", &state.project);
-        state.project.render = render;
+    if render != state.project.render {
+        match render.validate() {
+            Ok(()) => {
+                state.history.begin("GI settings", &state.project);
+                state.project.render = render;
+            }
+            // The edit is refused; say why instead of letting the slider snap back silently.
+            Err(e) => state.status = format!("setting not applied: {e}"),
+        }
     }
 }

@@ -503,7 +503,15 @@ impl Renderer {
                     "ism_importance" => &light.ok_or_else(missing)?.importance,
                     "ism_split_position" => &screen.and_then(|g| g.split_gbuffer()).ok_or_else(missing)?.0.texture,
                     "ism_split_normal" => &screen.and_then(|g| g.split_gbuffer()).ok_or_else(missing)?.1.texture,
-                    "ism_raw" => &screen.and_then(|g| g.raw()).ok_or_else(missing)?.texture,
+                    "ism_raw" => {
+                        let raw = screen.and_then(|g| g.raw()).ok_or_else(|| RenderError::UnknownBuffer {
+                            name: name.into(),
+                            known: "render an ism mode with the irradiance filter first (the SH filter \
+                                    accumulates coefficients: see ism_sh_shaded, ism_sh_dc, ism_sh_direction)"
+                                .into(),
+                        })?;
+                        &raw.texture
+                    }
                     "ism_confidence" => &screen.and_then(|g| g.confidence()).ok_or_else(missing)?.texture,
                     "ism_history" => &screen.and_then(|g| g.history()).ok_or_else(missing)?.texture,
                     "ism_sh_shaded" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.0.texture,

@@ -155,13 +155,18 @@ pub struct IsmSettings {
     /// brings the white Cornell box within 2-3% of the path tracer's energy (ism-ritschel at
     /// 128x72: 4 bounces 93%, 5: 96%, 6: 98%; each bounce adds about 70% of the last).
     pub bounces: u32,
-    /// Geometry-aware filter depth threshold alpha (normalised depth). Lower: sharper edges,
-    /// more visible interleave pattern.
+    /// Geometry-aware filter threshold alpha: a neighbour farther than alpha x the scene
+    /// diameter from the pixel's tangent plane is rejected (the thesis's 0.01, applied along
+    /// the normal instead of the view ray so grazing walls keep their taps). Free; lower:
+    /// sharper contacts, more visible interleave pattern.
     pub filter_depth: f32,
-    /// Geometry-aware filter normal threshold beta (minimum cosine).
+    /// Geometry-aware filter normal threshold beta (minimum cosine; the SH filter tests
+    /// geometric normals only, so normal maps never break its window). Free.
     pub filter_normal: f32,
-    /// Filter spherical harmonics of incoming radiance instead of radiance (Segovia & Wald):
-    /// keeps glossy and normal-mapped detail. Cost: 27 coefficients per pixel.
+    /// Filter the incident radiance as 9 SH coefficients per colour and shade afterwards with
+    /// each pixel's own normal and BRDF (Segovia & Wald): keeps glossy and normal-mapped
+    /// detail. Cost: 56 bytes per pixel (f16) and 27-channel filtering, about +10-15% of the
+    /// ISM shading time at 640x360 (docs/BENCHMARKS.md).
     pub sh_filter: bool,
     /// Minimum VPL distance in metres. Larger: fewer spikes near VPLs, darker corners (bias).
     /// The thesis clamps d^2 >= 1 in world units, which assumes large scenes; in a 2 m Cornell

@@ -334,9 +334,10 @@ impl IsmScreen {
         self.sized.as_ref().map(|s| &s.history[self.parity])
     }
 
-    /// The split accumulation buffer (the unfiltered interleaved result in the split layout).
+    /// The split accumulation buffer (the unfiltered interleaved result in the split layout);
+    /// `None` with the SH filter, which accumulates SH coefficients instead.
     pub fn raw(&self) -> Option<&Target> {
-        self.sized.as_ref().map(|s| &s.raw)
+        self.sized.as_ref().filter(|s| !s.key.sh).map(|s| &s.raw)
     }
 
     /// The split G-buffer: world positions and octahedral normals.
