@@ -47,8 +47,10 @@ pub struct RenderArgs {
     /// Bounce from which Russian roulette may end paths (reference mode).
     #[arg(long)]
     pub rr_start: Option<u32>,
-    /// Write an intermediate buffer instead of the final image (albedo, normal, material,
-    /// motion, object_id, depth, indirect, hdr, ldr, shadow_map).
+    /// Write an intermediate buffer instead of the final image: albedo, normal, material,
+    /// motion, object_id, depth, indirect, hdr, ldr, shadow_map, and in the ISM modes ism_light_*,
+    /// ism_importance, ism_atlas(_splats), ism_split_*, ism_raw, ism_confidence, ism_history and
+    /// ism_sh_* (an unknown name lists them all).
     #[arg(long)]
     pub buffer: Option<String>,
     /// Supersampling per axis for raster modes: renders at N times the size and box-filters
