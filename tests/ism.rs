@@ -4,11 +4,8 @@
 
 mod common;
 
-use std::sync::atomic::AtomicBool;
-
 use bouncelab::image_io::{self, HdrImage};
 use bouncelab::metrics;
-use bouncelab::precompute::pathtracer::PathTracer;
 use bouncelab::project_file::{Project, default_project_path};
 use bouncelab::scene::Light;
 use bouncelab::settings::{GiMode, ReferenceSettings};
@@ -35,10 +32,8 @@ fn check_against_reference(project: &Project, label: &str) {
     let project = &project;
     let Some(ctx) = common::gpu() else { return };
     let size = (64, 36);
-    let mut tracer =
-        PathTracer::new(&project.scene, size, ReferenceSettings { spp: 512, max_bounces: 2, ..Default::default() });
-    tracer.render(512, &AtomicBool::new(false), |_| {});
-    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let reference =
+        common::reference(&project.scene, size, ReferenceSettings { spp: 512, max_bounces: 2, ..Default::default() });
     let direct = raster(&ctx, project, GiMode::Direct, size, 2);
     let ism = raster(&ctx, project, GiMode::IsmRitschel, size, 2);
     let out = std::env::temp_dir();
@@ -80,9 +75,7 @@ fn bounces_add_energy_monotonically_and_converge() {
     let Some(ctx) = common::gpu() else { return };
     let mut project = Project::load(&default_project_path()).expect("default project");
     let size = (64, 36);
-    let mut tracer = PathTracer::new(&project.scene, size, ReferenceSettings { spp: 256, ..Default::default() });
-    tracer.render(256, &AtomicBool::new(false), |_| {});
-    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let reference = common::reference(&project.scene, size, ReferenceSettings { spp: 256, ..Default::default() });
     let full = metrics::mean_luminance(&reference);
     let mut lums = Vec::new();
     for bounces in 1..=4u32 {
@@ -115,9 +108,7 @@ fn ism_with_defaults_after_32_frames_halves_the_flip_of_direct_against_full_gi()
     let Some(ctx) = common::gpu() else { return };
     let project = Project::load(&default_project_path()).expect("default project");
     let size = (64, 36);
-    let mut tracer = PathTracer::new(&project.scene, size, ReferenceSettings { spp: 512, ..Default::default() });
-    tracer.render(512, &AtomicBool::new(false), |_| {});
-    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let reference = common::reference(&project.scene, size, ReferenceSettings { spp: 512, ..Default::default() });
     let mut settings = project.render.clone();
     settings.mode = GiMode::Ism;
     let mut r = bouncelab::render::Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
@@ -143,9 +134,7 @@ fn more_vpls_never_make_it_worse_on_average() {
     let Some(ctx) = common::gpu() else { return };
     let project = Project::load(&default_project_path()).expect("default project");
     let size = (64, 36);
-    let mut tracer = PathTracer::new(&project.scene, size, ReferenceSettings { spp: 256, ..Default::default() });
-    tracer.render(256, &AtomicBool::new(false), |_| {});
-    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let reference = common::reference(&project.scene, size, ReferenceSettings { spp: 256, ..Default::default() });
     let mut errors = Vec::new();
     for n in [16u32, 64, 256] {
         let mut settings = project.render.clone();

@@ -6,11 +6,8 @@
 
 mod common;
 
-use std::sync::atomic::AtomicBool;
-
 use bouncelab::image_io::HdrImage;
 use bouncelab::metrics;
-use bouncelab::precompute::pathtracer::PathTracer;
 use bouncelab::project_file::{Project, default_project_path};
 use bouncelab::render::Renderer;
 use bouncelab::scene::Light;
@@ -41,10 +38,8 @@ fn glossy_first_bounce_matches_the_reference() {
     let mut project = glossy_cornell();
     project.render.ism.bounces = 1;
     let size = (64, 36);
-    let mut tracer =
-        PathTracer::new(&project.scene, size, ReferenceSettings { spp: 512, max_bounces: 2, ..Default::default() });
-    tracer.render(512, &AtomicBool::new(false), |_| {});
-    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let reference =
+        common::reference(&project.scene, size, ReferenceSettings { spp: 512, max_bounces: 2, ..Default::default() });
     let frames = 6;
     let mean = |mode: GiMode, sh: bool| {
         let mut settings = project.render.clone();

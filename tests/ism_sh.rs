@@ -5,11 +5,8 @@
 
 mod common;
 
-use std::sync::atomic::AtomicBool;
-
 use bouncelab::image_io::HdrImage;
 use bouncelab::metrics;
-use bouncelab::precompute::pathtracer::PathTracer;
 use bouncelab::project_file::{Project, default_project_path};
 use bouncelab::render::Renderer;
 use bouncelab::scene::{Image, Material, MeshSource, TextureRef, Transform};
@@ -113,9 +110,7 @@ fn sh_filter_on_the_diffuse_cornell_box_matches_the_reference() {
     let Some(ctx) = common::gpu() else { return };
     let project = Project::load(&default_project_path()).expect("default project");
     let size = (64, 36);
-    let mut tracer = PathTracer::new(&project.scene, size, ReferenceSettings { spp: 512, ..Default::default() });
-    tracer.render(512, &AtomicBool::new(false), |_| {});
-    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let reference = common::reference(&project.scene, size, ReferenceSettings { spp: 512, ..Default::default() });
     let mut results = Vec::new();
     for sh in [false, true] {
         let mut settings = project.render.clone();

@@ -122,7 +122,6 @@ fn confidence_is_zero_where_a_moving_object_uncovers_the_background() {
 
 #[test]
 fn moving_light_and_object_flicker_less_than_ritschel() {
-    use bouncelab::precompute::pathtracer::PathTracer;
     use bouncelab::settings::ReferenceSettings;
     let Some(ctx) = common::gpu() else { return };
     let project = Project::load(&default_project_path()).expect("default project");
@@ -156,9 +155,7 @@ fn moving_light_and_object_flicker_less_than_ritschel() {
     let reference: Vec<HdrImage> = (warm..warm + n)
         .map(|f| {
             let p = at(f);
-            let mut t = PathTracer::new(&p.scene, SIZE, ReferenceSettings { spp: 128, seed: 7, ..Default::default() });
-            t.render(128, &std::sync::atomic::AtomicBool::new(false), |_| {});
-            HdrImage { width: SIZE.0, height: SIZE.1, pixels: t.image() }
+            common::reference(&p.scene, SIZE, ReferenceSettings { spp: 128, seed: 7, ..Default::default() })
         })
         .collect();
     let (ti, tr) = (

@@ -20,3 +20,13 @@ fn world_from_pixel(frame: Frame, pixel: vec2<u32>, depth: f32) -> vec3<f32> {
     let h = frame.world_from_clip * ndc;
     return h.xyz / h.w;
 }
+
+// World position of `pixel` read from the reversed-depth buffer `depth`, w = 1 where the pixel
+// sees geometry (0: far plane, nothing drawn).
+fn position_at(frame: Frame, depth: texture_depth_2d, pixel: vec2<u32>) -> vec4<f32> {
+    let d = textureLoad(depth, pixel, 0);
+    if d <= 0.0 {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(world_from_pixel(frame, pixel, d), 1.0);
+}

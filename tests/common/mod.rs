@@ -68,3 +68,15 @@ pub fn floor_hit(camera: &Camera, x: u32, y: u32, size: (u32, u32), half: f32) -
 
 /// Unused silencer for helpers some test files do not need.
 pub fn _unused(_: Resources, _: Mesh) {}
+
+/// The reference path tracer's image of `scene` at `size` with `settings` (all its spp).
+pub fn reference(
+    scene: &Scene,
+    size: (u32, u32),
+    settings: bouncelab::settings::ReferenceSettings,
+) -> bouncelab::image_io::HdrImage {
+    let spp = settings.spp;
+    let mut tracer = bouncelab::precompute::pathtracer::PathTracer::new(scene, size, settings);
+    tracer.render(spp, &std::sync::atomic::AtomicBool::new(false), |_| {});
+    bouncelab::image_io::HdrImage { width: size.0, height: size.1, pixels: tracer.image() }
+}

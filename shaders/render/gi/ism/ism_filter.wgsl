@@ -22,13 +22,8 @@ struct FilterParams {
 @group(0) @binding(4) var normal_tex: texture_2d<f32>;
 @group(0) @binding(5) var out_indirect: texture_storage_2d<rgba32float, write>;
 
-// World position of `pixel` (w = 1 where it sees geometry).
 fn position(pixel: vec2<u32>) -> vec4<f32> {
-    let d = textureLoad(depth_tex, pixel, 0);
-    if d <= 0.0 {
-        return vec4<f32>(0.0);
-    }
-    return vec4<f32>(world_from_pixel(frame, pixel, d), 1.0);
+    return position_at(frame, depth_tex, pixel);
 }
 
 @compute @workgroup_size(8, 8, 1)

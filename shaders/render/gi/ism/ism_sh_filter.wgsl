@@ -36,13 +36,8 @@ struct ShFilterParams {
 
 const SH_WORDS: u32 = 14u;
 
-// World position of `pixel` (w = 1 where it sees geometry).
 fn position(pixel: vec2<u32>) -> vec4<f32> {
-    let d = textureLoad(depth_tex, pixel, 0);
-    if d <= 0.0 {
-        return vec4<f32>(0.0);
-    }
-    return vec4<f32>(world_from_pixel(frame, pixel, d), 1.0);
+    return position_at(frame, depth_tex, pixel);
 }
 
 @compute @workgroup_size(8, 8, 1)

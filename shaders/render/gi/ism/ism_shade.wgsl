@@ -85,6 +85,13 @@ fn texel(s: vec2<u32>) -> Texel {
     return Texel(textureLoad(split_position, s, 0), oct_decode(enc.xy), oct_decode(enc.zw), tile * per, per);
 }
 
+// Index of the i-th VPL texel t gathers (its block of every set in turn), or -1 where the
+// block runs past the set's end.
+fn vpl_of(t: Texel, i: u32) -> i32 {
+    let j = t.first + i % t.per;
+    return select(i32((i / t.per) * sh.counts.x + j), -1, j >= sh.counts.x);
+}
+
 fn in_split(s: vec2<u32>) -> bool {
     return all(s < split_block(sh.sets.yz, sh.counts.w) * sh.counts.w);
 }
@@ -98,11 +105,11 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
     var sum = vec3<f32>(0.0);
     if t.position.w > 0.5 {
         for (var i = 0u; i < t.per * sh.sets.x; i = i + 1u) {
-            let j = t.first + i % t.per;
-            if j >= sh.counts.x {
+            let k = vpl_of(t, i);
+            if k < 0 {
                 continue;
             }
-            let inc = incident((i / t.per) * sh.counts.x + j, t.position.xyz, t.geometric_normal);
+            let inc = incident(u32(k), t.position.xyz, t.geometric_normal);
             sum = sum + inc.e * max(dot(t.shading_normal, inc.dir), 0.0) / PI;
         }
     }
@@ -118,11 +125,11 @@ fn project_sh(@builtin(global_invocation_id) id: vec3<u32>) {
     var c = array<vec3<f32>, 9>();
     if t.position.w > 0.5 {
         for (var i = 0u; i < t.per * sh.sets.x; i = i + 1u) {
-            let j = t.first + i % t.per;
-            if j >= sh.counts.x {
+            let k = vpl_of(t, i);
+            if k < 0 {
                 continue;
             }
-            let inc = incident((i / t.per) * sh.counts.x + j, t.position.xyz, t.geometric_normal);
+            let inc = incident(u32(k), t.position.xyz, t.geometric_normal);
             if all(inc.e <= vec3<f32>(0.0)) {
                 continue;
             }
