@@ -17,6 +17,11 @@ use super::uniforms::{FrameUniforms, GpuLight};
 use crate::scene::Scene;
 use crate::settings::{GiMode, RenderSettings, SettingsError};
 
+mod inspect;
+mod ism_points;
+
+use ism_points::{mean_linear_colour, point_materials};
+
 /// Why a frame could not be rendered.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
@@ -425,119 +430,6 @@ impl Renderer {
         Ok(readback::read_texture(&self.device, &self.queue, &t.ldr.texture)?)
     }
 
-    /// Names of the buffers [`Renderer::read_buffer`] can read (G-buffer channels, lighting
-    /// inputs and outputs).
-    pub fn buffer_names() -> &'static [&'static str] {
-        &[
-            "albedo",
-            "normal",
-            "material",
-            "motion",
-            "object_id",
-            "depth",
-            "indirect",
-            "hdr",
-            "ldr",
-            "shadow_map",
-            "ism_light_albedo",
-            "ism_light_normal",
-            "ism_light_power",
-            "ism_importance",
-            "ism_atlas",
-            "ism_atlas_splats",
-            "ism_split_position",
-            "ism_split_normal",
-            "ism_raw",
-            "ism_confidence",
-            "ism_history",
-            "ism_sh_shaded",
-            "ism_sh_dc",
-            "ism_sh_direction",
-        ]
-    }
-
-    /// Reads a named buffer of the last frame as RGBA floats with its size.
-    pub fn read_buffer(&self, name: &str) -> Result<crate::image_io::HdrImage, RenderError> {
-        let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
-        let texture = match name {
-            "albedo" => &t.albedo.texture,
-            "normal" => &t.normal.texture,
-            "material" => &t.material.texture,
-            "motion" => &t.motion.texture,
-            "object_id" => &t.object_id.texture,
-            "depth" => &t.depth.texture,
-            "indirect" => &t.indirect.texture,
-            "hdr" => &t.hdr.texture,
-            "ldr" => &t.ldr.texture,
-            "shadow_map" => &self.shadows.texture,
-            "ism_atlas" | "ism_atlas_splats" => {
-                let missing =
-                    || RenderError::UnknownBuffer { name: name.into(), known: "render an ism mode first".into() };
-                let (levels, side) = self.gather.as_ref().and_then(|g| g.atlas()).ok_or_else(missing)?;
-                let level = levels.first().ok_or_else(missing)?;
-                let bytes = readback::read_buffer(&self.device, &self.queue, level)?;
-                // Texels filled by pull-push carry the lowest mantissa bit (pull_push.wgsl).
-                let splats_only = name == "ism_atlas_splats";
-                let pixels = bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)
-                    .into_iter()
-                    .map(|bits| {
-                        let v = if splats_only && bits & 1 == 1 { 1.0 } else { f32::from_bits(bits) };
-                        [v, v, v, 1.0]
-                    })
-                    .collect();
-                return Ok(crate::image_io::HdrImage { width: side, height: side, pixels });
-            }
-            ism if ism.starts_with("ism_") => {
-                let missing =
-                    || RenderError::UnknownBuffer { name: name.into(), known: "render an ism mode first".into() };
-                let light = self.vpl_pass.as_ref();
-                let screen = self.gather.as_ref().map(|g| &g.screen);
-                let sh_missing = || RenderError::UnknownBuffer {
-                    name: name.into(),
-                    known: "render an ism mode with the SH filter on first".into(),
-                };
-                match ism {
-                    "ism_light_albedo" => &light.ok_or_else(missing)?.albedo.texture,
-                    "ism_light_normal" => &light.ok_or_else(missing)?.normal.texture,
-                    "ism_light_power" => &light.ok_or_else(missing)?.power.texture,
-                    "ism_importance" => &light.ok_or_else(missing)?.importance,
-                    "ism_split_position" => &screen.and_then(|g| g.split_gbuffer()).ok_or_else(missing)?.0.texture,
-                    "ism_split_normal" => &screen.and_then(|g| g.split_gbuffer()).ok_or_else(missing)?.1.texture,
-                    "ism_raw" => {
-                        let raw = screen.and_then(|g| g.raw()).ok_or_else(|| RenderError::UnknownBuffer {
-                            name: name.into(),
-                            known: "render an ism mode with the irradiance filter first (the SH filter \
-                                    accumulates coefficients: see ism_sh_shaded, ism_sh_dc, ism_sh_direction)"
-                                .into(),
-                        })?;
-                        &raw.texture
-                    }
-                    "ism_confidence" => &screen.and_then(|g| g.confidence()).ok_or_else(missing)?.texture,
-                    "ism_history" => &screen.and_then(|g| g.history()).ok_or_else(missing)?.texture,
-                    "ism_sh_shaded" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.0.texture,
-                    "ism_sh_dc" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.1.texture,
-                    "ism_sh_direction" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.2.texture,
-                    _ => return Err(missing()),
-                }
-            }
-            other => {
-                return Err(RenderError::UnknownBuffer {
-                    name: other.to_owned(),
-                    known: Self::buffer_names().join(", "),
-                });
-            }
-        };
-        let pixels = readback::read_as_rgba_f32(&self.device, &self.queue, texture)?;
-        Ok(crate::image_io::HdrImage { width: texture.width(), height: texture.height(), pixels })
-    }
-
-    /// The object under pixel (x, y) of the last frame, through the object-id buffer.
-    pub fn pick(&self, x: u32, y: u32) -> Result<Option<usize>, RenderError> {
-        let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
-        let id = readback::read_texel_u32(&self.device, &self.queue, &t.object_id.texture, x, y)?;
-        Ok(id.checked_sub(1).map(|i| i as usize))
-    }
-
     /// Runs the ISM light G-buffer, importance pyramid and VPL generation for spot light
     /// `light` at `frame`, and reads the results back (tests and the inspector use this while
     /// the `ism` mode is being built).
@@ -611,55 +503,4 @@ fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
         occlusion_query_set: None,
         multiview_mask: None,
     });
-}
-
-/// The mean linear colour of an sRGB image.
-fn mean_linear_colour(img: &crate::scene::Image) -> [f32; 3] {
-    let n = (img.rgba8.len() / 4).max(1) as f32;
-    let mut sum = [0.0f32; 3];
-    for px in img.rgba8.chunks_exact(4) {
-        for c in 0..3 {
-            sum[c] += crate::image_io::srgb_to_linear(f32::from(px[c]) / 255.0);
-        }
-    }
-    sum.map(|v| v / n)
-}
-
-/// Albedo and sampling weight of each sample point's object (base colour factor times the mean
-/// of its texture, `texture_means` indexed by image).
-fn point_materials(
-    scene: &Scene,
-    points: &crate::precompute::sample_points::SamplePoints,
-    texture_means: &[[f32; 3]],
-) -> PointMaterials {
-    let mean_texture = |image: usize| texture_means.get(image).copied().unwrap_or([1.0; 3]);
-    let per_object: Vec<([f32; 4], [f32; 4], f32)> = scene
-        .objects()
-        .iter()
-        .map(|o| {
-            let m = scene.materials().get(o.material).cloned().unwrap_or_default();
-            let t = m.base_color_texture.map_or([1.0; 3], |t| mean_texture(t.image));
-            let albedo = [m.base_color[0] * t[0], m.base_color[1] * t[1], m.base_color[2] * t[2], 1.0];
-            let glossy = m.specular.iter().any(|s| *s > 0.0);
-            let exponent = if glossy { crate::precompute::brdf::phong_exponent(m.roughness).min(4096.0) } else { 0.0 };
-            (albedo, [m.specular[0], m.specular[1], m.specular[2], exponent], o.sampling_weight)
-        })
-        .collect();
-    let mut out = PointMaterials::default();
-    for p in &points.points {
-        let (a, s, w) = per_object.get(p.object as usize).copied().unwrap_or(([0.0; 4], [0.0; 4], 1.0));
-        out.albedo.push(a);
-        out.specular.push(s);
-        out.weights.push(w);
-    }
-    out
-}
-
-/// Per sample point: linear albedo (rgb), specular reflectance and Blinn-Phong exponent, and
-/// the object's sampling weight.
-#[derive(Default)]
-struct PointMaterials {
-    albedo: Vec<[f32; 4]>,
-    specular: Vec<[f32; 4]>,
-    weights: Vec<f32>,
 }
