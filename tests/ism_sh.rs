@@ -144,3 +144,24 @@ fn sh_filter_on_the_diffuse_cornell_box_matches_the_reference() {
     assert!(f_sh < 1.15 * f_irr, "SH filter FLIP {f_sh} vs irradiance filter {f_irr}");
     assert!((l_sh / l_irr - 1.0).abs() < 0.03, "SH and irradiance luminance differ: {l_sh} vs {l_irr}");
 }
+
+#[test]
+fn sh_filter_beyond_the_adapters_binding_limit_is_a_clear_error() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = Project::load(&default_project_path()).expect("default project");
+    let mut settings = project.render.clone();
+    settings.mode = GiMode::Ism;
+    settings.ism.sh_filter = true;
+    let limits = ctx.device.limits();
+    let side = limits.max_texture_dimension_2d;
+    let needed = u64::from(side.div_ceil(4) * 4).pow(2) * 56;
+    let limit = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+    eprintln!("SH coefficients at {side}^2: {} MiB, binding limit {} MiB", needed >> 20, limit >> 20);
+    if needed <= limit {
+        return; // This adapter binds enough for its largest view.
+    }
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let err = r.render(&project.scene, &settings, (side, side)).expect_err("must refuse");
+    let text = err.to_string();
+    assert!(text.contains("SH filter") && text.contains("MiB"), "{text}");
+}

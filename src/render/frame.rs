@@ -185,6 +185,27 @@ impl Renderer {
         if size.0 == 0 || size.1 == 0 || size.0 > max || size.1 > max {
             return Err(RenderError::Size(size.0, size.1, max));
         }
+        let ism = matches!(settings.mode, GiMode::Ism | GiMode::IsmRitschel);
+        if ism && settings.ism.sh_filter {
+            // 56 bytes per pixel of SH coefficients in one storage binding.
+            let split = super::gi::ism::screen::split_size(size, settings.ism.interleave);
+            let bytes = super::gi::ism::sh_filter::ShFilter::raw_bytes(split);
+            let limits = self.device.limits();
+            let limit = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
+            if bytes > limit {
+                return Err(RenderError::Unsupported {
+                    mode: settings.mode.name(),
+                    reason: format!(
+                        "the SH filter needs {} MiB of coefficients at {}x{}, this adapter binds at most {} MiB; \
+                         lower the resolution or turn the SH filter off",
+                        bytes >> 20,
+                        size.0,
+                        size.1,
+                        limit >> 20
+                    ),
+                });
+            }
+        }
         self.ensure_size(size);
         let (device, queue) = (&self.device.clone(), &self.queue.clone());
         match &mut self.scene_gpu {
@@ -228,7 +249,6 @@ impl Renderer {
         self.prev_clip_from_world = Some(clip_from_world);
         self.frame_index = self.frame_index.wrapping_add(1);
 
-        let ism = matches!(settings.mode, GiMode::Ism | GiMode::IsmRitschel);
         if self.last_mode != Some(settings.mode) {
             if let Some(g) = &mut self.gather {
                 g.screen.reset_history();
