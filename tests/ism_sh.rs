@@ -165,3 +165,45 @@ fn sh_filter_beyond_the_adapters_binding_limit_is_a_clear_error() {
     let text = err.to_string();
     assert!(text.contains("SH filter") && text.contains("MiB"), "{text}");
 }
+
+#[test]
+fn the_filtered_sh_field_carries_no_trace_of_the_normal_map() {
+    let Some(ctx) = common::gpu() else { return };
+    let bumpy = bumpy_cornell();
+    let mut flat = bumpy.clone();
+    let last = flat.scene.desc().materials.len() - 1;
+    flat.scene.desc_mut().materials[last].normal_texture = None;
+    let size = (96, 96);
+    let mut settings = bumpy.render.clone();
+    settings.mode = GiMode::IsmRitschel;
+    settings.ism.bounces = 1;
+    settings.ism.sh_filter = true;
+    let read = |project: &Project| {
+        let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        r.render(&project.scene, &settings, size).expect("render");
+        let ids = r.read_buffer("object_id").expect("ids");
+        let dc = r.read_buffer("ism_sh_dc").expect("dc");
+        let dir = r.read_buffer("ism_sh_direction").expect("direction");
+        let shaded = r.read_buffer("ism_sh_shaded").expect("shaded");
+        (ids, dc, dir, shaded)
+    };
+    let (ids, dc_b, dir_b, shaded_b) = read(&bumpy);
+    let (_, dc_f, dir_f, shaded_f) = read(&flat);
+    let floor = bumpy.scene.objects().len() as f32;
+    let mask: Vec<usize> = (0..ids.pixels.len()).filter(|&i| ids.pixels[i][0] == floor).collect();
+    assert!(mask.len() > 500, "floor pixels: {}", mask.len());
+    let max_diff = |a: &bouncelab::image_io::HdrImage, b: &bouncelab::image_io::HdrImage| {
+        mask.iter()
+            .map(|&i| (0..3).map(|c| (a.pixels[i][c] - b.pixels[i][c]).abs()).fold(0.0, f32::max))
+            .fold(0.0, f32::max)
+    };
+    let mean = mask.iter().map(|&i| shaded_f.pixels[i][1]).sum::<f32>() / mask.len() as f32;
+    let (d_dc, d_dir, d_shaded) = (max_diff(&dc_b, &dc_f), max_diff(&dir_b, &dir_f), max_diff(&shaded_b, &shaded_f));
+    eprintln!(
+        "normal map on/off over {} floor px: max change of the SH field DC {d_dc:.2e}, direction {d_dir:.2e}; \
+         of the shaded result {d_shaded:.3} (mean {mean:.3})",
+        mask.len()
+    );
+    assert!(d_dc < 1e-3 * mean.max(1e-3) && d_dir < 1e-3, "the normal map leaked into the filtered field");
+    assert!(d_shaded > 0.1 * mean, "the shading must carry the normal map's detail");
+}
