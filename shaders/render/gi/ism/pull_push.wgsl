@@ -53,17 +53,26 @@ fn pull(@builtin(global_invocation_id) gid: vec3<u32>) {
     coarse[id.y * cs + id.x] = bitcast<u32>(out);
 }
 
+// One thread per coarse texel fills its 2x2 fine texels (one coarse read for four writes).
 @compute @workgroup_size(8, 8, 1)
 fn push(@builtin(global_invocation_id) gid: vec3<u32>) {
     let fs = pp.counts.x;
-    let id = vec2<u32>(gid.x, gid.y + pp.counts.z);
-    if id.x >= fs || id.y >= fs {
+    let cs = fs / 2u;
+    let id = vec2<u32>(gid.x, gid.y + pp.counts.z / 2u);
+    if id.x >= cs || id.y >= cs {
         return;
     }
-    let c = bitcast<f32>(coarse[(id.y / 2u) * (fs / 2u) + id.x / 2u]);
-    let i = id.y * fs + id.x;
-    let v = bitcast<f32>(fine[i]);
-    if c < 1.0 && (v >= 1.0 || v - c > threshold()) {
-        fine[i] = bitcast<u32>(c) | select(0u, 1u, pp.counts.y == 0u);
+    let c = bitcast<f32>(coarse[id.y * cs + id.x]);
+    if c >= 1.0 {
+        return;
+    }
+    let mark = select(0u, 1u, pp.counts.y == 0u);
+    for (var k = 0u; k < 4u; k = k + 1u) {
+        let f = id * 2u + vec2<u32>(k & 1u, k >> 1u);
+        let i = f.y * fs + f.x;
+        let v = bitcast<f32>(fine[i]);
+        if v >= 1.0 || v - c > threshold() {
+            fine[i] = bitcast<u32>(c) | mark;
+        }
     }
 }

@@ -370,8 +370,9 @@ impl IsmGather {
                 let l = PULL_LEVELS - 1 - i;
                 let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
                 pass.set_bind_group(0, g, &[slot]);
-                let fine = (side >> l).max(1);
-                pass.dispatch_workgroups(fine.div_ceil(8), (rows >> l).max(1).div_ceil(8), 1);
+                // One thread per coarse texel (2x2 fine texels each).
+                let coarse = (side >> (l + 1)).max(1);
+                pass.dispatch_workgroups(coarse.div_ceil(8), (rows >> (l + 1)).max(1).div_ceil(8), 1);
             }
         }
     }
