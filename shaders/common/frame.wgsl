@@ -9,8 +9,11 @@ struct Frame {
     size: vec4<f32>,
     // light count, frame index, PCF radius, shadow layer count.
     params: vec4<u32>,
-    // normal bias in texels, shadow map size, 1/size, 1 when `indirect` is outgoing radiance.
+    // normal bias in texels, shadow map size, 1/size, unused.
     shadow: vec4<f32>,
+    // x = 1 when the GI technique's `indirect` target holds outgoing radiance (the composite
+    // adds it as is) rather than E / pi (the composite multiplies by albedo); yzw unused.
+    gi: vec4<u32>,
 }
 
 // World position of pixel `pixel` (integer coordinates) at depth `depth` (0..1).

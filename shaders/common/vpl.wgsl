@@ -1,4 +1,6 @@
 // A virtual point light as the ISM passes store it (mirrors render::gi::ism::vpl_pass::GpuVpl).
+#import common/onb.wgsl
+
 struct Vpl {
     // xyz position, w = 1 when valid.
     position: vec4<f32>,
@@ -26,4 +28,19 @@ fn vpl_intensity(vpl: Vpl, dir: vec3<f32>, cos_s: f32) -> vec3<f32> {
         i = i + vpl.gloss.rgb * (e + 8.0) * 0.125 * inv_pi * pow(max(dot(vpl.normal.xyz, h), 0.0), e);
     }
     return i * cos_s;
+}
+
+// Where receiver `p` falls in VPL `k`'s imperfect shadow map: the atlas index (tiles of side r,
+// c per row) and p's distance normalised by the scene diameter, to compare with the stored
+// depth (visible when depth <= stored + bias).
+struct IsmLookup {
+    index: u32,
+    depth: f32,
+}
+
+fn ism_lookup(vpl: Vpl, k: u32, p: vec3<f32>, r: u32, c: u32, inv_d_max: f32) -> IsmLookup {
+    let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p);
+    let texel = min(vec2<u32>(pb.xy * f32(r)), vec2<u32>(r - 1u));
+    let a = vec2<u32>((k % c) * r, (k / c) * r) + texel;
+    return IsmLookup(a.y * r * c + a.x, pb.z * inv_d_max);
 }

@@ -6,14 +6,9 @@
 //   4 object id r32uint          object index + 1 (0 = background)
 #import common/frame.wgsl
 #import common/octahedral.wgsl
-#import common/object.wgsl
+#import common/material.wgsl
 
 @group(0) @binding(0) var<uniform> frame: Frame;
-@group(1) @binding(0) var<uniform> object: Object;
-@group(2) @binding(0) var<uniform> material: MaterialParams;
-@group(2) @binding(1) var base_texture: texture_2d<f32>;
-@group(2) @binding(2) var normal_texture: texture_2d<f32>;
-@group(2) @binding(3) var material_sampler: sampler;
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -50,10 +45,7 @@ struct GbufferOut {
 @fragment
 fn fs_main(in: VertexOut) -> GbufferOut {
     var out: GbufferOut;
-    var albedo = material.base_color.rgb;
-    if material.flags.x != 0u {
-        albedo = albedo * textureSample(base_texture, material_sampler, in.uv).rgb;
-    }
+    let albedo = material_albedo(in.uv);
     var n = normalize(in.normal);
     // Flat geometric normal of the triangle, oriented like the interpolated normal.
     var ng = normalize(cross(dpdx(in.world), dpdy(in.world)));

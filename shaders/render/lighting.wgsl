@@ -1,7 +1,7 @@
 // Deferred direct lighting and composite: radiance = direct (shadowed punctual lights on the
 // Lambertian + glossy BRDF) + albedo x indirect, where `indirect` is the active GI technique's
 // output (zero for `direct`): E / pi, or outgoing radiance already shaded with the full BRDF
-// when frame.shadow.w = 1 (the ISM SH filter). One-sided surfaces: a light behind the geometric
+// when frame.gi.x = 1 (the ISM SH filter). One-sided surfaces: a light behind the geometric
 // normal adds nothing.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
@@ -59,6 +59,6 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         radiance = radiance + f * inc.irradiance * cos_s * vis;
     }
     let indirect = textureLoad(indirect_tex, pixel, 0).rgb;
-    radiance = radiance + select(albedo * indirect, indirect, frame.shadow.w > 0.5);
+    radiance = radiance + select(albedo * indirect, indirect, frame.gi.x == 1u);
     textureStore(out_radiance, pixel, vec4<f32>(radiance, 1.0));
 }

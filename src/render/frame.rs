@@ -20,7 +20,7 @@ use crate::settings::{GiMode, RenderSettings, SettingsError};
 mod inspect;
 mod ism_points;
 
-use ism_points::{mean_linear_colour, point_materials};
+use ism_points::{mean_linear_colour, point_data, point_data_key};
 
 /// Why a frame could not be rendered.
 #[derive(Debug, thiserror::Error)]
@@ -97,6 +97,11 @@ pub struct Renderer {
     /// ISM sample points and the mean linear colour of each scene image (the points' albedo
     /// texture term), both rebuilt only when their key changes, never per frame.
     ism_points: Option<(IsmPointsKey, crate::precompute::sample_points::SamplePoints, Vec<[f32; 3]>)>,
+    /// Bumped whenever `ism_points` is rebuilt.
+    ism_points_generation: u64,
+    /// What the point data on the GPU was built from: (gather buffer generation, point set
+    /// generation, [`point_data_key`]); the upload is skipped while it stays equal.
+    ism_uploaded: Option<(u64, u64, Vec<u32>)>,
     prev_clip_from_world: Option<Mat4>,
     frame_index: u32,
 }
@@ -148,6 +153,8 @@ impl Renderer {
             last_mode: None,
             gather: None,
             ism_points: None,
+            ism_points_generation: 0,
+            ism_uploaded: None,
             prev_clip_from_world: None,
             frame_index: 0,
             device: device.clone(),
@@ -232,17 +239,13 @@ impl Renderer {
                 settings.shadows.pcf_radius,
                 self.shadows.layer_matrices.len() as u32,
             ],
-            // w: the indirect target holds outgoing radiance (the SH filter shades with the
-            // full BRDF) rather than E / pi for the composite to multiply by albedo.
-            shadow: [
-                settings.shadows.normal_bias_texels,
-                res,
-                1.0 / res,
-                if matches!(settings.mode, GiMode::Ism | GiMode::IsmRitschel) && settings.ism.sh_filter {
-                    1.0
-                } else {
-                    0.0
-                },
+            shadow: [settings.shadows.normal_bias_texels, res, 1.0 / res, 0.0],
+            // The SH filter shades with the full BRDF: `indirect` is outgoing radiance.
+            gi: [
+                u32::from(matches!(settings.mode, GiMode::Ism | GiMode::IsmRitschel) && settings.ism.sh_filter),
+                0,
+                0,
+                0,
             ],
         };
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
@@ -319,22 +322,18 @@ impl Renderer {
                 frame,
                 self.timer.scope("ism vpls"),
             ) {
-                let world_points = points.world(scene);
-                let world: Vec<glam::Vec3> = world_points.iter().map(|(p, _)| *p).collect();
-                let materials = point_materials(scene, points, means);
-                let normals: Vec<[f32; 4]> =
-                    world_points.iter().zip(&materials.weights).map(|((_, n), w)| n.extend(*w).to_array()).collect();
+                let buffers = gather.prepare(device, &settings.ism, points.points.len() as u32);
+                let current = (buffers, self.ism_points_generation, point_data_key(scene));
+                if self.ism_uploaded.as_ref() != Some(&current) {
+                    gather.upload_points(queue, &point_data(scene, points, means));
+                    self.ism_uploaded = Some(current);
+                }
                 let area = points.weighted_area.iter().sum::<f64>() as f32;
                 let diameter = 2.0 * scene.bounds().map_or(1.0, |b| b.radius());
                 gather.record_maps(
-                    device,
                     queue,
                     &mut encoder,
                     &vpl_pass.vpls,
-                    &world,
-                    &normals,
-                    &materials.albedo,
-                    &materials.specular,
                     area,
                     diameter,
                     &settings.ism,
@@ -386,6 +385,7 @@ impl Renderer {
             let points = crate::precompute::sample_points::distribute(scene, ism.total_points as usize, 1);
             let means = scene.resources().images.iter().map(mean_linear_colour).collect();
             self.ism_points = Some((key, points, means));
+            self.ism_points_generation += 1;
         }
     }
 

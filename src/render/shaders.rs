@@ -12,6 +12,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("common/frame.wgsl", include_str!("../../shaders/common/frame.wgsl")),
     ("common/interleave.wgsl", include_str!("../../shaders/common/interleave.wgsl")),
     ("common/lights.wgsl", include_str!("../../shaders/common/lights.wgsl")),
+    ("common/material.wgsl", include_str!("../../shaders/common/material.wgsl")),
     ("common/object.wgsl", include_str!("../../shaders/common/object.wgsl")),
     ("common/octahedral.wgsl", include_str!("../../shaders/common/octahedral.wgsl")),
     ("common/onb.wgsl", include_str!("../../shaders/common/onb.wgsl")),

@@ -63,7 +63,7 @@ pub struct ViewTargets {
     pub object_id: Target,
     pub depth: Target,
     /// Indirect light written by the active GI technique: E / pi (the composite multiplies by
-    /// albedo) or, with the ISM SH filter, outgoing radiance (frame uniform `shadow.w` = 1).
+    /// albedo) or, with the ISM SH filter, outgoing radiance (frame uniform `gi.x` = 1).
     pub indirect: Target,
     /// Linear radiance (the EXR output).
     pub hdr: Target,

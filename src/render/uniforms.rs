@@ -17,6 +17,7 @@ pub struct FrameUniforms {
     pub size: [f32; 4],
     pub params: [u32; 4],
     pub shadow: [f32; 4],
+    pub gi: [u32; 4],
 }
 
 /// `GpuLight` in `common/lights.wgsl`.
@@ -106,7 +107,7 @@ pub struct TonemapUniforms {
     pub op: [u32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 256);
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 272);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 64);
 const _: () = assert!(std::mem::size_of::<ObjectUniforms>() == 256);
 const _: () = assert!(std::mem::size_of::<MaterialUniforms>() == 64);

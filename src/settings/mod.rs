@@ -152,8 +152,8 @@ pub struct IsmSettings {
     pub w_illumination: f32,
     /// Light bounces (1..=6); each extra bounce costs one VPL generation, ISM and shading pass
     /// (shading time grows linearly). The thesis's figures use 1; the default is 6, which
-    /// brings the white Cornell box within 2-3% of the path tracer's energy (ism-ritschel at
-    /// 128x72: 4 bounces 93%, 5: 96%, 6: 98%; each bounce adds about 70% of the last).
+    /// brings the default Cornell box within 3% of the path tracer's energy (ism-ritschel at
+    /// 128x72: 4 bounces 93%, 5: 96%, 6: 97% over 8 frames; each bounce adds less than the last).
     pub bounces: u32,
     /// Geometry-aware filter threshold alpha: a neighbour farther than alpha x the scene
     /// diameter from the pixel's tangent plane is rejected (the thesis's 0.01, applied along
@@ -165,8 +165,8 @@ pub struct IsmSettings {
     pub filter_normal: f32,
     /// Filter the incident radiance as 9 SH coefficients per colour and shade afterwards with
     /// each pixel's own normal and BRDF (Segovia & Wald): keeps glossy and normal-mapped
-    /// detail. Cost: 56 bytes per pixel (f16) and 27-channel filtering, about +10-15% of the
-    /// ISM shading time at 640x360 (docs/BENCHMARKS.md).
+    /// detail. Cost: 56 bytes per pixel (f16) and 27-channel filtering, +7% (320x180) to
+    /// +17% (640x360) of the `ism shade` pass time (docs/BENCHMARKS.md).
     pub sh_filter: bool,
     /// Minimum VPL distance in metres. Larger: fewer spikes near VPLs, darker corners (bias).
     /// The thesis clamps d^2 >= 1 in world units, which assumes large scenes; in a 2 m Cornell

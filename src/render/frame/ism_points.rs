@@ -1,7 +1,9 @@
-//! What the ISM passes need to know about each scene sample point's surface: its linear
-//! albedo (textures by their mean colour), its specular lobe for glossy bounce VPLs, and its
-//! object's sampling weight.
+//! What the ISM passes need to know about each scene sample point: its world position and
+//! normal, its linear albedo (textures by their mean colour), its specular lobe for glossy
+//! bounce VPLs and its object's sampling weight, rebuilt only when something it reads changed.
 
+use crate::precompute::sample_points::SamplePoints;
+use crate::render::gi::ism::gather::PointData;
 use crate::scene::Scene;
 
 /// The mean linear colour of an sRGB image.
@@ -16,13 +18,10 @@ pub(super) fn mean_linear_colour(img: &crate::scene::Image) -> [f32; 3] {
     sum.map(|v| v / n)
 }
 
-/// Albedo and sampling weight of each sample point's object (base colour factor times the mean
-/// of its texture, `texture_means` indexed by image).
-pub(super) fn point_materials(
-    scene: &Scene,
-    points: &crate::precompute::sample_points::SamplePoints,
-    texture_means: &[[f32; 3]],
-) -> PointMaterials {
+/// What the ISM passes read per sample point (see [`PointData`]): world position and normal
+/// under the objects' current transforms, the object's sampling weight, albedo (base colour
+/// factor times the mean of its texture, `texture_means` indexed by image) and specular lobe.
+pub(super) fn point_data(scene: &Scene, points: &SamplePoints, texture_means: &[[f32; 3]]) -> PointData {
     let mean_texture = |image: usize| texture_means.get(image).copied().unwrap_or([1.0; 3]);
     let per_object: Vec<([f32; 4], [f32; 4], f32)> = scene
         .objects()
@@ -36,21 +35,50 @@ pub(super) fn point_materials(
             (albedo, [m.specular[0], m.specular[1], m.specular[2], exponent], o.sampling_weight)
         })
         .collect();
-    let mut out = PointMaterials::default();
-    for p in &points.points {
+    let mut out = PointData::default();
+    for (p, (position, normal)) in points.points.iter().zip(points.world(scene)) {
         let (a, s, w) = per_object.get(p.object as usize).copied().unwrap_or(([0.0; 4], [0.0; 4], 1.0));
+        out.positions.push(position.extend(1.0).to_array());
+        out.normals.push(normal.extend(w).to_array());
         out.albedo.push(a);
         out.specular.push(s);
-        out.weights.push(w);
     }
     out
 }
 
-/// Per sample point: linear albedo (rgb), specular reflectance and Blinn-Phong exponent, and
-/// the object's sampling weight.
-#[derive(Default)]
-pub(super) struct PointMaterials {
-    pub(super) albedo: Vec<[f32; 4]>,
-    pub(super) specular: Vec<[f32; 4]>,
-    pub(super) weights: Vec<f32>,
+/// Bit patterns of everything [`point_data`] reads from the scene besides the point set: the
+/// objects' transforms, materials and weights and the materials' parameters. Equal keys mean
+/// the uploaded point data is still current, so it is not rebuilt every frame.
+pub(super) fn point_data_key(scene: &Scene) -> Vec<u32> {
+    let mut key = Vec::new();
+    for o in scene.objects() {
+        let t = &o.transform;
+        let floats = t.translation.to_array().into_iter().chain(t.rotation.to_array()).chain(t.scale.to_array());
+        key.extend(floats.chain([o.sampling_weight]).map(f32::to_bits));
+        key.extend([o.material as u32, o.mesh as u32]);
+    }
+    for m in scene.materials() {
+        key.extend(m.base_color.iter().chain(&m.specular).chain([&m.roughness]).map(|v| v.to_bits()));
+        key.push(m.base_color_texture.map_or(u32::MAX, |t| t.image as u32));
+    }
+    key
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::project_file::{Project, default_project_path};
+
+    #[test]
+    fn the_key_changes_exactly_when_point_data_would() {
+        let mut project = Project::load(&default_project_path()).expect("default project");
+        let key = point_data_key(&project.scene);
+        project.scene.desc_mut().lights[0].intensity *= 2.0;
+        assert_eq!(point_data_key(&project.scene), key, "lights do not touch the point data");
+        project.scene.desc_mut().objects[5].transform.translation.x += 0.01;
+        let moved = point_data_key(&project.scene);
+        assert_ne!(moved, key, "a moved object moves its points");
+        project.scene.desc_mut().materials[0].base_color[0] *= 0.5;
+        assert_ne!(point_data_key(&project.scene), moved, "an albedo edit changes the point albedo");
+    }
 }

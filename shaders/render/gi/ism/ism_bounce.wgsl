@@ -5,7 +5,6 @@
 // VPL's whole reflected power in the winner's colour (digest section 6.2), so the estimate of
 // the next bounce's power is unbiased in expectation over the point distribution.
 #import common/color.wgsl
-#import common/onb.wgsl
 #import common/vpl.wgsl
 
 struct BounceParams {
@@ -59,12 +58,8 @@ fn incident_power(j: u32) -> vec4<f32> {
     if cos_s <= 0.0 || cos_r <= 0.0 {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
-    let r = bp.counts.z;
-    let c = bp.counts.w;
-    let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p);
-    let texel = min(vec2<u32>(pb.xy * f32(r)), vec2<u32>(r - 1u));
-    let a = vec2<u32>((src % c) * r, (src / c) * r) + texel;
-    if pb.z * bp.params.x > bitcast<f32>(atlas[a.y * r * c + a.x]) + bp.params.y {
+    let ism = ism_lookup(vpl, src, p, bp.counts.z, bp.counts.w, bp.params.x);
+    if ism.depth > bitcast<f32>(atlas[ism.index]) + bp.params.y {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     // Physical power of the source VPL (its shading power carries the interleave factor n^2).

@@ -7,7 +7,6 @@
 //   colour, sum of V I(w) / max(d^2, d_min^2) Y(w_to_vpl), packed as f16 (14 u32 per texel).
 #import common/interleave.wgsl
 #import common/octahedral.wgsl
-#import common/onb.wgsl
 #import common/sh9.wgsl
 #import common/vpl.wgsl
 
@@ -53,12 +52,8 @@ fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
     if cos_s <= 0.0 || dot(ng, -dir) <= 0.0 {
         return out;
     }
-    let r = sh.counts.y;
-    let c = sh.counts.z;
-    let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p);
-    let texel = min(vec2<u32>(pb.xy * f32(r)), vec2<u32>(r - 1u));
-    let a = vec2<u32>((k % c) * r, (k / c) * r) + texel;
-    if pb.z * sh.params.x > bitcast<f32>(atlas[a.y * r * c + a.x]) + sh.params.y {
+    let ism = ism_lookup(vpl, k, p, sh.counts.y, sh.counts.z, sh.params.x);
+    if ism.depth > bitcast<f32>(atlas[ism.index]) + sh.params.y {
         return out;
     }
     out.dir = -dir;

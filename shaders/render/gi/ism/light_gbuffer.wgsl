@@ -9,7 +9,7 @@
 // Back faces (the light reaches the back of a one-sided surface) reflect nothing.
 #import common/color.wgsl
 #import common/lights.wgsl
-#import common/object.wgsl
+#import common/material.wgsl
 #import common/brdf.wgsl
 
 struct LightView {
@@ -22,11 +22,6 @@ struct LightView {
 }
 
 @group(0) @binding(0) var<uniform> view: LightView;
-@group(1) @binding(0) var<uniform> object: Object;
-@group(2) @binding(0) var<uniform> material: MaterialParams;
-@group(2) @binding(1) var base_texture: texture_2d<f32>;
-@group(2) @binding(2) var normal_texture: texture_2d<f32>;
-@group(2) @binding(3) var material_sampler: sampler;
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -56,10 +51,7 @@ struct LightGbufferOut {
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> LightGbufferOut {
     var out: LightGbufferOut;
-    var albedo = material.base_color.rgb;
-    if material.flags.x != 0u {
-        albedo = albedo * textureSample(base_texture, material_sampler, in.uv).rgb;
-    }
+    let albedo = material_albedo(in.uv);
     let spec = luminance(material.specular.rgb);
     let n = normalize(in.normal);
     out.albedo = vec4<f32>(albedo, spec);

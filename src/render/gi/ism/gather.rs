@@ -3,14 +3,12 @@
 //! previous one (one-pass multi-bounce). The screen passes that shade with these VPLs and maps
 //! live in [`super::screen`], which this type owns and feeds.
 
-use glam::Vec3;
-
 use crate::render::layouts::{compute_pipeline, storage_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::ViewTargets;
 use crate::settings::IsmSettings;
 
-use super::screen::{DEPTH_BIAS, IsmInputs, IsmScreen};
+use super::screen::{DEPTH_BIAS, IsmInputs, IsmScreen, words};
 
 /// Pull-push levels below the finest (the thesis: "at least two mip levels").
 const PULL_LEVELS: usize = 2;
@@ -34,6 +32,19 @@ struct Key {
     bounces: u32,
     r: u32,
     points: u32,
+}
+
+/// Per scene sample point, in point order, what the ISM passes read.
+#[derive(Debug, Default)]
+pub struct PointData {
+    /// World position, w = 1.
+    pub positions: Vec<[f32; 4]>,
+    /// World geometric normal, w = the object's sampling weight.
+    pub normals: Vec<[f32; 4]>,
+    /// Linear albedo (textures by their mean colour), w = 1.
+    pub albedo: Vec<[f32; 4]>,
+    /// Specular reflectance, w = Blinn-Phong exponent (0: no lobe).
+    pub specular: Vec<[f32; 4]>,
 }
 
 /// Bytes of one VPL (`GpuVpl`, WGSL `Vpl`).
@@ -261,32 +272,45 @@ impl IsmGather {
         self.screen.invalidate();
     }
 
+    /// Sizes the atlas and point buffers for `settings` and `points` sample points; returns a
+    /// generation that changes whenever the buffers were recreated (their point data is then
+    /// undefined until [`Self::upload_points`]).
+    pub fn prepare(&mut self, device: &wgpu::Device, settings: &IsmSettings, points: u32) -> u64 {
+        let key = Key {
+            vpls: settings.vpl_count,
+            bounces: settings.bounces.clamp(1, MAX_SETS as u32),
+            r: settings.ism_resolution,
+            points,
+        };
+        self.ensure(device, key);
+        self.generation
+    }
+
+    /// Uploads the sample points' world positions, normals (w = sampling weight), albedo and
+    /// specular lobes; only needed when they or the buffers changed.
+    pub fn upload_points(&self, queue: &wgpu::Queue, points: &PointData) {
+        let Some(s) = &self.sized else { return };
+        queue.write_buffer(&s.points, 0, bytemuck::cast_slice(&points.positions));
+        queue.write_buffer(&s.normals, 0, bytemuck::cast_slice(&points.normals));
+        queue.write_buffer(&s.albedo, 0, bytemuck::cast_slice(&points.albedo));
+        queue.write_buffer(&s.specular, 0, bytemuck::cast_slice(&points.specular));
+    }
+
     /// Records splat, pull-push and the further bounces' VPL sets; [`Self::record_screen`]
     /// then shades with them.
     #[allow(clippy::too_many_arguments)]
     pub fn record_maps(
         &mut self,
-        device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         vpls: &wgpu::Buffer,
-        points: &[Vec3],
-        normals: &[[f32; 4]],
-        albedo: &[[f32; 4]],
-        specular: &[[f32; 4]],
         total_area: f32,
         scene_diameter: f32,
         settings: &IsmSettings,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) {
-        let key = Key {
-            vpls: settings.vpl_count,
-            bounces: settings.bounces.clamp(1, MAX_SETS as u32),
-            r: settings.ism_resolution,
-            points: points.len() as u32,
-        };
-        self.ensure(device, key);
         let Some(s) = &self.sized else { return };
+        let key = s.key;
         let c = Self::tiles_per_row(key.vpls * key.bounces);
         let side = key.r * c;
         let d_max = scene_diameter.max(1e-3);
@@ -294,17 +318,8 @@ impl IsmGather {
         // from the VPL: sqrt(area) / d radians, r / 4 texels per radian near the centre.
         let per_ism = (key.points / key.vpls.max(1)).max(1) as f32;
         let k_size = (total_area / per_ism).sqrt() * key.r as f32 / (4.0 * d_max);
-        let data: Vec<[f32; 4]> = points.iter().map(|p| p.extend(1.0).to_array()).collect();
-        queue.write_buffer(&s.points, 0, bytemuck::cast_slice(&data));
-        queue.write_buffer(&s.normals, 0, bytemuck::cast_slice(normals));
-        queue.write_buffer(&s.albedo, 0, bytemuck::cast_slice(albedo));
-        queue.write_buffer(&s.specular, 0, bytemuck::cast_slice(specular));
         encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(key.vpls) * VPL_BYTES);
-        let u32s = |a: [u32; 4], b: [f32; 4]| {
-            let mut v = bytemuck::cast_slice::<u32, u8>(&a).to_vec();
-            v.extend_from_slice(bytemuck::cast_slice(&b));
-            v
-        };
+        let u32s = |a: [u32; 4], b: [f32; 4]| words(&[a], &[b]);
         let n2 = (settings.interleave * settings.interleave) as f32;
         let d_min = settings.clamp_distance;
         for b in 0..key.bounces {

@@ -14,6 +14,15 @@ use crate::render::uniforms::GpuLight;
 use crate::scene::{LightKind, Scene};
 use crate::settings::IsmSettings;
 
+/// Formats of the light G-buffer targets: albedo, normal, power, specular
+/// (`light_gbuffer.wgsl` documents their contents).
+const LIGHT_GBUFFER_FORMATS: [wgpu::TextureFormat; 4] = [
+    wgpu::TextureFormat::Rgba8Unorm,
+    wgpu::TextureFormat::Rgba16Float,
+    wgpu::TextureFormat::Rgba16Float,
+    wgpu::TextureFormat::Rgba16Float,
+];
+
 /// Side of the light G-buffer (a power of two, for the warp pyramid).
 pub const LIGHT_GBUFFER_SIZE: u32 = 256;
 const LEVELS: u32 = LIGHT_GBUFFER_SIZE.trailing_zeros();
@@ -111,10 +120,11 @@ impl VplPass {
         use wgpu::TextureUsages as U;
         let size = (LIGHT_GBUFFER_SIZE, LIGHT_GBUFFER_SIZE);
         let rt = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
-        let albedo = Target::new(device, "ism light albedo", size, wgpu::TextureFormat::Rgba8Unorm, rt);
-        let normal = Target::new(device, "ism light normal", size, wgpu::TextureFormat::Rgba16Float, rt);
-        let power = Target::new(device, "ism light power", size, wgpu::TextureFormat::Rgba16Float, rt);
-        let specular = Target::new(device, "ism light specular", size, wgpu::TextureFormat::Rgba16Float, rt);
+        let [fa, fn_, fp, fs] = LIGHT_GBUFFER_FORMATS;
+        let albedo = Target::new(device, "ism light albedo", size, fa, rt);
+        let normal = Target::new(device, "ism light normal", size, fn_, rt);
+        let power = Target::new(device, "ism light power", size, fp, rt);
+        let specular = Target::new(device, "ism light specular", size, fs, rt);
         let depth = Target::new(device, "ism light depth", size, wgpu::TextureFormat::Depth32Float, rt);
 
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
@@ -165,12 +175,7 @@ impl VplPass {
                 module: &module,
                 entry_point: Some("fs_main"),
                 compilation_options: Default::default(),
-                targets: &[
-                    target(wgpu::TextureFormat::Rgba8Unorm),
-                    target(wgpu::TextureFormat::Rgba16Float),
-                    target(wgpu::TextureFormat::Rgba16Float),
-                    target(wgpu::TextureFormat::Rgba16Float),
-                ],
+                targets: &LIGHT_GBUFFER_FORMATS.map(target),
             }),
             multiview_mask: None,
             cache: None,
