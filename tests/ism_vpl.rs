@@ -1,17 +1,31 @@
 //! ISM passes P2 + P3 + P5 on the software adapter against their CPU oracles: the GPU warp picks
 //! the same light-G-buffer texels with the same probabilities as `ism::warp`, VPLs sit on lit
 //! surfaces, and their powers sum, on average over frames, to the power the lit surfaces
-//! reflect (the unbiased normalisation of digest section 7.3).
+//! reflect (the unbiased normalisation of digest section 7.3); with several lights of every
+//! type, each light gets VPLs in proportion to the power it reflects.
 
 mod common;
 
 use bouncelab::project_file::{Project, default_project_path};
 use bouncelab::render::Renderer;
 use bouncelab::render::gi::ism::halton::sample_set;
+use bouncelab::render::gi::ism::technique::{IsmTechnique, IsmVpls};
 use bouncelab::render::gi::ism::warp::ImportancePyramid;
 use bouncelab::scene::Light;
-use bouncelab::settings::IsmSettings;
+use bouncelab::settings::{GiMode, IsmSettings, RenderSettings};
 use glam::Vec3;
+
+/// Renders one `ism-ritschel` frame with one bounce and reads its first-bounce VPLs.
+fn vpls(r: &mut Renderer, project: &Project, ism: &IsmSettings) -> IsmVpls {
+    let settings = RenderSettings {
+        mode: GiMode::IsmRitschel,
+        ism: IsmSettings { bounces: 1, ..ism.clone() },
+        ..project.render.clone()
+    };
+    r.render(&project.scene, &settings, (16, 16)).expect("render");
+    let ism_technique = r.technique_as::<IsmTechnique>().expect("the ism technique is active");
+    ism_technique.read_vpls(r.device(), r.queue(), ism.vpl_count).expect("vpls")
+}
 
 #[test]
 fn gpu_vpls_match_the_cpu_warp_and_carry_the_reflected_power() {
@@ -21,13 +35,13 @@ fn gpu_vpls_match_the_cpu_warp_and_carry_the_reflected_power() {
         vec![Light::spot("spot", Vec3::new(0.0, 1.9, 0.0), Vec3::new(0.15, -1.0, -0.1).normalize(), 8.0, 0.4, 0.8)];
     let settings = IsmSettings { vpl_count: 256, interleave: 1, ..IsmSettings::default() };
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
-    let first = renderer.ism_vpls(&project.scene, &settings, 0, 0).expect("vpls");
+    let first = vpls(&mut renderer, &project, &settings);
 
     let size = (first.importance.len() as f64).sqrt() as usize;
     let importance: Vec<f64> = first.importance.iter().map(|v| f64::from(*v)).collect();
     let pyramid = ImportancePyramid::new(&importance, size).expect("square power-of-two map");
     let mut same = 0;
-    for (vpl, s) in first.vpls.iter().zip(sample_set(256, 0)) {
+    for (vpl, s) in first.vpls.iter().zip(sample_set(256, u64::from(first.frame))) {
         let cpu = pyramid.warp([f64::from(s[0]), f64::from(s[1])]);
         if vpl.incident[3] as usize == cpu.texel[1] * size + cpu.texel[0] {
             same += 1;
@@ -45,8 +59,8 @@ fn gpu_vpls_match_the_cpu_warp_and_carry_the_reflected_power() {
     let reflected: f64 = first.power.iter().map(|p| f64::from(p[1])).sum();
     let frames = 24;
     let mut total = 0.0f64;
-    for frame in 0..frames {
-        let r = renderer.ism_vpls(&project.scene, &settings, 0, frame).expect("vpls");
+    for _ in 0..frames {
+        let r = vpls(&mut renderer, &project, &settings);
         total += r.vpls.iter().map(|v| f64::from(v.power[1])).sum::<f64>();
     }
     let mean = total / f64::from(frames);
@@ -60,7 +74,7 @@ fn point_light_vpls_come_from_the_six_cube_faces_and_carry_the_reflected_power()
     let project = Project::load(&default_project_path()).expect("default project (one point light)");
     let settings = IsmSettings { vpl_count: 256, interleave: 1, ..IsmSettings::default() };
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
-    let first = renderer.ism_vpls(&project.scene, &settings, 0, 0).expect("vpls");
+    let first = vpls(&mut renderer, &project, &settings);
     // The light sits under the ceiling of a closed box open to the front: everything it
     // reaches reflects, 4 pi I * albedo at most.
     let reflected: f64 = first.power.iter().map(|p| f64::from(p[1])).sum();
@@ -69,8 +83,8 @@ fn point_light_vpls_come_from_the_six_cube_faces_and_carry_the_reflected_power()
     let mut faces = std::collections::BTreeSet::new();
     let frames = 16;
     let mut total = 0.0f64;
-    for frame in 0..frames {
-        let r = renderer.ism_vpls(&project.scene, &settings, 0, frame).expect("vpls");
+    for _ in 0..frames {
+        let r = vpls(&mut renderer, &project, &settings);
         for v in &r.vpls {
             assert_eq!(v.position[3], 1.0);
             let size = 256usize;
@@ -83,4 +97,58 @@ fn point_light_vpls_come_from_the_six_cube_faces_and_carry_the_reflected_power()
     eprintln!("point light: reflected {reflected:.4} W, VPL mean {mean:.4} W, faces used {faces:?}");
     assert!(faces.len() >= 5, "VPLs from the cube faces that see the room: {faces:?}");
     assert!((mean / reflected - 1.0).abs() < 0.03, "VPL power {mean} vs reflected {reflected}");
+}
+
+#[test]
+fn every_light_gets_vpls_in_proportion_to_the_power_it_reflects() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = Project::load(&default_project_path()).expect("default project");
+    project.scene.desc_mut().lights = vec![
+        Light::spot("spot", Vec3::new(-0.5, 1.9, 0.3), Vec3::new(0.2, -1.0, 0.1).normalize(), 4.0, 0.3, 0.6),
+        Light::point("point", Vec3::new(0.4, 1.5, -0.2), 1.5),
+        // The box is open to +z: a sun shining in along -z reaches the back wall and the floor.
+        Light::directional("sun", Vec3::new(0.1, -0.5, -1.0).normalize(), 2.0),
+    ];
+    let settings = IsmSettings { vpl_count: 256, interleave: 1, ..IsmSettings::default() };
+    let mut renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let first = vpls(&mut renderer, &project, &settings);
+    let tiles = &first.tiles;
+    assert_eq!(tiles.tiles.len(), 8, "spot 1 + point 6 + sun 1 tiles");
+    // Power reflected per light (green), from the light G-buffer.
+    let (mut reflected, mut importance) = ([0.0f64; 3], [0.0f64; 3]);
+    for (i, p) in first.power.iter().enumerate() {
+        if let Some(t) = tiles.tile_of_texel(i) {
+            reflected[tiles.tiles[t].light] += f64::from(p[1]);
+            importance[tiles.tiles[t].light] += f64::from(p[3]);
+        }
+    }
+    let frames = 24;
+    let (mut count, mut power) = ([0usize; 3], [0.0f64; 3]);
+    for _ in 0..frames {
+        let r = vpls(&mut renderer, &project, &settings);
+        for v in &r.vpls {
+            assert_eq!(v.position[3], 1.0, "every VPL lands on a lit texel");
+            let t = r.tiles.tile_of_texel(v.incident[3] as usize).expect("texel in a tile");
+            let light = r.tiles.tiles[t].light;
+            count[light] += 1;
+            power[light] += f64::from(v.power[1]);
+        }
+    }
+    let total: f64 = importance.iter().sum();
+    eprintln!(
+        "three lights: reflected {reflected:.3?} W, VPL share {:?} of {}, mean VPL power {:.3?} W",
+        count,
+        frames * 256,
+        power.map(|p| p / f64::from(frames as u32))
+    );
+    for l in 0..3 {
+        assert!(count[l] > 0, "light {l} makes no VPL");
+        let mean = power[l] / frames as f64;
+        assert!((mean / reflected[l] - 1.0).abs() < 0.05, "light {l}: VPL power {mean} vs reflected {}", reflected[l]);
+        // Importance is the reflected luminance (x 0.5 on this diffuse box): the share of VPLs
+        // each light gets follows its share of the reflected power.
+        let share = count[l] as f64 / (frames * 256) as f64;
+        let expected = importance[l] / total;
+        assert!((share - expected).abs() < 0.05, "light {l}: VPL share {share} vs power share {expected}");
+    }
 }

@@ -11,9 +11,6 @@ struct Frame {
     params: vec4<u32>,
     // normal bias in texels, shadow map size, 1/size, unused.
     shadow: vec4<f32>,
-    // x = 1 when the GI technique's `indirect` target holds outgoing radiance (the composite
-    // adds it as is) rather than E / pi (the composite multiplies by albedo); yzw unused.
-    gi: vec4<u32>,
 }
 
 // World position of pixel `pixel` (integer coordinates) at depth `depth` (0..1).

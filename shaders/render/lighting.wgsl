@@ -1,8 +1,6 @@
-// Deferred direct lighting and composite: radiance = direct (shadowed punctual lights on the
-// Lambertian + glossy BRDF) + albedo x indirect, where `indirect` is the active GI technique's
-// output (zero for `direct`): E / pi, or outgoing radiance already shaded with the full BRDF
-// when frame.gi.x = 1 (the ISM SH filter). One-sided surfaces: a light behind the geometric
-// normal adds nothing.
+// Deferred direct lighting into its own target: shadowed punctual lights on the Lambertian +
+// glossy BRDF. The GI technique may read it; `composite.wgsl` adds the indirect term. One-sided
+// surfaces: a light behind the geometric normal adds nothing.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/lights.wgsl
@@ -18,8 +16,7 @@
 @group(1) @binding(1) var albedo_tex: texture_2d<f32>;
 @group(1) @binding(2) var normal_tex: texture_2d<f32>;
 @group(1) @binding(3) var material_tex: texture_2d<f32>;
-@group(1) @binding(4) var indirect_tex: texture_2d<f32>;
-@group(1) @binding(5) var out_radiance: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(4) var out_radiance: texture_storage_2d<rgba32float, write>;
 
 #import common/shadow.wgsl
 
@@ -58,7 +55,5 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         let f = brdf_eval(albedo, mat.rgb, mat.a, n, v, inc.dir);
         radiance = radiance + f * inc.irradiance * cos_s * vis;
     }
-    let indirect = textureLoad(indirect_tex, pixel, 0).rgb;
-    radiance = radiance + select(albedo * indirect, indirect, frame.gi.x == 1u);
     textureStore(out_radiance, pixel, vec4<f32>(radiance, 1.0));
 }

@@ -1,5 +1,7 @@
 //! The GI panel: the live mode switch (modes this build or adapter cannot run are disabled
-//! with the reason) and every setting, each with its cost/quality trade-off as a tooltip.
+//! with the reason), what the active technique leaves out, its history and GPU memory, and
+//! every setting with its cost/quality trade-off as a tooltip. Each technique's own section
+//! lives in its own file (`gi_ism.rs`).
 
 use super::state::EditorState;
 use crate::render::Renderer;
@@ -22,12 +24,17 @@ fn mode_tip(mode: GiMode) -> &'static str {
     }
 }
 
-/// Draws the GI panel and records setting changes as undo steps.
-pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui) {
+/// Draws the GI panel and records setting changes as undo steps; `renderer` answers which
+/// modes can run at the viewport's `size`.
+pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Renderer>, size: (u32, u32)) {
     let mut render = state.project.render.clone();
     ui.label(egui::RichText::new("Mode").strong());
     for mode in MODES {
-        let available = if mode == GiMode::Reference { Ok(()) } else { Renderer::supports(mode) };
+        let candidate = crate::settings::RenderSettings { mode, ..render.clone() };
+        let available = match renderer {
+            Some(r) => r.support(&candidate, size),
+            None => Err("no renderer: the GPU is unavailable".to_owned()),
+        };
         let enabled = available.is_ok();
         let tip = match &available {
             Ok(()) => mode_tip(mode).to_owned(),
@@ -38,6 +45,9 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui) {
             .on_disabled_hover_text(&tip)
             .clicked()
             .then(|| render.mode = mode);
+    }
+    if let Some(r) = renderer {
+        technique_summary(ui, r, state);
     }
     ui.separator();
     egui::CollapsingHeader::new("Shadows").default_open(true).show(ui, |ui| {
@@ -54,36 +64,9 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut s.normal_bias_texels, 0.0..=4.0).text("normal bias (texels)"))
             .on_hover_text("Receiver offset along the normal on top of the receiver-plane bias. Free; too large leaks light at contacts.");
     });
-    egui::CollapsingHeader::new("ISM (Knecht 2009)").default_open(false).show(ui, |ui| {
-        let m = &mut render.ism;
-        ui.add(egui::Slider::new(&mut m.vpl_count, 4..=1024).logarithmic(true).text("VPLs"))
-            .on_hover_text("Cost: shading and ISM splatting grow linearly; quality: fewer blotches, less flicker (256 for flicker-free).");
-        egui::ComboBox::from_label("ISM resolution").selected_text(m.ism_resolution.to_string()).show_ui(ui, |ui| {
-            for r in [64, 128, 256] {
-                ui.selectable_value(&mut m.ism_resolution, r, r.to_string());
-            }
-        });
-        ui.add(egui::Slider::new(&mut m.total_points, 1024..=1 << 20).logarithmic(true).text("sample points"))
-            .on_hover_text("Split over the ISMs (points per ISM = points / VPLs). Too few: holes and light leaks.");
-        ui.add(egui::Slider::new(&mut m.interleave, 1..=8).text("interleave n"))
-            .on_hover_text("Each pixel sees VPLs / n² VPLs; the n x n filter hides the pattern.");
-        ui.add(egui::Slider::new(&mut m.bounces, 1..=6).text("bounces")).on_hover_text("Each extra bounce: one VPL, ISM and shading pass.");
-        ui.add(egui::Slider::new(&mut m.base_confidence, 0.0..=0.99).text("base confidence"))
-            .on_hover_text("Higher: smoother over time, more afterglow after lighting changes.");
-        ui.add(egui::Slider::new(&mut m.w_position, 0.0..=100.0).text("w position"));
-        ui.add(egui::Slider::new(&mut m.w_normal, 0.0..=100.0).text("w normal"));
-        ui.add(egui::Slider::new(&mut m.w_illumination, 0.0..=100.0).text("w illumination"))
-            .on_hover_text("Higher: reacts faster to lighting changes, but lets VPL resampling noise through.");
-        ui.add(egui::Slider::new(&mut m.clamp_distance, 0.0..=2.0).text("clamp distance (m)"))
-            .on_hover_text("Minimum VPL distance: fewer spikes near VPLs, darker corners (bias).");
-        ui.add(egui::Slider::new(&mut m.filter_depth, 0.001..=0.1).logarithmic(true).text("filter plane tolerance"))
-            .on_hover_text("Geometry-aware filter: neighbours farther than this x scene diameter from the pixel's tangent plane are rejected. Lower: sharper contacts, more interleave pattern.");
-        ui.add(egui::Slider::new(&mut m.filter_normal, 0.0..=1.0).text("filter normal cosine"))
-            .on_hover_text("Neighbours whose normal differs by a cosine below this are rejected (the SH filter tests geometric normals only).");
-        ui.checkbox(&mut m.sh_filter, "SH filter (Segovia & Wald)").on_hover_text(
-            "Filter incident radiance as 9 SH coefficients per colour, then shade with each pixel's own normal-mapped normal and glossy lobe. Cost: 56 bytes per pixel and 27-channel filtering (`ism shade` +7% at 320x180, +17% at 640x360 in docs/BENCHMARKS.md).",
-        );
-    });
+    if matches!(render.mode, GiMode::Ism | GiMode::IsmRitschel) {
+        super::gi_ism::ism_ui(&mut render.ism, ui);
+    }
     egui::CollapsingHeader::new("Reference path tracer").default_open(false).show(ui, |ui| {
         let r = &mut render.reference;
         ui.add(egui::Slider::new(&mut r.spp, 1..=16384).logarithmic(true).text("samples per pixel"))
@@ -112,5 +95,28 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui) {
             // The edit is refused; say why instead of letting the slider snap back silently.
             Err(e) => state.status = format!("setting not applied: {e}"),
         }
+    }
+}
+
+/// What the active technique leaves out, its history and the GPU memory each technique holds.
+fn technique_summary(ui: &mut egui::Ui, renderer: &Renderer, state: &EditorState) {
+    let warn = ui.visuals().warn_fg_color;
+    for note in renderer.limitations(&state.project.scene, &state.project.render) {
+        ui.colored_label(warn, note);
+    }
+    if let Some(s) = renderer.technique_status() {
+        let reset = s.last_reset.map_or("none".to_owned(), |r| r.label().to_owned());
+        ui.label(format!("history: {} frames · last reset: {reset}", s.history_frames))
+            .on_hover_text("Frames accumulated since the technique last dropped its history, and why it did.");
+    }
+    let memory: Vec<String> = renderer
+        .technique_gpu_bytes()
+        .into_iter()
+        .filter(|(_, b)| *b > 0)
+        .map(|(m, b)| format!("{} {:.1} MiB", m.name(), b as f64 / (1024.0 * 1024.0)))
+        .collect();
+    if !memory.is_empty() {
+        ui.label(format!("GPU memory: {}", memory.join(", ")))
+            .on_hover_text("Buffers and textures each technique holds; a mode that is not active holds none.");
     }
 }

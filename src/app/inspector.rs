@@ -3,11 +3,11 @@
 //! zoom and a pixel probe showing raw values; and the comparison with the reference path tracer
 //! (swipe view, signed error heat map, FLIP map, metrics).
 
-use super::reference_job::ReferenceJob;
 use crate::image_io::HdrImage;
 use crate::metrics;
 use crate::project_file::Project;
 use crate::render::Renderer;
+use crate::render::gi::reference::job::ReferenceJob;
 
 /// Which channels are shown.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -180,9 +180,12 @@ impl Inspector {
             return;
         };
         ui.horizontal_wrapped(|ui| {
+            // The frame's buffers, then the active technique's own.
+            let buffers = Renderer::buffers_for(project.render.mode);
             egui::ComboBox::from_label("buffer").height(800.0).selected_text(&self.buffer).show_ui(ui, |ui| {
-                for name in Renderer::buffer_names() {
-                    ui.selectable_value(&mut self.buffer, (*name).to_owned(), *name);
+                for b in &buffers {
+                    ui.selectable_value(&mut self.buffer, b.name.to_owned(), b.name)
+                        .on_hover_text(format!("{} ({})", b.description, b.format));
                 }
             });
             for (c, label) in
@@ -268,9 +271,10 @@ impl Inspector {
 
     fn compare_ui(&mut self, ui: &mut egui::Ui, renderer: &Renderer, project: &Project) {
         let Some(size) = renderer.targets().map(|t| t.size) else { return };
-        let job = self.job.get_or_insert_with(|| ReferenceJob::start(project, size));
-        if !job.matches(project, size) {
-            *job = ReferenceJob::start(project, size);
+        let (scene, settings) = (&project.scene, &project.render.reference);
+        let job = self.job.get_or_insert_with(|| ReferenceJob::start(scene, settings, size));
+        if !job.matches(scene, settings, size) {
+            *job = ReferenceJob::start(scene, settings, size);
             self.compared_spp = 0;
         }
         let Some((reference, progress)) = job.latest() else {

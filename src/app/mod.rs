@@ -9,6 +9,7 @@
 //! depth targets, the tonemapped `Rgba8Unorm` image is registered with egui as a native texture.
 
 pub mod edits;
+mod gi_ism;
 mod gi_panel;
 pub mod gizmo;
 pub mod history;
@@ -19,7 +20,6 @@ mod overlays;
 mod panes;
 mod properties;
 mod recovery;
-mod reference_job;
 pub mod state;
 mod timings;
 mod viewport;
@@ -424,7 +424,7 @@ impl egui_tiles::Behavior<Pane> for Behavior<'_> {
             }
             Pane::Outliner => outliner::outliner_ui(self.state, ui),
             Pane::Properties => properties::properties_ui(self.state, ui),
-            Pane::Gi => gi_panel::gi_ui(self.state, ui),
+            Pane::Gi => gi_panel::gi_ui(self.state, ui, self.viewport.renderer(), self.viewport.view_size()),
             Pane::Inspector => {
                 self.inspector.ui(ui, self.viewport.renderer(), &self.state.project, self.viewport.frames)
             }
@@ -473,6 +473,8 @@ impl eframe::App for EditorApp {
                 ui.label(&self.state.status);
             });
         });
+        // Techniques keep debug copies (and the frame its pyramid) only while shown.
+        self.viewport.set_inspected(Some(self.inspector.shown().0));
         egui::CentralPanel::default().show(ui, |ui| {
             let mut behavior = Behavior {
                 state: &mut self.state,

@@ -8,7 +8,6 @@ use super::Orbit;
 use super::edits::Selection;
 use super::gizmo::{self, Drag, GizmoMode, View};
 use super::overlays;
-use super::reference_job::ReferenceJob;
 use super::state::EditorState;
 use super::timings::Timings;
 use crate::render::{RenderError, Renderer};
@@ -27,8 +26,9 @@ pub struct GizmoOptions {
     pub show_points: bool,
     /// How many sample points to distribute for the overlay.
     pub point_count: usize,
-    /// Show the VPLs of the ISM modes (every bounce; refreshed every 10 frames).
-    pub show_vpls: bool,
+    /// Show the active technique's overlays (ISM's VPLs of every bounce; refreshed every 10
+    /// frames).
+    pub show_overlays: bool,
 }
 
 impl Default for GizmoOptions {
@@ -41,7 +41,7 @@ impl Default for GizmoOptions {
             angle_step: 15.0,
             show_points: false,
             point_count: 4096,
-            show_vpls: false,
+            show_overlays: false,
         }
     }
 }
@@ -63,10 +63,9 @@ pub struct Viewport {
     points: Option<PointsCache>,
     /// Screen rectangle of the last drawn image (egui points).
     pub rect: Option<egui::Rect>,
-    reference: Option<ReferenceJob>,
-    vpls: Vec<(Vec3, usize)>,
-    reference_spp: u32,
-    reference_tex: Option<egui::TextureHandle>,
+    overlays: Vec<crate::render::gi::Overlay>,
+    /// The view size of the last frame (pixels).
+    size: (u32, u32),
 }
 
 /// The sample-point overlay's distribution and what it was computed from.
@@ -100,10 +99,8 @@ impl Viewport {
             timings: Timings::default(),
             points: None,
             rect: None,
-            reference: None,
-            vpls: Vec::new(),
-            reference_spp: 0,
-            reference_tex: None,
+            overlays: Vec::new(),
+            size: (1, 1),
         };
         v.reset_orbit(state);
         v
@@ -120,6 +117,18 @@ impl Viewport {
     /// The renderer, for the inspector.
     pub fn renderer(&self) -> Option<&Renderer> {
         self.renderer.as_ref()
+    }
+
+    /// The view size of the last frame in pixels (what mode support is checked against).
+    pub fn view_size(&self) -> (u32, u32) {
+        self.size
+    }
+
+    /// Tells the renderer which buffer the inspector shows.
+    pub fn set_inspected(&mut self, name: Option<&str>) {
+        if let Some(r) = &mut self.renderer {
+            r.set_inspected(name);
+        }
     }
 
     /// The position and rotation the gizmo edits for the selection.
@@ -221,8 +230,9 @@ impl Viewport {
             ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Scale, "Scale (S)");
             ui.checkbox(&mut self.gizmo.local, "local axes");
             ui.checkbox(&mut self.gizmo.snap, "snap");
-            ui.checkbox(&mut self.gizmo.show_vpls, "VPLs")
-                .on_hover_text("The ISM modes' virtual point lights, coloured by bounce (refreshed every 10 frames).");
+            ui.checkbox(&mut self.gizmo.show_overlays, "overlays").on_hover_text(
+                "The active technique's markers: ISM's virtual point lights, coloured by bounce (refreshed every 10 frames).",
+            );
             ui.checkbox(&mut self.gizmo.show_points, "sample points")
                 .on_hover_text("Where scene sample points land: area x sampling weight per object.");
             ui.label(format!("mode: {}", state.project.render.mode.name()));
@@ -338,14 +348,8 @@ impl Viewport {
             state.project.scene.set_camera(cam);
         }
         let (Some(renderer), Some(rs)) = (self.renderer.as_mut(), frame.wgpu_render_state()) else { return Ok(()) };
-        // In reference mode the rasteriser still draws direct light (G-buffer for picking and the
-        // inspector); the image shown is the progressive path tracer's, at half resolution.
-        let reference_mode = state.project.render.mode == crate::settings::GiMode::Reference;
-        let mut raster_settings = state.project.render.clone();
-        if reference_mode {
-            raster_settings.mode = crate::settings::GiMode::Direct;
-        }
-        renderer.render(&state.project.scene, &raster_settings, size)?;
+        self.size = size;
+        renderer.render(&state.project.scene, &state.project.render, size)?;
         self.frames += 1;
         let now = std::time::Instant::now();
         let frame_ms = self.last.map_or(0.0, |l| (now - l).as_secs_f64() * 1e3);
@@ -373,64 +377,39 @@ impl Viewport {
         }
         let painter = ui.painter_at(rect);
         let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-        if reference_mode {
-            let half = ((size.0 / 2).max(1), (size.1 / 2).max(1));
-            let job = self.reference.get_or_insert_with(|| ReferenceJob::start(&state.project, half));
-            if !job.matches(&state.project, half) {
-                *job = ReferenceJob::start(&state.project, half);
-            }
-            if let Some((img, progress)) = job.latest() {
-                if self.reference_spp != progress.spp {
-                    self.reference_spp = progress.spp;
-                    let rgba = crate::image_io::tonemap_srgb8(&img, &state.project.render.view);
-                    let ci = egui::ColorImage::from_rgba_unmultiplied([img.width as usize, img.height as usize], &rgba);
-                    self.reference_tex =
-                        Some(ui.ctx().load_texture("viewport reference", ci, egui::TextureOptions::LINEAR));
-                }
-                if let Some(t) = &self.reference_tex {
-                    painter.image(t.id(), rect, uv, egui::Color32::WHITE);
-                }
-                painter.text(
-                    rect.left_top() + egui::vec2(8.0, 8.0),
-                    egui::Align2::LEFT_TOP,
-                    format!("reference: {} spp, {:.1} Mrays/s", progress.spp, progress.rays_per_second * 1e-6),
-                    egui::FontId::proportional(13.0),
-                    egui::Color32::WHITE,
-                );
-            }
-        } else {
-            self.reference = None;
-            self.reference_spp = 0;
-            if let Some((id, _)) = self.texture {
-                painter.image(id, rect, uv, egui::Color32::WHITE);
-            }
+        if let Some((id, _)) = self.texture {
+            painter.image(id, rect, uv, egui::Color32::WHITE);
+        }
+        // What the technique is doing (the reference's spp, a bake's progress).
+        let status = renderer.technique_status().and_then(|s| s.progress);
+        if let Some(text) = status {
+            painter.text(
+                rect.left_top() + egui::vec2(8.0, 8.0),
+                egui::Align2::LEFT_TOP,
+                text,
+                egui::FontId::proportional(13.0),
+                egui::Color32::WHITE,
+            );
         }
         let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
         overlays::draw(&painter, rect, &view, &state.project.scene, state.selection);
         if self.gizmo.show_points {
             self.draw_points(&painter, rect, &view, state);
         }
-        let ism =
-            matches!(state.project.render.mode, crate::settings::GiMode::Ism | crate::settings::GiMode::IsmRitschel);
-        if self.gizmo.show_vpls && ism {
+        if self.gizmo.show_overlays {
             if self.frames % 10 == 1
                 && let Some(r) = &self.renderer
-                && let Ok(v) = r.ism_all_vpls()
             {
-                let per_set = state.project.render.ism.vpl_count.max(1) as usize;
-                self.vpls = v
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, v)| v.position[3] > 0.5)
-                    .map(|(i, v)| (Vec3::new(v.position[0], v.position[1], v.position[2]), i / per_set))
-                    .collect();
+                self.overlays = r.overlays();
             }
-            for (p, bounce) in &self.vpls {
-                if let Some(s) = view.project(*p) {
-                    let [r, g, b] = super::inspector::false_colour(*bounce as f32 / 5.0);
-                    painter.circle_filled(rect.min + egui::vec2(s.x, s.y), 2.5, egui::Color32::from_rgb(r, g, b));
+            for p in self.overlays.iter().flat_map(|o| &o.points) {
+                if let Some(s) = view.project(p.position) {
+                    let [r, g, b] = super::inspector::false_colour(p.tone);
+                    painter.circle_filled(rect.min + egui::vec2(s.x, s.y), p.radius, egui::Color32::from_rgb(r, g, b));
                 }
             }
+        } else {
+            self.overlays.clear();
         }
         if let Some((origin, rotation)) = Self::target(state) {
             let len = view.world_size(origin, 70.0);

@@ -48,9 +48,9 @@ pub struct RenderArgs {
     #[arg(long)]
     pub rr_start: Option<u32>,
     /// Write an intermediate buffer instead of the final image: albedo, normal, material,
-    /// motion, object_id, depth, indirect, hdr, ldr, shadow_map, and in the ISM modes ism_light_*,
-    /// ism_importance, ism_atlas(_splats), ism_split_*, ism_raw, ism_confidence, ism_history and
-    /// ism_sh_* (an unknown name lists them all).
+    /// motion, object_id, depth, direct, indirect, hdr, ldr, shadow_map, pyramid_0/2/4, and the
+    /// mode's own (ISM: ism_light_*, ism_importance, ism_atlas(_splats), ism_split_*, ism_raw,
+    /// ism_confidence, ism_history, ism_sh_*); an unknown name lists the mode's buffers.
     #[arg(long)]
     pub buffer: Option<String>,
     /// Supersampling per axis for raster modes: renders at N times the size and box-filters
@@ -79,10 +79,15 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     if size.0 == 0 || size.1 == 0 || size.0 > 16384 || size.1 > 16384 {
         anyhow::bail!("image size {}x{} is outside 1..=16384 pixels per side", size.0, size.1);
     }
-    if let Some(name) = &args.buffer
-        && !Renderer::buffer_names().contains(&name.as_str())
-    {
-        anyhow::bail!("unknown buffer {name:?}; available: {}", Renderer::buffer_names().join(", "));
+    if let Some(name) = &args.buffer {
+        let names: Vec<&str> = Renderer::buffers_for(project.render.mode).iter().map(|b| b.name).collect();
+        if !names.contains(&name.as_str()) {
+            anyhow::bail!(
+                "unknown buffer {name:?} for mode {}; available: {}",
+                project.render.mode.name(),
+                names.join(", ")
+            );
+        }
     }
     if project.render.mode == GiMode::Reference {
         if args.buffer.is_some() {
@@ -94,11 +99,16 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     ctx.log_errors();
     log::info!("rendering {} with {}", args.input.display(), ctx.describe());
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue)?;
+    renderer.set_inspected(args.buffer.as_deref());
     // Buffers are inspected at their own resolution; the final image is supersampled.
     let k = if args.buffer.is_some() { 1 } else { args.ssaa.clamp(1, 8) };
     let render_size = (size.0 * k, size.1 * k);
     for _ in 0..args.frames.max(1) {
         renderer.render(&project.scene, &project.render, render_size)?;
+    }
+    // Say what the technique leaves out (a light type, a feature), so nobody mistakes it for error.
+    for note in renderer.limitations(&project.scene, &project.render) {
+        eprintln!("note: {} {note}", project.render.mode.name());
     }
     let img = match &args.buffer {
         Some(name) => renderer.read_buffer(name)?,

@@ -3,24 +3,27 @@
 use glam::Mat4;
 use wgpu::util::DeviceExt as _;
 
+use super::composite::CompositePass;
 use super::gbuffer::GbufferPass;
+use super::gi::inputs::{GiInputs, GpuLights, PyramidView};
+use super::gi::registry::{self, Registry};
+use super::gi::{ChangeDetector, GiOutput, Readiness, SupportQuery};
 use super::layouts::Layouts;
 use super::lighting::{LightingInputs, LightingPass};
+use super::pyramid::ViewPyramid;
 use super::readback::{self, ReadbackError};
 use super::scene_gpu::SceneGpu;
 use super::shaders::ShaderError;
 use super::shadows::ShadowPass;
-use super::targets::ViewTargets;
+use super::targets::{Target, ViewTargets, formats};
 use super::timing::{GpuTimer, PassTiming};
 use super::tonemap::TonemapPass;
 use super::uniforms::{FrameUniforms, GpuLight};
 use crate::scene::Scene;
-use crate::settings::{GiMode, RenderSettings, SettingsError};
+use crate::settings::{RenderSettings, SettingsError};
 
 mod inspect;
-mod ism_points;
-
-use ism_points::{mean_linear_colour, point_data, point_data_key};
+mod techniques;
 
 /// Why a frame could not be rendered.
 #[derive(Debug, thiserror::Error)]
@@ -48,28 +51,10 @@ pub enum RenderError {
     Readback(#[from] ReadbackError),
 }
 
-/// What the ISM sample-point distribution depends on.
-#[derive(Clone, Debug, PartialEq)]
-struct IsmPointsKey {
-    resources: u64,
-    total: u32,
-    objects: Vec<(f32, bool, [f32; 3])>,
-}
-
-/// Read-back results of the ISM VPL generation.
-#[derive(Clone, Debug)]
-pub struct IsmVpls {
-    /// The generated VPLs.
-    pub vpls: Vec<super::gi::ism::vpl_pass::GpuVpl>,
-    /// Importance per light-G-buffer texel (mip 0), row-major.
-    pub importance: Vec<f32>,
-    /// Reflected power (rgb) and importance (a) per texel.
-    pub power: Vec<[f32; 4]>,
-}
-
 struct SizedResources {
     targets: ViewTargets,
     lighting_targets: wgpu::BindGroup,
+    composite: wgpu::BindGroup,
     tonemap: wgpu::BindGroup,
 }
 
@@ -81,7 +66,9 @@ pub struct Renderer {
     gbuffer: GbufferPass,
     shadows: ShadowPass,
     lighting: LightingPass,
+    composite: CompositePass,
     tonemap: TonemapPass,
+    pyramid: ViewPyramid,
     frame_buffer: wgpu::Buffer,
     frame_bind_group: wgpu::BindGroup,
     lights_buffer: wgpu::Buffer,
@@ -90,18 +77,18 @@ pub struct Renderer {
     inputs_generation: u64,
     scene_gpu: Option<SceneGpu>,
     sized: Option<SizedResources>,
+    /// The previous frame's final HDR image, kept while the active technique needs it.
+    previous: Option<Target>,
     timer: GpuTimer,
-    vpl_pass: Option<super::gi::ism::vpl_pass::VplPass>,
-    last_mode: Option<GiMode>,
-    gather: Option<super::gi::ism::gather::IsmGather>,
-    /// ISM sample points and the mean linear colour of each scene image (the points' albedo
-    /// texture term), both rebuilt only when their key changes, never per frame.
-    ism_points: Option<(IsmPointsKey, crate::precompute::sample_points::SamplePoints, Vec<[f32; 3]>)>,
-    /// Bumped whenever `ism_points` is rebuilt.
-    ism_points_generation: u64,
-    /// What the point data on the GPU was built from: (gather buffer generation, point set
-    /// generation, [`point_data_key`]); the upload is skipped while it stays equal.
-    ism_uploaded: Option<(u64, u64, Vec<u32>)>,
+    /// Every GI technique created so far and the active one.
+    techniques: Registry,
+    /// Turns edits into the techniques' reset reasons.
+    changes: ChangeDetector,
+    /// The inspected buffer (techniques keep debug copies only while shown).
+    inspected: Option<String>,
+    /// What the active technique wrote last frame, and whether it was ready.
+    output: GiOutput,
+    readiness: Readiness,
     prev_clip_from_world: Option<Mat4>,
     frame_index: u32,
 }
@@ -134,7 +121,9 @@ impl Renderer {
             gbuffer: GbufferPass::new(device, &layouts)?,
             shadows: ShadowPass::new(device)?,
             lighting: LightingPass::new(device)?,
+            composite: CompositePass::new(device)?,
             tonemap: TonemapPass::new(device)?,
+            pyramid: ViewPyramid::new(device)?,
             lights_buffer: storage_buffer(device, "lights", bytemuck::bytes_of(&GpuLight::default())),
             shadow_views_buffer: storage_buffer(
                 device,
@@ -148,13 +137,13 @@ impl Renderer {
             layouts,
             scene_gpu: None,
             sized: None,
+            previous: None,
             timer: GpuTimer::new(device, queue),
-            vpl_pass: None,
-            last_mode: None,
-            gather: None,
-            ism_points: None,
-            ism_points_generation: 0,
-            ism_uploaded: None,
+            techniques: Registry::default(),
+            changes: ChangeDetector::default(),
+            inspected: None,
+            output: GiOutput::Nothing,
+            readiness: Readiness::Ready,
             prev_clip_from_world: None,
             frame_index: 0,
             device: device.clone(),
@@ -162,12 +151,12 @@ impl Renderer {
         })
     }
 
-    /// The modes this renderer can draw now.
-    pub fn supports(mode: GiMode) -> Result<(), String> {
-        match mode {
-            GiMode::Direct | GiMode::Ism | GiMode::IsmRitschel => Ok(()),
-            other => Err(format!("{} is not implemented yet in this build", other.name())),
-        }
+    /// Whether `mode` can run on this device with `settings` at `size`; the error is a
+    /// sentence a user can act on (the editor greys the mode out with it).
+    pub fn support(&self, settings: &RenderSettings, size: (u32, u32)) -> Result<(), String> {
+        let limits = self.device.limits();
+        let query = SupportQuery { limits: &limits, features: self.device.features(), size, settings };
+        registry::support(settings.mode, &query)
     }
 
     /// Renders one frame of `scene` at `size` into the view targets (HDR and display image).
@@ -186,33 +175,12 @@ impl Renderer {
 
     fn render_inner(&mut self, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> Result<(), RenderError> {
         settings.validate()?;
-        Self::supports(settings.mode)
-            .map_err(|reason| RenderError::Unsupported { mode: settings.mode.name(), reason })?;
         let max = self.device.limits().max_texture_dimension_2d;
         if size.0 == 0 || size.1 == 0 || size.0 > max || size.1 > max {
             return Err(RenderError::Size(size.0, size.1, max));
         }
-        let ism = matches!(settings.mode, GiMode::Ism | GiMode::IsmRitschel);
-        if ism && settings.ism.sh_filter {
-            // 56 bytes per pixel of SH coefficients in one storage binding.
-            let split = super::gi::ism::screen::split_size(size, settings.ism.interleave);
-            let bytes = super::gi::ism::sh_filter::ShFilter::raw_bytes(split);
-            let limits = self.device.limits();
-            let limit = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
-            if bytes > limit {
-                return Err(RenderError::Unsupported {
-                    mode: settings.mode.name(),
-                    reason: format!(
-                        "the SH filter needs {} MiB of coefficients at {}x{}, this adapter binds at most {} MiB; \
-                         lower the resolution or turn the SH filter off",
-                        bytes >> 20,
-                        size.0,
-                        size.1,
-                        limit >> 20
-                    ),
-                });
-            }
-        }
+        self.support(settings, size)
+            .map_err(|reason| RenderError::Unsupported { mode: settings.mode.name(), reason })?;
         self.ensure_size(size);
         let (device, queue) = (&self.device.clone(), &self.queue.clone());
         match &mut self.scene_gpu {
@@ -240,41 +208,32 @@ impl Renderer {
                 self.shadows.layer_matrices.len() as u32,
             ],
             shadow: [settings.shadows.normal_bias_texels, res, 1.0 / res, 0.0],
-            // The SH filter shades with the full BRDF: `indirect` is outgoing radiance.
-            gi: [
-                u32::from(matches!(settings.mode, GiMode::Ism | GiMode::IsmRitschel) && settings.ism.sh_filter),
-                0,
-                0,
-                0,
-            ],
         };
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
         self.prev_clip_from_world = Some(clip_from_world);
         self.frame_index = self.frame_index.wrapping_add(1);
 
-        if self.last_mode != Some(settings.mode) {
-            if let Some(g) = &mut self.gather {
-                g.screen.reset_history();
-            }
-            self.last_mode = Some(settings.mode);
+        // The active technique: created on first use, told what changed, prepared on the CPU.
+        let reasons = self.changes.detect(scene, settings, size);
+        let technique = self.techniques.activate(settings.mode, device, &self.layouts)?;
+        for reason in reasons {
+            technique.reset(reason);
         }
-        // The brightest spot or point light feeds the VPLs.
-        let spot = scene
-            .lights()
-            .iter()
-            .enumerate()
-            .filter(|(_, l)| !matches!(l.kind, crate::scene::LightKind::Directional))
-            .max_by(|a, b| a.1.intensity.total_cmp(&b.1.intensity))
-            .map(|(i, _)| i);
-        if ism {
-            if self.vpl_pass.is_none() {
-                self.vpl_pass = Some(super::gi::ism::vpl_pass::VplPass::new(device, &self.layouts)?);
-            }
-            if self.gather.is_none() {
-                self.gather = Some(super::gi::ism::gather::IsmGather::new(device)?);
-            }
-            self.update_ism_points(scene, &settings.ism);
+        technique.set_inspected(self.inspected.as_deref());
+        self.readiness = technique.prepare(scene, settings, size);
+        let needs = technique.needs();
+        let wants_pyramid = needs.pyramid || self.inspected.as_deref().is_some_and(|n| n.starts_with("pyramid_"));
+        if !wants_pyramid {
+            self.pyramid.release();
         }
+        if !needs.previous_frame {
+            self.previous = None;
+        } else if self.previous.as_ref().is_none_or(|p| p.texture.width() != size.0 || p.texture.height() != size.1) {
+            use wgpu::TextureUsages as U;
+            let usage = U::TEXTURE_BINDING | U::COPY_DST | U::COPY_SRC;
+            self.previous = Some(Target::new(device, "previous frame radiance", size, formats::HDR, usage));
+        }
+
         let (Some(gpu), Some(sized)) = (&self.scene_gpu, &self.sized) else {
             return Ok(());
         };
@@ -292,6 +251,7 @@ impl Renderer {
             return Ok(());
         };
 
+        // G-buffer -> shadow maps -> direct light -> [pyramid] -> GI -> composite -> tonemap.
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame encoder") });
         self.timer.begin_frame();
@@ -305,58 +265,6 @@ impl Renderer {
         );
         let shadow_ts = if self.shadows.layer_matrices.is_empty() { None } else { self.timer.scope("shadows") };
         self.shadows.record(device, queue, &mut encoder, scene, gpu, shadow_ts);
-        // The active GI technique writes `targets.indirect` here; `direct` leaves it black.
-        let mut wrote_indirect = false;
-        if let (true, Some(light), Some(vpl_pass), Some(gather), Some((_, points, means))) =
-            (ism, spot, self.vpl_pass.as_mut(), self.gather.as_mut(), self.ism_points.as_ref())
-        {
-            let frame = self.frame_index;
-            if vpl_pass.record(
-                device,
-                queue,
-                &mut encoder,
-                scene,
-                gpu,
-                light,
-                &settings.ism,
-                frame,
-                self.timer.scope("ism vpls"),
-            ) {
-                let buffers = gather.prepare(device, &settings.ism, points.points.len() as u32);
-                let current = (buffers, self.ism_points_generation, point_data_key(scene));
-                if self.ism_uploaded.as_ref() != Some(&current) {
-                    gather.upload_points(queue, &point_data(scene, points, means));
-                    self.ism_uploaded = Some(current);
-                }
-                let area = points.weighted_area.iter().sum::<f64>() as f32;
-                let diameter = 2.0 * scene.bounds().map_or(1.0, |b| b.radius());
-                gather.record_maps(
-                    queue,
-                    &mut encoder,
-                    &vpl_pass.vpls,
-                    area,
-                    diameter,
-                    &settings.ism,
-                    self.timer.scope("ism maps"),
-                );
-                gather.record_screen(
-                    device,
-                    queue,
-                    &mut encoder,
-                    &self.frame_buffer,
-                    &sized.targets,
-                    diameter,
-                    &settings.ism,
-                    settings.mode == GiMode::Ism,
-                    settings.view.exposure_ev.exp2(),
-                    self.timer.scope("ism shade"),
-                );
-                wrote_indirect = true;
-            }
-        }
-        if !wrote_indirect {
-            clear(&mut encoder, &sized.targets.indirect.view);
-        }
         self.lighting.record(
             &mut encoder,
             lighting_inputs,
@@ -364,29 +272,57 @@ impl Renderer {
             size,
             self.timer.scope("lighting"),
         );
+        if wants_pyramid {
+            let ts = self.timer.scope("pyramid");
+            self.pyramid.record(device, &mut encoder, &self.frame_buffer, &sized.targets, ts);
+        }
+        let technique = self.techniques.active_mut().ok_or_else(|| RenderError::Unsupported {
+            mode: settings.mode.name(),
+            reason: "no active technique".into(),
+        })?;
+        self.output = match self.readiness {
+            Readiness::Ready => {
+                let mut inputs = GiInputs {
+                    device,
+                    queue,
+                    encoder: &mut encoder,
+                    scene,
+                    scene_gpu: gpu,
+                    layouts: &self.layouts,
+                    mode: settings.mode,
+                    settings,
+                    frame_buffer: &self.frame_buffer,
+                    frame: &frame,
+                    lights: GpuLights {
+                        packed: &assignment.lights,
+                        buffer: &self.lights_buffer,
+                        shadow_views: &self.shadow_views_buffer,
+                        shadow_maps: &self.shadows.array_view,
+                        shadow_matrices: &self.shadows.layer_matrices,
+                    },
+                    targets: &sized.targets,
+                    previous: self.previous.as_ref(),
+                    pyramid: self.pyramid.levels().filter(|_| needs.pyramid).map(|levels| PyramidView { levels }),
+                    frame_index: self.frame_index,
+                    timer: &mut self.timer,
+                };
+                technique.render(&mut inputs)?
+            }
+            Readiness::Pending { .. } => GiOutput::Nothing,
+        };
+        self.composite.record(queue, &mut encoder, &sized.composite, self.output, size, self.timer.scope("composite"));
         self.tonemap.record(queue, &mut encoder, &sized.tonemap, &settings.view, size, self.timer.scope("tonemap"));
+        if let Some(previous) = &self.previous {
+            encoder.copy_texture_to_texture(
+                sized.targets.hdr.texture.as_image_copy(),
+                previous.texture.as_image_copy(),
+                previous.texture.size(),
+            );
+        }
         self.timer.resolve(&mut encoder);
         queue.submit([encoder.finish()]);
         self.timer.after_submit();
         Ok(())
-    }
-
-    fn update_ism_points(&mut self, scene: &Scene, ism: &crate::settings::IsmSettings) {
-        let key = IsmPointsKey {
-            resources: scene.resources_revision(),
-            total: ism.total_points,
-            objects: scene
-                .objects()
-                .iter()
-                .map(|o| (o.sampling_weight, o.is_rendered(), o.transform.scale.to_array()))
-                .collect(),
-        };
-        if self.ism_points.as_ref().is_none_or(|(k, _, _)| *k != key) {
-            let points = crate::precompute::sample_points::distribute(scene, ism.total_points as usize, 1);
-            let means = scene.resources().images.iter().map(mean_linear_colour).collect();
-            self.ism_points = Some((key, points, means));
-            self.ism_points_generation += 1;
-        }
     }
 
     fn ensure_size(&mut self, size: (u32, u32)) {
@@ -395,8 +331,9 @@ impl Renderer {
         }
         let targets = ViewTargets::new(&self.device, size);
         let lighting_targets = self.lighting.targets_bind_group(&self.device, &targets);
+        let composite = self.composite.bind_group(&self.device, &self.frame_buffer, &targets);
         let tonemap = self.tonemap.bind_group(&self.device, &targets.hdr.view, &targets.ldr.view);
-        self.sized = Some(SizedResources { targets, lighting_targets, tonemap });
+        self.sized = Some(SizedResources { targets, lighting_targets, composite, tonemap });
         self.prev_clip_from_world = None;
     }
 
@@ -450,56 +387,15 @@ impl Renderer {
         Ok(readback::read_texture(&self.device, &self.queue, &t.ldr.texture)?)
     }
 
-    /// Runs the ISM light G-buffer, importance pyramid and VPL generation for spot light
-    /// `light` at `frame`, and reads the results back (tests and the inspector use this while
-    /// the `ism` mode is being built).
-    pub fn ism_vpls(
-        &mut self,
-        scene: &Scene,
-        settings: &crate::settings::IsmSettings,
-        light: usize,
-        frame: u32,
-    ) -> Result<IsmVpls, RenderError> {
-        let (device, queue) = (self.device.clone(), self.queue.clone());
-        match &mut self.scene_gpu {
-            Some(gpu) => gpu.sync(&device, &queue, &self.layouts, scene),
-            None => self.scene_gpu = Some(SceneGpu::new(&device, &queue, &self.layouts, scene)),
-        }
-        if self.vpl_pass.is_none() {
-            self.vpl_pass = Some(super::gi::ism::vpl_pass::VplPass::new(&device, &self.layouts)?);
-        }
-        let (Some(gpu), Some(pass)) = (&self.scene_gpu, &mut self.vpl_pass) else {
-            return Err(RenderError::Size(0, 0, 0));
-        };
-        let mut encoder =
-            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("ism vpl encoder") });
-        if !pass.record(&device, &queue, &mut encoder, scene, gpu, light, settings, frame, None) {
-            return Err(RenderError::Unsupported { mode: "ism", reason: format!("light {light} is directional") });
-        }
-        queue.submit([encoder.finish()]);
-        let bytes = readback::read_buffer(&device, &queue, &pass.vpls)?;
-        let mut vpls: Vec<super::gi::ism::vpl_pass::GpuVpl> = bytemuck::pod_collect_to_vec(&bytes);
-        vpls.truncate(settings.vpl_count as usize);
-        let importance =
-            readback::read_as_rgba_f32(&device, &queue, &pass.importance)?.into_iter().map(|p| p[0]).collect();
-        let power = readback::read_as_rgba_f32(&device, &queue, &pass.power.texture)?;
-        Ok(IsmVpls { vpls, importance, power })
-    }
-
-    /// The VPLs of every bounce of the last ISM frame (inspector overlay and tests).
-    pub fn ism_all_vpls(&self) -> Result<Vec<super::gi::ism::vpl_pass::GpuVpl>, RenderError> {
-        let buffer = self.gather.as_ref().and_then(|g| g.all_vpls()).ok_or_else(|| RenderError::UnknownBuffer {
-            name: "ism vpls".into(),
-            known: "render an ism mode first".into(),
-        })?;
-        Ok(bytemuck::pod_collect_to_vec(&readback::read_buffer(&self.device, &self.queue, buffer)?))
-    }
-
-    /// Forgets temporal state (motion vectors restart from zero).
+    /// Forgets temporal state: motion vectors restart from zero and the active technique
+    /// drops its history as for a camera cut.
     pub fn reset_history(&mut self) {
         self.prev_clip_from_world = None;
         if let Some(gpu) = &mut self.scene_gpu {
             gpu.reset_motion();
+        }
+        if let Some(t) = self.techniques.active_mut() {
+            t.reset(super::gi::ResetReason::CameraCut);
         }
     }
 
@@ -507,20 +403,4 @@ impl Renderer {
     pub fn frame_index(&self) -> u32 {
         self.frame_index
     }
-}
-
-fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
-    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("clear indirect"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
-        })],
-        depth_stencil_attachment: None,
-        timestamp_writes: None,
-        occlusion_query_set: None,
-        multiview_mask: None,
-    });
 }

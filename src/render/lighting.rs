@@ -1,5 +1,5 @@
-//! Deferred direct lighting and the composite with the GI technique's indirect term
-//! (`shaders/render/lighting.wgsl`), one compute pass over the G-buffer.
+//! Deferred direct lighting (`shaders/render/lighting.wgsl`), one compute pass over the
+//! G-buffer into the view's `direct` target.
 
 use super::layouts::{storage_entry, storage_texture_entry, texture_entry, uniform_entry};
 use super::shaders::{self, ShaderError};
@@ -61,8 +61,7 @@ impl LightingPass {
                 texture_entry(1, c, unfilterable),
                 texture_entry(2, c, unfilterable),
                 texture_entry(3, c, unfilterable),
-                texture_entry(4, c, unfilterable),
-                storage_texture_entry(5, formats::HDR),
+                storage_texture_entry(4, formats::HDR),
             ],
         });
         let module = shaders::module(device, "render/lighting.wgsl")?;
@@ -117,8 +116,7 @@ impl LightingPass {
                 view(1, &t.albedo.view),
                 view(2, &t.normal.view),
                 view(3, &t.material.view),
-                view(4, &t.indirect.view),
-                view(5, &t.hdr.view),
+                view(4, &t.direct.view),
             ],
         })
     }

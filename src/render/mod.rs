@@ -2,14 +2,17 @@
 //! lighting, tonemapping, GPU timings and readback.
 //!
 //! [`Renderer::render`] is the one readable frame function (architecture.md section 2):
-//! G-buffer -> shadow maps -> active GI technique -> lighting composite -> tonemap.
+//! G-buffer -> shadow maps -> direct light -> [depth/normal pyramid] -> the active GI technique
+//! (through the seam in [`gi`]) -> composite -> tonemap.
 
+mod composite;
 mod context;
 mod frame;
 mod gbuffer;
 pub mod gi;
 pub(crate) mod layouts;
 mod lighting;
+pub mod pyramid;
 pub mod readback;
 pub(crate) mod scene_gpu;
 pub mod shaders;
@@ -20,5 +23,5 @@ mod tonemap;
 pub(crate) mod uniforms;
 
 pub use context::{ContextError, GpuContext, device_descriptor, log_device_errors, wanted_features};
-pub use frame::{IsmVpls, RenderError, Renderer};
+pub use frame::{RenderError, Renderer};
 pub use timing::PassTiming;

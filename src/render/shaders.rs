@@ -19,6 +19,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("common/sh9.wgsl", include_str!("../../shaders/common/sh9.wgsl")),
     ("common/shadow.wgsl", include_str!("../../shaders/common/shadow.wgsl")),
     ("common/vpl.wgsl", include_str!("../../shaders/common/vpl.wgsl")),
+    ("render/composite.wgsl", include_str!("../../shaders/render/composite.wgsl")),
     ("render/gbuffer.wgsl", include_str!("../../shaders/render/gbuffer.wgsl")),
     ("render/gi/ism/importance.wgsl", include_str!("../../shaders/render/gi/ism/importance.wgsl")),
     ("render/gi/ism/ism_bounce.wgsl", include_str!("../../shaders/render/gi/ism/ism_bounce.wgsl")),
@@ -32,6 +33,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/gi/ism/pull_push.wgsl", include_str!("../../shaders/render/gi/ism/pull_push.wgsl")),
     ("render/gi/ism/vpl_generate.wgsl", include_str!("../../shaders/render/gi/ism/vpl_generate.wgsl")),
     ("render/lighting.wgsl", include_str!("../../shaders/render/lighting.wgsl")),
+    ("render/pyramid.wgsl", include_str!("../../shaders/render/pyramid.wgsl")),
     ("render/shadow_depth.wgsl", include_str!("../../shaders/render/shadow_depth.wgsl")),
     ("render/tonemap.wgsl", include_str!("../../shaders/render/tonemap.wgsl")),
 ];
@@ -40,6 +42,8 @@ pub const SHADERS: &[(&str, &str)] = &[
 pub const ENTRY_SHADERS: &[&str] = &[
     "render/gbuffer.wgsl",
     "render/lighting.wgsl",
+    "render/composite.wgsl",
+    "render/pyramid.wgsl",
     "render/shadow_depth.wgsl",
     "render/tonemap.wgsl",
     "render/gi/ism/importance.wgsl",

@@ -1,5 +1,5 @@
-//! The per-view render targets: the G-buffer, the indirect input, the linear HDR image and the
-//! tonemapped display image. Recreated on resize.
+//! The per-view render targets: the G-buffer, the direct term, the GI technique's indirect
+//! term, the linear HDR image and the tonemapped display image. Recreated on resize.
 //!
 //! G-buffer packing (see `shaders/render/gbuffer.wgsl`):
 //! - `albedo` Rgba16Float: linear albedo (8-bit storage would cost up to 2.6% error on dark
@@ -62,8 +62,10 @@ pub struct ViewTargets {
     pub motion: Target,
     pub object_id: Target,
     pub depth: Target,
-    /// Indirect light written by the active GI technique: E / pi (the composite multiplies by
-    /// albedo) or, with the ISM SH filter, outgoing radiance (frame uniform `gi.x` = 1).
+    /// Shadowed direct radiance (the lighting pass); GI techniques may read it.
+    pub direct: Target,
+    /// Indirect light written by the active GI technique; what it holds (E / pi, outgoing
+    /// radiance, the whole image) is the technique's `GiOutput` for the frame.
     pub indirect: Target,
     /// Linear radiance (the EXR output).
     pub hdr: Target,
@@ -85,6 +87,7 @@ impl ViewTargets {
             motion: Target::new(device, "gbuffer motion", size, formats::MOTION, rt),
             object_id: Target::new(device, "gbuffer object id", size, formats::OBJECT_ID, rt),
             depth: Target::new(device, "gbuffer depth", size, formats::DEPTH, rt),
+            direct: Target::new(device, "direct radiance", size, formats::HDR, storage),
             indirect: Target::new(device, "indirect radiance", size, formats::HDR, storage | U::RENDER_ATTACHMENT),
             hdr: Target::new(device, "hdr radiance", size, formats::HDR, storage),
             ldr: Target::new(device, "ldr display", size, formats::LDR, storage | U::RENDER_ATTACHMENT),

@@ -34,6 +34,15 @@ impl<'a> TimestampPair<'a> {
         }
     }
 
+    /// Timestamp writes for a compute pass that begins a scope a later pass ends.
+    pub fn compute_begin_writes(&self) -> wgpu::ComputePassTimestampWrites<'a> {
+        wgpu::ComputePassTimestampWrites {
+            query_set: self.query_set,
+            beginning_of_pass_write_index: Some(self.begin),
+            end_of_pass_write_index: None,
+        }
+    }
+
     /// Timestamp writes for a single compute pass.
     pub fn compute_writes(&self) -> wgpu::ComputePassTimestampWrites<'a> {
         wgpu::ComputePassTimestampWrites {

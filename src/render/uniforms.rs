@@ -17,7 +17,6 @@ pub struct FrameUniforms {
     pub size: [f32; 4],
     pub params: [u32; 4],
     pub shadow: [f32; 4],
-    pub gi: [u32; 4],
 }
 
 /// `GpuLight` in `common/lights.wgsl`.
@@ -99,6 +98,15 @@ impl MaterialUniforms {
     }
 }
 
+/// `CompositeParams` in `render/composite.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct CompositeUniforms {
+    /// What `indirect` holds: 0 nothing, 1 E / pi, 2 outgoing radiance, 3 the whole image;
+    /// unused x3.
+    pub output: [u32; 4],
+}
+
 /// `TonemapParams` in `render/tonemap.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -107,7 +115,8 @@ pub struct TonemapUniforms {
     pub op: [u32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 272);
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 256);
 const _: () = assert!(std::mem::size_of::<GpuLight>() == 64);
+const _: () = assert!(std::mem::size_of::<CompositeUniforms>() == 16);
 const _: () = assert!(std::mem::size_of::<ObjectUniforms>() == 256);
 const _: () = assert!(std::mem::size_of::<MaterialUniforms>() == 64);

@@ -1,44 +1,110 @@
-//! The renderer's buffer inspector side: every intermediate buffer by name, read back as
-//! RGBA floats, and picking through the object-id buffer.
+//! The renderer's buffer inspector side: every intermediate buffer by name (the frame's own
+//! and the active technique's), read back as RGBA floats, and picking through the object-id
+//! buffer.
 
 use super::{RenderError, Renderer};
+use crate::render::gi::{BufferInfo, BufferView, registry};
 use crate::render::readback;
+use crate::settings::GiMode;
+
+/// The buffers every mode has: the G-buffer, the direct and indirect terms, the final image,
+/// the shadow maps and the shared depth/normal pyramid.
+pub const FRAME_BUFFERS: &[BufferInfo] = &[
+    BufferInfo { name: "albedo", description: "Linear albedo.", format: "rgba16f", view: BufferView::Colour },
+    BufferInfo {
+        name: "normal",
+        description: "Shading normal (xy) and geometric normal (zw), octahedral.",
+        format: "rgba16f",
+        view: BufferView::Normal,
+    },
+    BufferInfo {
+        name: "material",
+        description: "Specular colour (rgb) and roughness (a).",
+        format: "rgba8",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "motion",
+        description: "Screen-uv motion to the previous frame.",
+        format: "rg16f",
+        view: BufferView::Normal,
+    },
+    BufferInfo {
+        name: "object_id",
+        description: "Object index + 1 (0: background).",
+        format: "r32u",
+        view: BufferView::Id,
+    },
+    BufferInfo {
+        name: "depth",
+        description: "Reversed hardware depth (1 near, 0 far).",
+        format: "d32f",
+        view: BufferView::Depth,
+    },
+    BufferInfo {
+        name: "direct",
+        description: "Shadowed direct radiance (the lighting pass).",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "indirect",
+        description: "The GI technique's output: E / pi, outgoing radiance or the whole image (see its mode).",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo { name: "hdr", description: "Final linear radiance.", format: "rgba32f", view: BufferView::Colour },
+    BufferInfo {
+        name: "ldr",
+        description: "Tonemapped display image (gamma-encoded).",
+        format: "rgba8",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "shadow_map",
+        description: "The first shadow-map layer (standard depth).",
+        format: "d32f",
+        view: BufferView::Depth,
+    },
+    BufferInfo {
+        name: "pyramid_0",
+        description: "Depth/normal pyramid level 0: linear distance (r), octahedral normal (gb).",
+        format: "rgba32f",
+        view: BufferView::Depth,
+    },
+    BufferInfo {
+        name: "pyramid_2",
+        description: "Depth/normal pyramid level 2 (each texel one of its children, chosen by vote).",
+        format: "rgba32f",
+        view: BufferView::Depth,
+    },
+    BufferInfo {
+        name: "pyramid_4",
+        description: "Depth/normal pyramid level 4.",
+        format: "rgba32f",
+        view: BufferView::Depth,
+    },
+];
 
 impl Renderer {
-    /// Names of the buffers [`Renderer::read_buffer`] can read (G-buffer channels, lighting
-    /// inputs and outputs).
-    pub fn buffer_names() -> &'static [&'static str] {
-        &[
-            "albedo",
-            "normal",
-            "material",
-            "motion",
-            "object_id",
-            "depth",
-            "indirect",
-            "hdr",
-            "ldr",
-            "shadow_map",
-            "ism_light_albedo",
-            "ism_light_normal",
-            "ism_light_power",
-            "ism_importance",
-            "ism_atlas",
-            "ism_atlas_splats",
-            "ism_split_position",
-            "ism_split_normal",
-            "ism_raw",
-            "ism_confidence",
-            "ism_history",
-            "ism_sh_shaded",
-            "ism_sh_dc",
-            "ism_sh_direction",
-        ]
+    /// The buffers the inspector can show in `mode`: the frame's, then the technique's.
+    pub fn buffers_for(mode: GiMode) -> Vec<BufferInfo> {
+        FRAME_BUFFERS.iter().chain(registry::buffers(mode)).copied().collect()
+    }
+
+    /// Every buffer name of every mode (the CLI's `--buffer` check before a mode is known).
+    pub fn all_buffer_names() -> Vec<&'static str> {
+        let mut names: Vec<&'static str> = FRAME_BUFFERS.iter().map(|b| b.name).collect();
+        for t in registry::TECHNIQUES {
+            names.extend(t.buffers.iter().map(|b| b.name));
+        }
+        names
     }
 
     /// Reads a named buffer of the last frame as RGBA floats with its size.
     pub fn read_buffer(&self, name: &str) -> Result<crate::image_io::HdrImage, RenderError> {
         let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
+        let pyramid_level = name.strip_prefix("pyramid_").and_then(|l| l.parse::<usize>().ok());
         let texture = match name {
             "albedo" => &t.albedo.texture,
             "normal" => &t.normal.texture,
@@ -46,64 +112,32 @@ impl Renderer {
             "motion" => &t.motion.texture,
             "object_id" => &t.object_id.texture,
             "depth" => &t.depth.texture,
+            "direct" => &t.direct.texture,
             "indirect" => &t.indirect.texture,
             "hdr" => &t.hdr.texture,
             "ldr" => &t.ldr.texture,
             "shadow_map" => &self.shadows.texture,
-            "ism_atlas" | "ism_atlas_splats" => {
-                let missing =
-                    || RenderError::UnknownBuffer { name: name.into(), known: "render an ism mode first".into() };
-                let (levels, side) = self.gather.as_ref().and_then(|g| g.atlas()).ok_or_else(missing)?;
-                let level = levels.first().ok_or_else(missing)?;
-                let bytes = readback::read_buffer(&self.device, &self.queue, level)?;
-                // Texels filled by pull-push carry the lowest mantissa bit (pull_push.wgsl).
-                let splats_only = name == "ism_atlas_splats";
-                let pixels = bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)
-                    .into_iter()
-                    .map(|bits| {
-                        let v = if splats_only && bits & 1 == 1 { 1.0 } else { f32::from_bits(bits) };
-                        [v, v, v, 1.0]
-                    })
-                    .collect();
-                return Ok(crate::image_io::HdrImage { width: side, height: side, pixels });
-            }
-            ism if ism.starts_with("ism_") => {
-                let missing =
-                    || RenderError::UnknownBuffer { name: name.into(), known: "render an ism mode first".into() };
-                let light = self.vpl_pass.as_ref();
-                let screen = self.gather.as_ref().map(|g| &g.screen);
-                let sh_missing = || RenderError::UnknownBuffer {
+            _ if pyramid_level.is_some() => {
+                let levels = self.pyramid.levels().ok_or_else(|| RenderError::UnknownBuffer {
                     name: name.into(),
-                    known: "render an ism mode with the SH filter on first".into(),
-                };
-                match ism {
-                    "ism_light_albedo" => &light.ok_or_else(missing)?.albedo.texture,
-                    "ism_light_normal" => &light.ok_or_else(missing)?.normal.texture,
-                    "ism_light_power" => &light.ok_or_else(missing)?.power.texture,
-                    "ism_importance" => &light.ok_or_else(missing)?.importance,
-                    "ism_split_position" => &screen.and_then(|g| g.split_gbuffer()).ok_or_else(missing)?.0.texture,
-                    "ism_split_normal" => &screen.and_then(|g| g.split_gbuffer()).ok_or_else(missing)?.1.texture,
-                    "ism_raw" => {
-                        let raw = screen.and_then(|g| g.raw()).ok_or_else(|| RenderError::UnknownBuffer {
-                            name: name.into(),
-                            known: "render an ism mode with the irradiance filter first (the SH filter \
-                                    accumulates coefficients: see ism_sh_shaded, ism_sh_dc, ism_sh_direction)"
-                                .into(),
-                        })?;
-                        &raw.texture
-                    }
-                    "ism_confidence" => &screen.and_then(|g| g.confidence()).ok_or_else(missing)?.texture,
-                    "ism_history" => &screen.and_then(|g| g.history()).ok_or_else(missing)?.texture,
-                    "ism_sh_shaded" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.0.texture,
-                    "ism_sh_dc" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.1.texture,
-                    "ism_sh_direction" => &screen.and_then(|g| g.sh_views()).ok_or_else(sh_missing)?.2.texture,
-                    _ => return Err(missing()),
-                }
+                    known: "render a frame while a pyramid level is inspected (Renderer::set_inspected)".into(),
+                })?;
+                let level = pyramid_level.and_then(|l| levels.get(l)).ok_or_else(|| RenderError::UnknownBuffer {
+                    name: name.into(),
+                    known: format!("the pyramid has levels 0..{}", levels.len()),
+                })?;
+                &level.texture
             }
             other => {
+                let technique = self.techniques.active();
+                if let Some(result) = technique.and_then(|t| t.read_buffer(&self.device, &self.queue, other)) {
+                    return result;
+                }
+                let mode = self.techniques.active_mode().unwrap_or_default();
+                let known: Vec<&str> = Self::buffers_for(mode).iter().map(|b| b.name).collect();
                 return Err(RenderError::UnknownBuffer {
                     name: other.to_owned(),
-                    known: Self::buffer_names().join(", "),
+                    known: format!("{} (mode {})", known.join(", "), mode.name()),
                 });
             }
         };

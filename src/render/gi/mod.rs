@@ -1,8 +1,25 @@
-//! Global-illumination techniques, one folder each (architecture.md section 2). Each technique
-//! is a long-lived struct that owns its pipelines and history and writes the indirect term.
+//! Global-illumination techniques behind one seam (architecture.md section 2).
 //!
-//! `ism/` holds Knecht 2009 (instant radiosity with imperfect shadow maps and temporal reuse).
-//! Its pure math (sample sets, hierarchical warping, paraboloid maps, VPL power) is written and
-//! tested first on the CPU; the WGSL passes mirror it.
+//! [`technique`] defines the seam: the [`GiTechnique`] trait, what a technique writes
+//! ([`GiOutput`]), why its history resets ([`ResetReason`]), its inspector buffers and overlays.
+//! [`inputs`] is the one struct every technique renders from; [`changes`] turns scene and
+//! settings revisions into reset reasons; [`registry`] lists the techniques this build has and
+//! keeps one active, releasing the others' GPU memory.
+//!
+//! One folder or file per technique: `direct` (adds nothing), `ism/` (Knecht 2009: instant
+//! radiosity with imperfect shadow maps and temporal reuse; its pure math is written and tested
+//! first on the CPU and the WGSL passes mirror it) and `reference/` (the CPU path tracer).
 
+pub mod changes;
+pub mod direct;
+pub mod inputs;
 pub mod ism;
+pub mod reference;
+pub mod registry;
+pub mod technique;
+
+pub use changes::ChangeDetector;
+pub use technique::{
+    BufferInfo, BufferView, GiOutput, GiTechnique, Needs, Overlay, OverlayPoint, Readiness, ResetReason, SupportQuery,
+    TechniqueStatus,
+};

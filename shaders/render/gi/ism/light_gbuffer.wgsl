@@ -1,9 +1,11 @@
 // ISM pass P2: the light G-buffer (an RSM without stored flux, Knecht 2009 section 4.3) of one
-// tile: a spot light's frustum or one face of a point light's cube. Outputs per texel:
+// tile: a spot light's frustum, one face of a point light's cube, or a directional light's
+// orthographic view of the scene. Outputs per texel:
 //   0 albedo     rgba8unorm   base colour x texture, a = specular luminance
 //   1 normal     rgba16float  world-space shading normal
-//   2 power      rgba16float  rgb = power reflected by the patch this texel sees,
-//                             rho * I(w) * dOmega (the cosine cancels), a = importance
+//   2 power      rgba16float  rgb = power reflected by the patch this texel sees, in watts:
+//                             rho * I(w) * dOmega for perspective tiles, rho * E * A_texel for
+//                             orthographic ones (the cosine cancels), a = importance
 //   3 specular   rgba16float  rgb = specular reflectance x I(w) dOmega (the incident power the
 //                             glossy lobe reflects), a = Blinn-Phong exponent (0: no lobe)
 // Back faces (the light reaches the back of a one-sided surface) reflect nothing.
@@ -15,7 +17,7 @@
 struct LightView {
     clip_from_world: mat4x4<f32>,
     light: GpuLight,
-    // tan(half fov), texels per side, unused, unused.
+    // tan(half fov), texels per side, world area of a texel (orthographic tiles, else 0), unused.
     params: vec4<f32>,
     // xyz view axis of this tile (the spot direction or a cube face), w unused.
     axis: vec4<f32>,
@@ -61,8 +63,12 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> LightGbufferOut
     let cos_axis = max(dot(view.axis.xyz, -inc.dir), 0.0);
     let texel = 2.0 * view.params.x / view.params.y;
     let d_omega = texel * texel * cos_axis * cos_axis * cos_axis;
-    // irradiance * d^2 = radiant intensity towards this texel (spot falloff and range included).
+    // irradiance * d^2 = radiant intensity towards this texel (spot falloff and range included);
+    // a directional light's irradiance times the texel's cross-section is the power it sends.
     var incident = inc.irradiance * inc.distance * inc.distance * d_omega;
+    if view.params.z > 0.0 {
+        incident = inc.irradiance * view.params.z;
+    }
     if !front {
         incident = vec3<f32>(0.0);
     }

@@ -1,4 +1,6 @@
-// ISM pass P5: first-bounce VPLs by hierarchical warping (Knecht 2009 section 3.3). One thread
+// ISM pass P5: first-bounce VPLs by hierarchical warping (Knecht 2009 section 3.3) over the
+// light G-buffer of every light (one tile per spot or directional light, six per point light),
+// so the VPLs spread over the lights in proportion to the power they reflect. One thread
 // per VPL: a Halton point of this frame's window descends the importance pyramid from the 2x2
 // level to the finest (rows first, then the column within the row), lands in texel t with
 // probability p(t) = importance(t) / total, and becomes a VPL on the surface that texel sees,
@@ -6,14 +8,17 @@
 #import common/vpl.wgsl
 
 struct GenParams {
-    // Per light-G-buffer tile (one for a spot light, six cube faces for a point light).
-    world_from_clip: array<mat4x4<f32>, 6>,
-    // xyz light position, w unused.
-    light_position: vec4<f32>,
     // VPL count, frame index, interleave n, pyramid levels K (finest side = 2^K).
     counts: vec4<u32>,
     // tiles per row, tile side in texels, tile count, unused.
     tiles: vec4<u32>,
+}
+
+// One light-G-buffer tile (a spot light's frustum, a cube face, a sun's orthographic view).
+struct TileRecord {
+    world_from_clip: mat4x4<f32>,
+    // xyz light position (w = 0), or the unit direction towards a directional light (w = 1).
+    light: vec4<f32>,
 }
 
 
@@ -25,6 +30,7 @@ struct GenParams {
 @group(0) @binding(5) var depth_tex: texture_depth_2d;
 @group(0) @binding(6) var<storage, read_write> vpls: array<Vpl>;
 @group(0) @binding(7) var specular_tex: texture_2d<f32>;
+@group(0) @binding(8) var<storage, read> tile_records: array<TileRecord>;
 
 fn radical_inverse_2(i: u32) -> f32 {
     return f32(reverseBits(i) >> 8u) / 16777216.0;
@@ -119,7 +125,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let uv = (vec2<f32>(cell % vec2<u32>(ts)) + 0.5) / f32(ts);
     let depth = textureLoad(depth_tex, cell, 0);
     let ndc = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-    let h = params.world_from_clip[min(tile, 5u)] * ndc;
+    let record = tile_records[min(tile, params.tiles.z - 1u)];
+    let h = record.world_from_clip * ndc;
     let p = h.xyz / h.w;
     let interleave = f32(params.counts.z);
     let reflected = textureLoad(power_tex, cell, 0).rgb;
@@ -129,6 +136,10 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     out.power = vec4<f32>(reflected * scale, pdf);
     let spec = textureLoad(specular_tex, cell, 0);
     out.gloss = vec4<f32>(spec.rgb * scale, spec.a);
-    out.incident = vec4<f32>(normalize(params.light_position.xyz - p), f32(cell.y * size + cell.x));
+    var towards = normalize(record.light.xyz - p);
+    if record.light.w > 0.5 {
+        towards = record.light.xyz;
+    }
+    out.incident = vec4<f32>(towards, f32(cell.y * size + cell.x));
     vpls[k] = out;
 }

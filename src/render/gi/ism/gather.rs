@@ -8,7 +8,8 @@ use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::ViewTargets;
 use crate::settings::IsmSettings;
 
-use super::screen::{DEPTH_BIAS, IsmInputs, IsmScreen, words};
+use super::params::{BounceParams, PullPushParams, SplatParams};
+use super::screen::{IsmInputs, IsmScreen};
 
 /// Pull-push levels below the finest (the thesis: "at least two mip levels").
 const PULL_LEVELS: usize = 2;
@@ -64,6 +65,10 @@ struct Sized {
     normals: wgpu::Buffer,
     albedo: wgpu::Buffer,
     specular: wgpu::Buffer,
+    selection: wgpu::Buffer,
+    lit: wgpu::Buffer,
+    /// The atlas before hole filling (inspector copy), when captured.
+    splats: Option<wgpu::Buffer>,
     bounce_group: wgpu::BindGroup,
     pull_groups: Vec<wgpu::BindGroup>,
     push_groups: Vec<wgpu::BindGroup>,
@@ -71,8 +76,24 @@ struct Sized {
     generation: u64,
 }
 
+/// The scene-scale constants of the ISM maps: depth normalisation, lookup bias, hole-filling
+/// threshold and the sample points' total area.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapScale {
+    /// Distance normalisation of the ISM depths (metres).
+    pub d_max: f32,
+    /// Lookup bias in normalised distance.
+    pub depth_bias: f32,
+    /// Pull-push threshold tau in normalised distance.
+    pub pull_push: f32,
+    /// Sum over the scene of area x sampling weight (m^2).
+    pub total_area: f32,
+}
+
 /// Pipelines and resources of the ISM gather.
 pub struct IsmGather {
+    /// Copy each set's atlas rows before hole filling (for the inspector).
+    pub capture_splats: bool,
     splat_layout: wgpu::BindGroupLayout,
     clear: wgpu::ComputePipeline,
     splat: wgpu::ComputePipeline,
@@ -155,6 +176,7 @@ impl IsmGather {
             splat_layout,
             pp_layout,
             screen: IsmScreen::new(device)?,
+            capture_splats: false,
             generation: 0,
             sized: None,
         })
@@ -249,11 +271,19 @@ impl IsmGather {
             normals,
             albedo,
             specular,
+            selection,
+            lit,
+            splats: None,
             bounce_group,
             pull_groups,
             push_groups,
             generation: self.generation,
         });
+    }
+
+    /// VPL sets (bounces) of the current buffers (0 before the first frame).
+    pub fn sets(&self) -> u32 {
+        self.sized.as_ref().map_or(0, |s| s.key.bounces)
     }
 
     /// The VPLs of every bounce of the last frame (set b at `b * vpl_count`).
@@ -297,42 +327,54 @@ impl IsmGather {
     }
 
     /// Records splat, pull-push and the further bounces' VPL sets; [`Self::record_screen`]
-    /// then shades with them.
-    #[allow(clippy::too_many_arguments)]
+    /// then shades with them. With `capture_splats`, each set's atlas rows are also copied
+    /// after splatting and before hole filling (the inspector's `ism_atlas_splats`).
     pub fn record_maps(
         &mut self,
+        device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         vpls: &wgpu::Buffer,
-        total_area: f32,
-        scene_diameter: f32,
+        scale: &MapScale,
         settings: &IsmSettings,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) {
-        let Some(s) = &self.sized else { return };
+        let capture = self.capture_splats;
+        let Some(s) = &mut self.sized else { return };
         let key = s.key;
         let c = Self::tiles_per_row(key.vpls * key.bounces);
         let side = key.r * c;
-        let d_max = scene_diameter.max(1e-3);
+        if capture && s.splats.is_none() {
+            s.splats = Some(device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ism atlas splats (inspector copy)"),
+                size: u64::from(side) * u64::from(side) * 4,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }));
+        } else if !capture {
+            s.splats = None;
+        }
+        let s = &*s;
+        let d_max = scale.d_max.max(1e-3);
         // A point stands for the area its ISM's points share; its splat covers that patch seen
         // from the VPL: sqrt(area) / d radians, r / 4 texels per radian near the centre.
         let per_ism = (key.points / key.vpls.max(1)).max(1) as f32;
-        let k_size = (total_area / per_ism).sqrt() * key.r as f32 / (4.0 * d_max);
+        let k_size = (scale.total_area / per_ism).sqrt() * key.r as f32 / (4.0 * d_max);
         encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(key.vpls) * VPL_BYTES);
-        let u32s = |a: [u32; 4], b: [f32; 4]| words(&[a], &[b]);
         let n2 = (settings.interleave * settings.interleave) as f32;
         let d_min = settings.clamp_distance;
+        let counts = [key.vpls, key.points, key.r, c];
         for b in 0..key.bounces {
-            let mut splat = u32s([key.vpls, key.points, key.r, c], [1.0 / d_max, k_size, 8.0, 0.0]);
-            splat.extend_from_slice(bytemuck::cast_slice(&[b * key.vpls, 0, 0, 0]));
-            queue.write_buffer(&self.splat_params, u64::from(b) * SLOT, &splat);
+            let splat = SplatParams { counts, params: [1.0 / d_max, k_size, 8.0, 0.0], sets: [b * key.vpls, 0, 0, 0] };
+            queue.write_buffer(&self.splat_params, u64::from(b) * SLOT, bytemuck::bytes_of(&splat));
             if b > 0 {
-                let mut bounce = u32s([key.vpls, key.points, key.r, c], [0.0; 4]);
-                bounce.truncate(16);
-                bounce.extend_from_slice(bytemuck::cast_slice(&[(b - 1) * key.vpls, b * key.vpls, 0, 0]));
-                bounce.extend_from_slice(bytemuck::cast_slice(&[1.0 / d_max, DEPTH_BIAS, d_min * d_min, n2]));
-                bounce.extend_from_slice(bytemuck::cast_slice(&[total_area, 0.0, 0.0, 0.0]));
-                queue.write_buffer(&self.bounce_params, u64::from(b - 1) * SLOT, &bounce);
+                let bounce = BounceParams {
+                    counts,
+                    sets: [(b - 1) * key.vpls, b * key.vpls, 0, 0],
+                    params: [1.0 / d_max, scale.depth_bias, d_min * d_min, n2],
+                    area: [scale.total_area, 0.0, 0.0, 0.0],
+                };
+                queue.write_buffer(&self.bounce_params, u64::from(b - 1) * SLOT, bytemuck::bytes_of(&bounce));
             }
         }
         // Pull-push per set: only the tile rows the set occupies (slots: set b, level l).
@@ -344,14 +386,19 @@ impl IsmGather {
         for b in 0..key.bounces {
             let (row0, _) = set_rows(b);
             for l in 0..PULL_LEVELS {
-                let params = u32s([side >> l, l as u32, row0 >> l, 0], [0.05, 0.0, 0.0, 0.0]);
+                let params = PullPushParams {
+                    counts: [side >> l, l as u32, row0 >> l, 0],
+                    params: [scale.pull_push, 0.0, 0.0, 0.0],
+                };
                 let slot = (u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT;
-                queue.write_buffer(&self.pp_params, slot, &params);
+                queue.write_buffer(&self.pp_params, slot, bytemuck::bytes_of(&params));
             }
         }
+        let begin_writes =
+            timestamps.as_ref().map(|t| if capture { t.compute_begin_writes() } else { t.compute_writes() });
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("ism maps"),
-            timestamp_writes: timestamps.as_ref().map(|t| t.compute_writes()),
+            timestamp_writes: begin_writes,
         });
         pass.set_bind_group(0, &s.splat_group, &[0]);
         pass.set_pipeline(&self.clear);
@@ -372,7 +419,17 @@ impl IsmGather {
             pass.set_bind_group(0, &s.splat_group, &[(u64::from(b) * SLOT) as u32]);
             pass.set_pipeline(&self.splat);
             pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
-            let (_, rows) = set_rows(b);
+            let (row0, rows) = set_rows(b);
+            if let Some(splats) = &s.splats {
+                // Copies may not happen inside a pass: end it, copy this set's rows, go on.
+                drop(pass);
+                let (at, bytes) = (u64::from(row0) * u64::from(side) * 4, u64::from(rows) * u64::from(side) * 4);
+                encoder.copy_buffer_to_buffer(&s.atlas[0], at, splats, at, bytes);
+                pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("ism maps (after splat capture)"),
+                    timestamp_writes: None,
+                });
+            }
             pass.set_pipeline(&self.pull);
             for (l, g) in s.pull_groups.iter().enumerate() {
                 let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
@@ -390,6 +447,14 @@ impl IsmGather {
                 pass.dispatch_workgroups(coarse.div_ceil(8), (rows >> (l + 1)).max(1).div_ceil(8), 1);
             }
         }
+        drop(pass);
+        if let (true, Some(t)) = (capture, timestamps.as_ref()) {
+            // The scope ends with an empty pass after the last set.
+            drop(encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("ism maps end"),
+                timestamp_writes: Some(t.compute_end_writes()),
+            }));
+        }
     }
 
     /// Records the screen passes of [`IsmScreen`] with this frame's VPLs and maps into
@@ -402,7 +467,7 @@ impl IsmGather {
         encoder: &mut wgpu::CommandEncoder,
         frame_buffer: &wgpu::Buffer,
         targets: &ViewTargets,
-        scene_diameter: f32,
+        scale: &MapScale,
         settings: &IsmSettings,
         temporal: bool,
         exposure: f32,
@@ -418,8 +483,31 @@ impl IsmGather {
             sets: s.key.bounces,
             r: s.key.r,
             tiles_per_row: Self::tiles_per_row(s.key.vpls * s.key.bounces),
-            d_max: scene_diameter.max(1e-3),
+            d_max: scale.d_max.max(1e-3),
+            depth_bias: scale.depth_bias,
         };
         screen.record(device, queue, encoder, frame_buffer, targets, &inputs, settings, temporal, exposure, timestamps);
+    }
+
+    /// Frees the atlas, the point buffers and the screen passes' targets (another mode is
+    /// active); pipelines stay.
+    pub fn release(&mut self) {
+        self.sized = None;
+        self.screen.release();
+    }
+
+    /// Bytes of GPU memory held.
+    pub fn gpu_bytes(&self) -> u64 {
+        let own = self.sized.as_ref().map_or(0, |s| {
+            let buffers = [&s.points, &s.all_vpls, &s.normals, &s.albedo, &s.specular, &s.selection, &s.lit];
+            s.atlas.iter().chain(buffers).chain(&s.splats).map(wgpu::Buffer::size).sum::<u64>()
+        });
+        own + self.screen.gpu_bytes()
+    }
+
+    /// The atlas as splatted, before hole filling, when [`Self::capture_splats`] was on for
+    /// the last frame.
+    pub fn splats(&self) -> Option<&wgpu::Buffer> {
+        self.sized.as_ref().and_then(|s| s.splats.as_ref())
     }
 }

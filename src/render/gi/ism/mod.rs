@@ -5,15 +5,23 @@
 //! - [`paraboloid`]: the VPL frame and paraboloid map used by the ISM splat and lookup (P7, P10);
 //! - [`power`]: the unbiased VPL power the thesis leaves out (digest section 7.3).
 //!
-//! The GPU passes: [`vpl_pass`] (light G-buffer, importance, VPLs), [`gather`] (ISM atlas and
-//! further bounces), [`screen`] (split G-buffer, shading, temporal merge, filter) and
-//! [`sh_filter`] (Segovia & Wald's SH filter).
+//! - [`light_tiles`]: where every light's view lives in the light G-buffer atlas.
+//!
+//! The GPU passes: [`vpl_pass`] (light G-buffer of every light, importance, VPLs), [`gather`]
+//! (ISM atlas and further bounces), [`screen`] (split G-buffer, shading, temporal merge,
+//! filter) and [`sh_filter`] (Segovia & Wald's SH filter), with their parameter blocks in
+//! [`params`]. [`technique`] puts them behind the GI seam; [`points`] builds the sample points'
+//! per-point data.
 
 pub mod gather;
 pub mod halton;
+pub mod light_tiles;
 pub mod paraboloid;
+pub mod params;
+pub mod points;
 pub mod power;
 pub mod screen;
 pub mod sh_filter;
+pub mod technique;
 pub mod vpl_pass;
 pub mod warp;

@@ -8,7 +8,13 @@ use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::{Target, ViewTargets, formats};
 use crate::settings::IsmSettings;
 
+use super::params::{FilterParams, ShadeParams, SplitParams, TemporalParams};
 use super::sh_filter::ShFilter;
+use crate::render::gi::technique::texture_bytes;
+
+fn size_of<T>() -> u64 {
+    std::mem::size_of::<T>() as u64
+}
 
 /// ISM lookup bias in normalised distance (fraction of the scene diameter). Splats are several
 /// texels wide, so a receiver's own surface shadows it without a bias of about a splat's depth
@@ -33,6 +39,8 @@ pub struct IsmInputs<'a> {
     pub tiles_per_row: u32,
     /// Scene diameter (the ISM depth normalisation and the filters' depth range), metres.
     pub d_max: f32,
+    /// ISM lookup bias in normalised distance.
+    pub depth_bias: f32,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -96,13 +104,6 @@ pub(super) fn buf(b: u32, x: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
 
 pub(super) fn tex(b: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry { binding: b, resource: wgpu::BindingResource::TextureView(v) }
-}
-
-/// Bytes of 4-component u32 and f32 vectors, as the WGSL parameter blocks lay them out.
-pub(super) fn words(u: &[[u32; 4]], f: &[[f32; 4]]) -> Vec<u8> {
-    let mut v: Vec<u8> = bytemuck::cast_slice(u).to_vec();
-    v.extend_from_slice(bytemuck::cast_slice(f));
-    v
 }
 
 /// Size of the split layout: n x n blocks of ceil(W / n) x ceil(H / n) (common/interleave.wgsl).
@@ -172,18 +173,18 @@ impl IsmScreen {
         let temporal_module = shaders::module(device, "render/gi/ism/ism_temporal.wgsl")?;
         Ok(Self {
             split: compute_pipeline(device, "ism split g-buffer", &split_layout, &split_module, "cs_main"),
-            split_params: uniform(device, "ism split params", 16),
+            split_params: uniform(device, "ism split params", size_of::<SplitParams>()),
             split_layout,
             shade: compute_pipeline(device, "ism shade", &shade_layout, &shade_module, "shade"),
             project_sh: compute_pipeline(device, "ism sh projection", &shade_layout, &shade_module, "project_sh"),
-            shade_params: uniform(device, "ism shade params", 48),
+            shade_params: uniform(device, "ism shade params", size_of::<ShadeParams>()),
             shade_layout,
             sh: ShFilter::new(device)?,
             temporal: compute_pipeline(device, "ism temporal merge", &temporal_layout, &temporal_module, "cs_main"),
-            temporal_params: uniform(device, "ism temporal params", 48),
+            temporal_params: uniform(device, "ism temporal params", size_of::<TemporalParams>()),
             temporal_layout,
             filter: compute_pipeline(device, "ism filter", &filter_layout, &filter_module, "cs_main"),
-            filter_params: uniform(device, "ism filter params", 32),
+            filter_params: uniform(device, "ism filter params", size_of::<FilterParams>()),
             filter_layout,
             parity: 0,
             reset: true,
@@ -323,6 +324,24 @@ impl IsmScreen {
         self.sized = None;
     }
 
+    /// Frees every view-sized buffer (another mode is active); the history restarts.
+    pub fn release(&mut self) {
+        self.sized = None;
+        self.sh.release();
+        self.reset = true;
+    }
+
+    /// Bytes of GPU memory held by the view-sized resources.
+    pub fn gpu_bytes(&self) -> u64 {
+        let own = self.sized.as_ref().map_or(0, |s| {
+            [&s.split_position, &s.split_normal, &s.raw, &s.history[0], &s.history[1], &s.prev_normal, &s.confidence]
+                .iter()
+                .map(|t| texture_bytes(&t.texture))
+                .sum::<u64>()
+        });
+        own + self.sh.gpu_bytes()
+    }
+
     /// The confidence buffer of the last temporal frame: r = position change, g = normal
     /// change, b = illumination change (each saturated), a = confidence.
     pub fn confidence(&self) -> Option<&Target> {
@@ -372,36 +391,27 @@ impl IsmScreen {
         let Some(s) = &self.sized else { return };
         let d_min = settings.clamp_distance;
         let (w, h) = targets.size;
-        queue.write_buffer(&self.split_params, 0, &words(&[[n, 0, 0, 0]], &[]));
-        queue.write_buffer(
-            &self.shade_params,
-            0,
-            &words(
-                &[[ism.vpl_count, ism.r, ism.tiles_per_row, n]],
-                &[[1.0 / ism.d_max, DEPTH_BIAS, d_min * d_min, 0.0]],
-            ),
-        );
-        // 48 bytes: the third vec4 (sets, view size) follows the floats.
-        queue.write_buffer(&self.shade_params, 32, bytemuck::cast_slice(&[ism.sets, w, h, 0]));
+        queue.write_buffer(&self.split_params, 0, bytemuck::bytes_of(&SplitParams { counts: [n, 0, 0, 0] }));
+        let shade = ShadeParams {
+            counts: [ism.vpl_count, ism.r, ism.tiles_per_row, n],
+            params: [1.0 / ism.d_max, ism.depth_bias, d_min * d_min, 0.0],
+            sets: [ism.sets, w, h, 0],
+        };
+        queue.write_buffer(&self.shade_params, 0, bytemuck::bytes_of(&shade));
         let reset = u32::from(self.reset || !temporal);
         let raw_split = if settings.sh_filter { 0 } else { n };
-        queue.write_buffer(
-            &self.temporal_params,
-            0,
-            &words(
-                &[[reset, raw_split, 0, 0]],
-                &[
-                    [settings.base_confidence, settings.w_position, settings.w_normal, settings.w_illumination],
-                    [ism.d_max, exposure, 0.0, 0.0],
-                ],
-            ),
-        );
+        let merge = TemporalParams {
+            flags: [reset, raw_split, 0, 0],
+            weights: [settings.base_confidence, settings.w_position, settings.w_normal, settings.w_illumination],
+            params: [ism.d_max, exposure, 0.0, 0.0],
+        };
+        queue.write_buffer(&self.temporal_params, 0, bytemuck::bytes_of(&merge));
         let filter_split = if temporal { 0 } else { n };
-        queue.write_buffer(
-            &self.filter_params,
-            0,
-            &words(&[[n, filter_split, 0, 0]], &[[settings.filter_depth, settings.filter_normal, ism.d_max, 0.0]]),
-        );
+        let filter = FilterParams {
+            counts: [n, filter_split, 0, 0],
+            params: [settings.filter_depth, settings.filter_normal, ism.d_max, 0.0],
+        };
+        queue.write_buffer(&self.filter_params, 0, bytemuck::bytes_of(&filter));
         if settings.sh_filter {
             self.sh.write_params(queue, n, settings, ism.d_max);
         }

@@ -9,7 +9,9 @@ use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::{Target, ViewTargets, formats};
 use crate::settings::IsmSettings;
 
-use super::screen::{buf, tex, uniform, words};
+use super::params::FilterParams;
+use super::screen::{buf, tex, uniform};
+use crate::render::gi::technique::texture_bytes;
 
 /// u32 words per pixel of the packed coefficients: 27 f16 values and one pad.
 pub const SH_WORDS: u64 = 14;
@@ -58,7 +60,7 @@ impl ShFilter {
         let module = shaders::module(device, "render/gi/ism/ism_sh_filter.wgsl")?;
         Ok(Self {
             pipeline: compute_pipeline(device, "ism sh filter", &layout, &module, "cs_main"),
-            params: uniform(device, "ism sh filter params", 32),
+            params: uniform(device, "ism sh filter params", std::mem::size_of::<FilterParams>() as u64),
             layout,
             sized: None,
         })
@@ -109,6 +111,18 @@ impl ShFilter {
         self.sized = Some(Sized { raw, shaded, dc, dir, group });
     }
 
+    /// Frees the coefficient buffer and the output targets.
+    pub fn release(&mut self) {
+        self.sized = None;
+    }
+
+    /// Bytes of GPU memory held.
+    pub fn gpu_bytes(&self) -> u64 {
+        self.sized.as_ref().map_or(0, |s| {
+            s.raw.size() + [&s.shaded, &s.dc, &s.dir].iter().map(|t| texture_bytes(&t.texture)).sum::<u64>()
+        })
+    }
+
     /// The coefficient buffer the projection writes.
     pub fn raw(&self) -> Option<&wgpu::Buffer> {
         self.sized.as_ref().map(|s| &s.raw)
@@ -127,8 +141,9 @@ impl ShFilter {
     /// Writes this frame's parameters (the same discontinuity thresholds as the irradiance
     /// filter, applied to geometric normals).
     pub fn write_params(&self, queue: &wgpu::Queue, n: u32, settings: &IsmSettings, d_max: f32) {
-        let bytes = words(&[[n, 0, 0, 0]], &[[settings.filter_depth, settings.filter_normal, d_max, 0.0]]);
-        queue.write_buffer(&self.params, 0, &bytes);
+        let params =
+            FilterParams { counts: [n, 0, 0, 0], params: [settings.filter_depth, settings.filter_normal, d_max, 0.0] };
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
     }
 
     /// Records the filter over a `view`-sized image.

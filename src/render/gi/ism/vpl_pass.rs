@@ -1,11 +1,14 @@
-//! ISM passes P2, P3 and P5 on the GPU: the light G-buffer of a spot or point light, its importance sum
-//! pyramid, and first-bounce VPL generation by hierarchical warping. The CPU oracles in
-//! [`super::warp`] and [`super::power`] define what these passes must produce.
+//! ISM passes P2, P3 and P5 on the GPU: the light G-buffer of every light (tiles laid out by
+//! [`super::light_tiles`]), its importance sum pyramid, and first-bounce VPL generation by
+//! hierarchical warping over the whole atlas, so VPLs spread over all lights in proportion to
+//! the power they reflect. The CPU oracles in [`super::warp`] and [`super::power`] define what
+//! these passes must produce.
 
-use glam::camera::rh::proj::directx;
-use glam::camera::rh::view::look_at_mat4;
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 
+use super::light_tiles::{LightTiles, layout};
+use super::params::{GenParams, LightViewUniforms, TileRecord};
+use crate::render::gi::technique::texture_bytes;
 use crate::render::layouts::{Layouts, compute_pipeline, storage_texture_entry, texture_entry, uniform_entry};
 use crate::render::scene_gpu::{SceneGpu, Vertex};
 use crate::render::shaders::{self, ShaderError};
@@ -23,52 +26,7 @@ const LIGHT_GBUFFER_FORMATS: [wgpu::TextureFormat; 4] = [
     wgpu::TextureFormat::Rgba16Float,
 ];
 
-/// Side of the light G-buffer (a power of two, for the warp pyramid).
-pub const LIGHT_GBUFFER_SIZE: u32 = 256;
-const LEVELS: u32 = LIGHT_GBUFFER_SIZE.trailing_zeros();
-
-/// `LightView` in `light_gbuffer.wgsl`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-struct LightViewUniforms {
-    clip_from_world: [[f32; 4]; 4],
-    light: GpuLight,
-    params: [f32; 4],
-    /// The tile's view axis (xyz).
-    axis: [f32; 4],
-}
-
-/// `GenParams` in `vpl_generate.wgsl`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-struct GenParams {
-    world_from_clip: [[[f32; 4]; 4]; 6],
-    light_position: [f32; 4],
-    counts: [u32; 4],
-    /// Tiles per row, tile side (texels), tile count, unused.
-    tiles: [u32; 4],
-}
-
-/// Dynamic-offset slot of one tile's `LightView`.
-const VIEW_SLOT: u64 = 256;
-
-/// How a light's G-buffer is laid out in the square atlas: one tile for a spot light (its
-/// frustum), six cube faces in a 4 x 4 grid for a point light (the other tiles stay empty and
-/// have zero importance, so the warp never picks them).
-pub struct LightLayout {
-    /// Clip-from-world per tile.
-    pub tiles: Vec<Mat4>,
-    /// Tile side in texels.
-    pub tile_size: u32,
-    /// Tiles per atlas row.
-    pub per_row: u32,
-    /// tan(half field of view) of each tile's frustum.
-    pub tan_half: f32,
-    /// View axis per tile.
-    pub axes: Vec<Vec3>,
-}
-
-/// `Vpl` in `vpl_generate.wgsl`.
+/// `Vpl` in `common/vpl.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuVpl {
@@ -85,70 +43,52 @@ pub struct GpuVpl {
     pub gloss: [f32; 4],
 }
 
-/// The light G-buffer, importance pyramid and VPL buffer with their pipelines.
-pub struct VplPass {
-    gbuffer_pipeline: wgpu::RenderPipeline,
+const _: () = assert!(std::mem::size_of::<GpuVpl>() == 80);
+
+/// Dynamic-offset slot of one tile's `LightView`.
+const VIEW_SLOT: u64 = 256;
+
+/// The atlas-sized targets and the buffers sized by tile and VPL counts.
+struct Sized {
+    side: u32,
+    tile_capacity: u32,
+    vpl_capacity: u32,
     view_buffer: wgpu::Buffer,
     view_bind_group: wgpu::BindGroup,
-    /// Albedo (rgb) and specular luminance (a) seen from the light.
-    pub albedo: Target,
-    /// World normals seen from the light.
-    pub normal: Target,
-    /// Reflected power (rgb) and importance (a) per texel.
-    pub power: Target,
-    /// Specular reflectance x incident power (rgb) and Blinn-Phong exponent (a) per texel.
-    pub specular: Target,
+    tile_buffer: wgpu::Buffer,
+    albedo: Target,
+    normal: Target,
+    power: Target,
+    specular: Target,
     depth: Target,
-    /// The importance sum pyramid (mip 0 = per texel, last mip = total).
-    pub importance: wgpu::Texture,
-    importance_full: wgpu::TextureView,
-    seed_pipeline: wgpu::ComputePipeline,
-    reduce_pipeline: wgpu::ComputePipeline,
+    importance: wgpu::Texture,
     pyramid_groups: Vec<wgpu::BindGroup>,
-    gen_pipeline: wgpu::ComputePipeline,
-    gen_layout: wgpu::BindGroupLayout,
-    gen_params: wgpu::Buffer,
-    /// The VPLs of the last generation.
-    pub vpls: wgpu::Buffer,
-    vpl_capacity: u32,
+    vpls: wgpu::Buffer,
     gen_bind_group: wgpu::BindGroup,
 }
 
-impl VplPass {
-    /// Creates the targets and pipelines.
-    pub fn new(device: &wgpu::Device, layouts: &Layouts) -> Result<Self, ShaderError> {
-        use wgpu::TextureUsages as U;
-        let size = (LIGHT_GBUFFER_SIZE, LIGHT_GBUFFER_SIZE);
-        let rt = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
-        let [fa, fn_, fp, fs] = LIGHT_GBUFFER_FORMATS;
-        let albedo = Target::new(device, "ism light albedo", size, fa, rt);
-        let normal = Target::new(device, "ism light normal", size, fn_, rt);
-        let power = Target::new(device, "ism light power", size, fp, rt);
-        let specular = Target::new(device, "ism light specular", size, fs, rt);
-        let depth = Target::new(device, "ism light depth", size, wgpu::TextureFormat::Depth32Float, rt);
+/// The light G-buffer, importance pyramid and VPL buffer with their pipelines.
+pub struct VplPass {
+    gbuffer_pipeline: wgpu::RenderPipeline,
+    view_layout: wgpu::BindGroupLayout,
+    pyramid_layout: wgpu::BindGroupLayout,
+    seed_pipeline: wgpu::ComputePipeline,
+    reduce_pipeline: wgpu::ComputePipeline,
+    gen_pipeline: wgpu::ComputePipeline,
+    gen_layout: wgpu::BindGroupLayout,
+    gen_params: wgpu::Buffer,
+    sized: Option<Sized>,
+    /// The layout of the last recorded frame.
+    tiles: Option<LightTiles>,
+}
 
+impl VplPass {
+    /// Creates the pipelines (targets come with the first [`Self::record`]).
+    pub fn new(device: &wgpu::Device, layouts: &Layouts) -> Result<Self, ShaderError> {
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let view_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ism light view layout"),
             entries: &[uniform_entry(0, vf, true)],
-        });
-        let view_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ism light view"),
-            size: 6 * VIEW_SLOT,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let view_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ism light view bind group"),
-            layout: &view_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                    buffer: &view_buffer,
-                    offset: 0,
-                    size: wgpu::BufferSize::new(std::mem::size_of::<LightViewUniforms>() as u64),
-                }),
-            }],
         });
         let module = shaders::module(device, "render/gi/ism/light_gbuffer.wgsl")?;
         let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -180,11 +120,87 @@ impl VplPass {
             multiview_mask: None,
             cache: None,
         });
+        let c = wgpu::ShaderStages::COMPUTE;
+        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+        let pyramid_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism importance layout"),
+            entries: &[texture_entry(0, c, unfilterable), storage_texture_entry(1, wgpu::TextureFormat::R32Float)],
+        });
+        let imp_module = shaders::module(device, "render/gi/ism/importance.wgsl")?;
+        let gen_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism vpl generation layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                texture_entry(1, c, unfilterable),
+                texture_entry(2, c, wgpu::TextureSampleType::Float { filterable: true }),
+                texture_entry(3, c, unfilterable),
+                texture_entry(4, c, unfilterable),
+                texture_entry(5, c, wgpu::TextureSampleType::Depth),
+                super::gather::storage_rw(6),
+                texture_entry(7, c, unfilterable),
+                crate::render::layouts::storage_entry(8, c),
+            ],
+        });
+        let gen_module = shaders::module(device, "render/gi/ism/vpl_generate.wgsl")?;
+        Ok(Self {
+            gbuffer_pipeline,
+            seed_pipeline: compute_pipeline(device, "ism importance seed", &pyramid_layout, &imp_module, "seed"),
+            reduce_pipeline: compute_pipeline(device, "ism importance reduce", &pyramid_layout, &imp_module, "reduce"),
+            gen_pipeline: compute_pipeline(device, "ism vpl generation", &gen_layout, &gen_module, "cs_main"),
+            gen_params: super::screen::uniform(device, "ism vpl generation params", GenParams::SIZE),
+            view_layout,
+            pyramid_layout,
+            gen_layout,
+            sized: None,
+            tiles: None,
+        })
+    }
 
+    /// (Re)creates the targets for an atlas of `side` texels, `tiles` tiles and `vpls` VPLs.
+    fn ensure(&mut self, device: &wgpu::Device, side: u32, tiles: u32, vpls: u32) {
+        if self.sized.as_ref().is_some_and(|s| s.side == side && s.tile_capacity >= tiles && s.vpl_capacity >= vpls) {
+            return;
+        }
+        use wgpu::TextureUsages as U;
+        let tile_capacity = tiles.max(1).next_power_of_two();
+        let vpl_capacity = vpls.max(1).next_power_of_two();
+        let size = (side, side);
+        let rt = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
+        let [fa, fn_, fp, fs] = LIGHT_GBUFFER_FORMATS;
+        let albedo = Target::new(device, "ism light albedo", size, fa, rt);
+        let normal = Target::new(device, "ism light normal", size, fn_, rt);
+        let power = Target::new(device, "ism light power", size, fp, rt);
+        let specular = Target::new(device, "ism light specular", size, fs, rt);
+        let depth = Target::new(device, "ism light depth", size, wgpu::TextureFormat::Depth32Float, rt);
+        let view_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ism light views"),
+            size: u64::from(tile_capacity) * VIEW_SLOT,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let view_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism light view bind group"),
+            layout: &self.view_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &view_buffer,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(std::mem::size_of::<LightViewUniforms>() as u64),
+                }),
+            }],
+        });
+        let tile_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ism light tiles"),
+            size: u64::from(tile_capacity) * std::mem::size_of::<TileRecord>() as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let levels = side.trailing_zeros();
         let importance = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("ism importance pyramid"),
-            size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: 1 },
-            mip_level_count: LEVELS + 1,
+            size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: 1 },
+            mip_level_count: levels + 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: wgpu::TextureFormat::R32Float,
@@ -199,162 +215,99 @@ impl VplPass {
                 ..Default::default()
             })
         };
-        let c = wgpu::ShaderStages::COMPUTE;
-        let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
-        let pyramid_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("ism importance layout"),
-            entries: &[texture_entry(0, c, unfilterable), storage_texture_entry(1, wgpu::TextureFormat::R32Float)],
-        });
-        let imp_module = shaders::module(device, "render/gi/ism/importance.wgsl")?;
-        let seed_pipeline = compute_pipeline(device, "ism importance seed", &pyramid_layout, &imp_module, "seed");
-        let reduce_pipeline = compute_pipeline(device, "ism importance reduce", &pyramid_layout, &imp_module, "reduce");
-        let mut pyramid_groups = Vec::new();
-        for m in 0..=LEVELS {
-            let source = if m == 0 { power.view.clone() } else { mip(m - 1) };
-            let dest = mip(m);
-            pyramid_groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("ism importance bind group"),
-                layout: &pyramid_layout,
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&source) },
-                    wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&dest) },
-                ],
-            }));
-        }
+        let pyramid_groups = (0..=levels)
+            .map(|m| {
+                let source = if m == 0 { power.view.clone() } else { mip(m - 1) };
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("ism importance bind group"),
+                    layout: &self.pyramid_layout,
+                    entries: &[
+                        wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&source) },
+                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&mip(m)) },
+                    ],
+                })
+            })
+            .collect();
         let importance_full = importance
             .create_view(&wgpu::TextureViewDescriptor { label: Some("ism importance all mips"), ..Default::default() });
-
-        let gen_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("ism vpl generation layout"),
-            entries: &[
-                uniform_entry(0, c, false),
-                texture_entry(1, c, unfilterable),
-                texture_entry(2, c, wgpu::TextureSampleType::Float { filterable: true }),
-                texture_entry(3, c, unfilterable),
-                texture_entry(4, c, unfilterable),
-                texture_entry(5, c, wgpu::TextureSampleType::Depth),
-                texture_entry(7, c, unfilterable),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 6,
-                    visibility: c,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: false },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-            ],
-        });
-        let gen_module = shaders::module(device, "render/gi/ism/vpl_generate.wgsl")?;
-        let gen_pipeline = compute_pipeline(device, "ism vpl generation", &gen_layout, &gen_module, "cs_main");
-        let gen_params = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ism vpl generation params"),
-            size: std::mem::size_of::<GenParams>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let mut pass = Self {
-            gbuffer_pipeline,
-            view_buffer,
-            view_bind_group,
-            albedo,
-            normal,
-            power,
-            specular,
-            depth,
-            importance,
-            importance_full,
-            seed_pipeline,
-            reduce_pipeline,
-            pyramid_groups,
-            gen_pipeline,
-            gen_bind_group: device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("placeholder"),
-                layout: &device
-                    .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("empty"), entries: &[] }),
-                entries: &[],
-            }),
-            gen_layout,
-            gen_params,
-            vpls: device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("ism vpls"),
-                size: 64,
-                usage: wgpu::BufferUsages::STORAGE,
-                mapped_at_creation: false,
-            }),
-            vpl_capacity: 0,
-        };
-        pass.ensure_capacity(device, 256);
-        Ok(pass)
-    }
-
-    fn ensure_capacity(&mut self, device: &wgpu::Device, count: u32) {
-        if count <= self.vpl_capacity {
-            return;
-        }
-        self.vpl_capacity = count.next_power_of_two();
-        self.vpls = device.create_buffer(&wgpu::BufferDescriptor {
+        let vpls = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("ism vpls"),
-            size: u64::from(self.vpl_capacity) * std::mem::size_of::<GpuVpl>() as u64,
+            size: u64::from(vpl_capacity) * std::mem::size_of::<GpuVpl>() as u64,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
         fn view(binding: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
             wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(v) }
         }
-        let entries = [
-            wgpu::BindGroupEntry { binding: 0, resource: self.gen_params.as_entire_binding() },
-            view(1, &self.importance_full),
-            view(2, &self.albedo.view),
-            view(3, &self.normal.view),
-            view(4, &self.power.view),
-            view(5, &self.depth.view),
-            view(7, &self.specular.view),
-            wgpu::BindGroupEntry { binding: 6, resource: self.vpls.as_entire_binding() },
-        ];
-        self.gen_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let gen_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism vpl generation bind group"),
             layout: &self.gen_layout,
-            entries: &entries,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: self.gen_params.as_entire_binding() },
+                view(1, &importance_full),
+                view(2, &albedo.view),
+                view(3, &normal.view),
+                view(4, &power.view),
+                view(5, &depth.view),
+                wgpu::BindGroupEntry { binding: 6, resource: vpls.as_entire_binding() },
+                view(7, &specular.view),
+                wgpu::BindGroupEntry { binding: 8, resource: tile_buffer.as_entire_binding() },
+            ],
+        });
+        self.sized = Some(Sized {
+            side,
+            tile_capacity,
+            vpl_capacity,
+            view_buffer,
+            view_bind_group,
+            tile_buffer,
+            albedo,
+            normal,
+            power,
+            specular,
+            depth,
+            importance,
+            pyramid_groups,
+            vpls,
+            gen_bind_group,
         });
     }
 
-    /// The light's clip-from-world for the light G-buffer of spot light `light` (a frustum that
-    /// holds the outer cone), or `None` if it is not a spot light.
-    pub fn light_layout(scene: &Scene, light: usize) -> Option<LightLayout> {
-        let l = scene.lights().get(light)?;
-        let radius = scene.bounds().map_or(10.0, |b| b.radius() + (b.center() - l.position).length());
-        let (near, far) = (0.01f32.min(0.1 * radius), radius + 0.01);
-        match l.kind {
-            LightKind::Spot { outer_cone_angle, .. } => {
-                let fov = (2.0 * outer_cone_angle).min(170f32.to_radians());
-                let up = if l.direction.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
-                let view = look_at_mat4(l.position, l.position + l.direction, up);
-                Some(LightLayout {
-                    tiles: vec![directx::perspective(fov, 1.0, near, far) * view],
-                    tile_size: LIGHT_GBUFFER_SIZE,
-                    per_row: 1,
-                    tan_half: (0.5 * fov).tan(),
-                    axes: vec![l.direction],
-                })
-            }
-            LightKind::Point => {
-                let proj = directx::perspective(std::f32::consts::FRAC_PI_2, 1.0, near, far);
-                Some(LightLayout {
-                    tiles: crate::render::shadows::face_views(l.position).iter().map(|v| proj * *v).collect(),
-                    tile_size: LIGHT_GBUFFER_SIZE / 4,
-                    per_row: 4,
-                    tan_half: 1.0,
-                    axes: vec![Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z],
-                })
-            }
-            LightKind::Directional => None,
-        }
+    /// Frees the targets (another mode is active); pipelines stay.
+    pub fn release(&mut self) {
+        self.sized = None;
+        self.tiles = None;
     }
 
-    /// Records P2, P3 and P5 for spot or point light `light`; returns false (nothing recorded)
-    /// for a directional light.
+    /// Bytes of GPU memory held by the targets and buffers.
+    pub fn gpu_bytes(&self) -> u64 {
+        self.sized.as_ref().map_or(0, |s| {
+            let textures = [&s.albedo, &s.normal, &s.power, &s.specular, &s.depth].map(|t| texture_bytes(&t.texture));
+            textures.iter().sum::<u64>()
+                + texture_bytes(&s.importance)
+                + s.vpls.size()
+                + s.view_buffer.size()
+                + s.tile_buffer.size()
+        })
+    }
+
+    /// The light G-buffer layout of the last frame.
+    pub fn tiles(&self) -> Option<&LightTiles> {
+        self.tiles.as_ref()
+    }
+
+    /// The first-bounce VPLs of the last frame.
+    pub fn vpls(&self) -> Option<&wgpu::Buffer> {
+        self.sized.as_ref().map(|s| &s.vpls)
+    }
+
+    /// Light G-buffer views for the inspector: albedo, normal, power, importance.
+    pub fn views(&self) -> Option<(&Target, &Target, &Target, &wgpu::Texture)> {
+        self.sized.as_ref().map(|s| (&s.albedo, &s.normal, &s.power, &s.importance))
+    }
+
+    /// Records P2, P3 and P5 for every light of `scene`; returns false (nothing recorded) when
+    /// no light emits.
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -363,32 +316,41 @@ impl VplPass {
         encoder: &mut wgpu::CommandEncoder,
         scene: &Scene,
         gpu: &SceneGpu,
-        light: usize,
         settings: &IsmSettings,
         frame: u32,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) -> bool {
-        let Some(layout) = Self::light_layout(scene, light) else { return false };
-        let Some(l) = scene.lights().get(light) else { return false };
-        self.ensure_capacity(device, settings.vpl_count);
-        for (t, clip) in layout.tiles.iter().enumerate() {
+        let tiles = layout(scene);
+        if tiles.tiles.is_empty() {
+            self.tiles = Some(tiles);
+            return false;
+        }
+        self.ensure(device, tiles.side, tiles.tiles.len() as u32, settings.vpl_count);
+        let Some(s) = &self.sized else { return false };
+        let mut records = Vec::with_capacity(tiles.tiles.len());
+        for (t, tile) in tiles.tiles.iter().enumerate() {
+            let Some(l) = scene.lights().get(tile.light) else { continue };
             let view = LightViewUniforms {
-                clip_from_world: clip.to_cols_array_2d(),
+                clip_from_world: tile.clip_from_world.to_cols_array_2d(),
                 light: GpuLight::new(l, None, 0.0),
-                params: [layout.tan_half, layout.tile_size as f32, 0.0, 0.0],
-                axis: layout.axes.get(t).copied().unwrap_or(l.direction).extend(0.0).to_array(),
+                params: [tile.tan_half, tiles.tile_size as f32, tile.ortho_texel_area, 0.0],
+                axis: tile.axis.extend(0.0).to_array(),
             };
-            queue.write_buffer(&self.view_buffer, t as u64 * VIEW_SLOT, bytemuck::bytes_of(&view));
+            queue.write_buffer(&s.view_buffer, t as u64 * VIEW_SLOT, bytemuck::bytes_of(&view));
+            let towards = match l.kind {
+                LightKind::Directional => (-l.direction.normalize_or(Vec3::NEG_Y)).extend(1.0),
+                _ => l.position.extend(0.0),
+            };
+            records.push(TileRecord {
+                world_from_clip: tile.clip_from_world.inverse().to_cols_array_2d(),
+                light: towards.to_array(),
+            });
         }
-        let mut world_from_clip = [[[0.0f32; 4]; 4]; 6];
-        for (slot, clip) in world_from_clip.iter_mut().zip(&layout.tiles) {
-            *slot = clip.inverse().to_cols_array_2d();
-        }
+        queue.write_buffer(&s.tile_buffer, 0, bytemuck::cast_slice(&records));
+        let levels = tiles.side.trailing_zeros();
         let params = GenParams {
-            world_from_clip,
-            light_position: l.position.extend(1.0).to_array(),
-            counts: [settings.vpl_count, frame, settings.interleave, LEVELS],
-            tiles: [layout.per_row, layout.tile_size, layout.tiles.len() as u32, 0],
+            counts: [settings.vpl_count, frame, settings.interleave, levels],
+            tiles: [tiles.per_row, tiles.tile_size, tiles.tiles.len() as u32, 0],
         };
         queue.write_buffer(&self.gen_params, 0, bytemuck::bytes_of(&params));
         {
@@ -403,13 +365,16 @@ impl VplPass {
                     },
                 })
             }
-            let (a, n, p) = (self.albedo.view.clone(), self.normal.view.clone(), self.power.view.clone());
-            let sp = self.specular.view.clone();
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("ism light gbuffer pass"),
-                color_attachments: &[color(&a), color(&n), color(&p), color(&sp)],
+                color_attachments: &[
+                    color(&s.albedo.view),
+                    color(&s.normal.view),
+                    color(&s.power.view),
+                    color(&s.specular.view),
+                ],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.depth.view,
+                    view: &s.depth.view,
                     depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
                     stencil_ops: None,
                 }),
@@ -418,11 +383,11 @@ impl VplPass {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.gbuffer_pipeline);
-            for t in 0..layout.tiles.len() as u32 {
-                let size = layout.tile_size as f32;
-                let (x, y) = ((t % layout.per_row) as f32 * size, (t / layout.per_row) as f32 * size);
-                pass.set_viewport(x, y, size, size, 0.0, 1.0);
-                pass.set_bind_group(0, &self.view_bind_group, &[(u64::from(t) * VIEW_SLOT) as u32]);
+            for t in 0..tiles.tiles.len() {
+                let (x, y) = tiles.origin(t);
+                let size = tiles.tile_size as f32;
+                pass.set_viewport(x as f32, y as f32, size, size, 0.0, 1.0);
+                pass.set_bind_group(0, &s.view_bind_group, &[(t as u64 * VIEW_SLOT) as u32]);
                 gpu.draw_objects(&mut pass, scene);
             }
         }
@@ -430,15 +395,17 @@ impl VplPass {
             label: Some("ism importance pyramid"),
             timestamp_writes: timestamps.as_ref().map(|t| t.compute_end_writes()),
         });
-        for (m, group) in self.pyramid_groups.iter().enumerate() {
+        for (m, group) in s.pyramid_groups.iter().enumerate() {
             pass.set_pipeline(if m == 0 { &self.seed_pipeline } else { &self.reduce_pipeline });
             pass.set_bind_group(0, group, &[]);
-            let side = (LIGHT_GBUFFER_SIZE >> m).max(1);
+            let side = (tiles.side >> m).max(1);
             pass.dispatch_workgroups(side.div_ceil(8), side.div_ceil(8), 1);
         }
         pass.set_pipeline(&self.gen_pipeline);
-        pass.set_bind_group(0, &self.gen_bind_group, &[]);
+        pass.set_bind_group(0, &s.gen_bind_group, &[]);
         pass.dispatch_workgroups(settings.vpl_count.div_ceil(64), 1, 1);
+        drop(pass);
+        self.tiles = Some(tiles);
         true
     }
 }

@@ -6,7 +6,8 @@ use std::sync::{Arc, Mutex};
 
 use crate::image_io::HdrImage;
 use crate::precompute::pathtracer::{PathTracer, Progress};
-use crate::project_file::Project;
+use crate::scene::Scene;
+use crate::settings::ReferenceSettings;
 
 type Latest = Arc<Mutex<Option<(HdrImage, Progress)>>>;
 
@@ -20,12 +21,12 @@ pub struct ReferenceJob {
 }
 
 impl ReferenceJob {
-    /// Starts rendering `project` at `size` until its reference spp.
-    pub fn start(project: &Project, size: (u32, u32)) -> Self {
+    /// Starts rendering `scene` at `size` until `settings.spp`.
+    pub fn start(scene: &Scene, settings: &ReferenceSettings, size: (u32, u32)) -> Self {
         let cancel = Arc::new(AtomicBool::new(false));
         let latest: Latest = Arc::new(Mutex::new(None));
-        let settings = project.render.reference.clone();
-        let mut tracer = PathTracer::new(&project.scene, size, settings.clone());
+        let settings = settings.clone();
+        let mut tracer = PathTracer::new(scene, size, settings.clone());
         let (c, l, spp) = (cancel.clone(), latest.clone(), settings.spp);
         // Leave a core for the UI and the GPU driver (a software adapter renders on the CPU too).
         let threads = std::thread::available_parallelism().map_or(1, |n| n.get().saturating_sub(1).max(1));
@@ -54,12 +55,17 @@ impl ReferenceJob {
         if let Err(e) = spawned {
             log::error!("cannot start the reference render: {e}");
         }
-        Self { cancel, latest, revision: project.scene.revision(), settings, size }
+        Self { cancel, latest, revision: scene.revision(), settings, size }
     }
 
-    /// Whether this job renders the current state of `project` at `size`.
-    pub fn matches(&self, project: &Project, size: (u32, u32)) -> bool {
-        self.revision == project.scene.revision() && self.settings == project.render.reference && self.size == size
+    /// Whether this job renders the current state of `scene` with `settings` at `size`.
+    pub fn matches(&self, scene: &Scene, settings: &ReferenceSettings, size: (u32, u32)) -> bool {
+        self.revision == scene.revision() && self.settings == *settings && self.size == size
+    }
+
+    /// The size it renders at.
+    pub fn size(&self) -> (u32, u32) {
+        self.size
     }
 
     /// The newest image and progress, if a pass has finished.

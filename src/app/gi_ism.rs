@@ -1,0 +1,37 @@
+//! The GI panel's ISM section (`ism`, `ism-ritschel`): every IsmSettings field with its
+//! cost/quality trade-off as a tooltip.
+
+use crate::settings::IsmSettings;
+
+/// Draws the ISM settings.
+pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("ISM (Knecht 2009)").default_open(true).show(ui, |ui| {
+        ui.add(egui::Slider::new(&mut m.vpl_count, 4..=1024).logarithmic(true).text("VPLs"))
+            .on_hover_text("Cost: shading and ISM splatting grow linearly; quality: fewer blotches, less flicker (256 for flicker-free).");
+        egui::ComboBox::from_label("ISM resolution").selected_text(m.ism_resolution.to_string()).show_ui(ui, |ui| {
+            for r in [64, 128, 256] {
+                ui.selectable_value(&mut m.ism_resolution, r, r.to_string());
+            }
+        });
+        ui.add(egui::Slider::new(&mut m.total_points, 1024..=1 << 20).logarithmic(true).text("sample points"))
+            .on_hover_text("Split over the ISMs (points per ISM = points / VPLs). Too few: holes and light leaks.");
+        ui.add(egui::Slider::new(&mut m.interleave, 1..=8).text("interleave n"))
+            .on_hover_text("Each pixel sees VPLs / n² VPLs; the n x n filter hides the pattern.");
+        ui.add(egui::Slider::new(&mut m.bounces, 1..=6).text("bounces")).on_hover_text("Each extra bounce: one VPL, ISM and shading pass.");
+        ui.add(egui::Slider::new(&mut m.base_confidence, 0.0..=0.99).text("base confidence"))
+            .on_hover_text("Higher: smoother over time, more afterglow after lighting changes.");
+        ui.add(egui::Slider::new(&mut m.w_position, 0.0..=100.0).text("w position"));
+        ui.add(egui::Slider::new(&mut m.w_normal, 0.0..=100.0).text("w normal"));
+        ui.add(egui::Slider::new(&mut m.w_illumination, 0.0..=100.0).text("w illumination"))
+            .on_hover_text("Higher: reacts faster to lighting changes, but lets VPL resampling noise through.");
+        ui.add(egui::Slider::new(&mut m.clamp_distance, 0.0..=2.0).text("clamp distance (m)"))
+            .on_hover_text("Minimum VPL distance: fewer spikes near VPLs, darker corners (bias).");
+        ui.add(egui::Slider::new(&mut m.filter_depth, 0.001..=0.1).logarithmic(true).text("filter plane tolerance"))
+            .on_hover_text("Geometry-aware filter: neighbours farther than this x scene diameter from the pixel's tangent plane are rejected. Lower: sharper contacts, more interleave pattern.");
+        ui.add(egui::Slider::new(&mut m.filter_normal, 0.0..=1.0).text("filter normal cosine"))
+            .on_hover_text("Neighbours whose normal differs by a cosine below this are rejected (the SH filter tests geometric normals only).");
+        ui.checkbox(&mut m.sh_filter, "SH filter (Segovia & Wald)").on_hover_text(
+            "Filter incident radiance as 9 SH coefficients per colour, then shade with each pixel's own normal-mapped normal and glossy lobe. Cost: 56 bytes per pixel and 27-channel filtering (`ism shade` +7% at 320x180, +17% at 640x360 in docs/BENCHMARKS.md).",
+        );
+    });
+}

@@ -1,0 +1,152 @@
+//! The ISM passes' shader parameter blocks as `Pod` structs, one per WGSL struct, with their
+//! sizes checked at compile time here and against the WGSL layout (naga) in `tests/shaders.rs`
+//! through [`PARAM_BLOCKS`].
+
+use bytemuck::{Pod, Zeroable};
+
+use crate::render::uniforms::GpuLight;
+
+/// `SplatParams` in `ism_splat.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct SplatParams {
+    /// VPL count, points, tile side r, tiles per row C.
+    pub counts: [u32; 4],
+    /// 1 / d_max (normalised distance), splat size constant, max splat texels, unused.
+    pub params: [f32; 4],
+    /// First VPL (and atlas tile) of the set being splatted, unused x3.
+    pub sets: [u32; 4],
+}
+
+/// `BounceParams` in `ism_bounce.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct BounceParams {
+    /// VPLs per set, points, tile side r, tiles per row C.
+    pub counts: [u32; 4],
+    /// Source set's first VPL, destination set's first VPL, unused x2.
+    pub sets: [u32; 4],
+    /// 1 / d_max, ISM depth bias, d_min^2, interleave n^2.
+    pub params: [f32; 4],
+    /// Sum over the scene of area x weight, unused x3.
+    pub area: [f32; 4],
+}
+
+/// `PullPushParams` in `pull_push.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct PullPushParams {
+    /// Fine side (texels), level of the fine side (0 = finest), first fine row, unused.
+    pub counts: [u32; 4],
+    /// Threshold tau (normalised distance), unused x3.
+    pub params: [f32; 4],
+}
+
+/// `SplitParams` in `ism_split.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct SplitParams {
+    /// Interleave n, unused x3.
+    pub counts: [u32; 4],
+}
+
+/// `ShadeParams` in `ism_shade.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct ShadeParams {
+    /// VPL count, tile side r, tiles per row C, interleave n.
+    pub counts: [u32; 4],
+    /// 1 / d_max, depth bias (normalised), d_min^2, unused.
+    pub params: [f32; 4],
+    /// VPL sets (bounces), view width, view height, unused.
+    pub sets: [u32; 4],
+}
+
+/// `TemporalParams` in `ism_temporal.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct TemporalParams {
+    /// Reset (1 = ignore history), n when the input is in the split layout (0: full), unused x2.
+    pub flags: [u32; 4],
+    /// c_base, w_pos, w_normal, w_illum.
+    pub weights: [f32; 4],
+    /// Depth range (metres), exposure multiplier, unused x2.
+    pub params: [f32; 4],
+}
+
+/// `FilterParams` in `ism_filter.wgsl` (and `ShFilterParams` in `ism_sh_filter.wgsl`, which
+/// has the same layout and uses only the first count).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct FilterParams {
+    /// Interleave n, n when the input is in the split layout (0: full layout), unused x2.
+    pub counts: [u32; 4],
+    /// Alpha (normalised depth), beta (min cosine), depth range (metres), unused.
+    pub params: [f32; 4],
+}
+
+/// `GenParams` in `vpl_generate.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct GenParams {
+    /// VPL count, frame index, interleave n, pyramid levels K (finest side = 2^K).
+    pub counts: [u32; 4],
+    /// Tiles per row, tile side in texels, tile count, unused.
+    pub tiles: [u32; 4],
+}
+
+/// `TileRecord` in `vpl_generate.wgsl`: one light-G-buffer tile.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct TileRecord {
+    /// World-from-clip of the tile's view.
+    pub world_from_clip: [[f32; 4]; 4],
+    /// xyz light position (w = 0), or the unit direction towards a directional light (w = 1).
+    pub light: [f32; 4],
+}
+
+/// `LightView` in `light_gbuffer.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct LightViewUniforms {
+    /// Clip-from-world of the tile.
+    pub clip_from_world: [[f32; 4]; 4],
+    /// The light.
+    pub light: GpuLight,
+    /// tan(half fov), texels per tile side, world area of a texel (orthographic tiles; 0 for
+    /// perspective ones), unused.
+    pub params: [f32; 4],
+    /// The tile's view axis (xyz).
+    pub axis: [f32; 4],
+}
+
+impl GenParams {
+    /// Bytes of the block.
+    pub const SIZE: u64 = std::mem::size_of::<Self>() as u64;
+}
+
+const _: () = assert!(std::mem::size_of::<SplatParams>() == 48);
+const _: () = assert!(std::mem::size_of::<BounceParams>() == 64);
+const _: () = assert!(std::mem::size_of::<PullPushParams>() == 32);
+const _: () = assert!(std::mem::size_of::<SplitParams>() == 16);
+const _: () = assert!(std::mem::size_of::<ShadeParams>() == 48);
+const _: () = assert!(std::mem::size_of::<TemporalParams>() == 48);
+const _: () = assert!(std::mem::size_of::<FilterParams>() == 32);
+const _: () = assert!(std::mem::size_of::<GenParams>() == 32);
+const _: () = assert!(std::mem::size_of::<TileRecord>() == 80);
+const _: () = assert!(std::mem::size_of::<LightViewUniforms>() == 160);
+
+/// (shader file, WGSL struct, size of the Rust mirror) for every ISM parameter block.
+pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
+    ("render/gi/ism/ism_splat.wgsl", "SplatParams", std::mem::size_of::<SplatParams>()),
+    ("render/gi/ism/ism_bounce.wgsl", "BounceParams", std::mem::size_of::<BounceParams>()),
+    ("render/gi/ism/pull_push.wgsl", "PullPushParams", std::mem::size_of::<PullPushParams>()),
+    ("render/gi/ism/ism_split.wgsl", "SplitParams", std::mem::size_of::<SplitParams>()),
+    ("render/gi/ism/ism_shade.wgsl", "ShadeParams", std::mem::size_of::<ShadeParams>()),
+    ("render/gi/ism/ism_temporal.wgsl", "TemporalParams", std::mem::size_of::<TemporalParams>()),
+    ("render/gi/ism/ism_filter.wgsl", "FilterParams", std::mem::size_of::<FilterParams>()),
+    ("render/gi/ism/ism_sh_filter.wgsl", "ShFilterParams", std::mem::size_of::<FilterParams>()),
+    ("render/gi/ism/vpl_generate.wgsl", "GenParams", std::mem::size_of::<GenParams>()),
+    ("render/gi/ism/vpl_generate.wgsl", "TileRecord", std::mem::size_of::<TileRecord>()),
+    ("render/gi/ism/light_gbuffer.wgsl", "LightView", std::mem::size_of::<LightViewUniforms>()),
+];

@@ -1,0 +1,440 @@
+//! `ism` and `ism-ritschel` behind the technique seam: owns the VPL pass, the ISM gather and
+//! screen passes, the scene sample points and their upload key, and maps the seam's reset
+//! reasons onto what ISM keeps between frames.
+//!
+//! What each reset reason invalidates (Knecht 2009 section 3.5: the confidence already follows
+//! moving lights and objects, so their edits keep the temporal history):
+//! - light edited: nothing (VPLs are regenerated every frame anyway);
+//! - scene edited: the uploaded point data (positions, albedo) is re-checked by its key and the
+//!   point distribution by its own key; the temporal history stays;
+//! - camera cut, settings changed, mode entered, resized: the temporal history.
+
+use super::gather::{IsmGather, MapScale, PointData};
+use super::light_tiles::LightTiles;
+use super::points::{mean_linear_colour, point_data, point_data_key};
+use super::screen::DEPTH_BIAS;
+use super::vpl_pass::{GpuVpl, VplPass};
+use crate::image_io::HdrImage;
+use crate::precompute::sample_points::SamplePoints;
+use crate::render::RenderError;
+use crate::render::gi::inputs::GiInputs;
+use crate::render::gi::technique::{
+    BufferInfo, BufferView, GiOutput, GiTechnique, Overlay, OverlayPoint, Readiness, ResetReason, SupportQuery,
+    TechniqueStatus, note_reset,
+};
+use crate::render::layouts::Layouts;
+use crate::render::readback;
+use crate::scene::Scene;
+use crate::settings::{GiMode, IsmSettings, RenderSettings};
+
+/// What the ISM sample-point distribution depends on.
+#[derive(Clone, Debug, PartialEq)]
+struct PointsKey {
+    resources: u64,
+    total: u32,
+    objects: Vec<(f32, bool, [f32; 3])>,
+}
+
+/// Read-back results of the first-bounce VPL generation of the last frame.
+#[derive(Clone, Debug)]
+pub struct IsmVpls {
+    /// The generated VPLs.
+    pub vpls: Vec<GpuVpl>,
+    /// Importance per light-G-buffer texel (mip 0), row-major.
+    pub importance: Vec<f32>,
+    /// Reflected power (rgb) and importance (a) per texel.
+    pub power: Vec<[f32; 4]>,
+    /// The atlas layout (which light each tile belongs to).
+    pub tiles: LightTiles,
+    /// The frame index the sample set was drawn for.
+    pub frame: u32,
+}
+
+/// The ISM technique (Knecht 2009; `ism-ritschel` is the same without temporal reuse).
+pub struct IsmTechnique {
+    vpl_pass: VplPass,
+    gather: IsmGather,
+    points: Option<(PointsKey, SamplePoints, Vec<[f32; 3]>)>,
+    points_generation: u64,
+    /// (gather buffer generation, point set generation, [`point_data_key`]) of the uploaded
+    /// point data; the upload is skipped while it stays equal.
+    uploaded: Option<(u64, u64, Vec<u32>)>,
+    last_frame: u32,
+    status: TechniqueStatus,
+    rebuilds: u64,
+    uploads: u64,
+}
+
+/// The buffers the ISM modes add to the inspector.
+pub const BUFFERS: &[BufferInfo] = &[
+    BufferInfo {
+        name: "ism_light_albedo",
+        description: "Albedo seen from the lights (every light's tiles); a = specular luminance.",
+        format: "rgba8",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "ism_light_normal",
+        description: "World normals seen from the lights.",
+        format: "rgba16f",
+        view: BufferView::Normal,
+    },
+    BufferInfo {
+        name: "ism_light_power",
+        description: "Power each light-G-buffer texel's patch reflects (W); a = importance.",
+        format: "rgba16f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "ism_importance",
+        description: "Importance (mip 0 of the warp pyramid); bright where VPLs will land.",
+        format: "r32f",
+        view: BufferView::Scalar,
+    },
+    BufferInfo {
+        name: "ism_atlas",
+        description: "The ISM atlas after pull-push: one paraboloid map per VPL of every bounce; 1 = empty.",
+        format: "r32f",
+        view: BufferView::Depth,
+    },
+    BufferInfo {
+        name: "ism_atlas_splats",
+        description: "The ISM atlas as splatted, before pull-push fills the holes (a copy made while shown).",
+        format: "r32f",
+        view: BufferView::Depth,
+    },
+    BufferInfo {
+        name: "ism_split_position",
+        description: "The split G-buffer's world positions (n x n tiles of the view).",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "ism_split_normal",
+        description: "The split G-buffer's normals (octahedral).",
+        format: "rgba16f",
+        view: BufferView::Normal,
+    },
+    BufferInfo {
+        name: "ism_raw",
+        description: "Interleaved VPL shading in the split layout, before filtering (irradiance filter only).",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "ism_confidence",
+        description: "Temporal confidence: r position, g normal, b illumination change; a = confidence.",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "ism_history",
+        description: "The temporal history after this frame's merge.",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "ism_sh_shaded",
+        description: "SH filter: outgoing indirect radiance; a = accepted taps / n^2.",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "ism_sh_dc",
+        description: "SH filter: filtered DC (mean incident radiance); a = accepted taps / n^2.",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "ism_sh_direction",
+        description: "SH filter: band-1 luminance direction as 0.5 + 0.5 dir; a = band-2 share.",
+        format: "rgba32f",
+        view: BufferView::Normal,
+    },
+];
+
+impl IsmTechnique {
+    /// Creates the pipelines; memory comes with the first frame.
+    pub fn new(device: &wgpu::Device, layouts: &Layouts) -> Result<Self, RenderError> {
+        Ok(Self {
+            vpl_pass: VplPass::new(device, layouts)?,
+            gather: IsmGather::new(device)?,
+            points: None,
+            points_generation: 0,
+            uploaded: None,
+            last_frame: 0,
+            status: TechniqueStatus::default(),
+            rebuilds: 0,
+            uploads: 0,
+        })
+    }
+
+    /// The seam's support check: the SH filter's coefficients must fit one storage binding.
+    pub fn support(query: &SupportQuery<'_>) -> Result<(), String> {
+        let s = &query.settings.ism;
+        if s.sh_filter {
+            let split = super::screen::split_size(query.size, s.interleave);
+            let bytes = super::sh_filter::ShFilter::raw_bytes(split);
+            let limit = query.limits.max_storage_buffer_binding_size.min(query.limits.max_buffer_size);
+            if bytes > limit {
+                return Err(format!(
+                    "the SH filter needs {} MiB of coefficients at {}x{}, this adapter binds at most {} MiB; \
+                     lower the resolution or turn the SH filter off",
+                    bytes >> 20,
+                    query.size.0,
+                    query.size.1,
+                    limit >> 20
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn update_points(&mut self, scene: &Scene, ism: &IsmSettings) {
+        let key = PointsKey {
+            resources: scene.resources_revision(),
+            total: ism.total_points,
+            objects: scene
+                .objects()
+                .iter()
+                .map(|o| (o.sampling_weight, o.is_rendered(), o.transform.scale.to_array()))
+                .collect(),
+        };
+        if self.points.as_ref().is_none_or(|(k, _, _)| *k != key) {
+            let points = crate::precompute::sample_points::distribute(scene, ism.total_points as usize, 1);
+            let means = scene.resources().images.iter().map(mean_linear_colour).collect();
+            self.points = Some((key, points, means));
+            self.points_generation += 1;
+            self.rebuilds += 1;
+        }
+    }
+
+    /// The first-bounce VPLs, importance and reflected power of the last frame (tests).
+    pub fn read_vpls(&self, device: &wgpu::Device, queue: &wgpu::Queue, count: u32) -> Result<IsmVpls, RenderError> {
+        let missing =
+            || RenderError::UnknownBuffer { name: "ism vpls".into(), known: "render an ism mode first".into() };
+        let (vpls, views, tiles) = (self.vpl_pass.vpls(), self.vpl_pass.views(), self.vpl_pass.tiles());
+        let (Some(buffer), Some((_, _, power, importance)), Some(tiles)) = (vpls, views, tiles) else {
+            return Err(missing());
+        };
+        let mut vpls: Vec<GpuVpl> = bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, buffer)?);
+        vpls.truncate(count as usize);
+        let importance = readback::read_as_rgba_f32(device, queue, importance)?.into_iter().map(|p| p[0]).collect();
+        let power = readback::read_as_rgba_f32(device, queue, &power.texture)?;
+        Ok(IsmVpls { vpls, importance, power, tiles: tiles.clone(), frame: self.last_frame })
+    }
+
+    /// The VPLs of every bounce of the last frame (set b at `b * vpl_count`).
+    pub fn read_all_vpls(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<GpuVpl>, RenderError> {
+        let buffer = self.gather.all_vpls().ok_or_else(|| RenderError::UnknownBuffer {
+            name: "ism vpls".into(),
+            known: "render an ism mode first".into(),
+        })?;
+        Ok(bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, buffer)?))
+    }
+
+    fn read_atlas(&self, device: &wgpu::Device, queue: &wgpu::Queue, splats: bool) -> Result<HdrImage, RenderError> {
+        let name = if splats { "ism_atlas_splats" } else { "ism_atlas" };
+        let missing = |why: &str| RenderError::UnknownBuffer { name: name.into(), known: why.into() };
+        let (levels, side) = self.gather.atlas().ok_or_else(|| missing("render an ism mode first"))?;
+        let buffer = if splats {
+            self.gather.splats().ok_or_else(|| missing("render one ism frame while this buffer is shown"))?
+        } else {
+            levels.first().ok_or_else(|| missing("render an ism mode first"))?
+        };
+        let bytes = readback::read_buffer(device, queue, buffer)?;
+        let pixels = bytemuck::pod_collect_to_vec::<u8, u32>(&bytes)
+            .into_iter()
+            .map(|bits| {
+                let v = f32::from_bits(bits);
+                [v, v, v, 1.0]
+            })
+            .collect();
+        Ok(HdrImage { width: side, height: side, pixels })
+    }
+}
+
+impl GiTechnique for IsmTechnique {
+    fn support(&self, query: &SupportQuery<'_>) -> Result<(), String> {
+        Self::support(query)
+    }
+
+    fn prepare(&mut self, scene: &Scene, settings: &RenderSettings, _size: (u32, u32)) -> Readiness {
+        self.update_points(scene, &settings.ism);
+        Readiness::Ready
+    }
+
+    fn render(&mut self, inputs: &mut GiInputs<'_>) -> Result<GiOutput, RenderError> {
+        let settings = &inputs.settings.ism;
+        let Some((_, points, means)) = self.points.as_ref() else { return Ok(GiOutput::Nothing) };
+        self.last_frame = inputs.frame_index;
+        let recorded = self.vpl_pass.record(
+            inputs.device,
+            inputs.queue,
+            inputs.encoder,
+            inputs.scene,
+            inputs.scene_gpu,
+            settings,
+            inputs.frame_index,
+            inputs.timer.scope("ism vpls"),
+        );
+        let Some(vpls) = self.vpl_pass.vpls().filter(|_| recorded) else { return Ok(GiOutput::Nothing) };
+        let buffers = self.gather.prepare(inputs.device, settings, points.points.len() as u32);
+        let current = (buffers, self.points_generation, point_data_key(inputs.scene));
+        if self.uploaded.as_ref() != Some(&current) {
+            let data: PointData = point_data(inputs.scene, points, means);
+            self.gather.upload_points(inputs.queue, &data);
+            self.uploaded = Some(current);
+            self.uploads += 1;
+        }
+        let diameter = 2.0 * inputs.scene.bounds().map_or(1.0, |b| b.radius());
+        let scale = MapScale {
+            d_max: diameter,
+            depth_bias: DEPTH_BIAS,
+            pull_push: 0.05,
+            total_area: points.weighted_area.iter().sum::<f64>() as f32,
+        };
+        self.gather.record_maps(
+            inputs.device,
+            inputs.queue,
+            inputs.encoder,
+            vpls,
+            &scale,
+            settings,
+            inputs.timer.scope("ism maps"),
+        );
+        let temporal = inputs.mode == GiMode::Ism;
+        let exposure = inputs.settings.view.exposure_ev.exp2();
+        let ts = inputs.timer.scope("ism shade");
+        self.gather.record_screen(
+            inputs.device,
+            inputs.queue,
+            inputs.encoder,
+            inputs.frame_buffer,
+            inputs.targets,
+            &scale,
+            settings,
+            temporal,
+            exposure,
+            ts,
+        );
+        self.status.history_frames = if temporal { self.status.history_frames.saturating_add(1) } else { 1 };
+        // The SH filter shades with the full BRDF: `indirect` is outgoing radiance.
+        Ok(if settings.sh_filter { GiOutput::Radiance } else { GiOutput::IrradianceOverPi })
+    }
+
+    fn buffers(&self) -> &'static [BufferInfo] {
+        BUFFERS
+    }
+
+    fn read_buffer(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        name: &str,
+    ) -> Option<Result<HdrImage, RenderError>> {
+        if !BUFFERS.iter().any(|b| b.name == name) {
+            return None;
+        }
+        if name == "ism_atlas" || name == "ism_atlas_splats" {
+            return Some(self.read_atlas(device, queue, name == "ism_atlas_splats"));
+        }
+        let missing = || RenderError::UnknownBuffer { name: name.into(), known: "render an ism mode first".into() };
+        let sh_missing = || RenderError::UnknownBuffer {
+            name: name.into(),
+            known: "render an ism mode with the SH filter on first".into(),
+        };
+        let light = self.vpl_pass.views();
+        let screen = &self.gather.screen;
+        let texture: Result<&wgpu::Texture, RenderError> = match name {
+            "ism_light_albedo" => light.map(|l| &l.0.texture).ok_or_else(missing),
+            "ism_light_normal" => light.map(|l| &l.1.texture).ok_or_else(missing),
+            "ism_light_power" => light.map(|l| &l.2.texture).ok_or_else(missing),
+            "ism_importance" => light.map(|l| l.3).ok_or_else(missing),
+            "ism_split_position" => screen.split_gbuffer().map(|g| &g.0.texture).ok_or_else(missing),
+            "ism_split_normal" => screen.split_gbuffer().map(|g| &g.1.texture).ok_or_else(missing),
+            "ism_raw" => screen.raw().map(|t| &t.texture).ok_or_else(|| RenderError::UnknownBuffer {
+                name: name.into(),
+                known: "render an ism mode with the irradiance filter first (the SH filter accumulates \
+                        coefficients: see ism_sh_shaded, ism_sh_dc, ism_sh_direction)"
+                    .into(),
+            }),
+            "ism_confidence" => screen.confidence().map(|t| &t.texture).ok_or_else(missing),
+            "ism_history" => screen.history().map(|t| &t.texture).ok_or_else(missing),
+            "ism_sh_shaded" => screen.sh_views().map(|v| &v.0.texture).ok_or_else(sh_missing),
+            "ism_sh_dc" => screen.sh_views().map(|v| &v.1.texture).ok_or_else(sh_missing),
+            "ism_sh_direction" => screen.sh_views().map(|v| &v.2.texture).ok_or_else(sh_missing),
+            _ => Err(missing()),
+        };
+        Some(texture.and_then(|t| {
+            let pixels = readback::read_as_rgba_f32(device, queue, t)?;
+            Ok(HdrImage { width: t.width(), height: t.height(), pixels })
+        }))
+    }
+
+    fn overlays(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Vec<crate::render::gi::technique::Overlay> {
+        let Ok(vpls) = self.read_all_vpls(device, queue) else { return Vec::new() };
+        let sets = self.gather.sets().max(1);
+        let per_set = (vpls.len() as u32 / sets).max(1) as usize;
+        let points = vpls
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| v.position[3] > 0.5)
+            .map(|(i, v)| OverlayPoint {
+                position: glam::Vec3::new(v.position[0], v.position[1], v.position[2]),
+                tone: (i / per_set) as f32 / 5.0,
+                radius: 2.5,
+            })
+            .collect();
+        vec![Overlay { name: "VPLs", points }]
+    }
+
+    fn reset(&mut self, reason: ResetReason) {
+        note_reset(&mut self.status, reason);
+        match reason {
+            // The confidence follows moving lights and objects (Knecht 2009 section 3.5); the
+            // point data is re-checked by its keys every frame.
+            ResetReason::LightEdited | ResetReason::SceneEdited => {}
+            ResetReason::CameraCut | ResetReason::SettingsChanged | ResetReason::ModeEntered | ResetReason::Resized => {
+                self.gather.screen.reset_history();
+                self.status.history_frames = 0;
+            }
+        }
+    }
+
+    fn release(&mut self) {
+        self.vpl_pass.release();
+        self.gather.release();
+        self.uploaded = None;
+        self.status.history_frames = 0;
+    }
+
+    fn gpu_bytes(&self) -> u64 {
+        self.vpl_pass.gpu_bytes() + self.gather.gpu_bytes()
+    }
+
+    fn limitations(&self, scene: &Scene, _settings: &RenderSettings) -> Vec<String> {
+        let tiles = super::light_tiles::layout(scene);
+        tiles
+            .skipped
+            .iter()
+            .filter_map(|i| scene.lights().get(*i))
+            .map(|l| format!("light {:?} adds no bounce light: the light G-buffer atlas is full", l.name))
+            .collect()
+    }
+
+    fn set_inspected(&mut self, name: Option<&str>) {
+        // Keep a copy of the atlas before hole filling only while it is shown.
+        self.gather.capture_splats = name == Some("ism_atlas_splats");
+    }
+
+    fn status(&self) -> TechniqueStatus {
+        let mut s = self.status.clone();
+        s.counters = vec![("point rebuilds", self.rebuilds), ("point uploads", self.uploads)];
+        s
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+}
