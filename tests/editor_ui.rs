@@ -72,6 +72,18 @@ fn switch_mode_and_inspect_buffers() {
     h.run_steps(3);
     assert_eq!(h.state().state().project.render.mode, GiMode::Ism);
     assert!(!h.state().state().status.contains("failed"), "{}", h.state().state().status);
+    // The ISM technique's own buffers are there while it is active, and its memory is.
+    let renderer = h.state().renderer().expect("renderer");
+    assert!(renderer.read_buffer("ism_confidence").is_ok(), "ism buffers readable in ism");
+    let ism_bytes = |r: &bouncelab::render::Renderer| {
+        r.technique_gpu_bytes().into_iter().find(|(m, _)| *m == GiMode::Ism).map_or(0, |(_, b)| b)
+    };
+    assert!(ism_bytes(renderer) > 0);
+    h.get_by_label("reference").click();
+    h.run_steps(3);
+    let renderer = h.state().renderer().expect("renderer");
+    assert_eq!(ism_bytes(renderer), 0, "switching away releases the ISM memory");
+    assert!(renderer.read_buffer("ism_confidence").is_err(), "ism buffers are not listed in reference");
     h.get_by_label("direct").click();
     h.run_steps(2);
     h.get_by_label("Buffer inspector").click();
@@ -168,7 +180,7 @@ fn ism_confidence_and_reference_comparison_in_the_inspector() {
     h.get_by_label("ism").click();
     h.run_steps(4);
     assert_eq!(h.state().state().project.render.mode, GiMode::Ism);
-    h.get_by_label("VPLs").click();
+    h.get_by_label("overlays").click();
     h.get_by_label("Buffer inspector").click();
     h.run_steps(2);
     h.state_mut().inspect("ism_confidence");

@@ -111,6 +111,12 @@ fn sh_filter_on_the_diffuse_cornell_box_matches_the_reference() {
     let project = Project::load(&default_project_path()).expect("default project");
     let size = (64, 36);
     let reference = common::reference(&project.scene, size, ReferenceSettings { spp: 512, ..Default::default() });
+    let direct = {
+        let settings = RenderSettings { mode: GiMode::Direct, ..project.render.clone() };
+        let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        HdrImage { width: size.0, height: size.1, pixels: render(&mut r, &project, &settings, size) }
+    };
+    let direct_flip = metrics::flip(&direct, &reference, 0.0).expect("flip").0;
     let mut results = Vec::new();
     for sh in [false, true] {
         let mut settings = project.render.clone();
@@ -139,8 +145,13 @@ fn sh_filter_on_the_diffuse_cornell_box_matches_the_reference() {
     }
     let [(f_irr, l_irr), (f_sh, l_sh)] = [results[0], results[1]];
     eprintln!(
-        "full GI, 32 frames: irradiance filter FLIP {f_irr:.4} lum {l_irr:.3}; SH filter FLIP {f_sh:.4} lum {l_sh:.3}"
+        "full GI, 32 frames: direct FLIP {direct_flip:.4}; irradiance filter FLIP {f_irr:.4} lum {l_irr:.3}; \
+         SH filter FLIP {f_sh:.4} lum {l_sh:.3}"
     );
+    // Against the reference: both filters at most half of direct's error, energy within 5%.
+    assert!(f_sh < 0.5 * direct_flip, "SH filter FLIP {f_sh} vs direct {direct_flip}");
+    assert!((l_sh - 1.0).abs() < 0.05, "SH filter luminance ratio {l_sh}");
+    assert!(f_irr < 0.5 * direct_flip, "irradiance filter FLIP {f_irr} vs direct {direct_flip}");
     assert!(f_sh < 1.15 * f_irr, "SH filter FLIP {f_sh} vs irradiance filter {f_irr}");
     assert!((l_sh / l_irr - 1.0).abs() < 0.03, "SH and irradiance luminance differ: {l_sh} vs {l_irr}");
 }

@@ -48,6 +48,7 @@ fn temporal_reuse_flickers_less_than_ritschel() {
     );
     eprintln!("mean frame-to-frame change: ism {fi:.5}, ism-ritschel {fr:.5} (instability {ti:.5} vs {tr:.5})");
     assert!(fi < 0.5 * fr, "temporal reuse must at least halve the flicker: {fi} vs {fr}");
+    assert!(ti < 0.5 * tr, "temporal reuse must at least halve the temporal instability: {ti} vs {tr}");
     let (li, lr) = (mean_lum(&ism[ism.len() - 1]), mean_lum(&ritschel[ritschel.len() - 1]));
     assert!((li / lr - 1.0).abs() < 0.05, "same mean brightness: {li} vs {lr}");
 }

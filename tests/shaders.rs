@@ -1,9 +1,11 @@
 //! Shader and pipeline validation without a GPU: every WGSL file is embedded and valid (naga),
-//! and every pipeline is created, and a frame recorded, on wgpu's noop backend.
+//! every parameter block's Rust mirror has the WGSL struct's size, and every pipeline of every
+//! mode and option is created, and frames recorded, on wgpu's noop backend.
 
 use bouncelab::project_file::{Project, default_project_path};
 use bouncelab::render::shaders::{ENTRY_SHADERS, SHADERS, assemble};
 use bouncelab::render::{GpuContext, Renderer};
+use bouncelab::settings::{GiMode, RenderSettings};
 
 #[test]
 fn every_shader_file_is_embedded() {
@@ -38,13 +40,49 @@ fn every_entry_shader_validates_with_naga() {
 }
 
 #[test]
-fn every_pipeline_builds_on_the_noop_backend() {
+fn every_parameter_block_matches_its_wgsl_struct() {
+    use bouncelab::render::gi::ism::params::PARAM_BLOCKS;
+    for (path, name, size) in PARAM_BLOCKS {
+        let text = assemble(path).expect("assembles");
+        let module =
+            naga::front::wgsl::parse_str(&text).unwrap_or_else(|e| panic!("{path}: {}", e.emit_to_string(&text)));
+        let mut layouter = naga::proc::Layouter::default();
+        layouter.update(module.to_ctx()).expect("layout");
+        let (handle, _) = module
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(*name))
+            .unwrap_or_else(|| panic!("{path} has no struct {name}"));
+        assert_eq!(layouter[handle].size as usize, *size, "{path}: {name} is {} bytes in WGSL", layouter[handle].size);
+    }
+}
+
+#[test]
+fn every_pipeline_of_every_mode_builds_on_the_noop_backend() {
     let ctx = GpuContext::new_noop().expect("noop device");
     let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let project = Project::load(&default_project_path()).expect("project");
-    renderer.render(&project.scene, &project.render, (32, 16)).expect("frame records");
+    let modes = [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel, GiMode::Reference];
+    for mode in modes {
+        for sh_filter in [false, true] {
+            // Inspecting the splats and a pyramid level adds the capture copies and the pyramid.
+            for inspected in [None, Some("ism_atlas_splats"), Some("pyramid_2")] {
+                let mut settings = RenderSettings { mode, ..project.render.clone() };
+                settings.ism.sh_filter = sh_filter;
+                settings.ism.bounces = 2;
+                renderer.set_inspected(inspected);
+                renderer.render(&project.scene, &settings, (32, 16)).expect("frame records");
+            }
+        }
+    }
     if let Some(e) = pollster::block_on(scope.pop()) {
         panic!("validation error on the noop backend: {e}");
+    }
+    // Every mode that is not built says so instead of failing later.
+    for mode in [GiMode::Mrt, GiMode::Sshgi, GiMode::Rcs] {
+        let settings = RenderSettings { mode, ..project.render.clone() };
+        let e = renderer.support(&settings, (32, 16)).expect_err("not built yet");
+        assert!(e.contains("not implemented"), "{e}");
     }
 }

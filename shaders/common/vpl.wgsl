@@ -44,3 +44,15 @@ fn ism_lookup(vpl: Vpl, k: u32, p: vec3<f32>, r: u32, c: u32, inv_d_max: f32) ->
     let a = vec2<u32>((k % c) * r, (k / c) * r) + texel;
     return IsmLookup(a.y * r * c + a.x, pb.z * inv_d_max);
 }
+
+// The ISM lookup bias in normalised distance, in the units of the sampling rather than of the
+// scene: a receiver on a surface sampled with point spacing s (one ISM's points) sees its own
+// surface's splats up to about s/2 tan(theta) nearer along a ray at angle theta to its normal,
+// and one atlas texel (angle 4 / r at the paraboloid's centre) adds d 2/r tan(theta). So
+// bias = s (c + k tan(theta)) + d (2 / r) tan(theta), tan capped at 4 (76 degrees; beyond,
+// cos(theta) leaves little light to lose). `b` = (s / d_max, c, k, 2 / r); `depth` = d / d_max.
+fn ism_bias(b: vec4<f32>, depth: f32, cos_r: f32) -> f32 {
+    let c = clamp(cos_r, 1.0e-4, 1.0);
+    let tan_r = min(sqrt(max(1.0 - c * c, 0.0)) / c, 4.0);
+    return b.x * (b.y + b.z * tan_r) + depth * b.w * tan_r;
+}

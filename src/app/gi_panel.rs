@@ -104,7 +104,7 @@ fn technique_summary(ui: &mut egui::Ui, renderer: &Renderer, state: &EditorState
     for note in renderer.limitations(&state.project.scene, &state.project.render) {
         ui.colored_label(warn, note);
     }
-    if let Some(s) = renderer.technique_status() {
+    if let Some(s) = renderer.technique_status().filter(|s| s.history_frames > 0) {
         let reset = s.last_reset.map_or("none".to_owned(), |r| r.label().to_owned());
         ui.label(format!("history: {} frames · last reset: {reset}", s.history_frames))
             .on_hover_text("Frames accumulated since the technique last dropped its history, and why it did.");

@@ -121,6 +121,11 @@ impl EditorApp {
         self.viewport.rect
     }
 
+    /// The viewport's renderer (tests read its technique state).
+    pub fn renderer(&self) -> Option<&crate::render::Renderer> {
+        self.viewport.renderer()
+    }
+
     /// The editor state (tests read it).
     pub fn state(&self) -> &EditorState {
         &self.state

@@ -1,6 +1,8 @@
-//! Temporal instability: how much a sequence of frames of a static camera changes from frame to
-//! frame, compared with the reference sequence (which changes only where the lighting really
-//! changes). Flicker, noise and lag show up as a positive score.
+//! Temporal instability: how much a sequence of frames changes from frame to frame where the
+//! reference sequence does not, and fails to change where it does. Per pixel and per pair of
+//! consecutive frames, |candidate change - reference change|: flicker and noise (changes the
+//! reference does not make) and lag (changes it makes that the candidate does not follow) both
+//! score positive; a sequence that changes exactly as the reference scores 0.
 
 use super::{MetricsError, check, luminance};
 use crate::image_io::HdrImage;
@@ -24,9 +26,33 @@ pub fn mean_frame_change(frames: &[HdrImage]) -> Result<f64, MetricsError> {
     Ok(total / (frames.len() - 1) as f64)
 }
 
-/// Mean frame-to-frame change of the candidate minus that of the reference sequence.
+/// Mean over pixels and consecutive frame pairs of |candidate change - reference change| in
+/// luminance. A reference shorter than the candidate repeats its last change: two copies of a
+/// static frame stand for a static reference.
 pub fn temporal_instability(candidate: &[HdrImage], reference: &[HdrImage]) -> Result<f64, MetricsError> {
-    Ok(mean_frame_change(candidate)? - mean_frame_change(reference)?)
+    if candidate.len() < 2 {
+        return Err(MetricsError::Frames(candidate.len()));
+    }
+    if reference.len() < 2 {
+        return Err(MetricsError::Frames(reference.len()));
+    }
+    let mut total = 0.0;
+    for (i, pair) in candidate.windows(2).enumerate() {
+        let r = i.min(reference.len() - 2);
+        let (r0, r1) = (&reference[r], &reference[r + 1]);
+        check(&pair[1], &pair[0])?;
+        check(&pair[0], r0)?;
+        check(r1, r0)?;
+        let sum: f64 = (0..pair[0].pixels.len())
+            .map(|k| {
+                let dc = luminance(&pair[1].pixels[k]) - luminance(&pair[0].pixels[k]);
+                let dr = luminance(&r1.pixels[k]) - luminance(&r0.pixels[k]);
+                f64::from((dc - dr).abs())
+            })
+            .sum();
+        total += sum / pair[0].pixels.len().max(1) as f64;
+    }
+    Ok(total / (candidate.len() - 1) as f64)
 }
 
 #[cfg(test)]
@@ -39,6 +65,11 @@ mod tests {
         let steady = vec![f(0.5), f(0.5), f(0.5)];
         let flicker = vec![f(0.4), f(0.6), f(0.4)];
         assert!((temporal_instability(&flicker, &steady).expect("frames") - 0.2).abs() < 1e-6);
+        // Lag: the reference steps up and the candidate does not follow.
+        let step = vec![f(0.4), f(0.6), f(0.6)];
+        let lagging = vec![f(0.4), f(0.4), f(0.6)];
+        assert!((temporal_instability(&lagging, &step).expect("frames") - 0.2).abs() < 1e-6);
+        assert!(temporal_instability(&step, &step).expect("frames").abs() < 1e-9);
         assert!(mean_frame_change(&steady[..1]).is_err());
     }
 }

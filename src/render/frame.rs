@@ -310,6 +310,10 @@ impl Renderer {
             }
             Readiness::Pending { .. } => GiOutput::Nothing,
         };
+        if self.output == GiOutput::Nothing {
+            // Keep the inspector honest: nothing was written, so `indirect` shows black.
+            clear(&mut encoder, &sized.targets.indirect.view);
+        }
         self.composite.record(queue, &mut encoder, &sized.composite, self.output, size, self.timer.scope("composite"));
         self.tonemap.record(queue, &mut encoder, &sized.tonemap, &settings.view, size, self.timer.scope("tonemap"));
         if let Some(previous) = &self.previous {
@@ -403,4 +407,20 @@ impl Renderer {
     pub fn frame_index(&self) -> u32 {
         self.frame_index
     }
+}
+
+fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("clear indirect"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes: None,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
 }

@@ -12,6 +12,9 @@ use crate::render::RenderError;
 use crate::render::layouts::Layouts;
 use crate::settings::GiMode;
 
+/// Creates a technique's pipelines on a device.
+pub type Create = fn(&wgpu::Device, &Layouts) -> Result<Box<dyn GiTechnique>, RenderError>;
+
 /// One technique: the modes it serves, its support check, its inspector buffers and how to
 /// create it.
 pub struct TechniqueEntry {
@@ -22,7 +25,7 @@ pub struct TechniqueEntry {
     /// The buffers it adds to the inspector.
     pub buffers: &'static [BufferInfo],
     /// Creates it (pipelines only; memory comes with its first frame).
-    pub create: fn(&wgpu::Device, &Layouts) -> Result<Box<dyn GiTechnique>, RenderError>,
+    pub create: Create,
 }
 
 /// Every technique this build has.

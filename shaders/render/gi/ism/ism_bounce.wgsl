@@ -12,10 +12,12 @@ struct BounceParams {
     counts: vec4<u32>,
     // source set's first VPL, destination set's first VPL, unused x2.
     sets: vec4<u32>,
-    // 1 / d_max, ISM depth bias, d_min^2, interleave n^2.
+    // 1 / d_max, unused, d_min^2, interleave n^2.
     params: vec4<f32>,
     // sum over the scene of area x weight, unused x3.
     area: vec4<f32>,
+    // ISM bias: point spacing / d_max, constant and slope factors, 2 / r (see ism_bias).
+    bias: vec4<f32>,
 }
 
 
@@ -59,7 +61,7 @@ fn incident_power(j: u32) -> vec4<f32> {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     let ism = ism_lookup(vpl, src, p, bp.counts.z, bp.counts.w, bp.params.x);
-    if ism.depth > bitcast<f32>(atlas[ism.index]) + bp.params.y {
+    if ism.depth > bitcast<f32>(atlas[ism.index]) + ism_bias(bp.bias, ism.depth, cos_r) {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     // Physical power of the source VPL (its shading power carries the interleave factor n^2).

@@ -13,10 +13,12 @@
 struct ShadeParams {
     // VPL count, tile side r, tiles per row C, interleave n.
     counts: vec4<u32>,
-    // 1 / d_max, depth bias (normalised), d_min^2, unused.
+    // 1 / d_max, unused, d_min^2, unused.
     params: vec4<f32>,
     // VPL sets (bounces), view width, view height, unused.
     sets: vec4<u32>,
+    // ISM bias: point spacing / d_max, constant and slope factors, 2 / r (see ism_bias).
+    bias: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> sh: ShadeParams;
@@ -53,7 +55,7 @@ fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
         return out;
     }
     let ism = ism_lookup(vpl, k, p, sh.counts.y, sh.counts.z, sh.params.x);
-    if ism.depth > bitcast<f32>(atlas[ism.index]) + sh.params.y {
+    if ism.depth > bitcast<f32>(atlas[ism.index]) + ism_bias(sh.bias, ism.depth, dot(ng, -dir)) {
         return out;
     }
     out.dir = -dir;

@@ -82,8 +82,9 @@ struct Sized {
 pub struct MapScale {
     /// Distance normalisation of the ISM depths (metres).
     pub d_max: f32,
-    /// Lookup bias in normalised distance.
-    pub depth_bias: f32,
+    /// ISM lookup bias (`ism_bias` in `common/vpl.wgsl`): point spacing / d_max, constant and
+    /// slope factors, 2 / r.
+    pub bias: [f32; 4],
     /// Pull-push threshold tau in normalised distance.
     pub pull_push: f32,
     /// Sum over the scene of area x sampling weight (m^2).
@@ -235,13 +236,18 @@ impl IsmGather {
         let splat_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism splat bind group"),
             layout: &self.splat_layout,
-            entries: &[slot(0, &self.splat_params, 48), buf(1, &points), buf(2, &all_vpls), buf(3, &atlas[0])],
+            entries: &[
+                slot(0, &self.splat_params, std::mem::size_of::<SplatParams>() as u64),
+                buf(1, &points),
+                buf(2, &all_vpls),
+                buf(3, &atlas[0]),
+            ],
         });
         let bounce_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism bounce bind group"),
             layout: &self.bounce_layout,
             entries: &[
-                slot(0, &self.bounce_params, 64),
+                slot(0, &self.bounce_params, std::mem::size_of::<BounceParams>() as u64),
                 buf(1, &points),
                 buf(2, &normals),
                 buf(3, &albedo),
@@ -256,7 +262,11 @@ impl IsmGather {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("ism pull-push bind group"),
                 layout: &self.pp_layout,
-                entries: &[slot(0, &self.pp_params, 32), buf(1, fine), buf(2, coarse)],
+                entries: &[
+                    slot(0, &self.pp_params, std::mem::size_of::<PullPushParams>() as u64),
+                    buf(1, fine),
+                    buf(2, coarse),
+                ],
             })
         };
         let pull_groups = (0..PULL_LEVELS).map(|l| pp(&atlas[l], &atlas[l + 1])).collect();
@@ -329,6 +339,7 @@ impl IsmGather {
     /// Records splat, pull-push and the further bounces' VPL sets; [`Self::record_screen`]
     /// then shades with them. With `capture_splats`, each set's atlas rows are also copied
     /// after splatting and before hole filling (the inspector's `ism_atlas_splats`).
+    #[allow(clippy::too_many_arguments)]
     pub fn record_maps(
         &mut self,
         device: &wgpu::Device,
@@ -371,8 +382,9 @@ impl IsmGather {
                 let bounce = BounceParams {
                     counts,
                     sets: [(b - 1) * key.vpls, b * key.vpls, 0, 0],
-                    params: [1.0 / d_max, scale.depth_bias, d_min * d_min, n2],
+                    params: [1.0 / d_max, 0.0, d_min * d_min, n2],
                     area: [scale.total_area, 0.0, 0.0, 0.0],
+                    bias: scale.bias,
                 };
                 queue.write_buffer(&self.bounce_params, u64::from(b - 1) * SLOT, bytemuck::bytes_of(&bounce));
             }
@@ -484,7 +496,7 @@ impl IsmGather {
             r: s.key.r,
             tiles_per_row: Self::tiles_per_row(s.key.vpls * s.key.bounces),
             d_max: scale.d_max.max(1e-3),
-            depth_bias: scale.depth_bias,
+            bias: scale.bias,
         };
         screen.record(device, queue, encoder, frame_buffer, targets, &inputs, settings, temporal, exposure, timestamps);
     }

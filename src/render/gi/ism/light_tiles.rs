@@ -53,12 +53,11 @@ fn up_for(dir: Vec3) -> Vec3 {
     if dir.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y }
 }
 
-/// The tiles of light `index` (none for a light that emits nothing).
+/// The tiles of light `index`. A light switched off keeps its tiles: they reflect nothing, so
+/// the warp never picks them, and the temporal history fades as it should (an afterglow, not
+/// a jump).
 fn tiles_of(scene: &Scene, index: usize, bounds: &Aabb) -> Vec<LightTile> {
     let Some(l) = scene.lights().get(index) else { return Vec::new() };
-    if l.radiant().max_element() <= 0.0 {
-        return Vec::new();
-    }
     let (center, radius) = (bounds.center(), bounds.radius().max(1e-3));
     let far = radius + (center - l.position).length() + 0.01;
     let near = 0.01f32.min(0.1 * radius);
@@ -182,6 +181,7 @@ mod tests {
         assert_eq!((many.tiles.len(), many.tile_size), (120, 64));
         assert!(many.side <= MAX_SIDE && many.skipped.is_empty());
         let dark = layout(&scene_with(vec![Light::point("off", Vec3::Y, 0.0)]));
-        assert!(dark.tiles.is_empty(), "a light that emits nothing gets no tile");
+        assert_eq!(dark.tiles.len(), 6, "a light switched off keeps its tiles (its history fades)");
+        assert!(layout(&scene_with(Vec::new())).tiles.is_empty());
     }
 }

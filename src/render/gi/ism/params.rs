@@ -26,10 +26,12 @@ pub struct BounceParams {
     pub counts: [u32; 4],
     /// Source set's first VPL, destination set's first VPL, unused x2.
     pub sets: [u32; 4],
-    /// 1 / d_max, ISM depth bias, d_min^2, interleave n^2.
+    /// 1 / d_max, unused, d_min^2, interleave n^2.
     pub params: [f32; 4],
     /// Sum over the scene of area x weight, unused x3.
     pub area: [f32; 4],
+    /// ISM bias: point spacing / d_max, constant and slope factors, 2 / r (`ism_bias`).
+    pub bias: [f32; 4],
 }
 
 /// `PullPushParams` in `pull_push.wgsl`.
@@ -56,10 +58,12 @@ pub struct SplitParams {
 pub struct ShadeParams {
     /// VPL count, tile side r, tiles per row C, interleave n.
     pub counts: [u32; 4],
-    /// 1 / d_max, depth bias (normalised), d_min^2, unused.
+    /// 1 / d_max, unused, d_min^2, unused.
     pub params: [f32; 4],
     /// VPL sets (bounces), view width, view height, unused.
     pub sets: [u32; 4],
+    /// ISM bias: point spacing / d_max, constant and slope factors, 2 / r (`ism_bias`).
+    pub bias: [f32; 4],
 }
 
 /// `TemporalParams` in `ism_temporal.wgsl`.
@@ -126,10 +130,10 @@ impl GenParams {
 }
 
 const _: () = assert!(std::mem::size_of::<SplatParams>() == 48);
-const _: () = assert!(std::mem::size_of::<BounceParams>() == 64);
+const _: () = assert!(std::mem::size_of::<BounceParams>() == 80);
 const _: () = assert!(std::mem::size_of::<PullPushParams>() == 32);
 const _: () = assert!(std::mem::size_of::<SplitParams>() == 16);
-const _: () = assert!(std::mem::size_of::<ShadeParams>() == 48);
+const _: () = assert!(std::mem::size_of::<ShadeParams>() == 64);
 const _: () = assert!(std::mem::size_of::<TemporalParams>() == 48);
 const _: () = assert!(std::mem::size_of::<FilterParams>() == 32);
 const _: () = assert!(std::mem::size_of::<GenParams>() == 32);

@@ -16,11 +16,6 @@ fn size_of<T>() -> u64 {
     std::mem::size_of::<T>() as u64
 }
 
-/// ISM lookup bias in normalised distance (fraction of the scene diameter). Splats are several
-/// texels wide, so a receiver's own surface shadows it without a bias of about a splat's depth
-/// extent (digest PF5); 0.06 was the best of 0.01/0.03/0.06 against the reference.
-pub const DEPTH_BIAS: f32 = 0.06;
-
 /// What the screen passes read from the ISM stage of this frame.
 pub struct IsmInputs<'a> {
     /// VPLs of every set (set b at `b * vpl_count`).
@@ -39,8 +34,8 @@ pub struct IsmInputs<'a> {
     pub tiles_per_row: u32,
     /// Scene diameter (the ISM depth normalisation and the filters' depth range), metres.
     pub d_max: f32,
-    /// ISM lookup bias in normalised distance.
-    pub depth_bias: f32,
+    /// ISM lookup bias (`ism_bias`): point spacing / d_max, constant and slope factors, 2 / r.
+    pub bias: [f32; 4],
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -394,8 +389,9 @@ impl IsmScreen {
         queue.write_buffer(&self.split_params, 0, bytemuck::bytes_of(&SplitParams { counts: [n, 0, 0, 0] }));
         let shade = ShadeParams {
             counts: [ism.vpl_count, ism.r, ism.tiles_per_row, n],
-            params: [1.0 / ism.d_max, ism.depth_bias, d_min * d_min, 0.0],
+            params: [1.0 / ism.d_max, 0.0, d_min * d_min, 0.0],
             sets: [ism.sets, w, h, 0],
+            bias: ism.bias,
         };
         queue.write_buffer(&self.shade_params, 0, bytemuck::bytes_of(&shade));
         let reset = u32::from(self.reset || !temporal);

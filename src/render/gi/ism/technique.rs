@@ -12,7 +12,6 @@
 use super::gather::{IsmGather, MapScale, PointData};
 use super::light_tiles::LightTiles;
 use super::points::{mean_linear_colour, point_data, point_data_key};
-use super::screen::DEPTH_BIAS;
 use super::vpl_pass::{GpuVpl, VplPass};
 use crate::image_io::HdrImage;
 use crate::precompute::sample_points::SamplePoints;
@@ -288,11 +287,20 @@ impl GiTechnique for IsmTechnique {
             self.uploads += 1;
         }
         let diameter = 2.0 * inputs.scene.bounds().map_or(1.0, |b| b.radius());
+        let total_area = points.weighted_area.iter().sum::<f64>() as f32;
+        // The world spacing of one ISM's points: the size of a splat on the surface.
+        let per_ism = (points.points.len() as f32 / settings.vpl_count.max(1) as f32).max(1.0);
+        let spacing = (total_area / per_ism).sqrt();
         let scale = MapScale {
             d_max: diameter,
-            depth_bias: DEPTH_BIAS,
+            bias: [
+                spacing / diameter.max(1e-3),
+                settings.bias_constant,
+                settings.bias_slope,
+                2.0 / settings.ism_resolution as f32,
+            ],
             pull_push: 0.05,
-            total_area: points.weighted_area.iter().sum::<f64>() as f32,
+            total_area,
         };
         self.gather.record_maps(
             inputs.device,

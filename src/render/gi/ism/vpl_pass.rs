@@ -307,7 +307,7 @@ impl VplPass {
     }
 
     /// Records P2, P3 and P5 for every light of `scene`; returns false (nothing recorded) when
-    /// no light emits.
+    /// the scene has no light.
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,

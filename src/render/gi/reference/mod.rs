@@ -20,12 +20,18 @@ use job::ReferenceJob;
 /// The preview renders at 1 / PREVIEW_DIVISOR of the view per axis.
 pub const PREVIEW_DIVISOR: u32 = 2;
 
+/// The latest preview image upsampled to the view: its spp, the view size and the pixels.
+struct Shown {
+    spp: u32,
+    size: (u32, u32),
+    pixels: Vec<[f32; 4]>,
+}
+
 /// The reference path tracer as a technique.
 #[derive(Default)]
 pub struct ReferenceTechnique {
     job: Option<ReferenceJob>,
-    /// The latest image upsampled to the view size, with its spp and the size.
-    shown: Option<(u32, (u32, u32), Vec<[f32; 4]>)>,
+    shown: Option<Shown>,
     status: TechniqueStatus,
     restarts: u64,
     view: (u32, u32),
@@ -73,8 +79,8 @@ impl GiTechnique for ReferenceTechnique {
         let latest = self.job.as_ref().and_then(ReferenceJob::latest);
         match latest {
             Some((img, progress)) => {
-                if self.shown.as_ref().is_none_or(|(spp, s, _)| *spp != progress.spp || *s != self.view) {
-                    self.shown = Some((progress.spp, self.view, upsample(&img, self.view)));
+                if self.shown.as_ref().is_none_or(|s| s.spp != progress.spp || s.size != self.view) {
+                    self.shown = Some(Shown { spp: progress.spp, size: self.view, pixels: upsample(&img, self.view) });
                 }
                 self.status.history_frames = progress.spp;
                 self.status.progress = Some(format!(
@@ -94,7 +100,7 @@ impl GiTechnique for ReferenceTechnique {
 
     fn render(&mut self, inputs: &mut GiInputs<'_>) -> Result<GiOutput, RenderError> {
         let size = inputs.targets.size;
-        let Some((_, shown_size, pixels)) = &self.shown else { return Ok(GiOutput::Nothing) };
+        let Some(Shown { size: shown_size, pixels, .. }) = &self.shown else { return Ok(GiOutput::Nothing) };
         if *shown_size != size {
             return Ok(GiOutput::Nothing);
         }

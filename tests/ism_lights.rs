@@ -1,0 +1,74 @@
+//! Every light feeds ISM: in the Cornell box lit by a spot, a point and a directional light of
+//! comparable strength (none brighter than twice another), `ism` after 32 frames has less than
+//! half the FLIP error of `direct` against the full-GI reference and its mean luminance within
+//! 5%, with all three lights together and with each light alone.
+
+mod common;
+
+use bouncelab::image_io::HdrImage;
+use bouncelab::metrics;
+use bouncelab::project_file::{Project, default_project_path};
+use bouncelab::render::Renderer;
+use bouncelab::scene::Light;
+use bouncelab::settings::{GiMode, ReferenceSettings};
+use glam::Vec3;
+
+const SIZE: (u32, u32) = (64, 36);
+
+fn lights() -> Vec<Light> {
+    vec![
+        Light::spot("spot", Vec3::new(-0.5, 1.9, 0.3), Vec3::new(0.25, -1.0, -0.1).normalize(), 7.5, 0.3, 0.6),
+        Light::point("point", Vec3::new(0.45, 1.2, -0.3), 0.6),
+        // The box is open to +z: the sun shines in over the camera onto the floor and back wall.
+        Light::directional("sun", Vec3::new(0.15, -0.6, -1.0).normalize(), 1.0),
+    ]
+}
+
+fn render(ctx: &bouncelab::render::GpuContext, project: &Project, mode: GiMode, frames: usize) -> HdrImage {
+    let mut settings = project.render.clone();
+    settings.mode = mode;
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    for _ in 0..frames {
+        r.render(&project.scene, &settings, SIZE).expect("render");
+    }
+    HdrImage { width: SIZE.0, height: SIZE.1, pixels: r.read_hdr().expect("hdr") }
+}
+
+#[test]
+fn ism_with_a_spot_a_point_and_a_sun_halves_the_error_of_direct() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut base = Project::load(&default_project_path()).expect("default project");
+    let all = lights();
+    let mut direct_lum = Vec::new();
+    let mut rows = Vec::new();
+    let cases: Vec<(String, Vec<Light>)> = std::iter::once(("all three".to_owned(), all.clone()))
+        .chain(all.iter().map(|l| (l.name.clone(), vec![l.clone()])))
+        .collect();
+    for (name, lights) in cases {
+        base.scene.desc_mut().lights = lights.clone();
+        let reference = common::reference(&base.scene, SIZE, ReferenceSettings { spp: 512, ..Default::default() });
+        let direct = render(&ctx, &base, GiMode::Direct, 1);
+        let ism = render(&ctx, &base, GiMode::Ism, 32);
+        let (fd, fi) = (
+            metrics::flip(&direct, &reference, 0.0).expect("flip").0,
+            metrics::flip(&ism, &reference, 0.0).expect("flip").0,
+        );
+        let (ld, li) = (
+            metrics::luminance_ratio(&direct, &reference).expect("ratio"),
+            metrics::luminance_ratio(&ism, &reference).expect("ratio"),
+        );
+        if lights.len() == 1 {
+            direct_lum.push(metrics::mean_luminance(&direct));
+        }
+        eprintln!("{name}: direct FLIP {fd:.4} lum {ld:.3}; ism FLIP {fi:.4} ({:.2}x direct) lum {li:.3}", fi / fd);
+        rows.push((name, fd, fi, li));
+    }
+    // The setup is what the test claims: no light more than twice as bright as another.
+    let (lo, hi) = direct_lum.iter().fold((f64::MAX, 0.0f64), |(a, b), v| (a.min(*v), b.max(*v)));
+    eprintln!("direct luminance per light alone: {direct_lum:.4?}");
+    assert!(hi <= 2.0 * lo, "lights are not comparable: {direct_lum:?}");
+    for (name, fd, fi, li) in rows {
+        assert!(fi < 0.5 * fd, "{name}: ism FLIP {fi} is not below half of direct's {fd}");
+        assert!((li - 1.0).abs() < 0.05, "{name}: ism luminance ratio {li}");
+    }
+}
