@@ -15,3 +15,4 @@ pub mod project_file;
 pub mod render;
 pub mod scene;
 pub mod settings;
+pub mod suite;

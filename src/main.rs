@@ -33,14 +33,31 @@ enum Command {
         #[arg(long, default_value_t = 0.0)]
         exposure: f32,
     },
-    /// Time each mode per pass and write docs/BENCHMARKS.md.
+    /// Time each mode per pass and write docs/BENCHMARKS.md; with --quality, render every mode
+    /// on every scene of the suite against its reference and write docs/QUALITY.md.
     Bench {
         /// Fewer sizes and frames.
         #[arg(long)]
         quick: bool,
-        /// Output markdown file.
-        #[arg(long, default_value = "docs/BENCHMARKS.md")]
-        out: PathBuf,
+        /// The quality matrix (FLIP, relMSE, energy, frame time per mode and suite scene).
+        #[arg(long)]
+        quality: bool,
+        /// Output markdown file (default docs/BENCHMARKS.md, or docs/QUALITY.md with --quality).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Write the scene suite's glTF levels (assets/suite/) and, with --references, path-trace
+    /// and cache their references (assets/suite/references/).
+    Suite {
+        /// Also render the references (minutes on two cores).
+        #[arg(long)]
+        references: bool,
+        /// Only these scenes (comma-separated names); all if omitted.
+        #[arg(long, value_delimiter = ',')]
+        only: Vec<String>,
+        /// Repository root.
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
     },
     /// Regenerate assets/cornell_box.gltf and projects/default.ron from code.
     #[command(hide = true)]
@@ -59,7 +76,16 @@ fn main() -> ExitCode {
         Some(Command::Compare { candidate, reference, heatmap, exposure }) => {
             cli::compare::run(&candidate, &reference, heatmap.as_deref(), exposure).map(|s| println!("{s}"))
         }
-        Some(Command::Bench { quick, out }) => cli::bench::run(&out, quick).map(|md| println!("{md}")),
+        Some(Command::Bench { quick, quality: false, out }) => {
+            cli::bench::run(&out.unwrap_or_else(|| "docs/BENCHMARKS.md".into()), quick).map(|md| println!("{md}"))
+        }
+        Some(Command::Bench { quality: true, out, .. }) => {
+            cli::quality::run(std::path::Path::new("."), &out.unwrap_or_else(|| "docs/QUALITY.md".into()))
+                .map(|md| println!("{md}"))
+        }
+        Some(Command::Suite { references, only, root }) => {
+            cli::quality::suite(&root, references, &only).map(|s| println!("{s}"))
+        }
         Some(Command::GenerateAssets { root }) => cli::generate::generate(&root),
         None => bouncelab::app::run(args.project),
     };

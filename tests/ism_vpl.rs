@@ -47,7 +47,7 @@ fn gpu_vpls_match_the_cpu_warp_and_carry_the_reflected_power() {
             same += 1;
             assert!((f64::from(vpl.power[3]) - cpu.pdf).abs() <= 1e-3 * cpu.pdf, "pdf {} vs {}", vpl.power[3], cpu.pdf);
         }
-        assert_eq!(vpl.position[3], 1.0, "every VPL lands on a lit texel");
+        assert!(vpl.position[3] > 0.0, "every VPL lands on a lit texel");
         let p = Vec3::new(vpl.position[0], vpl.position[1], vpl.position[2]);
         assert!(p.x.abs() < 1.01 && p.z.abs() < 1.01 && p.y > -0.01 && p.y < 2.01, "VPL inside the box: {p}");
         let n = Vec3::new(vpl.normal[0], vpl.normal[1], vpl.normal[2]);
@@ -86,7 +86,7 @@ fn point_light_vpls_come_from_the_six_cube_faces_and_carry_the_reflected_power()
     for _ in 0..frames {
         let r = vpls(&mut renderer, &project, &settings);
         for v in &r.vpls {
-            assert_eq!(v.position[3], 1.0);
+            assert!(v.position[3] > 0.0);
             let size = 256usize;
             let texel = v.incident[3] as usize;
             faces.insert((texel / size) / 64 * 4 + (texel % size) / 64);
@@ -127,7 +127,7 @@ fn every_light_gets_vpls_in_proportion_to_the_power_it_reflects() {
     for _ in 0..frames {
         let r = vpls(&mut renderer, &project, &settings);
         for v in &r.vpls {
-            assert_eq!(v.position[3], 1.0, "every VPL lands on a lit texel");
+            assert!(v.position[3] > 0.0, "every VPL lands on a lit texel");
             let t = r.tiles.tile_of_texel(v.incident[3] as usize).expect("texel in a tile");
             let light = r.tiles.tiles[t].light;
             count[light] += 1;

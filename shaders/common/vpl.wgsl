@@ -2,7 +2,9 @@
 #import common/onb.wgsl
 
 struct Vpl {
-    // xyz position, w = 1 when valid.
+    // xyz position, w = R^2 of the disk the VPL stands for (its patch's area / pi; the shading
+    // uses 1 / (d^2 + R^2), the exact on-axis irradiance of a Lambertian disk, so a VPL's light
+    // stays bounded near it); 0 = no VPL.
     position: vec4<f32>,
     // xyz surface normal, w = specular luminance.
     normal: vec4<f32>,

@@ -1,4 +1,5 @@
-//! Regenerates the shipped assets (`assets/cornell_box.gltf`, `projects/default.ron`) from code,
+//! Regenerates the shipped assets (`assets/cornell_box.gltf`, `projects/default.ron`, the
+//! suite's levels under `assets/suite/`) from code,
 //! so they are reproducible and a test can check they are current.
 
 use std::path::Path;
@@ -29,5 +30,7 @@ pub fn generate(root: &Path) -> anyhow::Result<()> {
     let text = default_project_text(&gltf, &project)?;
     std::fs::write(&project, text).with_context(|| format!("writing {}", project.display()))?;
     println!("wrote {} and {}", gltf.display(), project.display());
+    let levels = crate::suite::write_levels(root)?;
+    println!("wrote {} suite levels under {}", levels.len(), root.join("assets/suite").display());
     Ok(())
 }

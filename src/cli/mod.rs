@@ -1,9 +1,11 @@
-//! Command-line entry points (architecture.md section 5): `render`, `bench`, asset generation.
+//! Command-line entry points (architecture.md section 5): `render`, `bench` (and its quality
+//! matrix), the scene suite and asset generation.
 //! The binary's `main.rs` only parses arguments and calls these.
 
 pub mod bench;
 pub mod compare;
 pub mod generate;
+pub mod quality;
 pub mod render;
 pub mod report;
 

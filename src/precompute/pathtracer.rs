@@ -21,6 +21,8 @@ use crate::image_io::srgb_to_linear;
 use crate::scene::{Camera, Image, Light, LightKind, Material, Scene};
 use crate::settings::ReferenceSettings;
 
+/// Bump when the tracer's estimator changes: cached suite references keyed on it go stale.
+pub const TRACER_VERSION: u32 = 1;
 /// Progress after a pass.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Progress {

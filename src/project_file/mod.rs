@@ -4,7 +4,7 @@
 //! `From`; unknown fields are errors with line and column; saves are atomic and deterministic;
 //! assets are referenced relative to the project file.
 
-mod atomic;
+pub mod atomic;
 mod paths;
 
 use std::path::{Path, PathBuf};

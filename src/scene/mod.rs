@@ -14,7 +14,7 @@ mod material;
 mod mesh;
 mod object;
 
-pub use camera::Camera;
+pub use camera::{Camera, rotation_looking};
 pub use light::{Light, LightKind, spot_attenuation};
 pub use material::{Material, TextureRef};
 pub use mesh::{Aabb, Mesh, MeshError};

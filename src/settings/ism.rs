@@ -45,6 +45,11 @@ pub struct IsmSettings {
     /// brings the default Cornell box within 3% of the path tracer's energy (ism-ritschel at
     /// 128x72: 4 bounces 93%, 5: 96%, 6: 97% over 8 frames; each bounce adds less than the last).
     pub bounces: u32,
+    /// Add the bounces beyond the last set as a geometric series: the last set's power is
+    /// scaled by 1 / (1 - r), r = its total power over the previous set's (an extension of the
+    /// thesis; one tiny pass). Free; corrects the energy the bounce limit loses (measured in
+    /// the closing note of the technique-seam issue).
+    pub bounce_tail: bool,
     /// Geometry-aware filter threshold alpha: a neighbour farther than alpha x the scene
     /// diameter from the pixel's tangent plane is rejected (the thesis's 0.01, applied along
     /// the normal instead of the view ray so grazing walls keep their taps). Free; lower:
@@ -58,10 +63,19 @@ pub struct IsmSettings {
     /// detail. Cost: 56 bytes per pixel (f16) and 27-channel filtering, +7% (320x180) to
     /// +17% (640x360) of the `ism shade` pass time (docs/BENCHMARKS.md).
     pub sh_filter: bool,
-    /// Minimum VPL distance in metres. Larger: fewer spikes near VPLs, darker corners (bias).
-    /// The thesis clamps d^2 >= 1 in world units, which assumes large scenes; in a 2 m Cornell
-    /// box that loses 9-11% of the one-bounce light (measured), so the default is 0.1 m.
+    /// An extra fixed minimum VPL distance in metres, on top of `clamp_disk` (0 = none, the
+    /// default). The thesis clamps d^2 >= 1 in world units, which assumes large scenes: in a 2 m
+    /// Cornell box that loses 9-11% of the one-bounce light, in a 20 cm diorama even 0.1 m
+    /// loses 12% (measured), so the clamp is scale-free (`clamp_disk`) by default.
     pub clamp_distance: f32,
+    /// The scale-free distance clamp: a VPL stands for the patch it was drawn from (its light-
+    /// G-buffer texel's area / (N p), or one ISM's share of the scene's area for bounce VPLs),
+    /// and d^2 is clamped at this factor x that patch's area / pi (the squared radius of a disk
+    /// of that area) at receivers; the bounce passes always clamp at the full disks, which keeps
+    /// a near point from receiving more power than the VPL emits. 0 turns it off. Free; larger:
+    /// fewer spikes near VPLs, darker corners. It replaces the thesis's 1-unit clamp, which no
+    /// fixed distance can stand for from a 20 cm diorama to a 60 m hall.
+    pub clamp_disk: f32,
     /// ISM lookup bias, constant part, as a fraction of the world spacing of one ISM's sample
     /// points (sqrt(area / points per ISM): a splat's size on the surface). Free; larger:
     /// less self-shadowing acne, more light through occluders thinner than the bias.
@@ -87,7 +101,9 @@ impl Default for IsmSettings {
             filter_depth: 0.01,
             filter_normal: 0.8,
             sh_filter: false,
-            clamp_distance: 0.1,
+            bounce_tail: true,
+            clamp_distance: 0.0,
+            clamp_disk: 0.25,
             bias_constant: 0.1,
             bias_slope: 0.5,
         }
@@ -124,12 +140,26 @@ impl IsmSettings {
             ),
             (
                 "ism weights and biases",
-                [m.w_position, m.w_normal, m.w_illumination, m.filter_depth, m.bias_constant, m.bias_slope]
-                    .iter()
-                    .all(|w| w.is_finite() && *w >= 0.0),
+                [
+                    m.w_position,
+                    m.w_normal,
+                    m.w_illumination,
+                    m.filter_depth,
+                    m.bias_constant,
+                    m.bias_slope,
+                    m.clamp_disk,
+                ]
+                .iter()
+                .all(|w| w.is_finite() && *w >= 0.0),
                 format!(
-                    "{} {} {} {} {} {}",
-                    m.w_position, m.w_normal, m.w_illumination, m.filter_depth, m.bias_constant, m.bias_slope
+                    "{} {} {} {} {} {} {}",
+                    m.w_position,
+                    m.w_normal,
+                    m.w_illumination,
+                    m.filter_depth,
+                    m.bias_constant,
+                    m.bias_slope,
+                    m.clamp_disk
                 ),
                 ">= 0",
             ),

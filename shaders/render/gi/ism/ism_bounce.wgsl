@@ -12,7 +12,7 @@ struct BounceParams {
     counts: vec4<u32>,
     // source set's first VPL, destination set's first VPL, unused x2.
     sets: vec4<u32>,
-    // 1 / d_max, unused, d_min^2, interleave n^2.
+    // 1 / d_max, clamp factor on the disks' radii squared, d_min^2, interleave n^2.
     params: vec4<f32>,
     // sum over the scene of area x weight, unused x3.
     area: vec4<f32>,
@@ -20,6 +20,8 @@ struct BounceParams {
     bias: vec4<f32>,
 }
 
+
+const PI: f32 = 3.14159265358979;
 
 @group(0) @binding(0) var<uniform> bp: BounceParams;
 @group(0) @binding(1) var<storage, read> points: array<vec4<f32>>;
@@ -47,7 +49,7 @@ fn incident_power(j: u32) -> vec4<f32> {
     }
     let src = bp.sets.x + k;
     let vpl = vpls[src];
-    if vpl.position.w < 0.5 {
+    if vpl.position.w <= 0.0 {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     let p = points[j].xyz;
@@ -64,10 +66,13 @@ fn incident_power(j: u32) -> vec4<f32> {
     if ism.depth > bitcast<f32>(atlas[ism.index]) + ism_bias(bp.bias, ism.depth, cos_r) {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
-    // Physical power of the source VPL (its shading power carries the interleave factor n^2).
-    let e = vpl_intensity(vpl, dir, cos_s) / bp.params.w * cos_r / max(d2, bp.params.z);
     // The area this point stands for among its VPL's points: sum(wA) / (per * w).
     let area = bp.area.x / (f32(per) * max(point_normals[j].w, 1.0e-6));
+    // Physical power of the source VPL (its shading power carries the interleave factor n^2),
+    // between two disks (the VPL's and the point's patch): clamping d^2 at R_vpl^2 + R_point^2
+    // keeps the power a near point receives below what the VPL emits.
+    let r2 = vpl.position.w + area / PI;
+    let e = vpl_intensity(vpl, dir, cos_s) / bp.params.w * cos_r / max(max(d2, bp.params.y * r2), bp.params.z);
     return vec4<f32>(e * area, f32(k));
 }
 
@@ -125,7 +130,8 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
     let src = vpls[bp.sets.x + k];
     let p = points[id.x].xyz;
     var out: Vpl;
-    out.position = vec4<f32>(p, 1.0);
+    // The new VPL stands for every point its source lit: the area of one ISM's points.
+    out.position = vec4<f32>(p, max(bp.area.x / (f32(bp.counts.x) * PI), 1.0e-20));
     out.normal = vec4<f32>(point_normals[id.x].xyz, 0.0);
     let scale = (total / y) * bp.params.w;
     out.power = vec4<f32>(r.rgb * scale, 1.0);
@@ -133,4 +139,37 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
     let spec = point_specular[id.x];
     out.gloss = vec4<f32>(spec.rgb * lit[2u * id.x + 1u].rgb * scale, spec.w);
     vpls[bp.sets.y + k] = out;
+}
+
+var<workgroup> set_power: array<vec2<f32>, 64>;
+
+// The bounces beyond the last set, as a geometric series (an extension of the thesis, which
+// stops at its last set): with r = P_last / P_previous the ratio of the two last sets' total
+// power (luminance), later bounces carry r + r^2 + ... of the last set's power, so the last
+// set is scaled by 1 / (1 - r), r clamped to 0.9. One workgroup; runs after `write_winner` of
+// the last set, which no later pass reads as a source.
+@compute @workgroup_size(64, 1, 1)
+fn tail(@builtin(local_invocation_index) lid: u32) {
+    let n = bp.counts.x;
+    var sums = vec2<f32>(0.0);
+    for (var i = lid; i < n; i = i + 64u) {
+        sums.x = sums.x + luminance(vpls[bp.sets.x + i].power.rgb);
+        sums.y = sums.y + luminance(vpls[bp.sets.y + i].power.rgb);
+    }
+    set_power[lid] = sums;
+    workgroupBarrier();
+    var total = vec2<f32>(0.0);
+    for (var i = 0u; i < 64u; i = i + 1u) {
+        total = total + set_power[i];
+    }
+    var r = 0.0;
+    if total.x > 0.0 {
+        r = clamp(total.y / total.x, 0.0, 0.9);
+    }
+    let scale = 1.0 / (1.0 - r);
+    for (var i = lid; i < n; i = i + 64u) {
+        let k = bp.sets.y + i;
+        vpls[k].power = vec4<f32>(vpls[k].power.rgb * scale, vpls[k].power.a);
+        vpls[k].gloss = vec4<f32>(vpls[k].gloss.rgb * scale, vpls[k].gloss.a);
+    }
 }

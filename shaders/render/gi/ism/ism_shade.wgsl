@@ -13,7 +13,7 @@
 struct ShadeParams {
     // VPL count, tile side r, tiles per row C, interleave n.
     counts: vec4<u32>,
-    // 1 / d_max, unused, d_min^2, unused.
+    // 1 / d_max, unused, d_min^2, clamp factor on the VPL's disk radius squared.
     params: vec4<f32>,
     // VPL sets (bounces), view width, view height, unused.
     sets: vec4<u32>,
@@ -43,7 +43,7 @@ struct Incident {
 fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
     var out = Incident(vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(0.0));
     let vpl = vpls[k];
-    if vpl.position.w < 0.5 {
+    if vpl.position.w <= 0.0 {
         return out;
     }
     let to_p = p - vpl.position.xyz;
@@ -59,7 +59,7 @@ fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
         return out;
     }
     out.dir = -dir;
-    out.e = vpl_intensity(vpl, dir, cos_s) / max(d2, sh.params.z);
+    out.e = vpl_intensity(vpl, dir, cos_s) / max(max(d2, sh.params.w * vpl.position.w), sh.params.z);
     return out;
 }
 

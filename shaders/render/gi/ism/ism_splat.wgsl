@@ -43,7 +43,7 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let tile = sp.sets.x + k;
     let vpl = vpls[tile];
-    if vpl.position.w < 0.5 {
+    if vpl.position.w <= 0.0 {
         return;
     }
     let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, points[id.x].xyz);

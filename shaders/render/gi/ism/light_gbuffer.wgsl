@@ -2,7 +2,8 @@
 // tile: a spot light's frustum, one face of a point light's cube, or a directional light's
 // orthographic view of the scene. Outputs per texel:
 //   0 albedo     rgba8unorm   base colour x texture, a = specular luminance
-//   1 normal     rgba16float  world-space shading normal
+//   1 normal     rgba16float  world-space shading normal, w = world area of the surface patch
+//                             this texel sees (m^2; the VPL's disk radius comes from it)
 //   2 power      rgba16float  rgb = power reflected by the patch this texel sees, in watts:
 //                             rho * I(w) * dOmega for perspective tiles, rho * E * A_texel for
 //                             orthographic ones (the cosine cancels), a = importance
@@ -57,7 +58,6 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> LightGbufferOut
     let spec = luminance(material.specular.rgb);
     let n = normalize(in.normal);
     out.albedo = vec4<f32>(albedo, spec);
-    out.normal = vec4<f32>(n, 0.0);
     let inc = light_incident(view.light, in.world);
     // Solid angle of this texel seen from the light: (2 t / L)^2 cos^3 of the angle off axis.
     let cos_axis = max(dot(view.axis.xyz, -inc.dir), 0.0);
@@ -66,9 +66,14 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> LightGbufferOut
     // irradiance * d^2 = radiant intensity towards this texel (spot falloff and range included);
     // a directional light's irradiance times the texel's cross-section is the power it sends.
     var incident = inc.irradiance * inc.distance * inc.distance * d_omega;
+    // The patch's area: the texel's cross-section at the surface over the cosine of incidence
+    // (bounded at grazing angles, where the patch reflects little anyway).
+    var cross_section = d_omega * inc.distance * inc.distance;
     if view.params.z > 0.0 {
         incident = inc.irradiance * view.params.z;
+        cross_section = view.params.z;
     }
+    out.normal = vec4<f32>(n, cross_section / max(abs(dot(n, inc.dir)), 0.05));
     if !front {
         incident = vec3<f32>(0.0);
     }

@@ -32,6 +32,8 @@ struct TileRecord {
 @group(0) @binding(7) var specular_tex: texture_2d<f32>;
 @group(0) @binding(8) var<storage, read> tile_records: array<TileRecord>;
 
+const PI: f32 = 3.14159265358979;
+
 fn radical_inverse_2(i: u32) -> f32 {
     return f32(reverseBits(i) >> 8u) / 16777216.0;
 }
@@ -130,8 +132,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let p = h.xyz / h.w;
     let interleave = f32(params.counts.z);
     let reflected = textureLoad(power_tex, cell, 0).rgb;
-    out.position = vec4<f32>(p, 1.0);
-    out.normal = vec4<f32>(normalize(textureLoad(normal_tex, cell, 0).xyz), textureLoad(albedo_tex, cell, 0).a);
+    let nt = textureLoad(normal_tex, cell, 0);
+    // The VPL stands for a disk of the area its texel's patch covers among N draws: A / (N p).
+    let disk_area = nt.w / (f32(n_vpl) * pdf);
+    out.position = vec4<f32>(p, max(disk_area / PI, 1.0e-20));
+    out.normal = vec4<f32>(normalize(nt.xyz), textureLoad(albedo_tex, cell, 0).a);
     let scale = interleave * interleave / (f32(n_vpl) * pdf);
     out.power = vec4<f32>(reflected * scale, pdf);
     let spec = textureLoad(specular_tex, cell, 0);

@@ -26,7 +26,8 @@ pub struct BounceParams {
     pub counts: [u32; 4],
     /// Source set's first VPL, destination set's first VPL, unused x2.
     pub sets: [u32; 4],
-    /// 1 / d_max, unused, d_min^2, interleave n^2.
+    /// 1 / d_max, clamp factor on the disks' radii squared (1: energy-conserving), d_min^2,
+    /// interleave n^2.
     pub params: [f32; 4],
     /// Sum over the scene of area x weight, unused x3.
     pub area: [f32; 4],
@@ -58,7 +59,7 @@ pub struct SplitParams {
 pub struct ShadeParams {
     /// VPL count, tile side r, tiles per row C, interleave n.
     pub counts: [u32; 4],
-    /// 1 / d_max, unused, d_min^2, unused.
+    /// 1 / d_max, unused, d_min^2, clamp factor on the VPL's disk radius squared.
     pub params: [f32; 4],
     /// VPL sets (bounces), view width, view height, unused.
     pub sets: [u32; 4],

@@ -389,7 +389,7 @@ impl IsmScreen {
         queue.write_buffer(&self.split_params, 0, bytemuck::bytes_of(&SplitParams { counts: [n, 0, 0, 0] }));
         let shade = ShadeParams {
             counts: [ism.vpl_count, ism.r, ism.tiles_per_row, n],
-            params: [1.0 / ism.d_max, 0.0, d_min * d_min, 0.0],
+            params: [1.0 / ism.d_max, 0.0, d_min * d_min, settings.clamp_disk],
             sets: [ism.sets, w, h, 0],
             bias: ism.bias,
         };

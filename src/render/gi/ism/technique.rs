@@ -387,7 +387,7 @@ impl GiTechnique for IsmTechnique {
         let points = vpls
             .iter()
             .enumerate()
-            .filter(|(_, v)| v.position[3] > 0.5)
+            .filter(|(_, v)| v.position[3] > 0.0)
             .map(|(i, v)| OverlayPoint {
                 position: glam::Vec3::new(v.position[0], v.position[1], v.position[2]),
                 tone: (i / per_set) as f32 / 5.0,

@@ -30,7 +30,7 @@ const LIGHT_GBUFFER_FORMATS: [wgpu::TextureFormat; 4] = [
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuVpl {
-    /// xyz position, w = 1 when valid.
+    /// xyz position, w = R^2 of the disk the VPL stands for (0: no VPL).
     pub position: [f32; 4],
     /// xyz normal, w = specular luminance.
     pub normal: [f32; 4],

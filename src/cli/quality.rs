@@ -1,0 +1,180 @@
+//! `bouncelab bench --quality`: every available mode on every scene of the suite against its
+//! cached reference: FLIP, relMSE, energy ratio and frame time relative to `direct`, written to
+//! `docs/QUALITY.md` with a contact sheet (`docs/quality_sheet.png`: one row per scene, the
+//! reference, then each mode with its signed error map beneath). What a user reads to choose a
+//! technique, and what every technique issue reports.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use crate::image_io::{self, HdrImage};
+use crate::metrics;
+use crate::render::{GpuContext, Renderer};
+use crate::settings::{GiMode, ViewSettings};
+use crate::suite::{REFERENCE_SIZE, SCENES, SuiteScene};
+
+/// Modes in the matrix (the reference is the yardstick, not a row).
+const MODES: [GiMode; 3] = [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel];
+/// Frames rendered per mode (temporal techniques converge; the last one is compared).
+const FRAMES: usize = 32;
+/// Supersampling per axis, as the reference's box-filtered pixels.
+const SSAA: u32 = 2;
+
+/// One cell of the matrix.
+struct Cell {
+    mode: GiMode,
+    flip: f64,
+    relmse: f64,
+    energy: f64,
+    frame_ms: f64,
+    image: HdrImage,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(0.0)
+}
+
+/// Renders `scene` in `mode`: the last of [`FRAMES`] frames, box-filtered to the reference's
+/// size, and the median wall-clock frame time of the last eight.
+fn render(ctx: &GpuContext, scene: &SuiteScene, root: &Path, mode: GiMode) -> anyhow::Result<(HdrImage, f64)> {
+    let mut project = scene.load(root)?;
+    project.render.mode = mode;
+    let size = (REFERENCE_SIZE.0 * SSAA, REFERENCE_SIZE.1 * SSAA);
+    let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
+    let frames = if mode == GiMode::Direct || mode == GiMode::IsmRitschel { 9 } else { FRAMES };
+    let mut times = Vec::new();
+    for f in 0..frames {
+        let t = Instant::now();
+        r.render(&project.scene, &project.render, size)?;
+        let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
+        if f + 8 >= frames {
+            times.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    let pixels = image_io::box_downsample(&r.read_hdr()?, size, SSAA);
+    Ok((HdrImage { width: REFERENCE_SIZE.0, height: REFERENCE_SIZE.1, pixels }, median(times)))
+}
+
+/// The exposure (stops) that puts `reference`'s mean luminance at 0.18, so dim scenes (the
+/// unlit room, the diorama) are judged as a user would look at them.
+pub fn exposure(reference: &HdrImage) -> f32 {
+    (0.18 / metrics::mean_luminance(reference).max(1e-6)).log2() as f32
+}
+
+/// A tonemapped tile of the contact sheet.
+fn tile(img: &HdrImage, view: &ViewSettings) -> Vec<u8> {
+    image_io::tonemap_srgb8(img, view)
+}
+
+/// Writes the matrix to `out` (markdown) and the contact sheet beside it.
+pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
+    let ctx = GpuContext::new_headless()?;
+    let mut rows: Vec<(&SuiteScene, HdrImage, Vec<Cell>)> = Vec::new();
+    for scene in SCENES {
+        let reference = scene.reference(root)?;
+        let ev = exposure(&reference);
+        let mut cells = Vec::new();
+        for mode in MODES {
+            let (image, frame_ms) = render(&ctx, scene, root, mode)?;
+            // FLIP compares display images: expose each scene as the sheet shows it.
+            let c = metrics::compare(&image, &reference, ev)?;
+            cells.push(Cell { mode, flip: c.flip, relmse: c.relmse, energy: c.luminance_ratio, frame_ms, image });
+            eprintln!("{}: {} FLIP {:.4} energy {:.3}", scene.name, mode.name(), c.flip, c.luminance_ratio);
+        }
+        rows.push((scene, reference, cells));
+    }
+    let mut md = String::new();
+    let _ = writeln!(md, "# Quality matrix\n");
+    let _ = writeln!(
+        md,
+        "Written by `bouncelab bench --quality` (release build). Adapter: **{}**. Every mode on every \
+         scene of the suite (`src/suite/`) at {}x{} ({}x{} supersampling), against the cached \
+         {}-spp path-traced reference; FLIP at the exposure that puts the reference's mean at 0.18 (`assets/suite/references/`, `bouncelab suite --references`). \
+         `ism` is the last of {FRAMES} frames; `direct` and `ism-ritschel` single frames. Energy is the \
+         mean-luminance ratio to the reference; frame time is relative to `direct` on the same scene in \
+         the same run (wall clock, median of the last 8 frames).\n",
+        ctx.describe(),
+        REFERENCE_SIZE.0,
+        REFERENCE_SIZE.1,
+        SSAA,
+        SSAA,
+        crate::suite::REFERENCE_SPP
+    );
+    let _ = writeln!(md, "| scene | what it tests | mode | FLIP | FLIP / direct | relMSE | energy | frame / direct |");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
+    for (scene, _, cells) in &rows {
+        let direct = cells.iter().find(|c| c.mode == GiMode::Direct);
+        let (df, dt) = direct.map_or((1.0, 1.0), |d| (d.flip, d.frame_ms));
+        for c in cells {
+            let _ = writeln!(
+                md,
+                "| {} | {} | `{}` | {:.4} | {:.2} | {:.4} | {:.3} | {:.2} |",
+                scene.name,
+                scene.description,
+                c.mode.name(),
+                c.flip,
+                c.flip / df.max(1e-9),
+                c.relmse,
+                c.energy,
+                c.frame_ms / dt.max(1e-9)
+            );
+        }
+    }
+    let sheet = out.with_file_name("quality_sheet.png");
+    let _ = writeln!(
+        md,
+        "\n![Contact sheet: per scene, the reference then each mode; the row beneath holds each mode's signed \
+         error (red too bright, blue too dark)]({})",
+        sheet.file_name().and_then(|n| n.to_str()).unwrap_or("quality_sheet.png")
+    );
+    write_sheet(&sheet, &rows)?;
+    crate::project_file::atomic::write(out, md.as_bytes())?;
+    Ok(md)
+}
+
+/// Lays out the contact sheet: per scene two rows of tiles (images, then error maps).
+fn write_sheet(path: &Path, rows: &[(&SuiteScene, HdrImage, Vec<Cell>)]) -> anyhow::Result<()> {
+    let (w, h) = (REFERENCE_SIZE.0 as usize, REFERENCE_SIZE.1 as usize);
+    let columns = 1 + MODES.len();
+    let (sw, sh) = (columns * w, rows.len() * 2 * h);
+    let mut sheet: Vec<u8> = std::iter::repeat_n([0u8, 0, 0, 255], sw * sh).flatten().collect();
+    let mut blit = |tile: &[u8], col: usize, row: usize| {
+        for y in 0..h {
+            let dst = ((row * h + y) * sw + col * w) * 4;
+            sheet[dst..dst + w * 4].copy_from_slice(&tile[y * w * 4..(y + 1) * w * 4]);
+        }
+    };
+    for (r, (_, reference, cells)) in rows.iter().enumerate() {
+        // Expose each scene so its reference's mean sits mid-grey.
+        let view = ViewSettings { exposure_ev: exposure(reference), ..ViewSettings::default() };
+        blit(&tile(reference, &view), 0, 2 * r);
+        for (c, cell) in cells.iter().enumerate() {
+            blit(&tile(&cell.image, &view), c + 1, 2 * r);
+            if let Ok(heat) = metrics::signed_heatmap(&cell.image, reference, 0.5) {
+                blit(&heat, c + 1, 2 * r + 1);
+            }
+        }
+    }
+    let tmp = path.with_extension("tmp.png");
+    image_io::write_png(&tmp, sw as u32, sh as u32, sheet)?;
+    std::fs::rename(&tmp, path)?;
+    Ok(())
+}
+
+/// `bouncelab suite`: writes the suite's glTF levels and, with `references`, path-traces and
+/// caches the references of `only` (every scene when empty).
+pub fn suite(root: &Path, references: bool, only: &[String]) -> anyhow::Result<String> {
+    let written = crate::suite::write_levels(root)?;
+    let mut out = format!("wrote {} levels under {}", written.len(), root.join("assets/suite").display());
+    if references {
+        for scene in SCENES.iter().filter(|s| only.is_empty() || only.iter().any(|o| o == s.name)) {
+            let t = Instant::now();
+            scene.render_reference(root)?;
+            let _ = write!(out, "\nreference {}: {:.1} s", scene.name, t.elapsed().as_secs_f64());
+            eprintln!("reference {}: {:.1} s", scene.name, t.elapsed().as_secs_f64());
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,83 @@
+//! The scene suite: the shipped levels and cached references are current, and `ism` holds on
+//! level-like scenes at CI sizes against the cached references (box-filtered to 64x36): no
+//! light through the 0.2 m walls into the unlit third room (its energy within 10% of the
+//! reference's), and the energy within 10% on three more scenes.
+
+mod common;
+
+use std::path::Path;
+
+use bouncelab::image_io::HdrImage;
+use bouncelab::metrics;
+use bouncelab::render::Renderer;
+use bouncelab::settings::GiMode;
+use bouncelab::suite::{self, REFERENCE_SIZE, SCENES};
+
+const SIZE: (u32, u32) = (REFERENCE_SIZE.0 / 2, REFERENCE_SIZE.1 / 2);
+
+#[test]
+fn suite_levels_and_references_are_current() {
+    let root = Path::new(".");
+    for scene in SCENES {
+        if let Some(text) = scene.gltf_text() {
+            let on_disk = std::fs::read_to_string(scene.gltf_path(root)).expect("level file");
+            assert!(on_disk == text, "{} is out of date: run `bouncelab suite --references`", scene.name);
+        }
+        let reference = scene.reference(root).unwrap_or_else(|e| panic!("{e}"));
+        assert!(reference.pixels.iter().all(|p| p.iter().all(|v| v.is_finite() && *v >= 0.0)));
+        assert!(metrics::mean_luminance(&reference) > 0.0, "{} reference is black", scene.name);
+    }
+    assert!(matches!(suite::scene("nope"), Err(suite::SuiteError::Unknown(..))));
+}
+
+/// `ism` after 32 frames of suite scene `name`, and the reference at the same size.
+fn ism_and_reference(ctx: &bouncelab::render::GpuContext, name: &str) -> (HdrImage, HdrImage, Renderer) {
+    let scene = suite::scene(name).expect("scene");
+    let mut project = scene.load(Path::new(".")).expect("loads");
+    project.render.mode = GiMode::Ism;
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    for _ in 0..32 {
+        r.render(&project.scene, &project.render, SIZE).expect("render");
+    }
+    let img = HdrImage { width: SIZE.0, height: SIZE.1, pixels: r.read_hdr().expect("hdr") };
+    let reference = suite::downsample(&scene.reference(Path::new(".")).expect("reference"), 2);
+    (img, reference, r)
+}
+
+#[test]
+fn ism_puts_no_light_through_the_walls_into_the_unlit_room() {
+    let Some(ctx) = common::gpu() else { return };
+    let (img, reference, r) = ism_and_reference(&ctx, "rooms");
+    let project = suite::scene("rooms").expect("scene").load(Path::new(".")).expect("loads");
+    // Pixels on the third room's own surfaces (the camera stands in it).
+    let ids = r.read_buffer("object_id").expect("ids");
+    let third: Vec<usize> =
+        (0..ids.pixels.len())
+            .filter(|&i| {
+                let id = ids.pixels[i][0] as usize;
+                id > 0
+                    && project.scene.objects().get(id - 1).is_some_and(|o| {
+                        o.name.ends_with("_2") || o.name.starts_with("partition_1") || o.name == "end_2"
+                    })
+            })
+            .collect();
+    assert!(third.len() > SIZE.0 as usize * SIZE.1 as usize / 3, "the view shows the third room: {}", third.len());
+    let mean = |img: &HdrImage| {
+        third.iter().map(|&i| f64::from(bouncelab::metrics::luminance(&img.pixels[i]))).sum::<f64>()
+            / third.len() as f64
+    };
+    let (ism, truth) = (mean(&img), mean(&reference));
+    eprintln!("unlit third room over {} px: ism {ism:.5}, reference {truth:.5}, ratio {:.3}", third.len(), ism / truth);
+    assert!((ism / truth - 1.0).abs() < 0.1, "energy in the unlit room: ism {ism} vs reference {truth}");
+}
+
+#[test]
+fn ism_energy_is_within_ten_percent_on_level_scenes() {
+    let Some(ctx) = common::gpu() else { return };
+    for name in ["window", "clutter", "diorama"] {
+        let (img, reference, _) = ism_and_reference(&ctx, name);
+        let ratio = metrics::luminance_ratio(&img, &reference).expect("ratio");
+        eprintln!("{name}: ism energy / reference {ratio:.3}");
+        assert!((ratio - 1.0).abs() < 0.1, "{name}: ism energy ratio {ratio}");
+    }
+}
