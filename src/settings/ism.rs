@@ -103,7 +103,7 @@ impl Default for IsmSettings {
             sh_filter: false,
             bounce_tail: true,
             clamp_distance: 0.0,
-            clamp_disk: 0.25,
+            clamp_disk: 0.5,
             bias_constant: 0.1,
             bias_slope: 0.5,
         }
