@@ -57,9 +57,7 @@ impl CompositePass {
 
     /// The bind group over the view targets.
     pub fn bind_group(&self, device: &wgpu::Device, frame: &wgpu::Buffer, t: &ViewTargets) -> wgpu::BindGroup {
-        fn view(binding: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
-            wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(v) }
-        }
+        use super::layouts::view_entry as view;
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("composite bind group"),
             layout: &self.layout,

@@ -105,9 +105,7 @@ impl LightingPass {
 
     /// The bind group of the view targets.
     pub fn targets_bind_group(&self, device: &wgpu::Device, t: &ViewTargets) -> wgpu::BindGroup {
-        fn view(binding: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
-            wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(v) }
-        }
+        use super::layouts::view_entry as view;
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lighting targets bind group"),
             layout: &self.targets_layout,

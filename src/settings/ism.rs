@@ -114,6 +114,8 @@ impl IsmSettings {
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
         let m = self;
+        let weights =
+            [m.w_position, m.w_normal, m.w_illumination, m.filter_depth, m.bias_constant, m.bias_slope, m.clamp_disk];
         let checks: [(&'static str, bool, String, &'static str); 9] = [
             ("ism.vpl_count", (4..=1024).contains(&m.vpl_count), m.vpl_count.to_string(), "4..=1024"),
             (
@@ -140,27 +142,8 @@ impl IsmSettings {
             ),
             (
                 "ism weights and biases",
-                [
-                    m.w_position,
-                    m.w_normal,
-                    m.w_illumination,
-                    m.filter_depth,
-                    m.bias_constant,
-                    m.bias_slope,
-                    m.clamp_disk,
-                ]
-                .iter()
-                .all(|w| w.is_finite() && *w >= 0.0),
-                format!(
-                    "{} {} {} {} {} {} {}",
-                    m.w_position,
-                    m.w_normal,
-                    m.w_illumination,
-                    m.filter_depth,
-                    m.bias_constant,
-                    m.bias_slope,
-                    m.clamp_disk
-                ),
+                weights.iter().all(|w| w.is_finite() && *w >= 0.0),
+                weights.map(|w| w.to_string()).join(" "),
                 ">= 0",
             ),
         ];
