@@ -9,44 +9,12 @@ use bouncelab::image_io::HdrImage;
 use bouncelab::metrics;
 use bouncelab::project_file::{Project, default_project_path};
 use bouncelab::render::Renderer;
-use bouncelab::scene::{Image, Material, MeshSource, TextureRef, Transform};
 use bouncelab::settings::{GiMode, ReferenceSettings, RenderSettings};
-use glam::Vec3;
 
-/// The default Cornell box with a 2 m floor overlay whose normal map has grooves two texels
-/// wide (normals tilted +-35 degrees about the z axis), 64 texels across: 2-4 px at 128^2.
+/// The suite's normal-mapped Cornell box: a 2 m floor overlay whose normal map has grooves two
+/// texels wide (normals tilted +-35 degrees about the z axis), 64 texels across: 2-4 px at 128^2.
 fn bumpy_cornell() -> Project {
-    let mut project = Project::load(&default_project_path()).expect("default project");
-    let (w, h) = (64u32, 64u32);
-    let (s, c) = (35f32.to_radians().sin(), 35f32.to_radians().cos());
-    let rgba8 = (0..w * h)
-        .flat_map(|i| {
-            let x = if (i % w / 2) % 2 == 0 { s } else { -s };
-            let enc = |v: f32| ((v * 0.5 + 0.5) * 255.0).round() as u8;
-            [enc(x), 128, enc(c), 255]
-        })
-        .collect();
-    // The normal map arrives as an extra asset holding only that image.
-    let mut extra = project.imported[0].clone();
-    extra.primitives.clear();
-    extra.materials.clear();
-    extra.images = vec![Image { width: w, height: h, rgba8 }];
-    let image: usize = project.imported.iter().map(|a| a.images.len()).sum();
-    project.imported.push(extra);
-    let desc = project.scene.desc_mut();
-    let mut material = Material::diffuse("bumpy", [0.7; 3]);
-    material.normal_texture = Some(TextureRef { image, tex_coord: 0 });
-    desc.materials.push(material);
-    let transform = Transform { translation: Vec3::new(0.0, 0.002, 0.0), ..Transform::default() };
-    desc.objects.push(common::object(
-        "bumpy floor",
-        MeshSource::Plane { size: 1.99 },
-        desc.materials.len() - 1,
-        transform,
-    ));
-    let desc = desc.clone();
-    project.scene = bouncelab::import::resolve(desc, &project.imported).expect("resolves");
-    project
+    bouncelab::suite::scene("bumpy").expect("suite scene").load(std::path::Path::new(".")).expect("loads")
 }
 
 fn render(r: &mut Renderer, project: &Project, settings: &RenderSettings, size: (u32, u32)) -> Vec<[f32; 4]> {

@@ -3,8 +3,8 @@
 
 struct Vpl {
     // xyz position, w = R^2 of the disk the VPL stands for (its patch's area / pi; the shading
-    // uses 1 / (d^2 + R^2), the exact on-axis irradiance of a Lambertian disk, so a VPL's light
-    // stays bounded near it); 0 = no VPL.
+    // clamps d^2 at clamp_disk x R^2 and the bounce pass at R_vpl^2 + R_point^2, so a VPL's
+    // light stays bounded near it at any scene scale); 0 = no VPL.
     position: vec4<f32>,
     // xyz surface normal, w = specular luminance.
     normal: vec4<f32>,

@@ -8,6 +8,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
+use super::bench::median;
 use crate::image_io::{self, HdrImage};
 use crate::metrics;
 use crate::render::{GpuContext, Renderer};
@@ -29,11 +30,6 @@ struct Cell {
     energy: f64,
     frame_ms: f64,
     image: HdrImage,
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
 
 /// Renders `scene` in `mode`: the last of [`FRAMES`] frames, box-filtered to the reference's

@@ -12,8 +12,9 @@ pub const MAX_ATLAS_SIDE: u32 = 5792;
 /// thesis's where it gives them (256 VPLs, 128^2 ISMs, c_base 0.9, alpha 0.01, beta 0.8) and
 /// measured elsewhere: 128k points instead of the thesis's 32k (128 points per ISM let light
 /// through the Cornell box's blocks: +8% energy with a spot on the floor, 512 per ISM bring it
-/// within 2%), d_min 0.1 m instead of 1 world unit, and the ISM bias in units of the point
-/// spacing with a receiver-slope term instead of a fraction of the scene diameter.
+/// within 2%), a distance clamp scaled by each VPL's patch instead of 1 world unit, the ISM
+/// bias in units of the point spacing with a receiver-slope term instead of a fraction of the
+/// scene diameter, and a geometric tail after the last bounce.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct IsmSettings {
@@ -47,8 +48,8 @@ pub struct IsmSettings {
     pub bounces: u32,
     /// Add the bounces beyond the last set as a geometric series: the last set's power is
     /// scaled by 1 / (1 - r), r = its total power over the previous set's (an extension of the
-    /// thesis; one tiny pass). Free; corrects the energy the bounce limit loses (measured in
-    /// the closing note of the technique-seam issue).
+    /// thesis; one tiny pass). Free; the Cornell box lit by a point light alone went from 0.948
+    /// to 0.956 of the reference's energy at 6 bounces (`tests/ism_lights.rs`).
     pub bounce_tail: bool,
     /// Geometry-aware filter threshold alpha: a neighbour farther than alpha x the scene
     /// diameter from the pixel's tangent plane is rejected (the thesis's 0.01, applied along
@@ -65,8 +66,8 @@ pub struct IsmSettings {
     pub sh_filter: bool,
     /// An extra fixed minimum VPL distance in metres, on top of `clamp_disk` (0 = none, the
     /// default). The thesis clamps d^2 >= 1 in world units, which assumes large scenes: in a 2 m
-    /// Cornell box that loses 9-11% of the one-bounce light, in a 20 cm diorama even 0.1 m
-    /// loses 12% (measured), so the clamp is scale-free (`clamp_disk`) by default.
+    /// Cornell box that loses 9-11% of the one-bounce light, and with 0.1 m the 20 cm diorama
+    /// read 0.88 of the reference's energy (0.99 with the scale-free `clamp_disk` alone).
     pub clamp_distance: f32,
     /// The scale-free distance clamp: a VPL stands for the patch it was drawn from (its light-
     /// G-buffer texel's area / (N p), or one ISM's share of the scene's area for bounce VPLs),

@@ -2,7 +2,7 @@
 //! active technique, its status, limitations, overlays and GPU memory, and the inspected buffer.
 
 use super::Renderer;
-use crate::render::gi::{GiOutput, GiTechnique, Overlay, Readiness, TechniqueStatus};
+use crate::render::gi::{GiTechnique, Overlay, TechniqueStatus};
 use crate::scene::Scene;
 use crate::settings::{GiMode, RenderSettings};
 
@@ -10,11 +10,6 @@ impl Renderer {
     /// The active technique (after the first frame).
     pub fn technique(&self) -> Option<&dyn GiTechnique> {
         self.techniques.active()
-    }
-
-    /// The technique serving `mode`, if it was created (it may be released, not active).
-    pub fn technique_for(&self, mode: GiMode) -> Option<&dyn GiTechnique> {
-        self.techniques.get(mode)
     }
 
     /// The active technique, downcast to its concrete type (tests and tools).
@@ -25,16 +20,6 @@ impl Renderer {
     /// The active mode's status (history length, resets, progress).
     pub fn technique_status(&self) -> Option<TechniqueStatus> {
         self.techniques.active().map(GiTechnique::status)
-    }
-
-    /// What the active technique wrote last frame.
-    pub fn last_output(&self) -> GiOutput {
-        self.output
-    }
-
-    /// Whether the active technique rendered last frame, or is still preparing.
-    pub fn readiness(&self) -> &Readiness {
-        &self.readiness
     }
 
     /// What the technique for `settings.mode` ignores in `scene` (sentences for the GI panel

@@ -96,17 +96,6 @@ impl ChangeDetector {
         self.size = Some(size);
         out
     }
-
-    /// Forgets the previous frame (the next call reports nothing).
-    pub fn clear(&mut self) {
-        *self = Self::default();
-    }
-}
-
-/// How far the camera may move per frame before [`ChangeDetector`] calls it a cut, for a
-/// scene of radius `radius` (documentation and tests).
-pub fn cut_distance(radius: f32) -> f32 {
-    CUT_DISTANCE * radius
 }
 
 #[cfg(test)]
@@ -142,6 +131,5 @@ mod tests {
         s.view.exposure_ev += 1.0;
         assert!(d.detect(&p.scene, &s, (8, 8)).is_empty(), "exposure is display only");
         assert_eq!(d.detect(&p.scene, &s, (9, 8)), [ResetReason::Resized]);
-        assert!(cut_distance(2.0) > 0.01);
     }
 }

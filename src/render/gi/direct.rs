@@ -23,10 +23,6 @@ impl DirectTechnique {
 }
 
 impl GiTechnique for DirectTechnique {
-    fn support(&self, query: &SupportQuery<'_>) -> Result<(), String> {
-        Self::support(query)
-    }
-
     fn prepare(&mut self, _scene: &Scene, _settings: &RenderSettings, _size: (u32, u32)) -> Readiness {
         Readiness::Ready
     }

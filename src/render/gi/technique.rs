@@ -14,7 +14,7 @@ use super::inputs::GiInputs;
 use crate::image_io::HdrImage;
 use crate::render::RenderError;
 use crate::scene::Scene;
-use crate::settings::{GiMode, RenderSettings};
+use crate::settings::RenderSettings;
 
 /// What a technique wrote into the `indirect` target, which decides how the composite uses it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -152,7 +152,8 @@ pub struct Needs {
     pub pyramid: bool,
 }
 
-/// The question "can this mode run here?".
+/// The question "can this mode run here?", answered by each technique's associated
+/// `support` function through [`super::registry::TECHNIQUES`] (before the technique exists).
 pub struct SupportQuery<'a> {
     /// The adapter's limits as granted to the device.
     pub limits: &'a wgpu::Limits,
@@ -166,10 +167,6 @@ pub struct SupportQuery<'a> {
 
 /// A GI technique (architecture.md section 2). Owns its pipelines, GPU memory and history.
 pub trait GiTechnique {
-    /// Whether it can run with these limits, settings and size; the error is a sentence a user
-    /// can act on.
-    fn support(&self, query: &SupportQuery<'_>) -> Result<(), String>;
-
     /// What the frame must provide for [`GiTechnique::render`].
     fn needs(&self) -> Needs {
         Needs::default()
@@ -245,6 +242,3 @@ pub fn note_reset(status: &mut TechniqueStatus, reason: ResetReason) {
         status.resets.drain(..128);
     }
 }
-
-/// The modes a technique answers to.
-pub type Modes = &'static [GiMode];

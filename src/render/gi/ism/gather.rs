@@ -308,12 +308,6 @@ impl IsmGather {
         self.sized.as_ref().map(|s| (s.atlas.as_slice(), s.key.r * Self::tiles_per_row(s.key.vpls * s.key.bounces)))
     }
 
-    /// Forgets size-dependent resources (the view targets or the VPL buffer were recreated).
-    pub fn invalidate(&mut self) {
-        self.sized = None;
-        self.screen.invalidate();
-    }
-
     /// Sizes the atlas and point buffers for `settings` and `points` sample points; returns a
     /// generation that changes whenever the buffers were recreated (their point data is then
     /// undefined until [`Self::upload_points`]).
@@ -385,7 +379,8 @@ impl IsmGather {
                     counts,
                     sets: [(b - 1) * key.vpls, b * key.vpls, 0, 0],
                     // The bounce clamps at the full disks: a near point may not receive more
-                    // power than the VPL emits (measured: clutter +8% at half the disks).
+                    // power than the VPL emits (the cluttered room read 1.075 of the reference's
+                    // energy with half the disks everywhere, 1.018 with full ones).
                     params: [1.0 / d_max, 1.0, d_min * d_min, n2],
                     area: [scale.total_area, 0.0, 0.0, 0.0],
                     bias: scale.bias,

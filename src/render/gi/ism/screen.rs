@@ -97,9 +97,7 @@ pub(super) fn buf(b: u32, x: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry { binding: b, resource: x.as_entire_binding() }
 }
 
-pub(super) fn tex(b: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding: b, resource: wgpu::BindingResource::TextureView(v) }
-}
+pub(super) use crate::render::layouts::view_entry as tex;
 
 /// Size of the split layout: n x n blocks of ceil(W / n) x ceil(H / n) (common/interleave.wgsl).
 pub fn split_size(view: (u32, u32), n: u32) -> (u32, u32) {
@@ -312,11 +310,6 @@ impl IsmScreen {
     /// Drops the temporal history (the next frame uses only new VPLs).
     pub fn reset_history(&mut self) {
         self.reset = true;
-    }
-
-    /// Forgets view-sized resources (the view targets were recreated).
-    pub fn invalidate(&mut self) {
-        self.sized = None;
     }
 
     /// Frees every view-sized buffer (another mode is active); the history restarts.

@@ -254,10 +254,6 @@ impl IsmTechnique {
 }
 
 impl GiTechnique for IsmTechnique {
-    fn support(&self, query: &SupportQuery<'_>) -> Result<(), String> {
-        Self::support(query)
-    }
-
     fn prepare(&mut self, scene: &Scene, settings: &RenderSettings, _size: (u32, u32)) -> Readiness {
         self.update_points(scene, &settings.ism);
         Readiness::Ready

@@ -236,9 +236,7 @@ impl VplPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        fn view(binding: u32, v: &wgpu::TextureView) -> wgpu::BindGroupEntry<'_> {
-            wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(v) }
-        }
+        use crate::render::layouts::view_entry as view;
         let gen_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism vpl generation bind group"),
             layout: &self.gen_layout,

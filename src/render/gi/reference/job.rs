@@ -63,11 +63,6 @@ impl ReferenceJob {
         self.revision == scene.revision() && self.settings == *settings && self.size == size
     }
 
-    /// The size it renders at.
-    pub fn size(&self) -> (u32, u32) {
-        self.size
-    }
-
     /// The newest image and progress, if a pass has finished.
     pub fn latest(&self) -> Option<(HdrImage, Progress)> {
         self.latest.lock().ok().and_then(|s| s.clone())

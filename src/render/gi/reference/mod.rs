@@ -32,6 +32,9 @@ struct Shown {
 pub struct ReferenceTechnique {
     job: Option<ReferenceJob>,
     shown: Option<Shown>,
+    /// The spp of the image last written to `indirect` (written again only when it changes,
+    /// or after a frame that wrote nothing, which clears the target).
+    uploaded: Option<u32>,
     status: TechniqueStatus,
     restarts: u64,
     view: (u32, u32),
@@ -63,10 +66,6 @@ impl ReferenceTechnique {
 }
 
 impl GiTechnique for ReferenceTechnique {
-    fn support(&self, query: &SupportQuery<'_>) -> Result<(), String> {
-        Self::support(query)
-    }
-
     fn prepare(&mut self, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> Readiness {
         self.view = size;
         let size = Self::preview_size(size);
@@ -92,6 +91,7 @@ impl GiTechnique for ReferenceTechnique {
                 Readiness::Ready
             }
             None => {
+                self.uploaded = None;
                 self.status.progress = Some("reference: first pass".to_owned());
                 Readiness::Pending { progress: 0.0, what: "reference: first pass".to_owned() }
             }
@@ -102,8 +102,16 @@ impl GiTechnique for ReferenceTechnique {
         let size = inputs.targets.size;
         let Some(Shown { size: shown_size, pixels, .. }) = &self.shown else { return Ok(GiOutput::Nothing) };
         if *shown_size != size {
+            self.uploaded = None;
             return Ok(GiOutput::Nothing);
         }
+        let spp = self.shown.as_ref().map(|s| s.spp);
+        if self.uploaded == spp {
+            // `indirect` still holds this image: the view targets were not recreated (that
+            // changes the size, caught above) and no other technique ran.
+            return Ok(GiOutput::Complete);
+        }
+        self.uploaded = spp;
         let texture = &inputs.targets.indirect.texture;
         inputs.queue.write_texture(
             texture.as_image_copy(),
@@ -131,6 +139,7 @@ impl GiTechnique for ReferenceTechnique {
     fn release(&mut self) {
         self.job = None;
         self.shown = None;
+        self.uploaded = None;
     }
 
     fn gpu_bytes(&self) -> u64 {
