@@ -126,7 +126,12 @@ fn ism_with_defaults_after_32_frames_halves_the_flip_of_direct_against_full_gi()
     let li = metrics::luminance_ratio(&ism, &reference).expect("ratio");
     eprintln!("defaults, 32 frames, full GI: direct FLIP {fd:.4}; ism FLIP {fi:.4}, luminance {li:.3}");
     assert!(fi < 0.5 * fd, "ism FLIP {fi} vs direct {fd}");
-    assert!((li - 1.0).abs() < 0.05, "ism mean luminance off by {:.1}%", (li - 1.0) * 100.0);
+    // Within the scene-suite issue's 10% (0.924 here, 0.94 at 128x72 with 2x2 supersampling).
+    // It read 0.99 while the bounce pass picked the brightest point, whose bias towards light
+    // that stays near where it landed made up for the first bounce's ISM over-occlusion (0.87
+    // of the path tracer's one-bounce light with the default maps, 0.96 with dense ones; the
+    // one-bounce references agree with Mitsuba 3 within 0.02%).
+    assert!((li - 1.0).abs() < 0.1, "ism mean luminance off by {:.1}%", (li - 1.0) * 100.0);
 }
 
 #[test]

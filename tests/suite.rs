@@ -46,7 +46,6 @@ fn ism_and_reference(ctx: &bouncelab::render::GpuContext, name: &str) -> (HdrIma
 }
 
 #[test]
-#[ignore = "open target (scene-suite issue): the unlit room reads 1.19x the reference today"]
 fn ism_puts_no_light_through_the_walls_into_the_unlit_room() {
     let Some(ctx) = common::gpu() else { return };
     let (img, reference, r) = ism_and_reference(&ctx, "rooms");
@@ -74,11 +73,11 @@ fn ism_puts_no_light_through_the_walls_into_the_unlit_room() {
 }
 
 #[test]
-fn ism_energy_is_within_ten_percent_on_the_window_room_and_the_diorama() {
+fn ism_energy_is_within_ten_percent_on_the_window_room_the_cluttered_room_and_the_diorama() {
     let Some(ctx) = common::gpu() else { return };
     let mut failures = Vec::new();
-    // The cluttered room (1.11) and the hall (1.10) are not there yet (docs/QUALITY.md).
-    for name in ["window", "diorama"] {
+    // The hall is not there yet (0.89 at 128x72, docs/QUALITY.md).
+    for name in ["window", "clutter", "diorama"] {
         let (img, reference, _) = ism_and_reference(&ctx, name);
         let ratio = metrics::luminance_ratio(&img, &reference).expect("ratio");
         eprintln!("{name}: ism energy / reference {ratio:.3}");

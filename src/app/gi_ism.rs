@@ -1,7 +1,7 @@
 //! The GI panel's ISM section (`ism`, `ism-ritschel`): every IsmSettings field with its
 //! cost/quality trade-off as a tooltip.
 
-use crate::settings::IsmSettings;
+use crate::settings::{BouncePick, IsmSettings};
 
 /// Draws the ISM settings.
 pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
@@ -27,14 +27,25 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
         ui.checkbox(&mut m.bounce_tail, "bounces beyond the last (geometric tail)").on_hover_text(
             "Scale the last bounce's VPLs by 1 / (1 - r), r = its power over the previous bounce's: the light of the bounces the limit cuts off. Free.",
         );
+        ui.horizontal(|ui| {
+            ui.label("bounce VPL pick");
+            ui.radio_value(&mut m.bounce_pick, BouncePick::Proportional, "proportional").on_hover_text(
+                "A lit point picked with probability proportional to its brightness: bounced light goes where it should (through doorways), noisier per frame.",
+            );
+            ui.radio_value(&mut m.bounce_pick, BouncePick::Brightest, "brightest (thesis)")
+                .on_hover_text("The thesis's pick: the brightest lit point. Stable, but bounced light stays near where it landed.");
+        });
+        ui.add(egui::Slider::new(&mut m.splat_radius, 0.25..=2.0).text("splat radius (x point disk)")).on_hover_text(
+            "Each sample point's ISM splat, as a fraction of the surface disk it stands for. Smaller: holes that let light through walls; larger: occluders dilate, doorways close, contacts darken.",
+        );
         ui.add(egui::Slider::new(&mut m.clamp_disk, 0.0..=4.0).text("clamp (VPL disk radius²)"))
             .on_hover_text("d² is clamped at this factor x the squared radius of the patch each VPL stands for: bounded light near VPLs at any scene scale. Larger: fewer spikes, darker corners.");
         ui.add(egui::Slider::new(&mut m.clamp_distance, 0.0..=2.0).text("extra clamp distance (m)"))
             .on_hover_text("A fixed minimum VPL distance on top of the disk clamp (0 = none). Larger: fewer spikes near VPLs, darker corners (bias).");
-        ui.add(egui::Slider::new(&mut m.bias_constant, 0.0..=1.0).text("ISM bias (x point spacing)"))
-            .on_hover_text("Constant part of the ISM lookup bias, in units of the spacing of one ISM's sample points. Larger: less self-shadowing, more light through thin occluders.");
-        ui.add(egui::Slider::new(&mut m.bias_slope, 0.0..=2.0).text("ISM slope bias"))
-            .on_hover_text("Receiver-slope part of the bias: x tan(angle to the VPL) x the point spacing, plus half an ISM texel's footprint.");
+        ui.add(egui::Slider::new(&mut m.bias_constant, 0.0..=1.0).text("ISM normal offset (x point spacing)"))
+            .on_hover_text("Constant part of the ISM lookup's normal offset, in units of the spacing of one ISM's sample points. Larger: less self-shadowing acne, softer contact shadows.");
+        ui.add(egui::Slider::new(&mut m.bias_slope, 0.0..=2.0).text("ISM slope offset"))
+            .on_hover_text("Receiver-slope part of the normal offset: x sin(angle to the VPL) x the point spacing, plus an ISM texel's footprint x sin.");
         ui.add(egui::Slider::new(&mut m.filter_depth, 0.001..=0.1).logarithmic(true).text("filter plane tolerance"))
             .on_hover_text("Geometry-aware filter: neighbours farther than this x scene diameter from the pixel's tangent plane are rejected. Lower: sharper contacts, more interleave pattern.");
         ui.add(egui::Slider::new(&mut m.filter_normal, 0.0..=1.0).text("filter normal cosine"))

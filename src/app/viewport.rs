@@ -205,7 +205,7 @@ impl Viewport {
         let stale =
             self.points.as_ref().is_none_or(|c| c.key != key || c.resources_revision != scene.resources_revision());
         if stale {
-            let points = crate::precompute::sample_points::distribute(scene, self.gizmo.point_count, 1);
+            let points = crate::precompute::sample_points::distribute(scene, self.gizmo.point_count, 1, 1);
             self.points = Some(PointsCache { key, resources_revision: scene.resources_revision(), points });
         }
         let Some(PointsCache { points: pts, .. }) = &self.points else { return };

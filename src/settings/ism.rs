@@ -12,9 +12,11 @@ pub const MAX_ATLAS_SIDE: u32 = 5792;
 /// thesis's where it gives them (256 VPLs, 128^2 ISMs, c_base 0.9, alpha 0.01, beta 0.8) and
 /// measured elsewhere: 128k points instead of the thesis's 32k (128 points per ISM let light
 /// through the Cornell box's blocks: +8% energy with a spot on the floor, 512 per ISM bring it
-/// within 2%), a distance clamp scaled by each VPL's patch instead of 1 world unit, the ISM
-/// bias in units of the point spacing with a receiver-slope term instead of a fraction of the
-/// scene diameter, and a geometric tail after the last bounce.
+/// within 2%), a distance clamp scaled by each VPL's patch instead of 1 world unit, a
+/// normal-offset ISM lookup in units of the point spacing instead of a depth bias that is a
+/// fraction of the scene diameter, stratified point blocks, splats sized as each point's
+/// surface disk, the next bounce's VPL picked in proportion to its power instead of the
+/// brightest, and a geometric tail after the last bounce (`docs/QUALITY.md` has the figures).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct IsmSettings {
@@ -51,6 +53,17 @@ pub struct IsmSettings {
     /// thesis; one tiny pass). Free; the Cornell box lit by a point light alone went from 0.948
     /// to 0.956 of the reference's energy at 6 bounces (`tests/ism_lights.rs`).
     pub bounce_tail: bool,
+    /// Which lit point of a VPL's sample points becomes the next bounce's VPL. Free (one hash
+    /// and a log per point).
+    pub bounce_pick: BouncePick,
+    /// Radius of each sample point's ISM splat as a fraction of the radius of the disk it stands
+    /// for (the area one ISM's points share, over the point's weight); the splat is that disk's
+    /// elliptical footprint in the paraboloid map. Free at these sizes. Smaller: holes that
+    /// let light through walls; larger: occluders dilated by about that radius, closing
+    /// doorways and darkening contacts. Measured on the suite (`examples/ism_probe.rs`): the
+    /// unlit room behind two doorways read 1.31 / 1.06 / 0.89 of the reference's energy at
+    /// 0.7 / 0.75 / 0.8, the 60 m hall 0.905 / 0.894 / 0.882 (and 0.957 at 0.5).
+    pub splat_radius: f32,
     /// Geometry-aware filter threshold alpha: a neighbour farther than alpha x the scene
     /// diameter from the pixel's tangent plane is rejected (the thesis's 0.01, applied along
     /// the normal instead of the view ray so grazing walls keep their taps). Free; lower:
@@ -77,14 +90,32 @@ pub struct IsmSettings {
     /// fewer spikes near VPLs, darker corners. It replaces the thesis's 1-unit clamp, which no
     /// fixed distance can stand for from a 20 cm diorama to a 60 m hall.
     pub clamp_disk: f32,
-    /// ISM lookup bias, constant part, as a fraction of the world spacing of one ISM's sample
-    /// points (sqrt(area / points per ISM): a splat's size on the surface). Free; larger:
-    /// less self-shadowing acne, more light through occluders thinner than the bias.
+    /// ISM lookup normal offset, constant part, as a fraction of the world spacing of one
+    /// ISM's sample points (sqrt(area / points per ISM): a splat's size on the surface): the
+    /// receiver is looked up at p + n delta (`ism_offset_point` in `common/vpl.wgsl`). Free;
+    /// larger: less self-shadowing acne, softer contact shadows. Unlike the thesis's depth
+    /// bias it lets no light through a wall at any size.
     pub bias_constant: f32,
-    /// ISM lookup bias, slope part: times tan(angle between the receiver's normal and the VPL)
-    /// x the point spacing, plus half an ISM texel's footprint x tan. Free; the receiver-plane
-    /// term that lets the constant part stay small.
+    /// ISM lookup normal offset, slope part: times sin(angle between the receiver's normal and
+    /// the VPL) x the point spacing, plus an ISM texel's footprint x sin. Free; the
+    /// grazing-angle margin (a margin delta / cos against the receiver's own plane).
     pub bias_slope: f32,
+}
+
+/// How the multi-bounce pass picks the point that becomes a VPL of the next bounce (the new VPL
+/// carries the source VPL's whole reflected power either way).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BouncePick {
+    /// The thesis's: the brightest lit point. Its power is unbiased but its place is not: the
+    /// brightest point is nearly always the one nearest the source, so bounced light stays
+    /// near where it landed (the suite's unlit room, two doorways from the spot, got none).
+    Brightest,
+    /// A lit point picked with probability proportional to its reflected luminance: the power
+    /// and where it lands are both unbiased; the places change every frame (the temporal
+    /// filter averages them).
+    #[default]
+    Proportional,
 }
 
 impl Default for IsmSettings {
@@ -103,6 +134,8 @@ impl Default for IsmSettings {
             filter_normal: 0.8,
             sh_filter: false,
             bounce_tail: true,
+            bounce_pick: BouncePick::Proportional,
+            splat_radius: 0.75,
             clamp_distance: 0.0,
             clamp_disk: 0.5,
             bias_constant: 0.1,
@@ -115,8 +148,16 @@ impl IsmSettings {
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
         let m = self;
-        let weights =
-            [m.w_position, m.w_normal, m.w_illumination, m.filter_depth, m.bias_constant, m.bias_slope, m.clamp_disk];
+        let weights = [
+            m.w_position,
+            m.w_normal,
+            m.w_illumination,
+            m.filter_depth,
+            m.bias_constant,
+            m.bias_slope,
+            m.clamp_disk,
+            m.splat_radius,
+        ];
         let checks: [(&'static str, bool, String, &'static str); 9] = [
             ("ism.vpl_count", (4..=1024).contains(&m.vpl_count), m.vpl_count.to_string(), "4..=1024"),
             (

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 mod ism;
 
-pub use ism::{IsmSettings, MAX_ATLAS_SIDE};
+pub use ism::{BouncePick, IsmSettings, MAX_ATLAS_SIDE};
 
 /// The GI technique that produces indirect light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]

@@ -1,22 +1,28 @@
 // ISM pass P11: one-pass multi-bounce VPL generation (Knecht 2009 section 3.6). Every scene
 // sample point belongs to one VPL of the source set (the same blocks as its ISM); it is lit by
-// that VPL (ISM-tested), and per source VPL the brightest lit point becomes the new VPL (the
-// thesis's >= depth test, here an atomic max on the luminance). The new VPL carries the source
-// VPL's whole reflected power in the winner's colour (digest section 6.2), so the estimate of
-// the next bounce's power is unbiased in expectation over the point distribution.
+// that VPL (ISM-tested), and per source VPL one lit point becomes the new VPL, carrying the
+// source VPL's whole reflected power in the winner's colour (digest section 6.2):
+// - the thesis's pick: the brightest lit point (its >= depth test, here an atomic max on the
+//   luminance). The total power is right in expectation, but its position is not: the
+//   brightest point is nearly always the one nearest the source, so light never travels far
+//   (through a doorway into the next room the suite's unlit room got none);
+// - the default: a point picked with probability proportional to its reflected luminance
+//   (an exponential race, max of y / E with E ~ Exp(1), same atomic max), which makes both the
+//   power and its spatial distribution unbiased.
 #import common/color.wgsl
 #import common/vpl.wgsl
 
 struct BounceParams {
     // VPLs per set, points, tile side r, tiles per row C.
     counts: vec4<u32>,
-    // source set's first VPL, destination set's first VPL, unused x2.
+    // source set's first VPL, destination set's first VPL, frame seed, pick (0: brightest,
+    // 1: proportional to luminance).
     sets: vec4<u32>,
     // 1 / d_max, clamp factor on the disks' radii squared, d_min^2, interleave n^2.
     params: vec4<f32>,
     // sum over the scene of area x weight, unused x3.
     area: vec4<f32>,
-    // ISM bias: point spacing / d_max, constant and slope factors, 2 / r (see ism_bias).
+    // ISM bias: point spacing / d_max, constant and slope factors, 2 / r (see ism_offset_point).
     bias: vec4<f32>,
 }
 
@@ -30,15 +36,31 @@ const PI: f32 = 3.14159265358979;
 @group(0) @binding(3) var<storage, read> point_albedo: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read_write> vpls: array<Vpl>;
 @group(0) @binding(5) var<storage, read> atlas: array<u32>;
-// Per source VPL k: [2k] = the brightest luminance's bits, [2k + 1] = the luminance sum.
+// Per source VPL k: [2k] = the winning key's bits, [2k + 1] = the luminance sum.
 @group(0) @binding(6) var<storage, read_write> selection: array<atomic<u32>>;
-// Per point j, written by `select_brightest` and read by `write_winner` (so the winner test
+// Per point j, written by `pick` and read by `write_winner` (so the winner test
 // compares the very bits the atomic max saw, and each point does one ISM lookup):
 // [2j] = diffusely reflected power rgb, w = source VPL index (-1: none); [2j + 1] = incident power.
 @group(0) @binding(7) var<storage, read_write> lit: array<vec4<f32>>;
 // rgb specular reflectance, w = Blinn-Phong exponent (0: no lobe).
 @group(0) @binding(8) var<storage, read> point_specular: array<vec4<f32>>;
 
+
+// A hash of (point, frame) to a uniform number in (0, 1] (PCG, Jarzynski & Olano 2020).
+fn uniform01(j: u32, seed: u32) -> f32 {
+    var v = j * 747796405u + 2891336453u + seed * 277803737u;
+    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
+    v = (v >> 22u) ^ v;
+    return (f32(v >> 8u) + 1.0) / 16777216.0;
+}
+
+// The key point j of luminance y competes with for its source VPL (largest wins).
+fn pick_key(j: u32, y: f32) -> f32 {
+    if bp.sets.w == 0u {
+        return y;
+    }
+    return y / max(-log(uniform01(j, bp.sets.z)), 1.0e-30);
+}
 
 // Power arriving at point j's patch from its source VPL (rgb) and that VPL's index (w).
 fn incident_power(j: u32) -> vec4<f32> {
@@ -62,8 +84,9 @@ fn incident_power(j: u32) -> vec4<f32> {
     if cos_s <= 0.0 || cos_r <= 0.0 {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
-    let ism = ism_lookup(vpl, src, p, bp.counts.z, bp.counts.w, bp.params.x);
-    if ism.depth > bitcast<f32>(atlas[ism.index]) + ism_bias(bp.bias, ism.depth, cos_r) {
+    let q = ism_offset_point(bp.bias, bp.params.x, vpl.position.xyz, p, n);
+    let ism = ism_lookup(vpl, src, q, bp.counts.z, bp.counts.w, bp.params.x);
+    if ism.depth > bitcast<f32>(atlas[ism.index]) {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     // The area this point stands for among its VPL's points: sum(wA) / (per * w).
@@ -87,7 +110,7 @@ fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 @compute @workgroup_size(64, 1, 1)
-fn select_brightest(@builtin(global_invocation_id) id: vec3<u32>) {
+fn pick(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= bp.counts.y {
         return;
     }
@@ -100,7 +123,7 @@ fn select_brightest(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let k = u32(r.w);
-    atomicMax(&selection[2u * k], bitcast<u32>(y));
+    atomicMax(&selection[2u * k], bitcast<u32>(pick_key(id.x, y)));
     // Float add by compare-and-swap.
     var old = atomicLoad(&selection[2u * k + 1u]);
     loop {
@@ -123,7 +146,7 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let k = u32(r.w);
-    if bitcast<u32>(y) != atomicLoad(&selection[2u * k]) {
+    if bitcast<u32>(pick_key(id.x, y)) != atomicLoad(&selection[2u * k]) {
         return;
     }
     let total = bitcast<f32>(atomicLoad(&selection[2u * k + 1u]));

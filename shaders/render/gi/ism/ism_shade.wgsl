@@ -17,7 +17,7 @@ struct ShadeParams {
     params: vec4<f32>,
     // VPL sets (bounces), view width, view height, unused.
     sets: vec4<u32>,
-    // ISM bias: point spacing / d_max, constant and slope factors, 2 / r (see ism_bias).
+    // ISM bias: point spacing / d_max, constant and slope factors, 2 / r (see ism_offset_point).
     bias: vec4<f32>,
 }
 
@@ -54,8 +54,9 @@ fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
     if cos_s <= 0.0 || dot(ng, -dir) <= 0.0 {
         return out;
     }
-    let ism = ism_lookup(vpl, k, p, sh.counts.y, sh.counts.z, sh.params.x);
-    if ism.depth > bitcast<f32>(atlas[ism.index]) + ism_bias(sh.bias, ism.depth, dot(ng, -dir)) {
+    let q = ism_offset_point(sh.bias, sh.params.x, vpl.position.xyz, p, ng);
+    let ism = ism_lookup(vpl, k, q, sh.counts.y, sh.counts.z, sh.params.x);
+    if ism.depth > bitcast<f32>(atlas[ism.index]) {
         return out;
     }
     out.dir = -dir;

@@ -1,15 +1,24 @@
 // ISM pass P7: imperfect shadow maps by point splatting (Ritschel et al. 2008 as used by Knecht
 // 2009). Each scene sample point belongs to one VPL (contiguous blocks of points per VPL) and is
-// splatted as a small box of normalised distance into that VPL's paraboloid tile of the atlas
-// with an atomic min (positive floats keep their order as u32). `clear` empties the atlas (1.0).
+// splatted into that VPL's paraboloid tile of the atlas with an atomic min of its normalised
+// distance (positive floats keep their order as u32). `clear` empties the atlas (1.0).
 // Each bounce's VPL set has its own block of tiles (`sets.x` is the set's first VPL).
+//
+// A point stands for a disk of its surface (the area its ISM's points share), and its splat is
+// that disk's footprint in the paraboloid map: the ellipse spanned by the projections of two
+// tangent radii, widened by half a texel (an EWA-style footprint, so an edge-on disk still
+// writes a line of texels). Screen-aligned squares of the face-on size (the earlier splat)
+// were too small at the paraboloid's rim (twice the texels per radian of its centre) and too
+// wide across doorways seen at grazing angles: the suite's rooms leaked light one way and lost
+// it the other.
 #import common/onb.wgsl
 #import common/vpl.wgsl
 
 struct SplatParams {
     // VPL count, points, tile side r, tiles per row C.
     counts: vec4<u32>,
-    // 1 / d_max (normalised distance), splat size constant, max splat texels, unused.
+    // 1 / d_max (normalised distance), disk radius^2 at weight 1 (m^2), max splat half-extent
+    // in texels, unused.
     params: vec4<f32>,
     // first VPL (and atlas tile) of the set being splatted, unused x3.
     sets: vec4<u32>,
@@ -20,6 +29,8 @@ struct SplatParams {
 @group(0) @binding(1) var<storage, read> points: array<vec4<f32>>;
 @group(0) @binding(2) var<storage, read> vpls: array<Vpl>;
 @group(0) @binding(3) var<storage, read_write> atlas: array<atomic<u32>>;
+// xyz normal, w = the object's sampling weight.
+@group(0) @binding(4) var<storage, read> point_normals: array<vec4<f32>>;
 
 @compute @workgroup_size(8, 8, 1)
 fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -55,19 +66,33 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     let side = r * c;
     let depth = min(pb.z * sp.params.x, 1.0);
     let origin = vec2<i32>(i32((tile % c) * r), i32((tile / c) * r));
-    let texel = vec2<i32>(pb.xy * f32(r));
-    // Closer points cover more texels: size ~ constant / distance, clamped.
-    let size = i32(clamp(sp.params.y / max(pb.z * sp.params.x, 1.0e-4), 1.0, sp.params.z));
-    let half = size / 2;
-    for (var dy = -half; dy < size - half; dy = dy + 1) {
-        for (var dx = -half; dx < size - half; dx = dx + 1) {
-            let t = texel + vec2<i32>(dx, dy);
-            if t.x < 0 || t.y < 0 || t.x >= i32(r) || t.y >= i32(r) {
-                continue;
+    // The disk's footprint: centre and the images of two orthogonal tangent radii (texels).
+    let fr = f32(r);
+    let p = points[id.x].xyz;
+    let nw = point_normals[id.x];
+    let radius = sqrt(sp.params.y / max(nw.w, 1.0e-6));
+    let centre = pb.xy * fr;
+    let ta = paraboloid(vpl.position.xyz, vpl.normal.xyz, p + onb_tangent(nw.xyz) * radius).xy * fr - centre;
+    let tb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p + onb_bitangent(nw.xyz) * radius).xy * fr - centre;
+    // Its covariance plus half a texel each way; texel offsets q with q^T M^-1 q <= 1 are in.
+    let m00 = ta.x * ta.x + tb.x * tb.x + 0.25;
+    let m01 = ta.x * ta.y + tb.x * tb.y;
+    let m11 = ta.y * ta.y + tb.y * tb.y + 0.25;
+    let det = m00 * m11 - m01 * m01;
+    let ext = min(vec2<f32>(sqrt(m00), sqrt(m11)), vec2<f32>(sp.params.z));
+    let lo = vec2<i32>(floor(centre - ext));
+    let hi = vec2<i32>(floor(centre + ext));
+    let bits = bitcast<u32>(depth) & ~1u;
+    for (var y = max(lo.y, 0); y <= min(hi.y, i32(r) - 1); y = y + 1) {
+        for (var x = max(lo.x, 0); x <= min(hi.x, i32(r) - 1); x = x + 1) {
+            let q = vec2<f32>(f32(x), f32(y)) + 0.5 - centre;
+            let inside = (m11 * q.x * q.x - 2.0 * m01 * q.x * q.y + m00 * q.y * q.y) <= det;
+            let own = x == i32(centre.x) && y == i32(centre.y);
+            if inside || own {
+                let a = origin + vec2<i32>(x, y);
+                // Even bit patterns: pull-push marks the texels it fills with the lowest bit.
+                atomicMin(&atlas[u32(a.y) * side + u32(a.x)], bits);
             }
-            let a = origin + t;
-            // Even bit patterns: pull-push marks the texels it fills with the lowest bit.
-            atomicMin(&atlas[u32(a.y) * side + u32(a.x)], bitcast<u32>(depth) & ~1u);
         }
     }
 }

@@ -13,6 +13,11 @@ use super::screen::{IsmInputs, IsmScreen};
 
 /// Pull-push levels below the finest (the thesis: "at least two mip levels").
 const PULL_LEVELS: usize = 2;
+/// Largest splat half-extent in texels (a 33^2 box): only points within a fraction of their
+/// spacing of a VPL reach it. Four pull-push levels instead of two darkened every suite scene
+/// (hole filling dilates occluders: the Cornell box 0.94 -> 0.92, the cluttered room 0.95 ->
+/// 0.89 of the reference's energy).
+const MAX_SPLAT_HALF_EXTENT: f32 = 16.0;
 pub(super) fn storage_rw(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
@@ -82,7 +87,7 @@ struct Sized {
 pub struct MapScale {
     /// Distance normalisation of the ISM depths (metres).
     pub d_max: f32,
-    /// ISM lookup bias (`ism_bias` in `common/vpl.wgsl`): point spacing / d_max, constant and
+    /// ISM lookup bias (`ism_offset_point` in `common/vpl.wgsl`): point spacing / d_max, constant and
     /// slope factors, 2 / r.
     pub bias: [f32; 4],
     /// Pull-push threshold tau in normalised distance.
@@ -95,6 +100,8 @@ pub struct MapScale {
 pub struct IsmGather {
     /// Copy each set's atlas rows before hole filling (for the inspector).
     pub capture_splats: bool,
+    /// This frame's seed of the bounce passes' random pick (the frame index).
+    pub seed: u32,
     splat_layout: wgpu::BindGroupLayout,
     clear: wgpu::ComputePipeline,
     splat: wgpu::ComputePipeline,
@@ -121,7 +128,13 @@ impl IsmGather {
         let c = wgpu::ShaderStages::COMPUTE;
         let splat_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ism splat layout"),
-            entries: &[uniform_entry(0, c, true), storage_entry(1, c), storage_entry(2, c), storage_rw(3)],
+            entries: &[
+                uniform_entry(0, c, true),
+                storage_entry(1, c),
+                storage_entry(2, c),
+                storage_rw(3),
+                storage_entry(4, c),
+            ],
         });
         let splat_module = shaders::module(device, "render/gi/ism/ism_splat.wgsl")?;
         let pp_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -153,14 +166,9 @@ impl IsmGather {
             })
         };
         Ok(Self {
+            seed: 0,
             bounce_clear: compute_pipeline(device, "ism bounce clear", &bounce_layout, &bounce_module, "clear"),
-            bounce_select: compute_pipeline(
-                device,
-                "ism bounce select",
-                &bounce_layout,
-                &bounce_module,
-                "select_brightest",
-            ),
+            bounce_select: compute_pipeline(device, "ism bounce select", &bounce_layout, &bounce_module, "pick"),
             bounce_write: compute_pipeline(device, "ism bounce write", &bounce_layout, &bounce_module, "write_winner"),
             bounce_tail: compute_pipeline(device, "ism bounce tail", &bounce_layout, &bounce_module, "tail"),
             bounce_params: slots("ism bounce params"),
@@ -243,6 +251,7 @@ impl IsmGather {
                 buf(1, &points),
                 buf(2, &all_vpls),
                 buf(3, &atlas[0]),
+                buf(4, &normals),
             ],
         });
         let bounce_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -363,21 +372,25 @@ impl IsmGather {
         }
         let s = &*s;
         let d_max = scale.d_max.max(1e-3);
-        // A point stands for the area its ISM's points share; its splat covers that patch seen
-        // from the VPL: sqrt(area) / d radians, r / 4 texels per radian near the centre.
+        // A point stands for a disk of the area its ISM's points share (over its weight); the
+        // splat is that disk's footprint, its radius scaled by `settings.splat_radius`.
         let per_ism = (key.points / key.vpls.max(1)).max(1) as f32;
-        let k_size = (scale.total_area / per_ism).sqrt() * key.r as f32 / (4.0 * d_max);
+        let disk_r2 = settings.splat_radius.powi(2) * scale.total_area / (per_ism * std::f32::consts::PI);
         encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(key.vpls) * VPL_BYTES);
         let n2 = (settings.interleave * settings.interleave) as f32;
         let d_min = settings.clamp_distance;
         let counts = [key.vpls, key.points, key.r, c];
         for b in 0..key.bounces {
-            let splat = SplatParams { counts, params: [1.0 / d_max, k_size, 8.0, 0.0], sets: [b * key.vpls, 0, 0, 0] };
+            let splat = SplatParams {
+                counts,
+                params: [1.0 / d_max, disk_r2, MAX_SPLAT_HALF_EXTENT, 0.0],
+                sets: [b * key.vpls, 0, 0, 0],
+            };
             queue.write_buffer(&self.splat_params, u64::from(b) * SLOT, bytemuck::bytes_of(&splat));
             if b > 0 {
                 let bounce = BounceParams {
                     counts,
-                    sets: [(b - 1) * key.vpls, b * key.vpls, 0, 0],
+                    sets: [(b - 1) * key.vpls, b * key.vpls, self.seed.wrapping_add(b), settings.bounce_pick as u32],
                     // The bounce clamps at the full disks: a near point may not receive more
                     // power than the VPL emits (the cluttered room read 1.075 of the reference's
                     // energy with half the disks everywhere, 1.018 with full ones).
@@ -416,8 +429,9 @@ impl IsmGather {
         pass.dispatch_workgroups(side.div_ceil(8), side.div_ceil(8), 1);
         for b in 0..key.bounces {
             if b > 0 {
-                // One-pass multi-bounce: the brightest lit point per VPL of set b-1 (tested
-                // against the filled ISMs of that set) becomes a VPL of set b.
+                // One-pass multi-bounce: one lit point per VPL of set b-1 (tested against the
+                // filled ISMs of that set; `settings.bounce_pick` says which) becomes a VPL of
+                // set b.
                 let offset = [((b - 1) as u64 * SLOT) as u32];
                 pass.set_bind_group(0, &s.bounce_group, &offset);
                 pass.set_pipeline(&self.bounce_clear);

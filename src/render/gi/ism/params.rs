@@ -12,7 +12,8 @@ use crate::render::uniforms::GpuLight;
 pub struct SplatParams {
     /// VPL count, points, tile side r, tiles per row C.
     pub counts: [u32; 4],
-    /// 1 / d_max (normalised distance), splat size constant, max splat texels, unused.
+    /// 1 / d_max (normalised distance), disk radius^2 at weight 1 (m^2), max splat half-extent
+    /// in texels, unused.
     pub params: [f32; 4],
     /// First VPL (and atlas tile) of the set being splatted, unused x3.
     pub sets: [u32; 4],
@@ -24,14 +25,15 @@ pub struct SplatParams {
 pub struct BounceParams {
     /// VPLs per set, points, tile side r, tiles per row C.
     pub counts: [u32; 4],
-    /// Source set's first VPL, destination set's first VPL, unused x2.
+    /// Source set's first VPL, destination set's first VPL, frame seed, pick
+    /// ([`crate::settings::BouncePick`] as u32).
     pub sets: [u32; 4],
     /// 1 / d_max, clamp factor on the disks' radii squared (1: energy-conserving), d_min^2,
     /// interleave n^2.
     pub params: [f32; 4],
     /// Sum over the scene of area x weight, unused x3.
     pub area: [f32; 4],
-    /// ISM bias: point spacing / d_max, constant and slope factors, 2 / r (`ism_bias`).
+    /// ISM bias: point spacing / d_max, constant and slope factors, 2 / r (`ism_offset_point`).
     pub bias: [f32; 4],
 }
 
@@ -63,7 +65,7 @@ pub struct ShadeParams {
     pub params: [f32; 4],
     /// VPL sets (bounces), view width, view height, unused.
     pub sets: [u32; 4],
-    /// ISM bias: point spacing / d_max, constant and slope factors, 2 / r (`ism_bias`).
+    /// ISM bias: point spacing / d_max, constant and slope factors, 2 / r (`ism_offset_point`).
     pub bias: [f32; 4],
 }
 

@@ -34,7 +34,7 @@ pub struct IsmInputs<'a> {
     pub tiles_per_row: u32,
     /// Scene diameter (the ISM depth normalisation and the filters' depth range), metres.
     pub d_max: f32,
-    /// ISM lookup bias (`ism_bias`): point spacing / d_max, constant and slope factors, 2 / r.
+    /// ISM lookup bias (`ism_offset_point`): point spacing / d_max, constant and slope factors, 2 / r.
     pub bias: [f32; 4],
 }
 

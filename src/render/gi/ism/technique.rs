@@ -31,6 +31,8 @@ use crate::settings::{GiMode, IsmSettings, RenderSettings};
 struct PointsKey {
     resources: u64,
     total: u32,
+    /// VPLs per set: one block of points per ISM.
+    blocks: u32,
     objects: Vec<(f32, bool, [f32; 3])>,
 }
 
@@ -193,6 +195,7 @@ impl IsmTechnique {
         let key = PointsKey {
             resources: scene.resources_revision(),
             total: ism.total_points,
+            blocks: ism.vpl_count,
             objects: scene
                 .objects()
                 .iter()
@@ -200,7 +203,12 @@ impl IsmTechnique {
                 .collect(),
         };
         if self.points.as_ref().is_none_or(|(k, _, _)| *k != key) {
-            let points = crate::precompute::sample_points::distribute(scene, ism.total_points as usize, 1);
+            let points = crate::precompute::sample_points::distribute(
+                scene,
+                ism.total_points as usize,
+                ism.vpl_count as usize,
+                1,
+            );
             let means = scene.resources().images.iter().map(mean_linear_colour).collect();
             self.points = Some((key, points, means));
             self.points_generation += 1;
@@ -298,6 +306,7 @@ impl GiTechnique for IsmTechnique {
             pull_push: 0.05,
             total_area,
         };
+        self.gather.seed = inputs.frame_index;
         self.gather.record_maps(
             inputs.device,
             inputs.queue,

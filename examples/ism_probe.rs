@@ -1,0 +1,141 @@
+//! A tuning probe for ISM on the scene suite: renders `ism` (32 frames) and `direct` on the
+//! named suite scenes with ISM settings overridden from the command line, and prints each
+//! scene's energy ratio and FLIP against the cached reference, and on the multi-room level the
+//! unlit third room's energy ratio and the per-object ratios. What every ISM change in the
+//! scene-suite issue was measured with:
+//!
+//! `cargo run --release --example ism_probe -- rooms,clutter "(total_points: 524288)"`
+
+use std::path::Path;
+
+use bouncelab::image_io::{self, HdrImage};
+use bouncelab::metrics;
+use bouncelab::render::{GpuContext, Renderer};
+use bouncelab::settings::{GiMode, IsmSettings};
+use bouncelab::suite::{self, REFERENCE_SIZE};
+
+fn render(
+    ctx: &GpuContext,
+    project: &bouncelab::project_file::Project,
+    frames: usize,
+) -> anyhow::Result<(HdrImage, Renderer)> {
+    let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
+    // PROBE_SSAA: supersampling per axis, box-filtered as the references' pixels (default 2).
+    let ssaa: u32 = std::env::var("PROBE_SSAA").ok().and_then(|v| v.parse().ok()).unwrap_or(2);
+    let size = (REFERENCE_SIZE.0 * ssaa, REFERENCE_SIZE.1 * ssaa);
+    // PROBE_AVG: the mean of every frame instead of the last (the estimator's expectation).
+    let average = std::env::var_os("PROBE_AVG").is_some();
+    let mut sum = vec![[0.0f32; 4]; (size.0 * size.1) as usize];
+    for _ in 0..frames {
+        r.render(&project.scene, &project.render, size)?;
+        if average {
+            for (s, p) in sum.iter_mut().zip(r.read_hdr()?) {
+                (0..4).for_each(|c| s[c] += p[c] / frames as f32);
+            }
+        }
+    }
+    let pixels = if average { sum } else { r.read_hdr()? };
+    let pixels = image_io::box_downsample(&pixels, size, ssaa);
+    let img = HdrImage { width: REFERENCE_SIZE.0, height: REFERENCE_SIZE.1, pixels };
+    Ok((img, r))
+}
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().collect();
+    let names = args.get(1).map_or("rooms,window,clutter,hall,diorama,cornell", String::as_str);
+    let ism: IsmSettings = ron::from_str(args.get(2).map_or("()", String::as_str))?;
+    let frames: usize = args.get(3).map_or(Ok(32), |s| s.parse())?;
+    let ctx = GpuContext::new_headless()?;
+    let root = Path::new(".");
+    for name in names.split(',') {
+        let scene = suite::scene(name)?;
+        // PROBE_REF: another reference (e.g. `render --mode reference --max-bounces 2`).
+        let reference = match std::env::var("PROBE_REF") {
+            Ok(path) => image_io::read_linear(Path::new(&path))?,
+            Err(_) => scene.reference(root)?,
+        };
+        let ev = bouncelab::cli::quality::exposure(&reference);
+        // PROBE_GLTF: another glTF in place of the suite scene (with PROBE_REF).
+        let mut project = match std::env::var("PROBE_GLTF") {
+            Ok(path) => bouncelab::project_file::Project::from_gltf(Path::new(&path))?,
+            Err(_) => scene.load(root)?,
+        };
+        project.render.ism = ism.clone();
+        // PROBE_LIGHT_Y: move the first light to this height (references then need PROBE_REF).
+        if let Some(y) = std::env::var("PROBE_LIGHT_Y").ok().and_then(|v| v.parse::<f32>().ok()) {
+            project.scene.desc_mut().lights[0].position.y = y;
+        }
+        project.render.mode = GiMode::Direct;
+        let (direct, _) = render(&ctx, &project, 1)?;
+        project.render.mode =
+            if std::env::var_os("PROBE_RITSCHEL").is_some() { GiMode::IsmRitschel } else { GiMode::Ism };
+        let (img, r) = render(&ctx, &project, frames)?;
+        let c = metrics::compare(&img, &reference, ev)?;
+        let d = metrics::compare(&direct, &reference, ev)?;
+        let (mi, md, mr) =
+            (metrics::mean_luminance(&img), metrics::mean_luminance(&direct), metrics::mean_luminance(&reference));
+        println!(
+            "{name:8} energy {:.3}  indirect {:.3}  FLIP {:.4} / direct {:.4} = {:.2}",
+            c.luminance_ratio,
+            (mi - md) / (mr - md),
+            c.flip,
+            d.flip,
+            c.flip / d.flip
+        );
+        // Object ids at the references' size: the id of each pixel's first sample.
+        let full = r.read_buffer("object_id")?;
+        let k = full.width / REFERENCE_SIZE.0;
+        let ids: Vec<u32> = (0..REFERENCE_SIZE.0 * REFERENCE_SIZE.1)
+            .map(|i| {
+                full.pixels[((i / REFERENCE_SIZE.0) * k * full.width + (i % REFERENCE_SIZE.0) * k) as usize][0] as u32
+            })
+            .collect();
+        let objects = project.scene.objects();
+        if name == "rooms" {
+            let third = |id: u32| {
+                id > 0
+                    && objects.get(id as usize - 1).is_some_and(|o| {
+                        o.name.ends_with("_2") || o.name.starts_with("partition_1") || o.name == "end_2"
+                    })
+            };
+            let mean = |img: &HdrImage| {
+                let v: Vec<f64> = ids
+                    .iter()
+                    .zip(&img.pixels)
+                    .filter(|(id, _)| third(**id))
+                    .map(|(_, p)| f64::from(metrics::luminance(p)))
+                    .collect();
+                v.iter().sum::<f64>() / v.len().max(1) as f64
+            };
+            println!("         unlit third room {:.3}", mean(&img) / mean(&reference));
+        }
+        if std::env::var_os("PROBE_OBJECTS").is_some() {
+            let dref = metrics::per_object(&direct, &reference, &ids)?;
+            for (o, d) in metrics::per_object(&img, &reference, &ids)?.iter().zip(dref) {
+                let n = objects.get(o.id as usize - 1).map_or("?", |o| o.name.as_str());
+                // Indirect share: (ism - direct) / (reference - direct) from the luminance ratios.
+                let ind = (o.luminance_ratio - d.luminance_ratio) / (1.0 - d.luminance_ratio);
+                println!("         {n:20} {:6} px  energy {:.3}  indirect {ind:.3}", o.pixels, o.luminance_ratio);
+            }
+        }
+        if let Ok(dir) = std::env::var("PROBE_OUT") {
+            let view = bouncelab::settings::ViewSettings { exposure_ev: ev, ..Default::default() };
+            let (w, h) = REFERENCE_SIZE;
+            image_io::write_png(
+                Path::new(&format!("{dir}/{name}_ism.png")),
+                w,
+                h,
+                image_io::tonemap_srgb8(&img, &view),
+            )?;
+            image_io::write_png(
+                Path::new(&format!("{dir}/{name}_ref.png")),
+                w,
+                h,
+                image_io::tonemap_srgb8(&reference, &view),
+            )?;
+            image_io::write_exr(Path::new(&format!("{dir}/{name}_ism.exr")), &img)?;
+            image_io::write_exr(Path::new(&format!("{dir}/{name}_direct.exr")), &direct)?;
+        }
+    }
+    Ok(())
+}
