@@ -55,8 +55,8 @@ fn ism_lookup(vpl: Vpl, k: u32, p: vec3<f32>, r: u32, c: u32, inv_d_max: f32) ->
 // delta / cos(theta) against its own plane, so delta = s (c + k sin(theta)) + d (2/r) sin(theta)
 // covers both errors, growing at grazing angles as a slope-scaled depth bias does; but the
 // moved point stays on the receiver's side of every other surface, so unlike a depth bias it
-// lets no light through a wall, however grazing the ray (a depth bias of s k tan(theta) passed
-// the suite's 0.2 m walls within about a metre of them). `p` and `n` are the receiver's position
+// lets no light through a wall, however grazing the ray (with the depth bias s k tan(theta),
+// k = 0.5, the suite's unlit room read 1.24 of the reference's energy, and 0.29 with k = 0). `p` and `n` are the receiver's position
 // and unit geometric normal, `light` the VPL's position; `b` = (s / d_max, c, k, 2 / r),
 // `inv_d_max` = 1 / d_max.
 fn ism_offset_point(b: vec4<f32>, inv_d_max: f32, light: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {

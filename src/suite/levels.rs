@@ -26,6 +26,19 @@ fn slab(w: &mut GltfWriter, name: &str, min: Vec3, max: Vec3, material: usize) {
     w.node(desc, true);
 }
 
+/// A closed box room of slabs `t` thick around the inside `0..size`: floor, ceiling (named
+/// `top`), then the front, back, left and right walls. `materials` = [wall, floor, ceiling].
+fn closed_room(w: &mut GltfWriter, size: Vec3, t: f32, top: &str, materials: [usize; 3]) {
+    let [wall, floor, ceiling] = materials;
+    let (v, Vec3 { x: x1, y: h, z: z1 }) = (Vec3::new, size);
+    slab(w, "floor", v(-t, -t, -t), v(x1 + t, 0.0, z1 + t), floor);
+    slab(w, top, v(-t, h, -t), v(x1 + t, h + t, z1 + t), ceiling);
+    slab(w, "front", v(0.0, 0.0, -t), v(x1, h, 0.0), wall);
+    slab(w, "back", v(0.0, 0.0, z1), v(x1, h, z1 + t), wall);
+    slab(w, "left", v(-t, 0.0, -t), v(0.0, h, z1 + t), wall);
+    slab(w, "right", v(x1, 0.0, -t), v(x1 + t, h, z1 + t), wall);
+}
+
 /// A closed cylinder of `radius` and `height` standing on `base`, outward normals.
 fn cylinder(w: &mut GltfWriter, name: &str, base: Vec3, radius: f32, height: f32, material: usize) {
     const SEGMENTS: u32 = 16;
@@ -169,14 +182,9 @@ pub fn cluttered_room() -> GltfWriter {
     let (wall, floor, ceiling) = (w.material("wall", WALL), w.material("floor", FLOOR), w.material("ceiling", CEILING));
     let colours = [[0.7, 0.2, 0.15, 1.0], [0.2, 0.5, 0.7, 1.0], [0.75, 0.7, 0.3, 1.0], [0.3, 0.6, 0.3, 1.0]];
     let stuff: Vec<usize> = colours.iter().enumerate().map(|(i, c)| w.material(&format!("clutter_{i}"), *c)).collect();
-    let (t, v) = (0.2, Vec3::new);
-    let (x1, h, z1) = (8.0, 3.5, 6.0);
-    slab(&mut w, "floor", v(-t, -t, -t), v(x1 + t, 0.0, z1 + t), floor);
-    slab(&mut w, "ceiling", v(-t, h, -t), v(x1 + t, h + t, z1 + t), ceiling);
-    slab(&mut w, "front", v(0.0, 0.0, -t), v(x1, h, 0.0), wall);
-    slab(&mut w, "back", v(0.0, 0.0, z1), v(x1, h, z1 + t), wall);
-    slab(&mut w, "left", v(-t, 0.0, -t), v(0.0, h, z1 + t), wall);
-    slab(&mut w, "right", v(x1, 0.0, -t), v(x1 + t, h, z1 + t), wall);
+    let v = Vec3::new;
+    let (x1, z1) = (8.0, 6.0);
+    closed_room(&mut w, v(x1, 3.5, z1), 0.2, "ceiling", [wall, floor, ceiling]);
     // A fixed pseudo-random layout (LCG), the same on every run.
     let mut state = 12345u32;
     let mut next = || {
@@ -209,14 +217,9 @@ pub fn cluttered_room() -> GltfWriter {
 pub fn hall() -> GltfWriter {
     let mut w = GltfWriter::default();
     let (wall, floor, ceiling) = (w.material("wall", WALL), w.material("floor", FLOOR), w.material("ceiling", CEILING));
-    let (t, v) = (0.5, Vec3::new);
-    let (x1, h, z1) = (60.0, 12.0, 20.0);
-    slab(&mut w, "floor", v(-t, -t, -t), v(x1 + t, 0.0, z1 + t), floor);
-    slab(&mut w, "roof", v(-t, h, -t), v(x1 + t, h + t, z1 + t), ceiling);
-    slab(&mut w, "front", v(0.0, 0.0, -t), v(x1, h, 0.0), wall);
-    slab(&mut w, "back", v(0.0, 0.0, z1), v(x1, h, z1 + t), wall);
-    slab(&mut w, "left", v(-t, 0.0, -t), v(0.0, h, z1 + t), wall);
-    slab(&mut w, "right", v(x1, 0.0, -t), v(x1 + t, h, z1 + t), wall);
+    let v = Vec3::new;
+    let h = 12.0;
+    closed_room(&mut w, v(60.0, h, 20.0), 0.5, "roof", [wall, floor, ceiling]);
     for k in 0..8 {
         let x = 5.0 + 7.0 * k as f32;
         for z in [6.0, 14.0] {

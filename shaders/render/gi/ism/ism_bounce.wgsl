@@ -5,7 +5,7 @@
 // - the thesis's pick: the brightest lit point (its >= depth test, here an atomic max on the
 //   luminance). The total power is right in expectation, but its position is not: the
 //   brightest point is nearly always the one nearest the source, so light never travels far
-//   (through a doorway into the next room the suite's unlit room got none);
+//   (the suite's unlit room, two doorways from the spot, got 5% of its light);
 // - the default: a point picked with probability proportional to its reflected luminance
 //   (an exponential race, max of y / E with E ~ Exp(1), same atomic max), which makes both the
 //   power and its spatial distribution unbiased.

@@ -8,9 +8,9 @@
 // that disk's footprint in the paraboloid map: the ellipse spanned by the projections of two
 // tangent radii, widened by half a texel (an EWA-style footprint, so an edge-on disk still
 // writes a line of texels). Screen-aligned squares of the face-on size (the earlier splat)
-// were too small at the paraboloid's rim (twice the texels per radian of its centre) and too
-// wide across doorways seen at grazing angles: the suite's rooms leaked light one way and lost
-// it the other.
+// were too small at the paraboloid's rim (twice the texels per radian of its centre; the atlas
+// showed empty rings round every map), and squares twice that size closed the doorways (the
+// wall lit through the suite's second doorway kept 2% of its one-bounce light).
 #import common/onb.wgsl
 #import common/vpl.wgsl
 
