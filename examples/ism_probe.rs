@@ -5,6 +5,10 @@
 //! scene-suite issue was measured with:
 //!
 //! `cargo run --release --example ism_probe -- rooms,clutter "(total_points: 524288)"`
+//!
+//! A name ending in `.gltf` is a scene outside the suite, compared with the `.exr` next to it
+//! (`tools/unseen_levels.py` writes the held-out levels; `bouncelab render --mode reference
+//! --width 128 --height 72` their references).
 
 use std::path::Path;
 
@@ -48,17 +52,21 @@ fn main() -> anyhow::Result<()> {
     let ctx = GpuContext::new_headless()?;
     let root = Path::new(".");
     for name in names.split(',') {
-        let scene = suite::scene(name)?;
+        // A name ending in .gltf is a scene outside the suite, its reference next to it (.exr).
+        let outside = name.ends_with(".gltf").then(|| Path::new(name));
+        let label = outside.and_then(|p| p.file_stem()).and_then(|s| s.to_str()).unwrap_or(name);
         // PROBE_REF: another reference (e.g. `render --mode reference --max-bounces 2`).
-        let reference = match std::env::var("PROBE_REF") {
-            Ok(path) => image_io::read_linear(Path::new(&path))?,
-            Err(_) => scene.reference(root)?,
+        let reference = match (std::env::var("PROBE_REF"), outside) {
+            (Ok(path), _) => image_io::read_linear(Path::new(&path))?,
+            (Err(_), Some(gltf)) => image_io::read_linear(&gltf.with_extension("exr"))?,
+            (Err(_), None) => suite::scene(name)?.reference(root)?,
         };
         let ev = bouncelab::cli::quality::exposure(&reference);
         // PROBE_GLTF: another glTF in place of the suite scene (with PROBE_REF).
-        let mut project = match std::env::var("PROBE_GLTF") {
-            Ok(path) => bouncelab::project_file::Project::from_gltf(Path::new(&path))?,
-            Err(_) => scene.load(root)?,
+        let mut project = match (std::env::var("PROBE_GLTF"), outside) {
+            (Ok(path), _) => bouncelab::project_file::Project::from_gltf(Path::new(&path))?,
+            (Err(_), Some(gltf)) => bouncelab::project_file::Project::from_gltf(gltf)?,
+            (Err(_), None) => suite::scene(name)?.load(root)?,
         };
         project.render.ism = ism.clone();
         // PROBE_LIGHT_Y: move the first light to this height (references then need PROBE_REF).
@@ -75,7 +83,7 @@ fn main() -> anyhow::Result<()> {
         let (mi, md, mr) =
             (metrics::mean_luminance(&img), metrics::mean_luminance(&direct), metrics::mean_luminance(&reference));
         println!(
-            "{name:8} energy {:.3}  indirect {:.3}  FLIP {:.4} / direct {:.4} = {:.2}",
+            "{label:8} energy {:.3}  indirect {:.3}  FLIP {:.4} / direct {:.4} = {:.2}",
             c.luminance_ratio,
             (mi - md) / (mr - md),
             c.flip,
@@ -122,19 +130,19 @@ fn main() -> anyhow::Result<()> {
             let view = bouncelab::settings::ViewSettings { exposure_ev: ev, ..Default::default() };
             let (w, h) = REFERENCE_SIZE;
             image_io::write_png(
-                Path::new(&format!("{dir}/{name}_ism.png")),
+                Path::new(&format!("{dir}/{label}_ism.png")),
                 w,
                 h,
                 image_io::tonemap_srgb8(&img, &view),
             )?;
             image_io::write_png(
-                Path::new(&format!("{dir}/{name}_ref.png")),
+                Path::new(&format!("{dir}/{label}_ref.png")),
                 w,
                 h,
                 image_io::tonemap_srgb8(&reference, &view),
             )?;
-            image_io::write_exr(Path::new(&format!("{dir}/{name}_ism.exr")), &img)?;
-            image_io::write_exr(Path::new(&format!("{dir}/{name}_direct.exr")), &direct)?;
+            image_io::write_exr(Path::new(&format!("{dir}/{label}_ism.exr")), &img)?;
+            image_io::write_exr(Path::new(&format!("{dir}/{label}_direct.exr")), &direct)?;
         }
     }
     Ok(())

@@ -27,6 +27,9 @@ pub struct SamplePoints {
     pub points: Vec<SamplePoint>,
     /// Weighted area each object contributed (world-space area x sampling weight).
     pub weighted_area: Vec<f64>,
+    /// Weighted area of the faces that see no geometry and got no points
+    /// (`facing::facing_geometry`; 0 when every face was kept).
+    pub unseen_area: f64,
 }
 
 /// The golden ratio's fractional part: the generator of the rank-1 lattices below.
@@ -44,9 +47,28 @@ const GOLDEN: f64 = 0.618_033_988_749_894_9;
 /// An ISM's points are then about evenly spaced on every surface; a random subset (the
 /// thesis's) leaves Poisson gaps two to three times the mean spacing, through which a VPL's
 /// light leaked into the suite's unlit room.
+///
+/// Faces whose front sees no geometry (`facing::facing_geometry`: a closed level's outer faces)
+/// get no points, unless no face sees anything (a lone plane), when all are kept.
 pub fn distribute(scene: &Scene, total: usize, blocks: usize, seed: u64) -> SamplePoints {
+    let facing = super::facing::facing_geometry(scene);
+    let mut points = distribute_over(scene, total, blocks, seed, Some(&facing));
+    if points.points.is_empty() && total > 0 {
+        points = distribute_over(scene, total, blocks, seed, None);
+    }
+    points
+}
+
+/// `distribute` over the triangles `facing` marks (every triangle when `None`).
+fn distribute_over(
+    scene: &Scene,
+    total: usize,
+    blocks: usize,
+    seed: u64,
+    facing: Option<&[Vec<bool>]>,
+) -> SamplePoints {
     let mut cdf: Vec<(u32, u32, f64)> = Vec::new();
-    let mut sum = 0.0f64;
+    let (mut sum, mut unseen_area) = (0.0f64, 0.0f64);
     let mut weighted_area = vec![0.0; scene.objects().len()];
     for (oi, object) in scene.objects().iter().enumerate() {
         let Some(mesh) = scene.resources().meshes.get(object.mesh).filter(|_| object.is_rendered()) else { continue };
@@ -57,6 +79,10 @@ pub fn distribute(scene: &Scene, total: usize, blocks: usize, seed: u64) -> Samp
         for t in 0..mesh.triangle_count() {
             let [a, b, c] = mesh.triangle(t).map(|p| m.transform_point3(p));
             let area = 0.5 * f64::from((b - a).cross(c - a).length()) * f64::from(object.sampling_weight);
+            if facing.is_some_and(|f| !f.get(oi).and_then(|f| f.get(t)).copied().unwrap_or(true)) {
+                unseen_area += area;
+                continue;
+            }
             if area > 0.0 {
                 sum += area;
                 weighted_area[oi] += area;
@@ -65,7 +91,7 @@ pub fn distribute(scene: &Scene, total: usize, blocks: usize, seed: u64) -> Samp
         }
     }
     if cdf.is_empty() || total == 0 {
-        return SamplePoints { points: Vec::new(), weighted_area };
+        return SamplePoints { points: Vec::new(), weighted_area, unseen_area };
     }
     let mut rng = Pcg32::new(seed, 0x5a3d, 0);
     let (jitter, twist) = (f64::from(rng.next_f32()), f64::from(rng.next_f32()));
@@ -91,7 +117,7 @@ pub fn distribute(scene: &Scene, total: usize, blocks: usize, seed: u64) -> Samp
         block(per, (b as f64 * GOLDEN + jitter).fract());
     }
     block(total - per * blocks, jitter);
-    SamplePoints { points, weighted_area }
+    SamplePoints { points, weighted_area, unseen_area }
 }
 
 impl SamplePoints {

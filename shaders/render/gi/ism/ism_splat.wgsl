@@ -10,7 +10,8 @@
 // writes a line of texels). Screen-aligned squares of the face-on size (the earlier splat)
 // were too small at the paraboloid's rim (twice the texels per radian of its centre; the atlas
 // showed empty rings round every map), and squares twice that size closed the doorways (the
-// wall lit through the suite's second doorway kept 2% of its one-bounce light).
+// wall lit through the suite's second doorway kept 2% of its one-bounce light). Each texel
+// stores the depth of the disk's plane along its own ray (`disk_depth`), not the centre's.
 #import common/onb.wgsl
 #import common/vpl.wgsl
 
@@ -64,7 +65,6 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     let r = sp.counts.z;
     let c = sp.counts.w;
     let side = r * c;
-    let depth = min(pb.z * sp.params.x, 1.0);
     let origin = vec2<i32>(i32((tile % c) * r), i32((tile / c) * r));
     // The disk's footprint: centre and the images of two orthogonal tangent radii (texels).
     let fr = f32(r);
@@ -82,7 +82,8 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     let ext = min(vec2<f32>(sqrt(m00), sqrt(m11)), vec2<f32>(sp.params.z));
     let lo = vec2<i32>(floor(centre - ext));
     let hi = vec2<i32>(floor(centre + ext));
-    let bits = bitcast<u32>(depth) & ~1u;
+    let o = vpl.position.xyz;
+    let frame = mat3x3<f32>(onb_tangent(vpl.normal.xyz), onb_bitangent(vpl.normal.xyz), vpl.normal.xyz);
     for (var y = max(lo.y, 0); y <= min(hi.y, i32(r) - 1); y = y + 1) {
         for (var x = max(lo.x, 0); x <= min(hi.x, i32(r) - 1); x = x + 1) {
             let q = vec2<f32>(f32(x), f32(y)) + 0.5 - centre;
@@ -90,9 +91,36 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
             let own = x == i32(centre.x) && y == i32(centre.y);
             if inside || own {
                 let a = origin + vec2<i32>(x, y);
+                let t = disk_depth(o, frame, (vec2<f32>(f32(x), f32(y)) + 0.5) / fr, p, nw.xyz, pb.z, radius);
                 // Even bit patterns: pull-push marks the texels it fills with the lowest bit.
+                let bits = bitcast<u32>(min(t * sp.params.x, 1.0)) & ~1u;
                 atomicMin(&atlas[u32(a.y) * side + u32(a.x)], bits);
             }
         }
     }
+}
+
+// The distance from the VPL at `o` (tangent frame `frame`) to the point's disk plane (point `p`,
+// normal `n`) along the ray through paraboloid coordinate `uv` (0..1), never nearer than the
+// disk's nearest point d - radius (a ray that meets the plane in front of the disk, in the
+// footprint's half-texel margin) and the centre's distance d where the ray runs along the plane
+// or away from it. Writing the plane's depth per texel instead of the centre's lets a wall's
+// splats stop at the floor it stands on: a ray past the wall's lowest disk meets its plane
+// beyond the floor, so the floor's receivers next to the wall stay lit (with the centre's
+// depth those splats hung below the floor, nearer than the receivers, and shadowed them). Past
+// a surface's edge the plane is extrapolated by at most the footprint's margin: a receiver
+// behind the plane stays shadowed, as before.
+fn disk_depth(o: vec3<f32>, frame: mat3x3<f32>, uv: vec2<f32>, p: vec3<f32>, n: vec3<f32>, d: f32, radius: f32) -> f32 {
+    let s = uv * 2.0 - 1.0;
+    let ss = dot(s, s);
+    let dir = frame * (vec3<f32>(2.0 * s, 1.0 - ss) / (1.0 + ss));
+    let den = dot(dir, n);
+    var t = d;
+    if abs(den) > 1.0e-6 {
+        t = dot(p - o, n) / den;
+    }
+    if t <= 0.0 {
+        t = d;
+    }
+    return max(t, d - radius);
 }

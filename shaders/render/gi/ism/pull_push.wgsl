@@ -1,5 +1,6 @@
 // ISM pass P8: pull-push hole filling of the ISM atlas (Grossman & Dally 1998, Marroquim et al.
-// 2008, thresholds of Ritschel et al. 2008: 5% of the scene extent, times 2^level). Depths are
+// 2008; Ritschel et al. 2008's threshold times 2^level, but one point spacing instead of their
+// 5% of the scene extent). Depths are
 // f32 bit patterns in u32 storage; 1.0 is empty. Tiles are powers of two, so 2x2 reductions never
 // mix two VPLs' maps. Splats store even bit patterns; the push marks the finest-level texels it
 // fills with the lowest mantissa bit (one ulp, far below any bias), so the inspector can show

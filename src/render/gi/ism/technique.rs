@@ -295,6 +295,13 @@ impl GiTechnique for IsmTechnique {
         // The world spacing of one ISM's points: the size of a splat on the surface.
         let per_ism = (points.points.len() as f32 / settings.vpl_count.max(1) as f32).max(1.0);
         let spacing = (total_area / per_ism).sqrt();
+        // The ISMs' resolution on the surfaces, in the units the artist works in.
+        let unseen = points.unseen_area / (points.unseen_area + f64::from(total_area)).max(1e-30);
+        self.status.progress = Some(format!(
+            "ism: {per_ism:.0} points per ISM, {} apart; {:.0}% of the area faces nothing (no points)",
+            metres(spacing),
+            100.0 * unseen
+        ));
         let scale = MapScale {
             d_max: diameter,
             bias: [
@@ -303,7 +310,11 @@ impl GiTechnique for IsmTechnique {
                 settings.bias_slope,
                 2.0 / settings.ism_resolution as f32,
             ],
-            pull_push: 0.05,
+            // One point spacing (times 2^level in the shader): depths further apart than a
+            // splat's size on the surface are two surfaces, not one to average. It replaces
+            // Ritschel's 5% of the scene extent, and is about the same on the suite (Cornell
+            // box 0.22 m against 0.17 m, the 60 m hall 3.2 m against 3.2 m).
+            pull_push: spacing / diameter.max(1e-3),
             total_area,
         };
         self.gather.seed = inputs.frame_index;
@@ -449,5 +460,16 @@ impl GiTechnique for IsmTechnique {
 
     fn as_any(&self) -> &dyn std::any::Any {
         self
+    }
+}
+
+/// A length for the viewport's status line: metres, centimetres or millimetres.
+fn metres(x: f32) -> String {
+    if x >= 1.0 {
+        format!("{x:.2} m")
+    } else if x >= 0.01 {
+        format!("{:.1} cm", x * 100.0)
+    } else {
+        format!("{:.1} mm", x * 1000.0)
     }
 }

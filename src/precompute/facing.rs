@@ -1,0 +1,160 @@
+//! Which triangles face any geometry. A triangle whose front hemisphere sees nothing (the outer
+//! faces of a closed level's walls, the undersides of its floor slabs, a ground plane far from
+//! everything) can neither receive bounce light nor send it anywhere, and as an occluder it only
+//! ever stands behind the inner face of its own slab. Sample points spent there are lost to the
+//! surfaces that matter: in the suite's 60 m hall half the slab area faced outwards, which
+//! doubled the area each ISM's points had to cover (and so the splat size and lookup offset).
+//!
+//! The test is conservative: a triangle is kept when any of its rays hits anything (front or
+//! back face), so inconsistent winding never removes a room. Points follow moved objects without
+//! a new test (the set is computed with the distribution).
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use super::bvh::SceneBvh;
+use crate::scene::Scene;
+
+/// Positions tested per triangle (centroids of its four midpoint sub-triangles).
+const POSITIONS: [[f32; 2]; 4] =
+    [[1.0 / 3.0, 1.0 / 3.0], [1.0 / 6.0, 1.0 / 6.0], [2.0 / 3.0, 1.0 / 6.0], [1.0 / 6.0, 2.0 / 3.0]];
+/// Cosine-distributed directions per position: 64 rays in all, so a surface that sees other
+/// geometry over 10% of its cosine-weighted hemisphere is dropped with probability 0.9^64 = 0.1%
+/// (and what it would have exchanged with that geometry is then under 10% of its share).
+const DIRECTIONS: usize = 16;
+
+/// The golden ratio's fractional part (rotates each position's direction set).
+const GOLDEN: f32 = 0.618_034;
+
+/// For every object, for every triangle of its mesh: whether the triangle's front hemisphere
+/// sees any geometry. Objects that are not rendered get an empty list.
+pub fn facing_geometry(scene: &Scene) -> Vec<Vec<bool>> {
+    let bvh = SceneBvh::build(scene);
+    let eps = 1e-4 * bvh.scale;
+    scene
+        .objects()
+        .iter()
+        .map(|object| {
+            let Some(mesh) = scene.resources().meshes.get(object.mesh).filter(|_| object.is_rendered()) else {
+                return Vec::new();
+            };
+            let m = object.transform.matrix();
+            let flip = if m.determinant() < 0.0 { -1.0 } else { 1.0 };
+            (0..mesh.triangle_count())
+                .into_par_iter()
+                .map(|t| {
+                    let [a, b, c] = mesh.triangle(t).map(|p| m.transform_point3(p));
+                    let Some(n) = ((b - a).cross(c - a) * flip).try_normalize() else { return false };
+                    sees_geometry(&bvh, [a, b, c], n, eps)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Whether any of the triangle's test rays (from just above its front side) hits the scene.
+fn sees_geometry(bvh: &SceneBvh, [a, b, c]: [Vec3; 3], n: Vec3, eps: f32) -> bool {
+    let (t, s) = n.any_orthonormal_pair();
+    POSITIONS.iter().enumerate().any(|(k, [u, v])| {
+        let origin = a + (b - a) * *u + (c - a) * *v + n * eps;
+        (0..DIRECTIONS).any(|i| {
+            let r2 = (i as f32 + 0.5) / DIRECTIONS as f32;
+            let phi = std::f32::consts::TAU * ((i + 4 * k) as f32 * GOLDEN).fract();
+            let r = r2.sqrt();
+            let d = t * (r * phi.cos()) + s * (r * phi.sin()) + n * (1.0 - r2).sqrt();
+            bvh.occluded(origin, d, f32::MAX)
+        })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Material, Mesh, MeshSource, Object, ObjectRole, Resources, SceneDesc, Transform};
+
+    /// A closed 2 m box of 0.2 m slabs (six cuboids) and a lone plane far outside it.
+    fn box_and_plane() -> Scene {
+        let slab = |name: &str, centre: Vec3, size: Vec3, mesh: usize| Object {
+            name: name.into(),
+            source: MeshSource::Cuboid { size, openings: [false; 6] },
+            mesh,
+            material: 0,
+            transform: Transform { translation: centre, ..Transform::default() },
+            sampling_weight: 1.0,
+            role: ObjectRole::Static,
+            visible: true,
+        };
+        let (t, w) = (0.2, 2.4);
+        let parts = [
+            ("floor", Vec3::new(0.0, -1.1, 0.0), Vec3::new(w, t, w)),
+            ("ceiling", Vec3::new(0.0, 1.1, 0.0), Vec3::new(w, t, w)),
+            ("left", Vec3::new(-1.1, 0.0, 0.0), Vec3::new(t, 2.0, w)),
+            ("right", Vec3::new(1.1, 0.0, 0.0), Vec3::new(t, 2.0, w)),
+            ("back", Vec3::new(0.0, 0.0, -1.1), Vec3::new(2.0, 2.0, t)),
+            ("front", Vec3::new(0.0, 0.0, 1.1), Vec3::new(2.0, 2.0, t)),
+        ];
+        let mut objects: Vec<Object> =
+            parts.iter().enumerate().map(|(i, (name, c, s))| slab(name, *c, *s, i)).collect();
+        let mut meshes: Vec<Mesh> = parts.iter().map(|(name, _, s)| Mesh::cuboid(name, *s)).collect();
+        objects.push(Object {
+            name: "plane".into(),
+            source: MeshSource::Plane { size: 1.0 },
+            mesh: meshes.len(),
+            material: 0,
+            transform: Transform { translation: Vec3::new(50.0, 0.0, 0.0), ..Transform::default() },
+            sampling_weight: 1.0,
+            role: ObjectRole::Static,
+            visible: true,
+        });
+        meshes.push(Mesh::plane("plane", 1.0));
+        let desc = SceneDesc { materials: vec![Material::default()], objects, ..SceneDesc::default() };
+        Scene::new(desc, Resources { meshes, images: vec![] }).expect("scene")
+    }
+
+    #[test]
+    fn outer_faces_of_a_closed_box_and_a_lone_plane_see_nothing() {
+        let scene = box_and_plane();
+        let facing = facing_geometry(&scene);
+        let centre_dir = |o: usize, t: usize| {
+            let m = scene.objects()[o].transform.matrix();
+            let mesh = &scene.resources().meshes[scene.objects()[o].mesh];
+            let [a, b, c] = mesh.triangle(t).map(|p| m.transform_point3(p));
+            let n = (b - a).cross(c - a).normalize();
+            ((a + b + c) / 3.0, n)
+        };
+        let (mut inner, mut outer) = (0, 0);
+        for (o, tris) in facing.iter().enumerate().take(6) {
+            for (t, sees) in tris.iter().enumerate() {
+                let (p, n) = centre_dir(o, t);
+                // Inner: inside the 2 m cube, facing its centre. Outer: on the 2.4 m hull,
+                // facing away. (Slab edges buried in a neighbour slab are neither.)
+                if p.abs().max_element() <= 1.0 + 1e-4 && n.dot(-p) > 0.0 {
+                    assert!(*sees, "object {o} triangle {t} at {p} faces the box's inside");
+                    inner += 1;
+                } else if p.abs().max_element() >= 1.2 - 1e-4 && n.dot(p) > 0.0 {
+                    assert!(!*sees, "object {o} triangle {t} at {p} faces outwards");
+                    outer += 1;
+                }
+            }
+        }
+        assert_eq!(inner, 12, "the six inner faces (two triangles each)");
+        assert!(outer >= 12, "at least the six outer faces: {outer} triangles");
+        assert!(facing[6].iter().all(|s| !s), "the lone plane sees nothing");
+    }
+
+    #[test]
+    fn distributed_points_skip_the_faces_that_see_nothing() {
+        let scene = box_and_plane();
+        let points = crate::precompute::sample_points::distribute(&scene, 4096, 8, 1);
+        assert_eq!(points.points.len(), 4096);
+        for (p, n) in points.world(&scene) {
+            assert!(p.abs().max_element() <= 1.2 + 1e-4, "a point on the lone plane at {p}");
+            assert!(!(p.abs().max_element() >= 1.2 - 1e-4 && n.dot(p) > 0.0), "a point on an outer face at {p}");
+        }
+        // The inner faces (6 x 4 m^2) and the slab ends buried in a neighbour slab (about 5 m^2)
+        // keep their area; the outer faces (about 35 m^2) and the plane are unseen.
+        let kept: f64 = points.weighted_area.iter().sum();
+        assert!((24.0..30.0).contains(&kept), "area with points {kept}");
+        assert!(points.unseen_area > 30.0, "unseen area {}", points.unseen_area);
+    }
+}

@@ -1,0 +1,280 @@
+#!/usr/bin/env python3
+"""Held-out level-like glTF scenes for checking ISM (and later techniques) beyond the suite.
+
+Written independently of the suite's Rust generator (src/suite/levels.rs) and never used to
+tune anything: walls, floors and ceilings are solid slabs with outward normals, as level
+geometry is modelled. Three scenes, the kinds issue 10's "done when" names:
+
+- apartment: four rooms of different sizes in a 2 x 2 grid, 0.25 m walls, three doorways in an
+  L (so no straight line joins the lit rooms and the camera's room), a ceiling lamp in one room
+  and a spot in the next; the camera stands in the fourth, unlit, room.
+- sunroom: a 5 x 2.8 x 7 m room with two windows in one long wall, a sun shining in, a lamp
+  and a spot.
+- storeroom: a 7 x 3 x 9 m room with two shelving units (thin slabs on posts), forty boxes
+  and a spot and a lamp.
+
+Usage: python3 tools/unseen_levels.py OUT_DIR  (writes OUT_DIR/<name>.gltf)
+"""
+
+import base64
+import json
+import math
+import random
+import struct
+import sys
+from pathlib import Path
+
+
+class Writer:
+    def __init__(self):
+        self.data = bytearray()
+        self.doc = {
+            "asset": {"version": "2.0", "generator": "bouncelab tools/unseen_levels.py"},
+            "extensionsUsed": ["KHR_lights_punctual"],
+            "extensions": {"KHR_lights_punctual": {"lights": []}},
+            "scenes": [{"nodes": []}],
+            "scene": 0,
+            "nodes": [],
+            "meshes": [],
+            "materials": [],
+            "accessors": [],
+            "bufferViews": [],
+            "buffers": [],
+            "cameras": [],
+        }
+        self.box_meshes = {}
+
+    def material(self, name, rgb):
+        self.doc["materials"].append(
+            {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [*rgb, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}
+        )
+        return len(self.doc["materials"]) - 1
+
+    def _view(self, payload, target):
+        while len(self.data) % 4:
+            self.data.append(0)
+        self.doc["bufferViews"].append({"buffer": 0, "byteOffset": len(self.data), "byteLength": len(payload), "target": target})
+        self.data.extend(payload)
+        return len(self.doc["bufferViews"]) - 1
+
+    def _accessor(self, view, ctype, count, kind, lo=None, hi=None):
+        a = {"bufferView": view, "componentType": ctype, "count": count, "type": kind}
+        if lo is not None:
+            a["min"], a["max"] = lo, hi
+        self.doc["accessors"].append(a)
+        return len(self.doc["accessors"]) - 1
+
+    def box_mesh(self, size, material):
+        """A cuboid of full size `size` centred on the origin: 24 vertices, outward normals."""
+        key = (tuple(round(s, 6) for s in size), material)
+        if key in self.box_meshes:
+            return self.box_meshes[key]
+        hx, hy, hz = (s / 2 for s in size)
+        pos, nrm, idx = [], [], []
+        for axis in range(3):
+            for sign in (1.0, -1.0):
+                n = [0.0, 0.0, 0.0]
+                n[axis] = sign
+                u, v = (axis + 1) % 3, (axis + 2) % 3
+                base = len(pos)
+                for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+                    p = [0.0, 0.0, 0.0]
+                    p[axis] = sign
+                    p[u], p[v] = a, b
+                    pos.append([p[0] * hx, p[1] * hy, p[2] * hz])
+                    nrm.append(n)
+                # Counter-clockwise seen from outside: (u x v) = axis for the + face.
+                if sign > 0:
+                    idx += [base, base + 1, base + 2, base, base + 2, base + 3]
+                else:
+                    idx += [base, base + 2, base + 1, base, base + 3, base + 2]
+        pv = self._view(b"".join(struct.pack("<3f", *p) for p in pos), 34962)
+        nv = self._view(b"".join(struct.pack("<3f", *n) for n in nrm), 34962)
+        iv = self._view(b"".join(struct.pack("<H", i) for i in idx), 34963)
+        pa = self._accessor(pv, 5126, len(pos), "VEC3", [-hx, -hy, -hz], [hx, hy, hz])
+        na = self._accessor(nv, 5126, len(nrm), "VEC3")
+        ia = self._accessor(iv, 5123, len(idx), "SCALAR")
+        self.doc["meshes"].append(
+            {"name": f"box{len(self.doc['meshes'])}", "primitives": [{"attributes": {"POSITION": pa, "NORMAL": na}, "indices": ia, "material": material}]}
+        )
+        self.box_meshes[key] = len(self.doc["meshes"]) - 1
+        return self.box_meshes[key]
+
+    def node(self, node):
+        self.doc["nodes"].append(node)
+        self.doc["scenes"][0]["nodes"].append(len(self.doc["nodes"]) - 1)
+
+    def slab(self, name, lo, hi, material):
+        size = [h - l for l, h in zip(lo, hi)]
+        centre = [(l + h) / 2 for l, h in zip(lo, hi)]
+        self.node({"name": name, "mesh": self.box_mesh(size, material), "translation": centre})
+
+    def light(self, name, kind, intensity, position, direction, colour=(1.0, 0.95, 0.9), cone=None):
+        light = {"name": name, "type": kind, "color": list(colour), "intensity": intensity}
+        if cone:
+            light["spot"] = {"innerConeAngle": cone[0], "outerConeAngle": cone[1]}
+        lights = self.doc["extensions"]["KHR_lights_punctual"]["lights"]
+        lights.append(light)
+        self.node({"name": name, "translation": list(position), "rotation": look_rotation(direction),
+                   "extensions": {"KHR_lights_punctual": {"light": len(lights) - 1}}})
+
+    def camera(self, eye, target, yfov, znear):
+        self.doc["cameras"].append({"type": "perspective", "perspective": {"yfov": yfov, "znear": znear, "aspectRatio": 16 / 9}})
+        d = [t - e for t, e in zip(target, eye)]
+        self.node({"name": "camera", "camera": 0, "translation": list(eye), "rotation": look_rotation(d)})
+
+    def write(self, path):
+        self.doc["buffers"] = [{"byteLength": len(self.data), "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(self.data)).decode()}]
+        doc = {k: v for k, v in self.doc.items() if v != []}
+        Path(path).write_text(json.dumps(doc, indent=1))
+
+
+def normalize(v):
+    n = math.sqrt(sum(c * c for c in v))
+    return [c / n for c in v]
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def look_rotation(direction):
+    """The quaternion (x, y, z, w) turning -Z onto `direction` with +Y kept up."""
+    f = normalize(direction)
+    up = [0.0, 1.0, 0.0] if abs(f[1]) < 0.999 else [1.0, 0.0, 0.0]
+    r = normalize(cross(f, up))
+    u = cross(r, f)
+    b = [-c for c in f]
+    m = [[r[0], u[0], b[0]], [r[1], u[1], b[1]], [r[2], u[2], b[2]]]
+    tr = m[0][0] + m[1][1] + m[2][2]
+    if tr > 0:
+        s = math.sqrt(tr + 1.0) * 2
+        return [(m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, 0.25 * s]
+    if m[0][0] > m[1][1] and m[0][0] > m[2][2]:
+        s = math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]) * 2
+        return [0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s]
+    if m[1][1] > m[2][2]:
+        s = math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]) * 2
+        return [(m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s]
+    s = math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]) * 2
+    return [(m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s]
+
+
+WALL, FLOOR, CEILING = (0.75, 0.72, 0.66), (0.5, 0.38, 0.28), (0.85, 0.85, 0.85)
+
+
+def apartment():
+    w = Writer()
+    wall, floor, ceil = w.material("plaster", WALL), w.material("parquet", FLOOR), w.material("ceiling", CEILING)
+    blue = w.material("blue_wall", (0.3, 0.4, 0.65))
+    t, h = 0.25, 2.6
+    xs = [0.0, 4.5, 4.5 + t, 4.5 + t + 3.5]  # room columns: [0, 4.5] and [4.75, 8.25]
+    zs = [0.0, 3.5, 3.5 + t, 3.5 + t + 5.0]  # room rows: [0, 3.5] and [3.75, 8.75]
+    x0, x1 = -t, xs[3] + t
+    z0, z1 = -t, zs[3] + t
+    w.slab("floor", [x0, -t, z0], [x1, 0.0, z1], floor)
+    w.slab("ceiling", [x0, h, z0], [x1, h + t, z1], ceil)
+    # Outer walls.
+    w.slab("outer_south", [x0, 0, z0], [x1, h, 0.0], wall)
+    w.slab("outer_north", [x0, 0, zs[3]], [x1, h, z1], wall)
+    w.slab("outer_west", [x0, 0, 0.0], [0.0, h, zs[3]], blue)
+    w.slab("outer_east", [xs[3], 0, 0.0], [x1, h, zs[3]], wall)
+    door_h = 2.05
+    # Interior wall along x (between the rows), z in [3.5, 3.75]: doorway A->C at x 1.0..1.9 only.
+    w.slab("inner_x_a", [0.0, 0, zs[1]], [1.0, h, zs[2]], wall)
+    w.slab("inner_x_b", [1.9, 0, zs[1]], [xs[3], h, zs[2]], wall)
+    w.slab("inner_x_lintel", [1.0, door_h, zs[1]], [1.9, h, zs[2]], wall)
+    # Interior wall along z (between the columns), x in [4.5, 4.75]: doorway A->B at z 2.2..3.1,
+    # doorway C->D at z 7.5..8.4 (so D, the camera's room, is two doorways from the lamp).
+    w.slab("inner_z_a", [xs[1], 0, 0.0], [xs[2], h, 2.2], wall)
+    w.slab("inner_z_b", [xs[1], 0, 3.1], [xs[2], h, 7.5], wall)
+    w.slab("inner_z_c", [xs[1], 0, 8.4], [xs[2], h, zs[3]], wall)
+    w.slab("inner_z_lintel_ab", [xs[1], door_h, 2.2], [xs[2], h, 3.1], wall)
+    w.slab("inner_z_lintel_cd", [xs[1], door_h, 7.5], [xs[2], h, 8.4], wall)
+    # Room B (x 4.75..8.25, z 0..3.5) has no door to D: the wall between B and D is inner_x_b.
+    w.slab("table", [1.5, 0.72, 0.9], [2.7, 0.76, 1.8], floor)
+    w.slab("sofa", [5.2, 0.0, 0.3], [7.6, 0.8, 1.1], blue)
+    w.light("lamp", "point", 6.0, [2.2, 2.3, 1.7], [0, -1, 0])
+    w.light("spot", "spot", 25.0, [7.8, 2.45, 3.2], [-0.4, -1.0, -0.5], cone=(0.4, 0.7))
+    w.camera([8.0, 1.6, 8.5], [4.0, 1.0, 6.5], 1.15, 0.05)
+    return w
+
+
+def sunroom():
+    w = Writer()
+    wall, floor, ceil = w.material("plaster", WALL), w.material("tiles", (0.35, 0.33, 0.3)), w.material("ceiling", CEILING)
+    green = w.material("green", (0.3, 0.55, 0.3))
+    t, h = 0.3, 2.8
+    X, Z = 5.0, 7.0
+    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
+    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
+    w.slab("south", [0, 0, -t], [X, h, 0], wall)
+    w.slab("north", [0, 0, Z], [X, h, Z + t], green)
+    w.slab("east", [X, 0, -t], [X + t, h, Z + t], wall)
+    # The west wall (x in [-t, 0]) with two 1.4 x 1.5 m windows, sills at 0.8 m.
+    win = [(1.0, 2.4), (4.2, 5.6)]
+    sill, head = 0.8, 2.3
+    edges = [0.0] + [e for a in win for e in a] + [Z]
+    for i in range(0, len(edges), 2):
+        w.slab(f"west_pier_{i}", [-t, 0, edges[i] - (t if i == 0 else 0)], [0, h, edges[i + 1] + (t if i + 2 == len(edges) else 0)], wall)
+    for k, (a, b) in enumerate(win):
+        w.slab(f"west_sill_{k}", [-t, 0, a], [0, sill, b], wall)
+        w.slab(f"west_head_{k}", [-t, head, a], [0, h, b], wall)
+    w.slab("bench", [3.6, 0.0, 2.5], [4.6, 0.45, 4.5], green)
+    w.light("sun", "directional", 5.0, [-3.0, 5.0, 3.0], [1.0, -0.6, 0.35])
+    w.light("lamp", "point", 3.0, [4.2, 2.2, 6.3], [0, -1, 0])
+    w.light("spot", "spot", 15.0, [0.5, 2.6, 6.6], [0.6, -0.8, -0.9], cone=(0.3, 0.55))
+    w.camera([4.6, 1.6, 0.4], [1.5, 1.0, 5.0], 1.2, 0.05)
+    return w
+
+
+def storeroom():
+    w = Writer()
+    wall, floor, ceil = w.material("concrete", (0.55, 0.55, 0.52)), w.material("floor", (0.4, 0.4, 0.42)), w.material("ceiling", CEILING)
+    metal = w.material("shelf", (0.6, 0.5, 0.35))
+    colours = [(0.7, 0.55, 0.35), (0.6, 0.2, 0.15), (0.2, 0.35, 0.6), (0.75, 0.75, 0.7)]
+    stuff = [w.material(f"crate_{i}", c) for i, c in enumerate(colours)]
+    t, h, X, Z = 0.2, 3.0, 7.0, 9.0
+    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
+    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
+    w.slab("south", [0, 0, -t], [X, h, 0], wall)
+    w.slab("north", [0, 0, Z], [X, h, Z + t], wall)
+    w.slab("west", [-t, 0, -t], [0, h, Z + t], wall)
+    w.slab("east", [X, 0, -t], [X + t, h, Z + t], wall)
+    for s, x in enumerate([1.5, 4.5]):
+        for k, y in enumerate([0.1, 0.9, 1.7]):
+            w.slab(f"shelf_{s}_{k}", [x, y, 2.0], [x + 1.0, y + 0.04, 7.0], metal)
+        for px in [x, x + 0.96]:
+            for pz in [2.0, 4.48, 6.96]:
+                w.slab(f"post_{s}_{px}_{pz}", [px, 0, pz], [px + 0.04, 2.0, pz + 0.04], metal)
+    rng = random.Random(20261123)
+    for i in range(40):
+        size = 0.2 + 0.35 * rng.random()
+        if i < 24:  # on the shelves
+            s, k = i % 2, (i // 2) % 3
+            x = [1.5, 4.5][s] + 0.1 + rng.random() * (0.9 - size)
+            y = [0.14, 0.94, 1.74][k]
+            z = 2.1 + rng.random() * (4.8 - size)
+            hy = min(size, 0.7)
+        else:  # on the floor along the walls
+            x = rng.choice([0.2, 6.2]) + rng.random() * 0.4
+            y = 0.0
+            z = 0.3 + rng.random() * 8.2
+            hy = size
+        w.slab(f"crate_{i}", [x, y, z], [x + size, y + hy, z + size], stuff[i % len(stuff)])
+    w.light("spot", "spot", 60.0, [3.5, 2.9, 1.0], [0.0, -1.0, 0.9], cone=(0.5, 0.8))
+    w.light("lamp", "point", 4.0, [3.5, 2.7, 8.0], [0, -1, 0])
+    w.camera([6.6, 2.2, 0.4], [3.2, 0.8, 5.0], 1.1, 0.05)
+    return w
+
+
+def main():
+    out = Path(sys.argv[1] if len(sys.argv) > 1 else "unseen")
+    out.mkdir(parents=True, exist_ok=True)
+    for name, make in [("apartment", apartment), ("sunroom", sunroom), ("storeroom", storeroom)]:
+        make().write(out / f"{name}.gltf")
+        print(out / f"{name}.gltf")
+
+
+if __name__ == "__main__":
+    main()
