@@ -86,15 +86,12 @@ pub struct IsmSettings {
     /// The scale-free distance clamp: a VPL stands for the patch it was drawn from (its light-
     /// G-buffer texel's area / (N p), or one ISM's share of the scene's area for bounce VPLs),
     /// and d^2 is clamped at this factor x that patch's area / pi (the squared radius of a disk
-    /// of that area) at receivers, and at this factor x (R_vpl^2 + R_point^2) in the bounce
-    /// passes. 0 turns it off. Free; larger: fewer spikes near VPLs, darker corners and less
-    /// light carried from bounce to bounce. It replaces the thesis's 1-unit clamp, which no
-    /// fixed distance can stand for from a 20 cm diorama to a 60 m hall. Measured with
-    /// `examples/ism_probe.rs` (32 frames): 0.5 in the shading and the full disks in the
-    /// bounces (the former defaults) kept 0.76 of the three rooms' energy and 0.945 of the
-    /// Cornell box's; 0.25 in both 0.88 and 0.955 (the window room 0.96 -> 1.00); 0.1 let
-    /// single bounce VPLs next to a wall dominate (the rooms 1.35, or 1.68 averaged over the
-    /// 32 frames).
+    /// of that area) at receivers (the bounce passes always clamp at the full disks, which
+    /// keeps a near point from receiving more power than the VPL emits). 0 turns it off. Free;
+    /// larger: fewer spikes near VPLs, darker corners. It replaces the thesis's 1-unit clamp,
+    /// which no fixed distance can stand for from a 20 cm diorama to a 60 m hall. Measured with
+    /// `examples/ism_probe.rs` (32 frames): 0.5 kept 0.76 of the three rooms' energy and 0.945
+    /// of the Cornell box's, 0.25 0.76 and 0.952.
     pub clamp_disk: f32,
     /// ISM lookup normal offset, constant part, as a fraction of the world spacing of one
     /// ISM's sample points (sqrt(area / points per ISM): a splat's size on the surface): the

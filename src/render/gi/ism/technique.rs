@@ -210,6 +210,16 @@ impl IsmTechnique {
                 1,
             );
             let means = scene.resources().images.iter().map(mean_linear_colour).collect();
+            // The ISMs' resolution on the surfaces, in the units the artist works in (once per
+            // distribution, not per frame).
+            let (per_ism, spacing) = point_spacing(&points, ism.vpl_count);
+            let total = points.weighted_area.iter().sum::<f64>();
+            let unseen = points.unseen_area / (points.unseen_area + total).max(1e-30);
+            self.status.progress = Some(format!(
+                "ism: {per_ism:.0} points per ISM, {} apart; {:.0}% of the area faces nothing (no points)",
+                metres(spacing),
+                100.0 * unseen
+            ));
             self.points = Some((key, points, means));
             self.points_generation += 1;
             self.rebuilds += 1;
@@ -292,16 +302,7 @@ impl GiTechnique for IsmTechnique {
         }
         let diameter = 2.0 * inputs.scene.bounds().map_or(1.0, |b| b.radius());
         let total_area = points.weighted_area.iter().sum::<f64>() as f32;
-        // The world spacing of one ISM's points: the size of a splat on the surface.
-        let per_ism = (points.points.len() as f32 / settings.vpl_count.max(1) as f32).max(1.0);
-        let spacing = (total_area / per_ism).sqrt();
-        // The ISMs' resolution on the surfaces, in the units the artist works in.
-        let unseen = points.unseen_area / (points.unseen_area + f64::from(total_area)).max(1e-30);
-        self.status.progress = Some(format!(
-            "ism: {per_ism:.0} points per ISM, {} apart; {:.0}% of the area faces nothing (no points)",
-            metres(spacing),
-            100.0 * unseen
-        ));
+        let (_, spacing) = point_spacing(points, settings.vpl_count);
         let scale = MapScale {
             d_max: diameter,
             bias: [
@@ -312,8 +313,8 @@ impl GiTechnique for IsmTechnique {
             ],
             // One point spacing (times 2^level in the shader): depths further apart than a
             // splat's size on the surface are two surfaces, not one to average. It replaces
-            // Ritschel's 5% of the scene extent, and is about the same on the suite (Cornell
-            // box 0.22 m against 0.17 m, the 60 m hall 3.2 m against 3.2 m).
+            // Ritschel's 5% of the scene extent (by hand from the suite's areas, about the same:
+            // the Cornell box ~0.22 m against 0.17 m, the 60 m hall ~3.2 m against 3.2 m).
             pull_push: spacing / diameter.max(1e-3),
             total_area,
         };
@@ -461,6 +462,14 @@ impl GiTechnique for IsmTechnique {
     fn as_any(&self) -> &dyn std::any::Any {
         self
     }
+}
+
+/// Points per ISM and their world spacing, sqrt(area / points per ISM): the size of a splat on
+/// the surface, the unit of the lookup offset and the pull-push threshold.
+fn point_spacing(points: &crate::precompute::sample_points::SamplePoints, vpl_count: u32) -> (f32, f32) {
+    let total_area = points.weighted_area.iter().sum::<f64>() as f32;
+    let per_ism = (points.points.len() as f32 / vpl_count.max(1) as f32).max(1.0);
+    (per_ism, (total_area / per_ism).sqrt())
 }
 
 /// A length for the viewport's status line: metres, centimetres or millimetres.
