@@ -248,10 +248,16 @@ mod tests {
                 p.y.abs() < 1e-6 && (n - Vec3::Y).length() < 1e-5 && p.x.abs() >= 0.5 - 1e-5 && p.x.abs() <= 1.5 + 1e-5
             );
         }
-        scene.desc_mut().objects[1].transform.translation.y = 2.0;
-        let moved = pts.world(&scene);
-        let on_b = pts.points.iter().zip(&moved).filter(|(sp, _)| sp.object == 1);
-        assert!(on_b.clone().count() > 200 && on_b.into_iter().all(|(_, (p, _))| (p.y - 2.0).abs() < 1e-5));
+        // Moved sideways: lifting `b` would let `a`'s face see it and change which faces get
+        // points (`facing`), which moving never re-tests.
+        scene.desc_mut().objects[1].transform.translation.z = 2.0;
+        let before = two_planes(1.0, 1.0);
+        let (start, moved) = (pts.world(&before), pts.world(&scene));
+        let on_b = pts.points.iter().zip(start.iter().zip(&moved)).filter(|(sp, _)| sp.object == 1);
+        assert!(
+            on_b.clone().count() > 200
+                && on_b.into_iter().all(|(_, ((p0, _), (p, _)))| (*p - *p0 - Vec3::Z * 2.0).length() < 1e-5)
+        );
         assert_eq!(
             distribute(&scene, 500, 5, 7).points,
             pts.points,
