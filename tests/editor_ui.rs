@@ -17,7 +17,19 @@ fn harness() -> Harness<'static, EditorApp> {
         .build_eframe(move |cc| EditorApp::new(cc, project, Some(path)));
     // The viewport repaints every frame, so step a fixed number of frames instead of `run`.
     h.run_steps(3);
+    settle(&mut h);
     h
+}
+
+/// Lets the viewport catch up with the editor's state: its frames render on their own device
+/// while the UI steps on, so wait for the frame in flight, step (which submits a frame of the
+/// current state) and wait for that one too.
+fn settle(h: &mut Harness<'static, EditorApp>) {
+    for _ in 0..2 {
+        h.state_mut().wait_viewport();
+        h.run_steps(1);
+    }
+    h.state_mut().wait_viewport();
 }
 
 #[test]
@@ -56,6 +68,7 @@ fn switch_mode_and_inspect_buffers() {
     h.run_steps(2);
     assert_eq!(h.state().state().project.render.mode, GiMode::Reference);
     h.run_steps(3);
+    settle(&mut h);
     assert!(
         !h.state().state().status.contains("failed"),
         "the viewport shows the path tracer: {}",
@@ -70,6 +83,7 @@ fn switch_mode_and_inspect_buffers() {
     assert_eq!(h.state().state().project.render.mode, GiMode::Direct, "a disabled mode cannot be chosen");
     h.get_by_label("ism").click();
     h.run_steps(3);
+    settle(&mut h);
     assert_eq!(h.state().state().project.render.mode, GiMode::Ism);
     assert!(!h.state().state().status.contains("failed"), "{}", h.state().state().status);
     // The ISM technique's own buffers are there while it is active, and its memory is.
@@ -81,6 +95,7 @@ fn switch_mode_and_inspect_buffers() {
     assert!(ism_bytes(renderer) > 0);
     h.get_by_label("reference").click();
     h.run_steps(3);
+    settle(&mut h);
     let renderer = h.state().renderer().expect("renderer");
     assert_eq!(ism_bytes(renderer), 0, "switching away releases the ISM memory");
     assert!(renderer.read_buffer("ism_confidence").is_err(), "ism buffers are not listed in reference");
@@ -165,6 +180,8 @@ fn snapshot_of_the_default_layout() {
     }
     let mut h = harness();
     h.run_steps(2);
+    settle(&mut h);
+    assert_eq!(h.state().viewport_scale(), Some(1.0), "idle: the viewport shows a full-resolution image");
     // Timings and frame times change from run to run: mask the bottom dock and status bar.
     let timings = h.get_by_label("Timings").rect();
     h.mask(egui::Rect::from_min_max(egui::pos2(0.0, timings.min.y), egui::pos2(1280.0, 800.0)));
@@ -183,14 +200,18 @@ fn ism_confidence_and_reference_comparison_in_the_inspector() {
     h.get_by_label("overlays").click();
     h.get_by_label("Buffer inspector").click();
     h.run_steps(2);
+    settle(&mut h);
     h.state_mut().inspect("ism_confidence");
     h.get_by_label("Refresh").click();
-    h.run_steps(3);
+    h.run_steps(1);
+    settle(&mut h);
+    h.run_steps(1);
     let (name, size) = h.state().inspected();
     assert_eq!(name, "ism_confidence");
     assert!(size.is_some_and(|(w, h)| w > 0 && h > 0), "the confidence buffer was read back");
     h.get_by_label("Compare with the reference path tracer").click();
     h.run_steps(6);
+    settle(&mut h);
     assert!(!h.state().state().status.contains("failed"), "{}", h.state().state().status);
     let img = h.render().expect("renders");
     assert_eq!((img.width(), img.height()), (1280, 800));

@@ -20,7 +20,25 @@ pub enum Channel {
 }
 
 /// Inspector UI state.
+/// Where the viewport's renderer stands this UI frame (reads happen only while it is idle, so
+/// the inspector never waits for a frame in flight).
+#[derive(Clone, Copy, Debug)]
+pub struct ViewFrame {
+    /// Finished viewport frames so far (the live refresh cadence).
+    pub index: u64,
+    /// No frame in flight: reads return at once.
+    pub idle: bool,
+    /// The last finished frame was rendered at full resolution.
+    pub full: bool,
+    /// The viewport's full size (the reference comparison's size).
+    pub full_size: (u32, u32),
+}
+
 pub struct Inspector {
+    /// A read was asked for (Refresh, a new buffer) while the renderer was busy.
+    pending: bool,
+    /// The live cadence's last frame read.
+    read_frame: u64,
     buffer: String,
     channel: Channel,
     exposure_ev: f32,
@@ -46,6 +64,8 @@ pub struct Inspector {
 impl Default for Inspector {
     fn default() -> Self {
         Self {
+            pending: true,
+            read_frame: 0,
             buffer: "albedo".into(),
             channel: Channel::Rgb,
             exposure_ev: 0.0,
@@ -174,7 +194,7 @@ impl Inspector {
     }
 
     /// Draws the inspector; `renderer` is the viewport's (absent when the GPU is unavailable).
-    pub fn ui(&mut self, ui: &mut egui::Ui, renderer: Option<&Renderer>, project: &Project, frame: u64) {
+    pub fn ui(&mut self, ui: &mut egui::Ui, renderer: Option<&Renderer>, project: &Project, frame: ViewFrame) {
         let Some(renderer) = renderer else {
             ui.label("No renderer: the GPU is unavailable.");
             return;
@@ -184,8 +204,10 @@ impl Inspector {
             let buffers = Renderer::buffers_for(project.render.mode);
             egui::ComboBox::from_label("buffer").height(800.0).selected_text(&self.buffer).show_ui(ui, |ui| {
                 for b in &buffers {
-                    ui.selectable_value(&mut self.buffer, b.name.to_owned(), b.name)
+                    let r = ui
+                        .selectable_value(&mut self.buffer, b.name.to_owned(), b.name)
                         .on_hover_text(format!("{} ({})", b.description, b.format));
+                    self.pending |= r.changed();
                 }
             });
             for (c, label) in
@@ -202,11 +224,14 @@ impl Inspector {
             ui.add_enabled(!self.fit, egui::Slider::new(&mut self.zoom, 0.25..=8.0).logarithmic(true).text("zoom"));
             ui.checkbox(&mut self.live, "live")
                 .on_hover_text("Read the buffer back every 10 frames (costs a GPU stall).");
-            let refresh = ui.button("Refresh").clicked();
+            self.pending |= ui.button("Refresh").clicked() || self.image.is_none();
             if ui.button("Export...").on_hover_text("EXR: the raw values; PNG: what you see").clicked() {
                 self.export();
             }
-            if refresh || self.image.is_none() || (self.live && frame.is_multiple_of(10)) {
+            let live = self.live && frame.index >= self.read_frame + 10;
+            if frame.idle && (self.pending || live) {
+                self.pending = false;
+                self.read_frame = frame.index;
                 match renderer.read_buffer(&self.buffer) {
                     Ok(img) => self.image = Some(img),
                     Err(e) => log::warn!("inspector: {e}"),
@@ -222,7 +247,7 @@ impl Inspector {
         }
         ui.checkbox(&mut self.compare, "Compare with the reference path tracer");
         if self.compare {
-            self.compare_ui(ui, renderer, project);
+            self.compare_ui(ui, renderer, project, frame);
             return;
         }
         if let (Some(tex), Some(img)) = (&self.texture, &self.image) {
@@ -269,8 +294,8 @@ impl Inspector {
         }
     }
 
-    fn compare_ui(&mut self, ui: &mut egui::Ui, renderer: &Renderer, project: &Project) {
-        let Some(size) = renderer.targets().map(|t| t.size) else { return };
+    fn compare_ui(&mut self, ui: &mut egui::Ui, renderer: &Renderer, project: &Project, frame: ViewFrame) {
+        let size = frame.full_size;
         let (scene, settings) = (&project.scene, &project.render.reference);
         let job = self.job.get_or_insert_with(|| ReferenceJob::start(scene, settings, size));
         if !job.matches(scene, settings, size) {
@@ -284,7 +309,11 @@ impl Inspector {
         };
         // Metrics and FLIP cost a readback and a full-image pass: at most every two seconds.
         let due = self.compared_at.is_none_or(|t| t.elapsed().as_secs_f32() > 2.0);
-        if progress.spp != self.compared_spp && due {
+        let ready = frame.idle && frame.full && renderer.targets().is_some_and(|t| t.size == size);
+        if !ready && self.metrics_text.is_empty() {
+            ui.label("Waiting for a full-resolution viewport frame to compare...");
+        }
+        if ready && progress.spp != self.compared_spp && due {
             self.compared_spp = progress.spp;
             self.compared_at = Some(std::time::Instant::now());
             let current = match renderer.read_buffer("hdr") {

@@ -18,6 +18,8 @@ mod orbit;
 mod outliner;
 mod overlays;
 mod panes;
+pub mod pick;
+pub mod preview;
 mod properties;
 mod recovery;
 pub mod state;
@@ -41,6 +43,7 @@ use state::EditorState;
 /// Keys of the persisted UI state.
 const TREE_KEY: &str = "bouncelab.layout";
 const RECENT_KEY: &str = "bouncelab.recent";
+const PREVIEW_KEY: &str = "bouncelab.preview";
 
 /// Opens the editor window on `project` (the default project if `None`).
 pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
@@ -101,7 +104,10 @@ impl EditorApp {
             Some(p) => Modal::OfferRecovery(p),
             None => Modal::None,
         };
-        let viewport = viewport::Viewport::new(cc.wgpu_render_state.as_ref(), &state);
+        let mut viewport = viewport::Viewport::new(&cc.egui_ctx, cc.wgpu_render_state.as_ref(), &state);
+        if let Some(p) = cc.storage.and_then(|s| eframe::get_value::<preview::PreviewSettings>(s, PREVIEW_KEY)) {
+            viewport.preview = p;
+        }
         Self { state, viewport, inspector: inspector::Inspector::default(), tree, modal, allow_close: false, recovery }
     }
 
@@ -121,9 +127,32 @@ impl EditorApp {
         self.viewport.rect
     }
 
-    /// The viewport's renderer (tests read its technique state).
+    /// The viewport's renderer (tests read its technique state). Its blocking reads wait for
+    /// the frame in flight; [`EditorApp::wait_viewport`] first.
     pub fn renderer(&self) -> Option<&crate::render::Renderer> {
         self.viewport.renderer()
+    }
+
+    /// Waits for the viewport's frame in flight and shows it (tests).
+    pub fn wait_viewport(&mut self) {
+        if let Err(e) = self.viewport.wait() {
+            self.state.report("render failed", &e);
+        }
+    }
+
+    /// The render scale of the image in the viewport (1.0: full resolution).
+    pub fn viewport_scale(&self) -> Option<f32> {
+        self.viewport.shown_scale()
+    }
+
+    /// The viewport's frame budget and adaptive scale.
+    pub fn preview_settings_mut(&mut self) -> &mut preview::PreviewSettings {
+        &mut self.viewport.preview
+    }
+
+    /// Finished viewport frames so far, and the slowest of the last `n` interface frames (ms).
+    pub fn viewport_frames(&self, n: usize) -> (u64, f64) {
+        (self.viewport.frames, self.viewport.timings.ui_worst(n))
     }
 
     /// The editor state (tests read it).
@@ -199,6 +228,10 @@ impl EditorApp {
         else {
             return;
         };
+        if let Err(e) = self.viewport.render_full(&self.state) {
+            self.state.report("export failed", &e);
+            return;
+        }
         let Some(renderer) = self.viewport.renderer() else { return };
         let result = renderer.read_buffer("hdr").map_err(anyhow::Error::from).and_then(|img| {
             let kind = crate::image_io::output_kind(&path)?;
@@ -412,7 +445,6 @@ struct Behavior<'a> {
     state: &'a mut EditorState,
     viewport: &'a mut viewport::Viewport,
     inspector: &'a mut inspector::Inspector,
-    frame: &'a eframe::Frame,
 }
 
 impl egui_tiles::Behavior<Pane> for Behavior<'_> {
@@ -422,16 +454,18 @@ impl egui_tiles::Behavior<Pane> for Behavior<'_> {
 
     fn pane_ui(&mut self, ui: &mut egui::Ui, _tile: egui_tiles::TileId, pane: &mut Pane) -> egui_tiles::UiResponse {
         match pane {
-            Pane::Viewport => {
-                if let Err(e) = self.viewport.ui(ui, self.frame, self.state) {
-                    self.state.report("render failed", &e);
-                }
-            }
+            Pane::Viewport => self.viewport.ui(ui, self.state),
             Pane::Outliner => outliner::outliner_ui(self.state, ui),
             Pane::Properties => properties::properties_ui(self.state, ui),
             Pane::Gi => gi_panel::gi_ui(self.state, ui, self.viewport.renderer(), self.viewport.view_size()),
             Pane::Inspector => {
-                self.inspector.ui(ui, self.viewport.renderer(), &self.state.project, self.viewport.frames)
+                let frame = inspector::ViewFrame {
+                    index: self.viewport.frames,
+                    idle: self.viewport.idle(),
+                    full: self.viewport.shown_scale() == Some(1.0),
+                    full_size: self.viewport.view_size(),
+                };
+                self.inspector.ui(ui, self.viewport.renderer(), &self.state.project, frame)
             }
             Pane::Timings => self.viewport.timings.ui(ui),
             Pane::Log => {
@@ -456,7 +490,11 @@ impl egui_tiles::Behavior<Pane> for Behavior<'_> {
 }
 
 impl eframe::App for EditorApp {
-    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        // The frame the GPU finished since the last UI frame, if any (never waits).
+        if let Err(e) = self.viewport.poll() {
+            self.state.report("render failed", &e);
+        }
         self.shortcuts(ui);
         // Drag and drop a project or glTF onto the window to open it.
         let dropped: Vec<PathBuf> = ui.input(|i| {
@@ -481,14 +519,12 @@ impl eframe::App for EditorApp {
         // Techniques keep debug copies (and the frame its pyramid) only while shown.
         self.viewport.set_inspected(Some(self.inspector.shown().0));
         egui::CentralPanel::default().show(ui, |ui| {
-            let mut behavior = Behavior {
-                state: &mut self.state,
-                viewport: &mut self.viewport,
-                inspector: &mut self.inspector,
-                frame,
-            };
+            let mut behavior =
+                Behavior { state: &mut self.state, viewport: &mut self.viewport, inspector: &mut self.inspector };
             self.tree.ui(&mut behavior, ui);
         });
+        // After every pane has read the finished frame: start the next one.
+        self.viewport.submit(&mut self.state);
         self.modal_ui(ui);
         if let Some(r) = &mut self.recovery
             && self.state.history.is_dirty()
@@ -500,5 +536,6 @@ impl eframe::App for EditorApp {
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
         eframe::set_value(storage, TREE_KEY, &self.tree);
         eframe::set_value(storage, RECENT_KEY, &self.state.recent);
+        eframe::set_value(storage, PREVIEW_KEY, &self.viewport.preview);
     }
 }

@@ -1,5 +1,5 @@
-//! The timings panel: per-pass GPU times (CPU frame time where the adapter has no timestamps)
-//! with a history plot.
+//! The timings panel: per-pass GPU times of each viewport frame (submit-to-image time where
+//! the adapter has no timestamps), the interface's own frame time, and a history plot.
 
 use std::collections::BTreeMap;
 
@@ -15,6 +15,8 @@ pub struct Timings {
     frame_ms: Vec<[f64; 2]>,
     passes: BTreeMap<String, Vec<[f64; 2]>>,
     latest: Vec<PassTiming>,
+    /// The interface's frame times (ms), most recent last.
+    ui_ms: std::collections::VecDeque<f64>,
 }
 
 impl Timings {
@@ -33,11 +35,31 @@ impl Timings {
         self.latest = passes.to_vec();
     }
 
+    /// Records one interface frame (independent of viewport frames).
+    pub fn push_ui(&mut self, ms: f64) {
+        self.ui_ms.push_back(ms);
+        if self.ui_ms.len() > HISTORY {
+            self.ui_ms.pop_front();
+        }
+    }
+
+    /// The slowest interface frame among the last `n` (ms).
+    pub fn ui_worst(&self, n: usize) -> f64 {
+        self.ui_ms.iter().rev().take(n).fold(0.0, |a, &b| a.max(b))
+    }
+
+    /// The median interface frame over the history (ms).
+    pub fn ui_median(&self) -> f64 {
+        let mut v: Vec<f64> = self.ui_ms.iter().copied().collect();
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied().unwrap_or(0.0)
+    }
+
     /// Draws the table and the plot.
     pub fn ui(&self, ui: &mut egui::Ui) {
         let frame = self.frame_ms.last().map_or(0.0, |p| p[1]);
         ui.horizontal_wrapped(|ui| {
-            ui.label(format!("frame {frame:.1} ms"));
+            ui.label(format!("UI {:.1} ms (median) · viewport frame {frame:.1} ms", self.ui_median()));
             for t in &self.latest {
                 ui.label(format!("· {} {:.2} ms", t.name, t.ms));
             }

@@ -1,16 +1,22 @@
 //! The 3D viewport: camera control (orbit, pan, zoom, fly with WASD while the right button is
 //! held), picking through the object-id buffer and light icons, the transform gizmo, overlays,
-//! and the rendered image shown through a registered egui texture.
+//! and the latest finished preview image (see [`super::preview`]: the interface never waits for
+//! the renderer, and the render scale follows a frame budget while something moves).
 
 use glam::{Quat, Vec2, Vec3};
+
+use std::time::Instant;
 
 use super::Orbit;
 use super::edits::Selection;
 use super::gizmo::{self, Drag, GizmoMode, View};
 use super::overlays;
+use super::pick::Picker;
+use super::preview::{AsyncView, LADDER, PreviewSettings, ScaleController, scaled_size};
 use super::state::EditorState;
 use super::timings::Timings;
 use crate::render::{RenderError, Renderer};
+use crate::settings::RenderSettings;
 
 /// Gizmo options shown in the viewport toolbar.
 #[derive(Clone, Copy, Debug)]
@@ -46,12 +52,23 @@ impl Default for GizmoOptions {
     }
 }
 
+/// What a frame was rendered from: when it differs from the last frame's, something moved.
+#[derive(Clone, Debug, PartialEq)]
+struct FrameKey {
+    revision: u64,
+    resources_revision: u64,
+    settings: RenderSettings,
+    size: (u32, u32),
+}
+
 /// Renderer and display state of the viewport.
 pub struct Viewport {
-    renderer: Option<Renderer>,
-    texture: Option<(egui::TextureId, (u32, u32))>,
+    ctx: egui::Context,
+    view: Option<AsyncView>,
+    /// The latest finished image and the ladder step it was rendered at.
+    texture: Option<(egui::TextureHandle, usize)>,
     orbit: Orbit,
-    last: Option<std::time::Instant>,
+    last: Option<Instant>,
     init_error: Option<String>,
     drag: Option<Drag>,
     /// Gizmo options.
@@ -64,8 +81,21 @@ pub struct Viewport {
     /// Screen rectangle of the last drawn image (egui points).
     pub rect: Option<egui::Rect>,
     overlays: Vec<crate::render::gi::Overlay>,
-    /// The view size of the last frame (pixels).
+    /// The full view size of the last UI frame (physical pixels).
     size: (u32, u32),
+    /// Frame budget and adaptive scale (editor preferences).
+    pub preview: PreviewSettings,
+    controller: ScaleController,
+    picker: Picker,
+    /// What the last submitted frame showed, and when it last changed.
+    submitted: Option<FrameKey>,
+    changed_at: Option<Instant>,
+    /// Whether the pointer is dragging in the viewport (camera or gizmo) this UI frame.
+    interacting: bool,
+    /// The duration of the last finished viewport frame (ms).
+    pub last_frame_ms: f64,
+    /// UI frames drawn (the interface's own rate, whatever the renderer does).
+    pub ui_frames: u64,
 }
 
 /// The sample-point overlay's distribution and what it was computed from.
@@ -80,15 +110,19 @@ const AXIS_COLOURS: [egui::Color32; 3] =
     [egui::Color32::from_rgb(230, 70, 70), egui::Color32::from_rgb(80, 200, 80), egui::Color32::from_rgb(80, 120, 240)];
 
 impl Viewport {
-    /// Creates the renderer on eframe's device (if eframe runs on wgpu).
-    pub fn new(rs: Option<&egui_wgpu::RenderState>, state: &EditorState) -> Self {
-        let (renderer, init_error) = match rs.map(|rs| Renderer::new(&rs.device, &rs.queue)) {
-            Some(Ok(r)) => (Some(r), None),
+    /// Creates the renderer on a second device of eframe's adapter (if eframe runs on wgpu).
+    pub fn new(ctx: &egui::Context, rs: Option<&egui_wgpu::RenderState>, state: &EditorState) -> Self {
+        let (view, init_error) = match rs.map(|rs| AsyncView::new(&rs.adapter)) {
+            Some(Ok(v)) => (Some(v), None),
             Some(Err(e)) => (None, Some(e.to_string())),
             None => (None, Some("eframe is not running on wgpu".to_owned())),
         };
+        let preview = view
+            .as_ref()
+            .map_or_else(PreviewSettings::default, |v| PreviewSettings::for_device_type(v.adapter().device_type));
         let mut v = Self {
-            renderer,
+            ctx: ctx.clone(),
+            view,
             texture: None,
             orbit: Orbit { target: Vec3::ZERO, distance: 3.0, yaw: 0.0, pitch: 0.0 },
             last: None,
@@ -101,6 +135,14 @@ impl Viewport {
             rect: None,
             overlays: Vec::new(),
             size: (1, 1),
+            preview,
+            controller: ScaleController::new(),
+            picker: Picker::default(),
+            submitted: None,
+            changed_at: None,
+            interacting: false,
+            last_frame_ms: 0.0,
+            ui_frames: 0,
         };
         v.reset_orbit(state);
         v
@@ -114,9 +156,20 @@ impl Viewport {
         self.orbit = Orbit::from_camera(cam, dist);
     }
 
-    /// The renderer, for the inspector.
+    /// The renderer, for the inspector. Its blocking reads wait for the frame in flight: read
+    /// only while [`Viewport::idle`].
     pub fn renderer(&self) -> Option<&Renderer> {
-        self.renderer.as_ref()
+        self.view.as_ref().map(AsyncView::renderer)
+    }
+
+    /// Whether no frame is in flight (blocking reads of the renderer return at once).
+    pub fn idle(&self) -> bool {
+        self.view.as_ref().is_none_or(|v| !v.busy())
+    }
+
+    /// The render scale of the image on screen (1.0: full resolution).
+    pub fn shown_scale(&self) -> Option<f32> {
+        self.texture.as_ref().map(|(_, step)| LADDER[*step])
     }
 
     /// The view size of the last frame in pixels (what mode support is checked against).
@@ -126,9 +179,93 @@ impl Viewport {
 
     /// Tells the renderer which buffer the inspector shows.
     pub fn set_inspected(&mut self, name: Option<&str>) {
-        if let Some(r) = &mut self.renderer {
-            r.set_inspected(name);
+        if let Some(v) = &mut self.view {
+            v.renderer_mut().set_inspected(name);
         }
+    }
+
+    /// Collects the frame in flight if the GPU has finished it (never blocks): uploads its
+    /// image, records its time for the budget, refreshes the timings and overlays.
+    pub fn poll(&mut self) -> Result<(), RenderError> {
+        let Some(view) = &mut self.view else { return Ok(()) };
+        let finished = view.poll()?;
+        self.finish(finished);
+        Ok(())
+    }
+
+    /// Waits for the frame in flight and shows it (tests; before a full-size export).
+    pub fn wait(&mut self) -> Result<(), RenderError> {
+        let Some(view) = &mut self.view else { return Ok(()) };
+        let finished = view.wait()?;
+        self.finish(finished);
+        Ok(())
+    }
+
+    fn finish(&mut self, finished: Option<super::preview::Finished>) {
+        let (Some(view), Some(f)) = (&mut self.view, finished) else { return };
+        self.controller.record(f.step, f.ms);
+        self.last_frame_ms = f.ms;
+        self.frames += 1;
+        let passes = view.renderer_mut().timings(false);
+        self.timings.push(f.ms, &passes);
+        let options = egui::TextureOptions::LINEAR;
+        match &mut self.texture {
+            Some((t, step)) => {
+                t.set(f.image, options);
+                *step = f.step;
+            }
+            None => self.texture = Some((self.ctx.load_texture("viewport", f.image, options), f.step)),
+        }
+        // The device is idle now: reading the technique's markers does not wait.
+        if self.gizmo.show_overlays && self.frames % 10 == 1 {
+            self.overlays = view.renderer().overlays();
+        }
+    }
+
+    /// Starts the next frame if none is in flight: at the scale the budget allows while
+    /// something moves, at full resolution otherwise. An unchanged view of a technique without
+    /// history (nothing left to accumulate) is not rendered again.
+    pub fn submit(&mut self, state: &mut EditorState) {
+        let Some(view) = &mut self.view else { return };
+        let scene = &state.project.scene;
+        let key = FrameKey {
+            revision: scene.revision(),
+            resources_revision: scene.resources_revision(),
+            settings: state.project.render.clone(),
+            size: self.size,
+        };
+        let changed = self.submitted.as_ref() != Some(&key);
+        if changed && self.submitted.is_some() {
+            self.changed_at = Some(Instant::now());
+        }
+        if view.busy() {
+            return;
+        }
+        let moving = self.interacting || self.changed_at.is_some_and(|t| t.elapsed() < super::preview::budget::HOLD);
+        let accumulating =
+            view.renderer().technique_status().is_some_and(|s| s.history_frames > 0 || s.progress.is_some());
+        let shown_full = self.texture.as_ref().is_some_and(|(_, step)| *step == 0);
+        if !changed && !moving && shown_full && !accumulating {
+            return;
+        }
+        let step = self.controller.next(moving, &self.preview);
+        let size = scaled_size(self.size, step);
+        match view.submit(scene, &state.project.render, size, step) {
+            Ok(()) => self.submitted = Some(key),
+            Err(e) => {
+                // Not again until something changes: the same frame would fail the same way.
+                self.submitted = Some(key);
+                state.report("render failed", &e);
+            }
+        }
+    }
+
+    /// A full-resolution frame, rendered now (waits for the GPU): the export's image.
+    pub fn render_full(&mut self, state: &EditorState) -> Result<(), RenderError> {
+        self.wait()?;
+        let Some(view) = &mut self.view else { return Ok(()) };
+        view.submit(&state.project.scene, &state.project.render, self.size, 0)?;
+        self.wait()
     }
 
     /// The position and rotation the gizmo edits for the selection.
@@ -219,10 +356,10 @@ impl Viewport {
     }
 
     /// Toolbar, input, rendering and painting into the remaining space.
-    pub fn ui(&mut self, ui: &mut egui::Ui, frame: &eframe::Frame, state: &mut EditorState) -> Result<(), RenderError> {
+    pub fn ui(&mut self, ui: &mut egui::Ui, state: &mut EditorState) {
         if let Some(e) = &self.init_error {
             ui.label(format!("Renderer unavailable: {e}"));
-            return Ok(());
+            return;
         }
         ui.horizontal(|ui| {
             ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Translate, "Move (G)");
@@ -236,6 +373,7 @@ impl Viewport {
             ui.checkbox(&mut self.gizmo.show_points, "sample points")
                 .on_hover_text("Where scene sample points land: area x sampling weight per object.");
             ui.label(format!("mode: {}", state.project.render.mode.name()));
+            self.preview_menu(ui);
         });
         let (rect, response) = ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
         self.rect = Some(rect);
@@ -328,17 +466,12 @@ impl Viewport {
                     .and_then(|p| view.project(p))
                     .is_some_and(|s| s.distance(m) < 10.0)
             });
-            state.selection = match (light, &self.renderer) {
-                (Some(i), _) => Selection::Light(i),
-                (None, Some(r)) => match r.pick((m.x * ppp) as u32, (m.y * ppp) as u32) {
-                    Ok(Some(i)) => Selection::Object(i),
-                    Ok(None) => Selection::None,
-                    Err(e) => {
-                        log::warn!("pick failed: {e}");
-                        state.selection
-                    }
+            state.selection = match light {
+                Some(i) => Selection::Light(i),
+                None => match self.picker.pick(&state.project.scene, m.x * ppp, m.y * ppp, size) {
+                    Some(i) => Selection::Object(i),
+                    None => Selection::None,
                 },
-                (None, None) => state.selection,
             };
         }
         // Camera: only written when the user moved it, so undo history stays clean.
@@ -347,61 +480,25 @@ impl Viewport {
         if cam != *state.project.scene.camera() {
             state.project.scene.set_camera(cam);
         }
-        let (Some(renderer), Some(rs)) = (self.renderer.as_mut(), frame.wgpu_render_state()) else { return Ok(()) };
         self.size = size;
-        renderer.render(&state.project.scene, &state.project.render, size)?;
-        self.frames += 1;
-        let now = std::time::Instant::now();
-        let frame_ms = self.last.map_or(0.0, |l| (now - l).as_secs_f64() * 1e3);
+        self.interacting = response.dragged();
+        self.ui_frames += 1;
+        let now = Instant::now();
+        let ui_ms = self.last.map_or(0.0, |l| (now - l).as_secs_f64() * 1e3);
         self.last = Some(now);
-        self.timings.push(frame_ms, &renderer.timings(false));
-        if let Some(t) = renderer.targets() {
-            let mut egui_renderer = rs.renderer.write();
-            match self.texture {
-                // Same size: the targets (and so the view) are unchanged.
-                Some((_, s)) if s == size => {}
-                Some((id, _)) => {
-                    egui_renderer.update_egui_texture_from_wgpu_texture(
-                        &rs.device,
-                        &t.ldr.view,
-                        wgpu::FilterMode::Linear,
-                        id,
-                    );
-                    self.texture = Some((id, size));
-                }
-                None => {
-                    let id = egui_renderer.register_native_texture(&rs.device, &t.ldr.view, wgpu::FilterMode::Linear);
-                    self.texture = Some((id, size));
-                }
-            }
-        }
+        self.timings.push_ui(ui_ms);
         let painter = ui.painter_at(rect);
         let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-        if let Some((id, _)) = self.texture {
-            painter.image(id, rect, uv, egui::Color32::WHITE);
+        if let Some((t, _)) = &self.texture {
+            painter.image(t.id(), rect, uv, egui::Color32::WHITE);
         }
-        // What the technique is doing (the reference's spp, a bake's progress).
-        let status = renderer.technique_status().and_then(|s| s.progress);
-        if let Some(text) = status {
-            painter.text(
-                rect.left_top() + egui::vec2(8.0, 8.0),
-                egui::Align2::LEFT_TOP,
-                text,
-                egui::FontId::proportional(13.0),
-                egui::Color32::WHITE,
-            );
-        }
+        self.status_text(&painter, rect);
         let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
         overlays::draw(&painter, rect, &view, &state.project.scene, state.selection);
         if self.gizmo.show_points {
             self.draw_points(&painter, rect, &view, state);
         }
         if self.gizmo.show_overlays {
-            if self.frames % 10 == 1
-                && let Some(r) = &self.renderer
-            {
-                self.overlays = r.overlays();
-            }
             for p in self.overlays.iter().flat_map(|o| &o.points) {
                 if let Some(s) = view.project(p.position) {
                     let [r, g, b] = super::inspector::false_colour(p.tone);
@@ -438,6 +535,50 @@ impl Viewport {
             }
         }
         ui.ctx().request_repaint();
-        Ok(())
+    }
+
+    /// The frame budget and adaptive scale, in a small menu of the toolbar.
+    fn preview_menu(&mut self, ui: &mut egui::Ui) {
+        let scale = self.shown_scale().unwrap_or(1.0);
+        ui.menu_button(format!("preview {:.0}%", scale * 100.0), |ui| {
+            ui.checkbox(&mut self.preview.adaptive, "adapt the render scale").on_hover_text(
+                "While something moves, render at the scale that holds the frame budget; full resolution when idle.",
+            );
+            ui.add(
+                egui::DragValue::new(&mut self.preview.budget_ms)
+                    .range(1.0..=5000.0)
+                    .speed(1.0)
+                    .suffix(" ms")
+                    .prefix("frame budget "),
+            );
+            ui.label(format!("last viewport frame {:.0} ms", self.last_frame_ms));
+            for (k, s) in LADDER.iter().enumerate() {
+                if let Some(ms) = self.controller.predict(k) {
+                    ui.label(format!("{:>3.0}%: ~{ms:.0} ms", s * 100.0));
+                }
+            }
+        });
+    }
+
+    /// The technique's progress and the preview's refinement in the image's top-left corner.
+    fn status_text(&self, painter: &egui::Painter, rect: egui::Rect) {
+        let mut lines = Vec::new();
+        if let Some(text) = self.renderer().and_then(Renderer::technique_status).and_then(|s| s.progress) {
+            lines.push(text);
+        }
+        if let Some(scale) = self.shown_scale().filter(|s| *s < 1.0) {
+            let full = self.controller.predict(0).map_or(String::new(), |ms| format!(" · full in ~{:.1} s", ms / 1e3));
+            let state = if self.view.as_ref().is_some_and(AsyncView::busy) { "refining" } else { "preview" };
+            lines.push(format!("{state} {:.0}%{full}", scale * 100.0));
+        }
+        for (k, line) in lines.into_iter().enumerate() {
+            painter.text(
+                rect.left_top() + egui::vec2(8.0, 8.0 + 16.0 * k as f32),
+                egui::Align2::LEFT_TOP,
+                line,
+                egui::FontId::proportional(13.0),
+                egui::Color32::WHITE,
+            );
+        }
     }
 }

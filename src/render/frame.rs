@@ -161,9 +161,23 @@ impl Renderer {
 
     /// Renders one frame of `scene` at `size` into the view targets (HDR and display image).
     pub fn render(&mut self, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> Result<(), RenderError> {
+        self.render_then(scene, settings, size, &mut |_, _| {})
+    }
+
+    /// [`Renderer::render`], with `then` recording more commands (a readback copy) into the
+    /// frame's own command buffer. One submission per frame: on lavapipe a second submission
+    /// blocks the caller until the first has finished on the GPU (measured: 6.4 s for an `ism`
+    /// frame at 1000x760), which would stall the editor's interface.
+    pub fn render_then(
+        &mut self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        size: (u32, u32),
+        then: &mut dyn FnMut(&mut wgpu::CommandEncoder, &ViewTargets),
+    ) -> Result<(), RenderError> {
         let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let result = self.render_inner(scene, settings, size);
+        let result = self.render_inner(scene, settings, size, then);
         let oom = pollster::block_on(memory.pop());
         let invalid = pollster::block_on(validation.pop());
         result?;
@@ -173,7 +187,13 @@ impl Renderer {
         }
     }
 
-    fn render_inner(&mut self, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> Result<(), RenderError> {
+    fn render_inner(
+        &mut self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        size: (u32, u32),
+        then: &mut dyn FnMut(&mut wgpu::CommandEncoder, &ViewTargets),
+    ) -> Result<(), RenderError> {
         settings.validate()?;
         let max = self.device.limits().max_texture_dimension_2d;
         if size.0 == 0 || size.1 == 0 || size.0 > max || size.1 > max {
@@ -323,6 +343,7 @@ impl Renderer {
                 previous.texture.size(),
             );
         }
+        then(&mut encoder, &sized.targets);
         self.timer.resolve(&mut encoder);
         queue.submit([encoder.finish()]);
         self.timer.after_submit();
