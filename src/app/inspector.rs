@@ -39,6 +39,10 @@ pub struct Inspector {
     pending: bool,
     /// The live cadence's last frame read.
     read_frame: u64,
+    /// Reads so far, and what the texture shows (reads, channel, EV bits, auto range, false
+    /// colour): the image is re-visualised only when one of them changes, not every UI frame.
+    reads: u64,
+    visualised: Option<(u64, Channel, u32, bool, bool)>,
     buffer: String,
     channel: Channel,
     exposure_ev: f32,
@@ -66,6 +70,8 @@ impl Default for Inspector {
         Self {
             pending: true,
             read_frame: 0,
+            reads: 0,
+            visualised: None,
             buffer: "albedo".into(),
             channel: Channel::Rgb,
             exposure_ev: 0.0,
@@ -229,16 +235,23 @@ impl Inspector {
                 self.export();
             }
             let live = self.live && frame.index >= self.read_frame + 10;
-            if frame.idle && (self.pending || live) {
+            if frame.idle && frame.index > 0 && (self.pending || live) {
                 self.pending = false;
                 self.read_frame = frame.index;
                 match renderer.read_buffer(&self.buffer) {
-                    Ok(img) => self.image = Some(img),
+                    Ok(img) => {
+                        self.image = Some(img);
+                        self.reads += 1;
+                    }
                     Err(e) => log::warn!("inspector: {e}"),
                 }
             }
         });
-        if let Some(img) = &self.image {
+        let key = (self.reads, self.channel, self.exposure_ev.to_bits(), self.auto_range, self.false_colour);
+        if let Some(img) = &self.image
+            && (self.visualised != Some(key) || self.texture.is_none())
+        {
+            self.visualised = Some(key);
             let ci = visualize(img, &self.buffer, self.channel, self.exposure_ev, self.auto_range, self.false_colour);
             match &mut self.texture {
                 Some(t) => t.set(ci, egui::TextureOptions::NEAREST),

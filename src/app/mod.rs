@@ -88,6 +88,8 @@ pub struct EditorApp {
     modal: Modal,
     allow_close: bool,
     recovery: Option<recovery::Recovery>,
+    /// The window title last sent.
+    title: String,
 }
 
 impl EditorApp {
@@ -108,7 +110,16 @@ impl EditorApp {
         if let Some(p) = cc.storage.and_then(|s| eframe::get_value::<preview::PreviewSettings>(s, PREVIEW_KEY)) {
             viewport.preview = p;
         }
-        Self { state, viewport, inspector: inspector::Inspector::default(), tree, modal, allow_close: false, recovery }
+        Self {
+            state,
+            viewport,
+            inspector: inspector::Inspector::default(),
+            tree,
+            modal,
+            allow_close: false,
+            recovery,
+            title: String::new(),
+        }
     }
 
     /// Shows buffer `name` in the inspector (tests; the combo box does the same).
@@ -143,6 +154,16 @@ impl EditorApp {
     /// The render scale of the image in the viewport (1.0: full resolution).
     pub fn viewport_scale(&self) -> Option<f32> {
         self.viewport.shown_scale()
+    }
+
+    /// Whether the viewport has no frame in flight.
+    pub fn viewport_idle(&self) -> bool {
+        self.viewport.idle()
+    }
+
+    /// The duration of the last finished viewport frame, submit to image (ms).
+    pub fn viewport_last_frame_ms(&self) -> f64 {
+        self.viewport.last_frame_ms
     }
 
     /// The viewport's frame budget and adaptive scale.
@@ -491,6 +512,7 @@ impl egui_tiles::Behavior<Pane> for Behavior<'_> {
 
 impl eframe::App for EditorApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        let started = std::time::Instant::now();
         // The frame the GPU finished since the last UI frame, if any (never waits).
         if let Err(e) = self.viewport.poll() {
             self.state.report("render failed", &e);
@@ -507,7 +529,13 @@ impl eframe::App for EditorApp {
             ui.ctx().send_viewport_cmd(egui::ViewportCommand::CancelClose);
             self.modal = Modal::ConfirmClose;
         }
-        ui.ctx().send_viewport_cmd(egui::ViewportCommand::Title(self.state.title()));
+        // Only when it changes: every viewport command asks for another repaint, and a UI that
+        // repaints continuously takes a software adapter's CPU from the viewport's frame.
+        let title = self.state.title();
+        if self.title != title {
+            ui.ctx().send_viewport_cmd(egui::ViewportCommand::Title(title.clone()));
+            self.title = title;
+        }
         egui::Panel::top("menu bar").show(ui, |ui| self.menu_bar(ui));
         egui::Panel::bottom("status bar").show(ui, |ui| {
             ui.horizontal(|ui| {
@@ -525,6 +553,7 @@ impl eframe::App for EditorApp {
         });
         // After every pane has read the finished frame: start the next one.
         self.viewport.submit(&mut self.state);
+        self.viewport.logic_ms = self.viewport.logic_ms.max(started.elapsed().as_secs_f64() * 1e3);
         self.modal_ui(ui);
         if let Some(r) = &mut self.recovery
             && self.state.history.is_dirty()

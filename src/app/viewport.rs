@@ -96,6 +96,11 @@ pub struct Viewport {
     pub last_frame_ms: f64,
     /// UI frames drawn (the interface's own rate, whatever the renderer does).
     pub ui_frames: u64,
+    /// The slowest UI frame's own work in the statistics window (ms): the editor's logic,
+    /// layout and the viewport's submit, without egui's painting.
+    pub logic_ms: f64,
+    /// The start of the current statistics window and the counters at its start.
+    stats: (Instant, u64, u64),
 }
 
 /// The sample-point overlay's distribution and what it was computed from.
@@ -112,7 +117,9 @@ const AXIS_COLOURS: [egui::Color32; 3] =
 impl Viewport {
     /// Creates the renderer on a second device of eframe's adapter (if eframe runs on wgpu).
     pub fn new(ctx: &egui::Context, rs: Option<&egui_wgpu::RenderState>, state: &EditorState) -> Self {
-        let (view, init_error) = match rs.map(|rs| AsyncView::new(&rs.adapter)) {
+        let repaint = ctx.clone();
+        let wake: std::sync::Arc<dyn Fn() + Send + Sync> = std::sync::Arc::new(move || repaint.request_repaint());
+        let (view, init_error) = match rs.map(|rs| AsyncView::new(&rs.adapter, wake)) {
             Some(Ok(v)) => (Some(v), None),
             Some(Err(e)) => (None, Some(e.to_string())),
             None => (None, Some("eframe is not running on wgpu".to_owned())),
@@ -143,6 +150,8 @@ impl Viewport {
             interacting: false,
             last_frame_ms: 0.0,
             ui_frames: 0,
+            stats: (Instant::now(), 0, 0),
+            logic_ms: 0.0,
         };
         v.reset_orbit(state);
         v
@@ -223,8 +232,9 @@ impl Viewport {
     }
 
     /// Starts the next frame if none is in flight: at the scale the budget allows while
-    /// something moves, at full resolution otherwise. An unchanged view of a technique without
-    /// history (nothing left to accumulate) is not rendered again.
+    /// something moves, at full resolution otherwise. An unchanged full-resolution view is
+    /// rendered again only while the technique is still refining (temporal history short of
+    /// its steady state, progressive samples short of their target).
     pub fn submit(&mut self, state: &mut EditorState) {
         let Some(view) = &mut self.view else { return };
         let scene = &state.project.scene;
@@ -250,7 +260,9 @@ impl Viewport {
         }
         let step = self.controller.next(moving, &self.preview);
         let size = scaled_size(self.size, step);
-        match view.submit(scene, &state.project.render, size, step) {
+        let cost = super::preview::budget::COST[step];
+        let settings = if cost < 1.0 { state.project.render.cheaper(cost) } else { state.project.render.clone() };
+        match view.submit(scene, &settings, size, step) {
             Ok(()) => self.submitted = Some(key),
             Err(e) => {
                 // Not again until something changes: the same frame would fail the same way.
@@ -487,12 +499,13 @@ impl Viewport {
         let ui_ms = self.last.map_or(0.0, |l| (now - l).as_secs_f64() * 1e3);
         self.last = Some(now);
         self.timings.push_ui(ui_ms);
+        self.log_stats();
         let painter = ui.painter_at(rect);
         let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
         if let Some((t, _)) = &self.texture {
             painter.image(t.id(), rect, uv, egui::Color32::WHITE);
         }
-        self.status_text(&painter, rect);
+        self.status_text(&painter, rect, state.project.render.mode);
         let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
         overlays::draw(&painter, rect, &view, &state.project.scene, state.selection);
         if self.gizmo.show_points {
@@ -534,7 +547,27 @@ impl Viewport {
                 }
             }
         }
-        ui.ctx().request_repaint();
+    }
+
+    /// Every 2 s at debug level (`RUST_LOG=bouncelab=debug`): the interface's frame intervals
+    /// and the viewport frames of the window, what `docs/BENCHMARKS.md` quotes for the editor.
+    fn log_stats(&mut self) {
+        let (since, ui0, vp0) = self.stats;
+        if since.elapsed().as_secs_f64() < 2.0 {
+            return;
+        }
+        let n = (self.ui_frames - ui0) as usize;
+        log::debug!(
+            "preview: {n} UI frames in {:.1} s (interval max {:.0} ms, logic max {:.0} ms), {} viewport frames (last {:.0} ms at {:.0}%)",
+            since.elapsed().as_secs_f64(),
+            self.timings.ui_worst(n),
+            self.logic_ms,
+            self.frames - vp0,
+            self.last_frame_ms,
+            self.shown_scale().unwrap_or(0.0) * 100.0
+        );
+        self.stats = (Instant::now(), self.ui_frames, self.frames);
+        self.logic_ms = 0.0;
     }
 
     /// The frame budget and adaptive scale, in a small menu of the toolbar.
@@ -561,10 +594,23 @@ impl Viewport {
     }
 
     /// The technique's progress and the preview's refinement in the image's top-left corner.
-    fn status_text(&self, painter: &egui::Painter, rect: egui::Rect) {
+    fn status_text(&self, painter: &egui::Painter, rect: egui::Rect, mode: crate::settings::GiMode) {
         let mut lines = Vec::new();
-        if let Some(text) = self.renderer().and_then(Renderer::technique_status).and_then(|s| s.progress) {
+        let status = self.renderer().and_then(Renderer::technique_status);
+        if let Some(text) = status.as_ref().and_then(|s| s.progress.clone()) {
             lines.push(text);
+        }
+        // Temporal history (frames) toward its steady state; the reference reports its samples
+        // in its own progress line.
+        if let Some(s) = status.filter(|s| s.refining && s.refine_target > 0)
+            && self.shown_scale() == Some(1.0)
+            && mode != crate::settings::GiMode::Reference
+        {
+            let left = f64::from(s.refine_target.saturating_sub(s.history_frames)) * self.last_frame_ms / 1e3;
+            lines.push(format!(
+                "refining: {} / {} frames of history, ~{left:.0} s to go",
+                s.history_frames, s.refine_target
+            ));
         }
         if let Some(scale) = self.shown_scale().filter(|s| *s < 1.0) {
             let full = self.controller.predict(0).map_or(String::new(), |ms| format!(" · full in ~{:.1} s", ms / 1e3));

@@ -7,6 +7,7 @@
 use serde::{Deserialize, Serialize};
 
 mod ism;
+mod preview;
 
 pub use ism::{BouncePick, IsmSettings, MAX_ATLAS_SIDE};
 

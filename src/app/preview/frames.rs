@@ -54,15 +54,18 @@ pub struct AsyncView {
     /// A staging buffer to reuse (its size and padded row), returned by the last frame.
     spare: Option<(wgpu::Buffer, (u32, u32))>,
     adapter: wgpu::AdapterInfo,
+    /// Called from the waiter thread when a frame is done (the editor asks egui to repaint).
+    wake: Arc<dyn Fn() + Send + Sync>,
 }
 
 impl AsyncView {
-    /// Creates a second device on eframe's adapter and a renderer on it.
-    pub fn new(adapter: &wgpu::Adapter) -> Result<Self, PreviewError> {
+    /// Creates a second device on eframe's adapter and a renderer on it; `wake` is called
+    /// (from another thread) whenever a frame has finished.
+    pub fn new(adapter: &wgpu::Adapter, wake: Arc<dyn Fn() + Send + Sync>) -> Result<Self, PreviewError> {
         let (device, queue) = pollster::block_on(adapter.request_device(&device_descriptor(adapter)))?;
         log_device_errors(&device);
         let renderer = Renderer::new(&device, &queue)?;
-        Ok(Self { device, renderer, in_flight: None, spare: None, adapter: adapter.get_info() })
+        Ok(Self { device, renderer, in_flight: None, spare: None, adapter: adapter.get_info(), wake })
     }
 
     /// The adapter's description.
@@ -86,9 +89,9 @@ impl AsyncView {
         self.in_flight.is_some()
     }
 
-    /// How long the frame in flight has been running (ms).
-    pub fn in_flight_ms(&self) -> Option<f64> {
-        self.in_flight.as_ref().map(|f| f.started.elapsed().as_secs_f64() * 1e3)
+    /// The ladder step of the frame in flight and how long it has been running (ms).
+    pub fn in_flight(&self) -> Option<(usize, f64)> {
+        self.in_flight.as_ref().map(|f| (f.step, f.started.elapsed().as_secs_f64() * 1e3))
     }
 
     /// Renders a frame at `size` and starts copying its display image back. The previous frame
@@ -137,6 +140,16 @@ impl AsyncView {
             }
         });
         self.in_flight = Some(InFlight { started, step, size, padded_row, buffer, mapped });
+        // A thread waits for the GPU and wakes the interface: no repaints just to poll (each
+        // costs a software adapter ~110 ms of CPU that the frame itself needs).
+        let (device, wake) = (self.device.clone(), Arc::clone(&self.wake));
+        let waiter = std::thread::Builder::new().name("viewport frame waiter".into()).spawn(move || {
+            let _ = device.poll(wgpu::PollType::wait_indefinitely());
+            wake();
+        });
+        if let Err(e) = waiter {
+            log::warn!("no waiter thread ({e}): the viewport updates on the next input");
+        }
         Ok(())
     }
 

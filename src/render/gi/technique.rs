@@ -134,6 +134,14 @@ pub struct TechniqueStatus {
     pub counters: Vec<(&'static str, u64)>,
     /// A one-line progress text for the viewport (e.g. the reference's spp).
     pub progress: Option<String>,
+    /// Another frame of an unchanged view would still improve the image (temporal history
+    /// not yet at its steady state, progressive samples below their target). The editor stops
+    /// rendering an unchanged view once this is false, so an idle editor leaves the GPU alone
+    /// and a drag never waits behind a frame that changes nothing.
+    pub refining: bool,
+    /// Where `history_frames` stops refining (frames, or the reference's samples per pixel);
+    /// 0 when the technique does not refine. The viewport shows `history_frames / this`.
+    pub refine_target: u32,
 }
 
 impl TechniqueStatus {

@@ -51,6 +51,15 @@ pub struct IsmVpls {
     pub frame: u32,
 }
 
+/// Frames after which the temporal blend is at its steady state: with confidence at most
+/// `c_base` the history is an exponential average whose first frame keeps a weight below
+/// c_base^n; at n = 3 / (1 - c_base) (30 frames at the default 0.9) that is under 5%, and
+/// further frames of an unchanged view only trade one sample of the average for another.
+/// Without temporal reuse (`ism-ritschel`) a frame is final at once.
+pub fn settle_frames(base_confidence: f32) -> u32 {
+    (3.0 / (1.0 - base_confidence).max(1e-3)).ceil().clamp(1.0, 3000.0) as u32
+}
+
 /// The ISM technique (Knecht 2009; `ism-ritschel` is the same without temporal reuse).
 pub struct IsmTechnique {
     vpl_pass: VplPass,
@@ -344,6 +353,8 @@ impl GiTechnique for IsmTechnique {
             ts,
         );
         self.status.history_frames = if temporal { self.status.history_frames.saturating_add(1) } else { 1 };
+        self.status.refine_target = if temporal { settle_frames(settings.base_confidence) } else { 0 };
+        self.status.refining = self.status.history_frames < self.status.refine_target;
         // The SH filter shades with the full BRDF: `indirect` is outgoing radiance.
         Ok(if settings.sh_filter { GiOutput::Radiance } else { GiOutput::IrradianceOverPi })
     }

@@ -82,6 +82,8 @@ impl GiTechnique for ReferenceTechnique {
                     self.shown = Some(Shown { spp: progress.spp, size: self.view, pixels: upsample(&img, self.view) });
                 }
                 self.status.history_frames = progress.spp;
+                self.status.refining = progress.spp < settings.reference.spp;
+                self.status.refine_target = settings.reference.spp;
                 self.status.progress = Some(format!(
                     "reference: {} / {} spp, {:.1} Mrays/s",
                     progress.spp,
@@ -93,6 +95,7 @@ impl GiTechnique for ReferenceTechnique {
             None => {
                 self.uploaded = None;
                 self.status.progress = Some("reference: first pass".to_owned());
+                self.status.refining = true;
                 Readiness::Pending { progress: 0.0, what: "reference: first pass".to_owned() }
             }
         }
