@@ -3,9 +3,9 @@
 //! While something moves (camera, light, object, a setting) the controller picks the largest
 //! scale of a fixed ladder whose predicted frame time fits the budget; once nothing has changed
 //! for [`HOLD`], it asks for full resolution. Predictions come from the frames it has seen: the
-//! measured time per ladder step (smoothed), or the nearest measured step scaled by the pixel
-//! ratio. That over-predicts going up (fixed costs such as ISM's maps do not scale with pixels)
-//! and under-predicts going down, which the next measurement corrects within one frame.
+//! measured time per ladder step (smoothed), or a fixed cost plus a cost per unit of work
+//! (pixels times the technique's cost factor) fitted to the measured steps; a wrong prediction
+//! is corrected by the next measurement, one frame later.
 //! Pure logic, no GPU: unit-tested here.
 
 use serde::{Deserialize, Serialize};
@@ -80,7 +80,9 @@ impl ScaleController {
         }
     }
 
-    /// The predicted frame time at `step` (ms), if any frame was measured yet.
+    /// The predicted frame time at `step` (ms), if any frame was measured yet: the smoothed
+    /// measurement there, else a fixed cost plus a cost per unit of work fitted (least squares)
+    /// to every measured step, else (one step measured) that step scaled by the work ratio.
     pub fn predict(&self, step: usize) -> Option<f64> {
         if let Some(Some(m)) = self.measured.get(step) {
             return Some(*m);
@@ -88,8 +90,21 @@ impl ScaleController {
         if step >= LADDER.len() {
             return None;
         }
-        let nearest = (0..LADDER.len()).filter(|&k| self.measured[k].is_some()).min_by_key(|&k| k.abs_diff(step))?;
-        self.measured[nearest].map(|m| m * work(step) / work(nearest))
+        let points: Vec<(f64, f64)> =
+            (0..LADDER.len()).filter_map(|k| self.measured[k].map(|m| (work(k), m))).collect();
+        match points.as_slice() {
+            [] => return None,
+            [(x, y)] => return Some(y * work(step) / x),
+            _ => {}
+        }
+        let n = points.len() as f64;
+        let (sx, sy) = points.iter().fold((0.0, 0.0), |(a, b), (px, py)| (a + px, b + py));
+        let (mx, my) = (sx / n, sy / n);
+        let sxx: f64 = points.iter().map(|(px, _)| (px - mx).powi(2)).sum();
+        let sxy: f64 = points.iter().map(|(px, py)| (px - mx) * (py - my)).sum();
+        let slope = if sxx > 0.0 { (sxy / sxx).max(0.0) } else { 0.0 };
+        let fixed = (my - slope * mx).max(0.0);
+        Some(fixed + slope * work(step))
     }
 
     /// The step for the next frame: the coarsest for the very first frame (an image fast on
@@ -176,13 +191,19 @@ mod tests {
     }
 
     #[test]
-    fn prediction_scales_the_nearest_measurement_by_pixels() {
+    fn prediction_scales_one_measurement_and_fits_two() {
         let mut c = ScaleController::new();
         c.record(2, 400.0);
         let p = c.predict(0).expect("predicted");
         assert!((p - 400.0 * 4.0 / COST[2] as f64).abs() < 1.0, "{p}");
         c.record(2, 200.0);
         assert_eq!(c.predict(2), Some(300.0), "smoothed");
+        // Two steps of the fake adapter: its fixed cost is found, so step 3 is predicted right.
+        let mut c = ScaleController::new();
+        c.record(0, frame_ms(0));
+        c.record(5, frame_ms(5));
+        let p = c.predict(3).expect("predicted");
+        assert!((p - frame_ms(3)).abs() < 1.0, "{p} vs {}", frame_ms(3));
     }
 
     #[test]
