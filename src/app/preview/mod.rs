@@ -8,9 +8,15 @@
 //! renderer and every reader of it (inspector, GI panel) across threads. Instead the viewport
 //! renders on a **second device** of the same adapter ([`frames::AsyncView`]): one frame in
 //! flight, its display image copied back without blocking and uploaded as an egui texture
-//! (4 MB at 1000x760, a few ms), while eframe keeps presenting on its own queue. Picking casts
-//! a ray against the scene's BVH ([`super::pick`]), overlays and the gizmo are painted by egui
-//! at full resolution, so both stay exact at any render scale.
+//! (4 MB at 1000x760, a few ms), while eframe keeps presenting on its own queue. The copy is
+//! recorded into the frame's own command buffer: on lavapipe a second submission blocks the
+//! caller until the first has finished (6.4 s after an `ism` frame). A waiter thread blocks on
+//! the device and wakes egui when the frame is done, so the interface repaints only on input
+//! and finished frames: painting the 1400x860 window costs lavapipe about 110 ms of the same
+//! two rasteriser threads the frame needs, and with continuous repaints a full `ism` frame took
+//! 13 s in the editor instead of 4 s. Picking casts a ray against the scene's BVH
+//! ([`super::pick`]), overlays and the gizmo are painted by egui at full resolution, so both
+//! stay exact at any render scale. Figures per mode: `examples/ui_bench.rs`, docs/BENCHMARKS.md.
 //!
 //! The render scale follows a frame budget while something moves and returns to full
 //! resolution when nothing does ([`budget::ScaleController`]); temporal techniques keep their
