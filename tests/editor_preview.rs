@@ -114,3 +114,27 @@ fn picking_by_ray_matches_the_rasterised_object_ids() {
     assert!(objects.len() >= 3, "the grid covers several objects: {objects:?}");
     assert!(same * 100 >= total * 97, "{same} of {total} pixels agree");
 }
+
+#[test]
+fn an_idle_editor_stops_rendering_once_the_image_is_final() {
+    if !gpu() {
+        return;
+    }
+    let mut h = harness(egui::vec2(640.0, 400.0));
+    // A selected light shows its properties panel, whose widgets must not count as edits.
+    h.get_by_label("ceiling_light (point)").click();
+    for _ in 0..4 {
+        h.run_steps(1);
+        h.state_mut().wait_viewport();
+    }
+    let revision = h.state().state().project.scene.revision();
+    let (frames, _) = h.state().viewport_frames(1);
+    for _ in 0..5 {
+        h.run_steps(1);
+        h.state_mut().wait_viewport();
+    }
+    assert_eq!(h.state().state().project.scene.revision(), revision, "nothing was edited");
+    assert_eq!(h.state().viewport_frames(1).0, frames, "no frame rendered for an unchanged, final view");
+    assert_eq!(h.state().viewport_scale(), Some(1.0));
+    assert!(!h.state().state().history.is_dirty(), "selecting is not an edit");
+}

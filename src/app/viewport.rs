@@ -252,8 +252,7 @@ impl Viewport {
             return;
         }
         let moving = self.interacting || self.changed_at.is_some_and(|t| t.elapsed() < super::preview::budget::HOLD);
-        let accumulating =
-            view.renderer().technique_status().is_some_and(|s| s.history_frames > 0 || s.progress.is_some());
+        let accumulating = view.renderer().technique_status().is_some_and(|s| s.refining);
         let shown_full = self.texture.as_ref().is_some_and(|(_, step)| *step == 0);
         if !changed && !moving && shown_full && !accumulating {
             return;
@@ -572,8 +571,11 @@ impl Viewport {
 
     /// The frame budget and adaptive scale, in a small menu of the toolbar.
     fn preview_menu(&mut self, ui: &mut egui::Ui) {
-        let scale = self.shown_scale().unwrap_or(1.0);
-        ui.menu_button(format!("preview {:.0}%", scale * 100.0), |ui| {
+        // A fixed label: a width that followed the scale would move the layout, resize the view
+        // and so start another frame at another scale, for ever.
+        ui.menu_button("preview", |ui| {
+            let scale = self.shown_scale().unwrap_or(1.0);
+            ui.label(format!("showing {:.0}% resolution", scale * 100.0));
             ui.checkbox(&mut self.preview.adaptive, "adapt the render scale").on_hover_text(
                 "While something moves, render at the scale that holds the frame budget; full resolution when idle.",
             );
