@@ -80,3 +80,19 @@ fn a_gltf_that_crashes_the_parser_is_a_quiet_error() {
     assert!(err.contains("crash.gltf"), "{err}");
     assert!(!err.contains("panicked") && !err.contains("backtrace"), "{err}");
 }
+
+#[test]
+fn a_thousand_frames_run_to_the_end_and_report_progress() {
+    if !has_gpu() {
+        return;
+    }
+    let out = std::env::temp_dir().join(format!("bouncelab-long-{}.png", std::process::id()));
+    let out = out.to_string_lossy().into_owned();
+    // Unbounded submission ended in a segfault after about 600 frames (issue: long runs).
+    let args = ["render", "projects/default.ron", "--mode", "direct", "--frames", "1000"];
+    let o = bouncelab(&[&args[..], &["--width", "16", "--height", "9", "--ssaa", "1", "--out", &out]].concat());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("frame 1000/1000"), "the last frame is reported: {err}");
+    assert!(std::path::Path::new(&out).exists());
+}

@@ -236,6 +236,7 @@ impl Viewport {
     /// rendered again only while the technique is still refining (temporal history short of
     /// its steady state, progressive samples short of their target).
     pub fn submit(&mut self, state: &mut EditorState) {
+        let moving_before = self.moving();
         let Some(view) = &mut self.view else { return };
         let scene = &state.project.scene;
         let key = FrameKey {
@@ -251,7 +252,7 @@ impl Viewport {
         if view.busy() {
             return;
         }
-        let moving = self.interacting || self.changed_at.is_some_and(|t| t.elapsed() < super::preview::budget::HOLD);
+        let moving = moving_before || (changed && self.submitted.is_some());
         let accumulating = view.renderer().technique_status().is_some_and(|s| s.refining);
         let shown_full = self.texture.as_ref().is_some_and(|(_, step)| *step == 0);
         if !changed && !moving && shown_full && !accumulating {
@@ -269,6 +270,11 @@ impl Viewport {
                 state.report("render failed", &e);
             }
         }
+    }
+
+    /// Whether something moved within the last [`super::preview::budget::HOLD`].
+    fn moving(&self) -> bool {
+        self.interacting || self.changed_at.is_some_and(|t| t.elapsed() < super::preview::budget::HOLD)
     }
 
     /// A full-resolution frame, rendered now (waits for the GPU): the export's image.
@@ -616,7 +622,8 @@ impl Viewport {
         }
         if let Some(scale) = self.shown_scale().filter(|s| *s < 1.0) {
             let full = self.controller.predict(0).map_or(String::new(), |ms| format!(" · full in ~{:.1} s", ms / 1e3));
-            let state = if self.view.as_ref().is_some_and(AsyncView::busy) { "refining" } else { "preview" };
+            // While something moves the next frame is another preview; after that, full resolution.
+            let state = if self.moving() { "preview" } else { "refining" };
             lines.push(format!("{state} {:.0}%{full}", scale * 100.0));
         }
         for (k, line) in lines.into_iter().enumerate() {

@@ -5,6 +5,7 @@
 pub mod bench;
 pub mod compare;
 pub mod generate;
+pub mod progress;
 pub mod quality;
 pub mod render;
 pub mod report;

@@ -103,8 +103,16 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     // Buffers are inspected at their own resolution; the final image is supersampled.
     let k = if args.buffer.is_some() { 1 } else { args.ssaa.clamp(1, 8) };
     let render_size = (size.0 * k, size.1 * k);
-    for _ in 0..args.frames.max(1) {
+    // One frame in flight at a time: submitting without waiting queued every frame's command
+    // buffers and uploads until the driver ran out of memory (a segfault after ~600 frames).
+    let frames = args.frames.max(1);
+    let mut progress = super::progress::Progress::new(u64::from(frames));
+    for done in 1..=frames {
         renderer.render(&project.scene, &project.render, render_size)?;
+        ctx.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| anyhow::anyhow!("waiting for the GPU: {e}"))?;
+        progress.tick(u64::from(done));
     }
     // Say what the technique leaves out (a light type, a feature), so nobody mistakes it for error.
     for note in renderer.limitations(&project.scene, &project.render) {
