@@ -96,3 +96,27 @@ fn a_thousand_frames_run_to_the_end_and_report_progress() {
     assert!(err.contains("frame 1000/1000"), "the last frame is reported: {err}");
     assert!(std::path::Path::new(&out).exists());
 }
+
+#[test]
+fn bad_arguments_fail_before_anything_renders() {
+    let out = std::env::temp_dir().join(format!("bouncelab-args-{}.png", std::process::id()));
+    let out = out.to_string_lossy().into_owned();
+    let render = |extra: &[&str], out: &str| {
+        let args =
+            ["render", "projects/default.ron", "--mode", "direct", "--width", "8", "--height", "8", "--out", out];
+        bouncelab(&[&args[..], extra].concat())
+    };
+    for (extra, want) in [(&["--frames", "0"][..], "--frames 0"), (&["--ssaa", "9"][..], "--ssaa 9")] {
+        let o = render(extra, &out);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && err.contains(want), "{extra:?}: {err}");
+    }
+    let missing = std::env::temp_dir().join("bouncelab-no-such-folder").join("x.png");
+    let o = render(&[], &missing.to_string_lossy());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("does not exist"), "{err}");
+    // NaN exposure used to report FLIP 0 (identical) for any two images.
+    let o = bouncelab(&["compare", "a.exr", "b.exr", "--exposure", "NaN"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("--exposure"), "{err}");
+}

@@ -82,6 +82,14 @@ fn unknown_fields_and_syntax_errors_have_line_and_column() {
     std::fs::write(&path, good.replace("format_version: 1", "format_version: 99")).expect("write");
     assert!(matches!(Project::load(&path), Err(ProjectError::TooNew { found: 99, .. })));
 
+    std::fs::write(&path, good.replace("format_version: 1", "format_version: 0")).expect("write");
+    let msg = Project::load(&path).expect_err("version 0").to_string();
+    assert!(msg.contains("unknown.ron") && msg.contains("format_version 0"), "{msg}");
+
+    // A byte-order mark (Windows editors) is skipped, not a syntax error at 1:1.
+    std::fs::write(&path, format!("\u{feff}{good}")).expect("write");
+    assert!(Project::load(&path).is_ok(), "{:?}", Project::load(&path).err());
+
     std::fs::write(&path, good.replace("resolution: 1024", "resolution: 0")).expect("write");
     let msg = Project::load(&path).expect_err("absurd setting").to_string();
     assert!(msg.contains("shadows.resolution"), "{msg}");

@@ -8,6 +8,10 @@ use crate::metrics;
 
 /// Compares two images (EXR: linear; PNG: decoded from sRGB) and returns the printed text.
 pub fn run(candidate: &Path, reference: &Path, heatmap: Option<&Path>, exposure_ev: f32) -> anyhow::Result<String> {
+    // NaN compared as "identical" (FLIP 0) before this check.
+    if !(-32.0..=32.0).contains(&exposure_ev) {
+        anyhow::bail!("--exposure {exposure_ev} is outside -32..=32 stops");
+    }
     let a = read_linear(candidate)?;
     let b = read_linear(reference)?;
     let c = metrics::compare(&a, &b, exposure_ev)?;

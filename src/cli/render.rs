@@ -62,6 +62,14 @@ pub struct RenderArgs {
 /// Renders and writes the output file; returns a one-line summary.
 pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     let kind = image_io::output_kind(&args.out)?;
+    // Everything about the command line is checked before a long render starts.
+    if args.frames == 0 {
+        anyhow::bail!("--frames 0: at least one frame is rendered (the last one is written)");
+    }
+    if !(1..=8).contains(&args.ssaa) {
+        anyhow::bail!("--ssaa {} is outside 1..=8 (samples per axis)", args.ssaa);
+    }
+    check_writable(&args.out)?;
     let mut project = Project::open(&args.input)?;
     let r = &mut project.render;
     if let Some(mode) = args.mode {
@@ -101,11 +109,21 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue)?;
     renderer.set_inspected(args.buffer.as_deref());
     // Buffers are inspected at their own resolution; the final image is supersampled.
-    let k = if args.buffer.is_some() { 1 } else { args.ssaa.clamp(1, 8) };
+    let k = if args.buffer.is_some() { 1 } else { args.ssaa };
     let render_size = (size.0 * k, size.1 * k);
+    let max = ctx.device.limits().max_texture_dimension_2d;
+    if render_size.0 > max || render_size.1 > max {
+        anyhow::bail!(
+            "{}x{} with --ssaa {k} renders at {}x{}, over this adapter's {max} pixels per side: lower --ssaa or the size",
+            size.0,
+            size.1,
+            render_size.0,
+            render_size.1
+        );
+    }
     // One frame in flight at a time: submitting without waiting queued every frame's command
     // buffers and uploads until the driver ran out of memory (a segfault after ~600 frames).
-    let frames = args.frames.max(1);
+    let frames = args.frames;
     let mut progress = super::progress::Progress::new(u64::from(frames));
     for done in 1..=frames {
         renderer.render(&project.scene, &project.render, render_size)?;
@@ -142,6 +160,26 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
         project.render.mode.name(),
         ctx.describe()
     ))
+}
+
+/// Fails now, not after the render, when `out` cannot be written: its folder is missing or
+/// not writable (probed by creating and removing a file there).
+fn check_writable(out: &Path) -> anyhow::Result<()> {
+    let dir = match out.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if !dir.is_dir() {
+        anyhow::bail!("{}: the folder {} does not exist", out.display(), dir.display());
+    }
+    let probe = dir.join(format!(".bouncelab-write-probe-{}", std::process::id()));
+    std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(&probe)
+        .map_err(|e| anyhow::anyhow!("{}: cannot write in {}: {e}", out.display(), dir.display()))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
 }
 
 fn reference(project: &Project, out: &Path, kind: OutputKind, size: (u32, u32)) -> anyhow::Result<String> {

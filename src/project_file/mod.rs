@@ -27,6 +27,9 @@ pub enum ProjectError {
     /// The RON text is malformed or has unknown or missing fields.
     #[error("{path}:{line}:{column}: {message}")]
     Parse { path: PathBuf, line: usize, column: usize, message: String },
+    /// `format_version` 0: no Bounce Lab ever wrote it (1 is the first).
+    #[error("{path}: format_version 0 is not a version (the first is 1)")]
+    NoVersion { path: PathBuf },
     /// Written by a newer Bounce Lab.
     #[error("{path}: format_version {found} is newer than this build understands ({FORMAT_VERSION})")]
     TooNew { path: PathBuf, found: u32 },
@@ -165,6 +168,14 @@ impl Project {
 
 /// Parses project text of any known version into the current schema.
 pub fn parse(text: &str, path: &Path) -> Result<ProjectFileV1, ProjectError> {
+    // Editors on Windows save UTF-8 with a byte-order mark; RON would call it a syntax error.
+    let text = match text.strip_prefix('\u{feff}') {
+        Some(rest) => {
+            log::warn!("{}: ignoring the UTF-8 byte-order mark", path.display());
+            rest
+        }
+        None => text,
+    };
     let spanned = |e: ron::error::SpannedError| ProjectError::Parse {
         path: path.to_owned(),
         line: e.span.start.line,
@@ -174,6 +185,7 @@ pub fn parse(text: &str, path: &Path) -> Result<ProjectFileV1, ProjectError> {
     let header: Header = ron::from_str(text).map_err(spanned)?;
     match header.format_version {
         v if v > FORMAT_VERSION => Err(ProjectError::TooNew { path: path.to_owned(), found: v }),
+        0 => Err(ProjectError::NoVersion { path: path.to_owned() }),
         // Version 1 is the first; later versions add `From<ProjectFileV1>` conversions here.
         _ => ron::from_str::<ProjectFileV1>(text).map_err(spanned),
     }
