@@ -216,3 +216,31 @@ fn ism_confidence_and_reference_comparison_in_the_inspector() {
     let img = h.render().expect("renders");
     assert_eq!((img.width(), img.height()), (1280, 800));
 }
+
+#[test]
+fn a_project_that_cannot_be_opened_shows_the_error_in_the_window() {
+    if std::env::var_os("CI").is_none() && bouncelab::render::GpuContext::new_headless().is_err() {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("bouncelab-badstart-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let bad = dir.join("broken.ron");
+    std::fs::write(&bad, "(format_version: 1, assets: [").expect("write");
+    let startup = bouncelab::app::open_or_fallback(&bad).expect("a fallback project");
+    let error = startup.error.clone().expect("the reason is kept for the window");
+    assert!(error.contains("broken.ron") && error.contains("default project"), "{error}");
+    assert_eq!(startup.path, None, "saving must not overwrite the broken file unasked");
+    assert!(!startup.project.scene.objects().is_empty(), "the default project is open instead");
+    let project = startup.project;
+    let mut h = Harness::builder().with_size(egui::vec2(1280.0, 800.0)).wgpu().build_eframe(move |cc| {
+        let mut app = EditorApp::new(cc, project, None);
+        app.show_error(error);
+        app
+    });
+    h.run_steps(2);
+    assert!(h.state().error_shown().is_some_and(|m| m.contains("broken.ron")));
+    h.get_by_label("OK").click();
+    h.run_steps(2);
+    assert!(h.state().error_shown().is_none(), "OK dismisses it");
+    settle(&mut h);
+}

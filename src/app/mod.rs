@@ -32,8 +32,6 @@ pub use panes::Pane;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use anyhow::Context as _;
-
 use crate::project_file::{Project, default_project_path};
 use crate::render::device_descriptor;
 use crate::scene::{Camera, Resources, Scene, SceneDesc};
@@ -45,10 +43,47 @@ const TREE_KEY: &str = "bouncelab.layout";
 const RECENT_KEY: &str = "bouncelab.recent";
 const PREVIEW_KEY: &str = "bouncelab.preview";
 
+/// The project to start with: `path` if it opens, else the default project (or an empty one)
+/// and the reason, which the editor shows in a dialog. Someone who starts the editor from a
+/// desktop never sees stderr, so a bad file must not end in no window at all.
+pub fn open_or_fallback(path: &std::path::Path) -> Result<Startup, crate::scene::SceneError> {
+    let is_project = |p: &std::path::Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron"));
+    match Project::open(path) {
+        Ok(project) => Ok(Startup { project, path: is_project(path).then(|| path.to_owned()), error: None }),
+        Err(e) => {
+            let why = format!("Could not open {}:\n{e}", path.display());
+            log::error!("{why}");
+            let default = default_project_path();
+            let (project, instead) = match (default.as_path() != path).then(|| Project::open(&default)) {
+                Some(Ok(p)) => (p, "The default project is open instead."),
+                _ => (empty_project()?, "An empty project is open instead."),
+            };
+            Ok(Startup { project, path: None, error: Some(format!("{why}\n\n{instead}")) })
+        }
+    }
+}
+
+/// What the editor starts with.
+pub struct Startup {
+    /// The project to show.
+    pub project: Project,
+    /// Its file, if it is a project file (saving a glTF asks for a new name).
+    pub path: Option<PathBuf>,
+    /// Why the requested file is not what is open.
+    pub error: Option<String>,
+}
+
+/// A project with nothing in it and the default camera.
+fn empty_project() -> Result<Project, crate::scene::SceneError> {
+    let desc = SceneDesc { camera: Camera::default(), ..SceneDesc::default() };
+    let scene = Scene::new(desc, Resources::default())?;
+    Ok(Project { assets: Vec::new(), scene, render: Default::default(), imported: Vec::new() })
+}
+
 /// Opens the editor window on `project` (the default project if `None`).
 pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
     let path = project.unwrap_or_else(default_project_path);
-    let project = Project::open(&path).with_context(|| format!("opening {}", path.display()))?;
+    let Startup { project, path, error } = open_or_fallback(&path)?;
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.device_descriptor = Arc::new(device_descriptor);
     let options = eframe::NativeOptions {
@@ -60,11 +95,16 @@ pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
         },
         ..Default::default()
     };
-    let is_project = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron"));
     eframe::run_native(
         "Bounce Lab",
         options,
-        Box::new(move |cc| Ok(Box::new(EditorApp::new(cc, project, is_project.then_some(path))))),
+        Box::new(move |cc| {
+            let mut app = EditorApp::new(cc, project, path);
+            if let Some(e) = error {
+                app.show_error(e);
+            }
+            Ok(Box::new(app))
+        }),
     )
     .map_err(|e| anyhow::anyhow!("cannot open the editor window: {e}"))
 }
@@ -77,6 +117,8 @@ enum Modal {
     ConfirmClose,
     /// A recovery file from a crash exists.
     OfferRecovery(PathBuf),
+    /// Something the user must read (a project that could not be opened at start).
+    Error(String),
 }
 
 /// The editor application.
@@ -119,6 +161,20 @@ impl EditorApp {
             allow_close: false,
             recovery,
             title: String::new(),
+        }
+    }
+
+    /// Shows `message` in a dialog until the user dismisses it (and in the status bar).
+    pub fn show_error(&mut self, message: String) {
+        self.state.status = message.lines().next().unwrap_or_default().to_owned();
+        self.modal = Modal::Error(message);
+    }
+
+    /// The message of the error dialog, if one is open (tests).
+    pub fn error_shown(&self) -> Option<&str> {
+        match &self.modal {
+            Modal::Error(m) => Some(m),
+            _ => None,
         }
     }
 
@@ -187,11 +243,9 @@ impl EditorApp {
     }
 
     fn new_project(&mut self) {
-        let desc = SceneDesc { camera: Camera::default(), ..SceneDesc::default() };
-        match Scene::new(desc, Resources::default()) {
-            Ok(scene) => {
-                self.state.project =
-                    Project { assets: Vec::new(), scene, render: Default::default(), imported: Vec::new() };
+        match empty_project() {
+            Ok(project) => {
+                self.state.project = project;
                 self.state.path = None;
                 self.state.history.clear();
                 self.state.selection = Selection::None;
@@ -423,6 +477,14 @@ impl EditorApp {
                             self.modal = Modal::None;
                         }
                     });
+                });
+            }
+            Modal::Error(message) => {
+                egui::Modal::new(egui::Id::unique("error dialog")).show(ui.ctx(), |ui| {
+                    ui.label(message);
+                    if ui.button("OK").clicked() {
+                        self.modal = Modal::None;
+                    }
                 });
             }
             Modal::OfferRecovery(path) => {
