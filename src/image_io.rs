@@ -92,6 +92,13 @@ pub fn output_kind(path: &Path) -> Result<OutputKind, ImageIoError> {
     }
 }
 
+/// The first pixel (x, y) with a NaN or infinite channel, if any.
+pub fn first_non_finite(img: &HdrImage) -> Option<(u32, u32)> {
+    let i = img.pixels.iter().position(|p| p.iter().any(|c| !c.is_finite()))?;
+    let w = img.width.max(1) as usize;
+    Some(((i % w) as u32, (i / w) as u32))
+}
+
 /// The CPU twin of `shaders/render/tonemap.wgsl`: exposure, operator, sRGB encoding to RGBA8.
 pub fn tonemap_srgb8(img: &HdrImage, view: &crate::settings::ViewSettings) -> Vec<u8> {
     use crate::settings::Tonemap;
@@ -140,4 +147,18 @@ pub fn box_downsample(pixels: &[[f32; 4]], size: (u32, u32), k: u32) -> Vec<[f32
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_non_finite_pixel_is_found_by_position() {
+        let mut img = HdrImage { width: 3, height: 2, pixels: vec![[0.5; 4]; 6] };
+        assert_eq!(first_non_finite(&img), None);
+        img.pixels[4][1] = f32::NAN;
+        img.pixels[5][0] = f32::INFINITY;
+        assert_eq!(first_non_finite(&img), Some((1, 1)));
+    }
 }

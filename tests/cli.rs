@@ -111,10 +111,12 @@ fn bad_arguments_fail_before_anything_renders() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(!o.status.success() && err.contains(want), "{extra:?}: {err}");
     }
-    let missing = std::env::temp_dir().join("bouncelab-no-such-folder").join("x.png");
-    let o = render(&[], &missing.to_string_lossy());
+    // A folder that cannot be created (its parent is a file) fails before the render.
+    let file = std::env::temp_dir().join(format!("bouncelab-a-file-{}", std::process::id()));
+    std::fs::write(&file, "x").expect("write");
+    let o = render(&[], &file.join("x.png").to_string_lossy());
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("does not exist"), "{err}");
+    assert!(!o.status.success() && err.contains("cannot create the folder"), "{err}");
     // NaN exposure used to report FLIP 0 (identical) for any two images.
     let o = bouncelab(&["compare", "a.exr", "b.exr", "--exposure", "NaN"]);
     let err = String::from_utf8_lossy(&o.stderr);

@@ -97,6 +97,17 @@ fn unknown_fields_and_syntax_errors_have_line_and_column() {
     std::fs::write(&path, good.replace("sampling_weight: 1.0", "sampling_weight: -1.0")).expect("write");
     assert!(Project::load(&path).expect_err("negative weight").to_string().contains("sampling weight"));
 
+    // Finite but absurd values are named, not rendered as NaN or black (reliability issue).
+    for (from, to, want) in [
+        ("base_color: (0.73, 0.73, 0.73, 1.0)", "base_color: (1e10, 0.73, 0.73, 1.0)", "base colour"),
+        ("intensity: 2.5", "intensity: 3.4e38", "intensity"),
+    ] {
+        assert!(good.contains(from), "{from}");
+        std::fs::write(&path, good.replacen(from, to, 1)).expect("write");
+        let msg = Project::load(&path).expect_err(to).to_string();
+        assert!(msg.contains(want) && msg.contains("unknown.ron"), "{msg}");
+    }
+
     std::fs::write(&path, good.replace("cornell_box.gltf", "nowhere.gltf")).expect("write");
     assert!(Project::load(&path).expect_err("missing asset").to_string().contains("nowhere.gltf"));
 

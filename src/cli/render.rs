@@ -151,6 +151,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     } else {
         project.render.view.clone()
     };
+    if let Some((x, y)) = image_io::first_non_finite(&img) {
+        // Name the first pass of the frame whose output already holds them.
+        let pass = ["direct", "indirect", "hdr"]
+            .into_iter()
+            .find(|b| renderer.read_buffer(b).is_ok_and(|i| image_io::first_non_finite(&i).is_some()))
+            .unwrap_or("hdr");
+        anyhow::bail!(
+            "{}: not written: pixel ({x}, {y}) is NaN or infinite; the `{pass}` buffer of mode {} is the first that holds such values (`--buffer {pass}` shows it)",
+            args.out.display(),
+            project.render.mode.name()
+        );
+    }
     write_image(&args.out, kind, &img, &view)?;
     Ok(format!(
         "{} ({}x{}, mode {}, {})",
@@ -162,16 +174,15 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     ))
 }
 
-/// Fails now, not after the render, when `out` cannot be written: its folder is missing or
-/// not writable (probed by creating and removing a file there).
+/// Fails now, not after the render, when `out` cannot be written: its folder cannot be
+/// created or is not writable (probed by creating and removing a file there).
 fn check_writable(out: &Path) -> anyhow::Result<()> {
     let dir = match out.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    if !dir.is_dir() {
-        anyhow::bail!("{}: the folder {} does not exist", out.display(), dir.display());
-    }
+    std::fs::create_dir_all(dir)
+        .map_err(|e| anyhow::anyhow!("{}: cannot create the folder {}: {e}", out.display(), dir.display()))?;
     let probe = dir.join(format!(".bouncelab-write-probe-{}", std::process::id()));
     std::fs::OpenOptions::new()
         .write(true)

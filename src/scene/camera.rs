@@ -77,6 +77,8 @@ impl Camera {
         check_finite("camera position", &self.position.to_array())?;
         check_finite("camera rotation", &self.rotation.to_array())?;
         check_finite("camera field of view", &[self.yfov, self.znear, self.zfar.unwrap_or(1.0)])?;
+        super::limits::check_position("camera", self.position)?;
+        super::limits::check_rotation("camera", self.rotation)?;
         if !(self.yfov > 1e-3 && self.yfov < std::f32::consts::PI - 1e-3) {
             return Err(SceneError::BadValue {
                 what: "camera yfov".into(),

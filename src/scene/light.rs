@@ -126,6 +126,10 @@ impl Light {
         if self.intensity < 0.0 || self.color.iter().any(|c| *c < 0.0) {
             return bad("colour and intensity must be >= 0".into());
         }
+        if self.intensity > super::limits::MAX_INTENSITY {
+            return bad(format!("intensity {} is over {}", self.intensity, super::limits::MAX_INTENSITY));
+        }
+        super::limits::check_position(&what, self.position)?;
         if self.range.is_some_and(|r| r <= 0.0) {
             return bad("range must be > 0".into());
         }

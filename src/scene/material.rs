@@ -64,6 +64,8 @@ impl Material {
         if self.base_color.iter().any(|c| *c < 0.0) || self.specular.iter().any(|c| *c < 0.0) {
             return Err(SceneError::BadValue { what, why: "colours must be >= 0".into() });
         }
+        super::limits::check_reflectance(&what, "base colour", &self.base_color)?;
+        super::limits::check_reflectance(&what, "specular", &self.specular)?;
         Ok(())
     }
 }

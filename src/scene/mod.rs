@@ -10,6 +10,7 @@
 
 mod camera;
 mod light;
+pub mod limits;
 mod material;
 mod mesh;
 mod object;

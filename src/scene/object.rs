@@ -124,6 +124,9 @@ impl Object {
         check_finite(&what, &t.rotation.to_array())?;
         check_finite(&what, &t.scale.to_array())?;
         check_finite(&what, &[self.sampling_weight])?;
+        super::limits::check_position(&what, t.translation)?;
+        super::limits::check_rotation(&what, t.rotation)?;
+        super::limits::check_scale(&what, t.scale)?;
         if self.sampling_weight < 0.0 {
             return Err(SceneError::BadValue { what, why: "sampling weight must be >= 0".into() });
         }
