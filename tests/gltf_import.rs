@@ -205,6 +205,25 @@ fn glb_container_imports() {
 }
 
 #[test]
+fn point_and_line_primitives_are_skipped_not_fatal() {
+    let dir = temp_dir("lines");
+    let base = triangle_doc(true).to_json();
+    // A mesh mixing triangles with lines keeps its triangles.
+    let mut d = base.clone();
+    let tri = d["meshes"][0]["primitives"][0].clone();
+    let mut line = tri.clone();
+    line["mode"] = json!(1);
+    d["meshes"][0]["primitives"] = json!([tri, line]);
+    let asset = import_gltf(&write(&dir, "mixed.gltf", &d)).expect("mixed mesh imports");
+    assert_eq!(asset.scene.objects.len(), 1, "the triangle primitive only");
+    // A file of points alone imports with nothing to render.
+    let mut d = base.clone();
+    d["meshes"][0]["primitives"][0]["mode"] = json!(0);
+    let asset = import_gltf(&write(&dir, "points.gltf", &d)).expect("points-only file imports");
+    assert!(asset.scene.objects.is_empty());
+}
+
+#[test]
 fn every_error_case_is_a_named_error() {
     let dir = temp_dir("errors");
     let base = triangle_doc(true).to_json();
@@ -223,8 +242,16 @@ fn every_error_case_is_a_named_error() {
     expect_err(&dir, "escape.gltf", &d, "refusing");
 
     let mut d = base.clone();
-    d["meshes"][0]["primitives"][0]["mode"] = json!(0);
-    expect_err(&dir, "points.gltf", &d, "only triangle primitives");
+    d["asset"]["version"] = json!("3.0");
+    expect_err(&dir, "v3.gltf", &d, "version 3.0");
+
+    let mut d = base.clone();
+    d["meshes"][0]["primitives"] = json!([]);
+    expect_err(&dir, "noprims.gltf", &d, "no primitives");
+
+    let mut d = base.clone();
+    d["nodes"][0]["rotation"] = json!([0.0, 0.0, 0.0, 0.0]);
+    expect_err(&dir, "zeroquat.gltf", &d, "unit quaternion");
 
     let mut d = base.clone();
     d["accessors"][0]["count"] = json!(1_000_000);

@@ -24,6 +24,13 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset,
             });
         }
     }
+    let version = &doc.as_json().asset.version;
+    if version.split('.').next() != Some("2") {
+        return Err(ImportError::Parse {
+            path: path.to_owned(),
+            message: format!("glTF version {version} is not supported (Bounce Lab reads 2.x)"),
+        });
+    }
     let buffers = load_buffers(doc, gltf.blob.as_deref(), base_dir, path)?;
     let images = images::load_images(doc, &buffers, base_dir, path)?;
     let materials = doc.materials().map(|m| material(&m)).collect();

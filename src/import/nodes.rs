@@ -41,6 +41,15 @@ pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) 
             return Err(node_err(what, "is reached twice (a cycle or several parents)".into()));
         }
         visited[idx] = true;
+        if let gltf::scene::Transform::Decomposed { rotation, .. } = node.transform() {
+            let len = Quat::from_array(rotation).length();
+            if (len - 1.0).abs() > 1e-2 {
+                return Err(node_err(
+                    what,
+                    format!("rotation {rotation:?} has length {len}; glTF requires a unit quaternion"),
+                ));
+            }
+        }
         let local = Mat4::from_cols_array_2d(&node.transform().matrix());
         if !local.is_finite() {
             return Err(node_err(what, "transform has NaN or infinite values".into()));
@@ -50,7 +59,7 @@ pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) 
             return Err(node_err(what, "world transform overflows".into()));
         }
         if let Some(mesh) = node.mesh() {
-            for prim in mesh.primitives() {
+            for prim in mesh.primitives().filter(|p| super::primitive::is_triangles(p.mode())) {
                 let material = prim.material().index().unwrap_or_else(|| {
                     uses_default_material = true;
                     default_material

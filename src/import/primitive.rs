@@ -18,7 +18,23 @@ pub(super) fn load_primitives(
 ) -> Result<Primitives, ImportError> {
     let mut out = Vec::new();
     for mesh in doc.meshes() {
+        if mesh.primitives().len() == 0 {
+            return Err(ImportError::Parse {
+                path: path.to_owned(),
+                message: format!("mesh {} has no primitives (glTF requires at least one)", mesh.index()),
+            });
+        }
         for prim in mesh.primitives() {
+            if !is_triangles(prim.mode()) {
+                log::warn!(
+                    "{}: mesh {} primitive {} is {:?}, not triangles: skipped",
+                    path.display(),
+                    mesh.index(),
+                    prim.index(),
+                    prim.mode()
+                );
+                continue;
+            }
             let err = |message: String| ImportError::Primitive {
                 path: path.to_owned(),
                 mesh: mesh.index(),
@@ -31,6 +47,12 @@ pub(super) fn load_primitives(
         }
     }
     Ok(out)
+}
+
+/// Whether a primitive is made of triangles (lists, strips or fans): points and lines have no
+/// surface to light and are skipped with a warning, not an error for the whole file.
+pub(super) fn is_triangles(mode: Mode) -> bool {
+    matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan)
 }
 
 fn load(prim: &gltf::Primitive<'_>, buffers: &[Vec<u8>], name: String) -> Result<Mesh, String> {
