@@ -38,7 +38,15 @@ pub fn write_exr(path: &Path, img: &HdrImage) -> Result<(), ImageIoError> {
         width: img.width,
         height: img.height,
     })?;
-    image::DynamicImage::ImageRgba32F(buf).save_with_format(path, image::ImageFormat::OpenExr).map_err(codec)
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgba32F(buf).write_to(&mut bytes, image::ImageFormat::OpenExr).map_err(codec)?;
+    write_atomic(path, bytes.get_ref())
+}
+
+/// Every image goes through the atomic writer: a failed or killed write leaves the old file.
+fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ImageIoError> {
+    crate::atomic_file::write(path, bytes)
+        .map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })
 }
 
 /// Writes RGBA8 (already sRGB-encoded) to `.png`.
@@ -50,8 +58,10 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgba8: Vec<u8>) -> Result
         width,
         height,
     })?;
-    buf.save_with_format(path, image::ImageFormat::Png)
-        .map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    buf.write_to(&mut bytes, image::ImageFormat::Png)
+        .map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })?;
+    write_atomic(path, bytes.get_ref())
 }
 
 /// Reads an image as linear RGBA float: EXR as stored, PNG/JPEG decoded from sRGB.

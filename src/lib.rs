@@ -5,6 +5,7 @@
 //! higher ones.
 
 pub mod app;
+pub mod atomic_file;
 pub mod cli;
 pub mod image_io;
 pub mod import;

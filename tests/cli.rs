@@ -122,3 +122,30 @@ fn bad_arguments_fail_before_anything_renders() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("--exposure"), "{err}");
 }
+
+#[cfg(unix)]
+#[test]
+fn a_write_cut_short_by_a_full_disk_keeps_the_old_image() {
+    if !has_gpu() {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("bouncelab-full-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("dir");
+    let out = dir.join("image.png");
+    std::fs::write(&out, b"the old image").expect("write");
+    let args =
+        format!("render projects/default.ron --mode direct --width 128 --height 72 --ssaa 1 --out {}", out.display());
+    // A file-size limit of 1 KB stands in for a full disk: the PNG (tens of KB) cannot be written.
+    let limited = format!("ulimit -f 2; exec {} {args}", env!("CARGO_BIN_EXE_bouncelab"));
+    let o = Command::new("sh").arg("-c").arg(&limited).output().expect("runs");
+    assert!(!o.status.success(), "the write must fail under the limit");
+    assert_eq!(std::fs::read(&out).expect("read"), b"the old image", "never a partial image");
+    // The next write succeeds and clears what the killed one left behind.
+    let o = bouncelab(&args.split(' ').collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let names: Vec<String> =
+        std::fs::read_dir(&dir).expect("dir").flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
+    assert_eq!(names, ["image.png"], "no temp files remain");
+    assert!(std::fs::read(&out).expect("read").starts_with(b"\x89PNG"));
+}

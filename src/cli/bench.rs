@@ -117,7 +117,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
     if let Some(dir) = out.parent() {
         std::fs::create_dir_all(dir)?;
     }
-    std::fs::write(out, &md)?;
+    crate::atomic_file::write(out, md.as_bytes())?;
     Ok(md)
 }
 

@@ -26,9 +26,10 @@ pub fn generate(root: &Path) -> anyhow::Result<()> {
     let project = root.join("projects/default.ron");
     std::fs::create_dir_all(root.join("assets"))?;
     std::fs::create_dir_all(root.join("projects"))?;
-    std::fs::write(&gltf, cornell_gltf_text()).with_context(|| format!("writing {}", gltf.display()))?;
+    crate::atomic_file::write(&gltf, cornell_gltf_text().as_bytes())
+        .with_context(|| format!("writing {}", gltf.display()))?;
     let text = default_project_text(&gltf, &project)?;
-    std::fs::write(&project, text).with_context(|| format!("writing {}", project.display()))?;
+    crate::atomic_file::write(&project, text.as_bytes()).with_context(|| format!("writing {}", project.display()))?;
     println!("wrote {} and {}", gltf.display(), project.display());
     let levels = crate::suite::write_levels(root)?;
     println!("wrote {} suite levels under {}", levels.len(), root.join("assets/suite").display());

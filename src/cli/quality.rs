@@ -126,7 +126,7 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
         sheet.file_name().and_then(|n| n.to_str()).unwrap_or("quality_sheet.png")
     );
     write_sheet(&sheet, &rows)?;
-    crate::project_file::atomic::write(out, md.as_bytes())?;
+    crate::atomic_file::write(out, md.as_bytes())?;
     Ok(md)
 }
 

@@ -4,7 +4,7 @@
 //! `From`; unknown fields are errors with line and column; saves are atomic and deterministic;
 //! assets are referenced relative to the project file.
 
-pub mod atomic;
+use crate::atomic_file as atomic;
 mod paths;
 
 use std::path::{Path, PathBuf};

@@ -258,12 +258,9 @@ impl SuiteScene {
         let img = HdrImage { width: REFERENCE_SIZE.0, height: REFERENCE_SIZE.1, pixels: tracer.image() };
         let dir = root.join("assets/suite/references");
         std::fs::create_dir_all(&dir).map_err(|source| SuiteError::Io { path: dir.clone(), source })?;
-        let path = self.reference_path(root);
-        let tmp = dir.join(format!("{}.tmp.exr", self.name));
-        crate::image_io::write_exr(&tmp, &img)?;
-        std::fs::rename(&tmp, &path).map_err(|source| SuiteError::Io { path: path.clone(), source })?;
+        crate::image_io::write_exr(&self.reference_path(root), &img)?;
         let key_path = self.key_path(root);
-        crate::project_file::atomic::write(&key_path, format!("{}\n", self.reference_key(root)?).as_bytes())
+        crate::atomic_file::write(&key_path, format!("{}\n", self.reference_key(root)?).as_bytes())
             .map_err(|source| SuiteError::Io { path: key_path, source })?;
         Ok(img)
     }
@@ -277,7 +274,7 @@ pub fn write_levels(root: &Path) -> Result<Vec<PathBuf>, SuiteError> {
     for s in SCENES {
         if let Some(text) = s.gltf_text() {
             let path = s.gltf_path(root);
-            crate::project_file::atomic::write(&path, text.as_bytes())
+            crate::atomic_file::write(&path, text.as_bytes())
                 .map_err(|source| SuiteError::Io { path: path.clone(), source })?;
             written.push(path);
         }
