@@ -244,3 +244,35 @@ fn a_project_that_cannot_be_opened_shows_the_error_in_the_window() {
     assert!(h.state().error_shown().is_none(), "OK dismisses it");
     settle(&mut h);
 }
+
+#[test]
+fn the_outliner_filters_by_name_and_lays_out_only_visible_rows() {
+    if std::env::var_os("CI").is_none() && bouncelab::render::GpuContext::new_headless().is_err() {
+        return;
+    }
+    let path = default_project_path();
+    let mut project = Project::load(&path).expect("default project");
+    let template = project.scene.objects()[0].clone();
+    let first = project.scene.objects().len();
+    for k in 0..1500 {
+        let mut o = template.clone();
+        o.name = format!("copy {k}");
+        o.visible = false;
+        project.scene.desc_mut().objects.push(o);
+    }
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .wgpu()
+        .build_eframe(move |cc| EditorApp::new(cc, project, Some(path)));
+    h.run_steps(3);
+    assert!(h.query_by_label("copy 0").is_some(), "the first rows are shown");
+    assert!(h.query_by_label("copy 1499").is_none(), "rows below the fold are not laid out");
+    h.ctx.data_mut(|d| d.insert_temp(egui::Id::unique("outliner filter"), "copy 1499".to_owned()));
+    h.run_steps(3);
+    assert!(h.query_by_label("copy 1499").is_some(), "the filter finds it");
+    assert!(h.query_by_label("copy 0").is_none() && h.query_by_label("floor").is_none(), "and hides the rest");
+    h.get_by_label("copy 1499").click();
+    h.run_steps(2);
+    assert_eq!(h.state().state().selection, Selection::Object(first + 1499));
+    settle(&mut h);
+}

@@ -1,4 +1,6 @@
 //! The outliner: every object and light, selection, and the add / duplicate / delete actions.
+//! A filter narrows the list by name, and only the rows on screen are laid out, so a level
+//! with 100,000 objects costs the interface the rows it shows, not every row every frame.
 
 use super::edits::{self, Selection};
 use super::state::EditorState;
@@ -54,26 +56,60 @@ pub fn outliner_ui(state: &mut EditorState, ui: &mut egui::Ui) {
         }
     });
     ui.separator();
-    egui::ScrollArea::vertical().show(ui, |ui| {
-        ui.label(egui::RichText::new("Lights").strong());
-        for (i, light) in state.project.scene.lights().iter().enumerate() {
-            let kind = match light.kind {
-                LightKind::Point => "point",
-                LightKind::Spot { .. } => "spot",
-                LightKind::Directional => "directional",
-            };
-            let selected = state.selection == Selection::Light(i);
-            if ui.selectable_label(selected, format!("{} ({kind})", light.name)).clicked() {
-                state.selection = Selection::Light(i);
-            }
-        }
-        ui.add_space(6.0);
-        ui.label(egui::RichText::new("Objects").strong());
-        for (i, object) in state.project.scene.objects().iter().enumerate() {
-            let selected = state.selection == Selection::Object(i);
-            if ui.selectable_label(selected, format!("{}{}", object.name, role_tag(object.role))).clicked() {
-                state.selection = Selection::Object(i);
+    let filter_id = egui::Id::unique("outliner filter");
+    let mut filter: String = ui.data(|d| d.get_temp(filter_id)).unwrap_or_default();
+    ui.horizontal(|ui| {
+        ui.label("Filter");
+        ui.add(egui::TextEdit::singleline(&mut filter).hint_text("name"));
+    });
+    ui.data_mut(|d| d.insert_temp(filter_id, filter.clone()));
+    let rows = rows(state, &filter.to_lowercase());
+    let height = ui.spacing().interact_size.y;
+    egui::ScrollArea::vertical().show_rows(ui, height, rows.len(), |ui, range| {
+        for row in &rows[range] {
+            match *row {
+                Row::Header(text) => {
+                    ui.label(egui::RichText::new(text).strong());
+                }
+                Row::Light(i) => {
+                    let Some(light) = state.project.scene.lights().get(i) else { continue };
+                    let kind = match light.kind {
+                        LightKind::Point => "point",
+                        LightKind::Spot { .. } => "spot",
+                        LightKind::Directional => "directional",
+                    };
+                    let selected = state.selection == Selection::Light(i);
+                    if ui.selectable_label(selected, format!("{} ({kind})", light.name)).clicked() {
+                        state.selection = Selection::Light(i);
+                    }
+                }
+                Row::Object(i) => {
+                    let Some(object) = state.project.scene.objects().get(i) else { continue };
+                    let selected = state.selection == Selection::Object(i);
+                    if ui.selectable_label(selected, format!("{}{}", object.name, role_tag(object.role))).clicked() {
+                        state.selection = Selection::Object(i);
+                    }
+                }
             }
         }
     });
+}
+
+/// One line of the outliner.
+#[derive(Clone, Copy)]
+enum Row {
+    Header(&'static str),
+    Light(usize),
+    Object(usize),
+}
+
+/// The rows whose names contain `filter` (lower case; empty: every row), under their headers.
+fn rows(state: &EditorState, filter: &str) -> Vec<Row> {
+    let keep = |name: &str| filter.is_empty() || name.to_lowercase().contains(filter);
+    let scene = &state.project.scene;
+    let mut rows = vec![Row::Header("Lights")];
+    rows.extend(scene.lights().iter().enumerate().filter(|(_, l)| keep(&l.name)).map(|(i, _)| Row::Light(i)));
+    rows.push(Row::Header("Objects"));
+    rows.extend(scene.objects().iter().enumerate().filter(|(_, o)| keep(&o.name)).map(|(i, _)| Row::Object(i)));
+    rows
 }
