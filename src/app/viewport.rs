@@ -236,8 +236,6 @@ impl Viewport {
     /// rendered again only while the technique is still refining (temporal history short of
     /// its steady state, progressive samples short of their target).
     pub fn submit(&mut self, state: &mut EditorState) {
-        let moving_before = self.moving();
-        let Some(view) = &mut self.view else { return };
         let scene = &state.project.scene;
         let key = FrameKey {
             revision: scene.revision(),
@@ -249,10 +247,11 @@ impl Viewport {
         if changed && self.submitted.is_some() {
             self.changed_at = Some(Instant::now());
         }
+        let moving = self.moving();
+        let Some(view) = &mut self.view else { return };
         if view.busy() {
             return;
         }
-        let moving = moving_before || (changed && self.submitted.is_some());
         let accumulating = view.renderer().technique_status().is_some_and(|s| s.refining);
         let shown_full = self.texture.as_ref().is_some_and(|(_, step)| *step == 0);
         if !changed && !moving && shown_full && !accumulating {

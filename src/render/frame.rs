@@ -58,6 +58,13 @@ struct SizedResources {
     tonemap: wgpu::BindGroup,
 }
 
+/// What one frame renders.
+struct FrameRequest<'a> {
+    scene: &'a Scene,
+    settings: &'a RenderSettings,
+    size: (u32, u32),
+}
+
 /// Owns every pipeline and per-view resource; long-lived.
 pub struct Renderer {
     device: wgpu::Device,
@@ -166,7 +173,7 @@ impl Renderer {
 
     /// [`Renderer::render`], with `then` recording more commands (a readback copy) into the
     /// frame's own command buffer. One submission per frame: on lavapipe a second submission
-    /// blocks the caller until the first has finished on the GPU (measured: 6.4 s for an `ism`
+    /// blocks the caller until the first has finished on the GPU (measured: 6.4 s after a GI
     /// frame at 1000x760), which would stall the editor's interface.
     pub fn render_then(
         &mut self,
@@ -177,7 +184,7 @@ impl Renderer {
     ) -> Result<(), RenderError> {
         let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let result = self.render_inner(scene, settings, size, then);
+        let result = self.render_inner(FrameRequest { scene, settings, size }, then);
         let oom = pollster::block_on(memory.pop());
         let invalid = pollster::block_on(validation.pop());
         result?;
@@ -189,11 +196,10 @@ impl Renderer {
 
     fn render_inner(
         &mut self,
-        scene: &Scene,
-        settings: &RenderSettings,
-        size: (u32, u32),
+        request: FrameRequest<'_>,
         then: &mut dyn FnMut(&mut wgpu::CommandEncoder, &ViewTargets),
     ) -> Result<(), RenderError> {
+        let FrameRequest { scene, settings, size } = request;
         settings.validate()?;
         let max = self.device.limits().max_texture_dimension_2d;
         if size.0 == 0 || size.1 == 0 || size.0 > max || size.1 > max {

@@ -54,8 +54,10 @@ pub struct AsyncView {
     /// A staging buffer to reuse (its size and padded row), returned by the last frame.
     spare: Option<(wgpu::Buffer, (u32, u32))>,
     adapter: wgpu::AdapterInfo,
-    /// Called from the waiter thread when a frame is done (the editor asks egui to repaint).
-    wake: Arc<dyn Fn() + Send + Sync>,
+    /// Tells the waiter thread that a frame was submitted; it blocks on the device until the
+    /// frame is done, then calls `wake` (the editor asks egui to repaint). One long-lived
+    /// thread for the view's life: it ends when this sender is dropped.
+    waiter: Option<std::sync::mpsc::Sender<()>>,
 }
 
 impl AsyncView {
@@ -65,7 +67,22 @@ impl AsyncView {
         let (device, queue) = pollster::block_on(adapter.request_device(&device_descriptor(adapter)))?;
         log_device_errors(&device);
         let renderer = Renderer::new(&device, &queue)?;
-        Ok(Self { device, renderer, in_flight: None, spare: None, adapter: adapter.get_info(), wake })
+        let (tx, rx) = std::sync::mpsc::channel::<()>();
+        let waiting = device.clone();
+        let waiter = std::thread::Builder::new().name("viewport frame waiter".into()).spawn(move || {
+            while rx.recv().is_ok() {
+                let _ = waiting.poll(wgpu::PollType::wait_indefinitely());
+                wake();
+            }
+        });
+        let waiter = match waiter {
+            Ok(_) => Some(tx),
+            Err(e) => {
+                log::warn!("no waiter thread ({e}): the viewport updates on the next input");
+                None
+            }
+        };
+        Ok(Self { device, renderer, in_flight: None, spare: None, adapter: adapter.get_info(), waiter })
     }
 
     /// The adapter's description.
@@ -140,15 +157,10 @@ impl AsyncView {
             }
         });
         self.in_flight = Some(InFlight { started, step, size, padded_row, buffer, mapped });
-        // A thread waits for the GPU and wakes the interface: no repaints just to poll (each
-        // costs a software adapter ~110 ms of CPU that the frame itself needs).
-        let (device, wake) = (self.device.clone(), Arc::clone(&self.wake));
-        let waiter = std::thread::Builder::new().name("viewport frame waiter".into()).spawn(move || {
-            let _ = device.poll(wgpu::PollType::wait_indefinitely());
-            wake();
-        });
-        if let Err(e) = waiter {
-            log::warn!("no waiter thread ({e}): the viewport updates on the next input");
+        // The waiter thread wakes the interface when the GPU is done: no repaints just to poll
+        // (each costs a software adapter ~100 ms of CPU that the frame itself needs).
+        if let Some(w) = &self.waiter {
+            let _ = w.send(());
         }
         Ok(())
     }
@@ -186,17 +198,18 @@ impl AsyncView {
         }
         let ms = f.started.elapsed().as_secs_f64() * 1e3;
         let (w, h) = (f.size.0 as usize, f.size.1 as usize);
-        let mut rgba = Vec::with_capacity(w * h * 4);
+        let mut pixels = Vec::with_capacity(w * h);
         {
             let data = f.buffer.slice(..).get_mapped_range().map_err(|e| RenderError::Gpu(e.to_string()))?;
+            // Straight from the padded rows into egui's pixels; the display image is opaque
+            // (its alpha channel holds nothing to show).
             for row in data.chunks(f.padded_row as usize).take(h) {
-                rgba.extend_from_slice(&row[..w * 4]);
+                pixels.extend(row[..w * 4].chunks_exact(4).map(|p| egui::Color32::from_rgb(p[0], p[1], p[2])));
             }
         }
         f.buffer.unmap();
-        // The display image is opaque; its alpha channel holds nothing to show.
-        rgba.chunks_exact_mut(4).for_each(|p| p[3] = 255);
         self.spare = Some((f.buffer, f.size));
-        Ok(Some(Finished { image: egui::ColorImage::from_rgba_unmultiplied([w, h], &rgba), step: f.step, ms }))
+        let image = egui::ColorImage::new([w, h], pixels);
+        Ok(Some(Finished { image, step: f.step, ms }))
     }
 }

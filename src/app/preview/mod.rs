@@ -8,7 +8,7 @@
 //! renderer and every reader of it (inspector, GI panel) across threads. Instead the viewport
 //! renders on a **second device** of the same adapter ([`frames::AsyncView`]): one frame in
 //! flight, its display image copied back without blocking and uploaded as an egui texture
-//! (4 MB at 1000x760, a few ms), while eframe keeps presenting on its own queue. The copy is
+//! (4 MB at 1000x760), while eframe keeps presenting on its own queue. The copy is
 //! recorded into the frame's own command buffer: on lavapipe a second submission blocks the
 //! caller until the first has finished (6.4 s after an `ism` frame). A waiter thread blocks on
 //! the device and wakes egui when the frame is done, so the interface repaints only on input
