@@ -1,8 +1,9 @@
 // The object and material bindings of every pass that rasterises the scene with
-// render::layouts::Layouts (group 1: object, group 2: material), and the albedo they give.
+// render::layouts::Layouts (group 1: the object array, group 2: material), and the albedo they
+// give. Objects are drawn instanced: a vertex's object is objects[instance_index].
 #import common/object.wgsl
 
-@group(1) @binding(0) var<uniform> object: Object;
+@group(1) @binding(0) var<storage, read> objects: array<Object>;
 @group(2) @binding(0) var<uniform> material: MaterialParams;
 @group(2) @binding(1) var base_texture: texture_2d<f32>;
 @group(2) @binding(2) var normal_texture: texture_2d<f32>;

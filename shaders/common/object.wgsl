@@ -1,4 +1,4 @@
-// Per-object and per-material uniforms shared by every pass that rasterises the scene
+// Per-object data and per-material uniforms shared by every pass that rasterises the scene
 // (mirrors render::uniforms::ObjectUniforms and MaterialUniforms).
 struct Object {
     world_from_local: mat4x4<f32>,
@@ -6,6 +6,8 @@ struct Object {
     prev_world_from_local: mat4x4<f32>,
     // object id + 1, material index, unused, unused.
     ids: vec4<u32>,
+    // Pads the array stride to 256 bytes (render::scene_gpu::OBJECT_SLOT).
+    pad: array<vec4<u32>, 3>,
 }
 
 struct MaterialParams {

@@ -18,11 +18,14 @@ struct VertexOut {
     @location(3) tangent: vec4<f32>,
     @location(4) cur_clip: vec4<f32>,
     @location(5) prev_clip: vec4<f32>,
+    @location(6) @interpolate(flat) object_id: u32,
 }
 
 @vertex
-fn vs_main(v: MeshVertex) -> VertexOut {
+fn vs_main(v: MeshVertex, @builtin(instance_index) instance: u32) -> VertexOut {
     var out: VertexOut;
+    let object = objects[instance];
+    out.object_id = object.ids.x;
     let world = object.world_from_local * vec4<f32>(v.position, 1.0);
     out.world = world.xyz;
     out.clip = frame.clip_from_world * world;
@@ -65,6 +68,6 @@ fn fs_main(in: VertexOut) -> GbufferOut {
     let cur = in.cur_clip.xy / in.cur_clip.w;
     let prev = in.prev_clip.xy / in.prev_clip.w;
     out.motion = (cur - prev) * vec2<f32>(0.5, -0.5);
-    out.object_id = object.ids.x;
+    out.object_id = in.object_id;
     return out;
 }

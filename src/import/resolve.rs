@@ -1,6 +1,8 @@
 //! Builds a renderable [`Scene`] from a [`SceneDesc`] and the assets it refers to: the one
 //! path shared by "open a glTF" and "open a project".
 
+use std::collections::HashMap;
+
 use glam::Vec3;
 
 use super::Asset;
@@ -17,14 +19,45 @@ pub enum ResolveError {
     Scene(#[from] SceneError),
 }
 
+/// What makes two objects' meshes the same: objects with equal keys share one [`Mesh`] (on the
+/// CPU and on the GPU), so a level of 100,000 copies of a few props holds a few meshes.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+enum MeshKey {
+    Asset { asset: usize, mesh: usize, primitive: usize, baked: Option<[u32; 16]> },
+    Cuboid([u32; 3]),
+    Plane(u32),
+}
+
+impl MeshKey {
+    fn of(source: &MeshSource) -> Self {
+        match source {
+            MeshSource::Asset { asset, mesh, primitive, baked } => Self::Asset {
+                asset: *asset,
+                mesh: *mesh,
+                primitive: *primitive,
+                baked: baked.map(|m| m.to_cols_array().map(f32::to_bits)),
+            },
+            MeshSource::Cuboid { size, .. } => Self::Cuboid(size.to_array().map(f32::to_bits)),
+            MeshSource::Plane { size } => Self::Plane(size.to_bits()),
+        }
+    }
+}
+
 /// Resolves every object's [`MeshSource`] and concatenates the assets' images in order
-/// (material [`crate::scene::TextureRef::image`] indices are into that concatenation).
+/// (material [`crate::scene::TextureRef::image`] indices are into that concatenation). Objects
+/// with the same source share one mesh.
 pub fn resolve(mut desc: SceneDesc, assets: &[Asset]) -> Result<Scene, ResolveError> {
     let mut resources = Resources::default();
     for asset in assets {
         resources.images.extend(asset.images.iter().cloned());
     }
+    let mut shared: HashMap<MeshKey, usize> = HashMap::new();
     for object in &mut desc.objects {
+        let key = MeshKey::of(&object.source);
+        if let Some(&index) = shared.get(&key) {
+            object.mesh = index;
+            continue;
+        }
         let missing = |message: String| ResolveError::MissingSource { object: object.name.clone(), message };
         let mesh = match &object.source {
             MeshSource::Asset { asset, mesh, primitive, baked } => {
@@ -45,6 +78,7 @@ pub fn resolve(mut desc: SceneDesc, assets: &[Asset]) -> Result<Scene, ResolveEr
             MeshSource::Plane { size } => Mesh::plane(&object.name, *size),
         };
         object.mesh = resources.meshes.len();
+        shared.insert(key, object.mesh);
         resources.meshes.push(mesh);
     }
     Ok(Scene::new(desc, resources)?)

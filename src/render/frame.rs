@@ -126,7 +126,7 @@ impl Renderer {
         });
         Ok(Self {
             gbuffer: GbufferPass::new(device, &layouts)?,
-            shadows: ShadowPass::new(device)?,
+            shadows: ShadowPass::new(device, &layouts)?,
             lighting: LightingPass::new(device)?,
             composite: CompositePass::new(device)?,
             tonemap: TonemapPass::new(device)?,
@@ -285,12 +285,11 @@ impl Renderer {
             &mut encoder,
             &sized.targets,
             &self.frame_bind_group,
-            scene,
             gpu,
             self.timer.scope("gbuffer").map(|t| t.render_writes(true, true)),
         );
         let shadow_ts = if self.shadows.layer_matrices.is_empty() { None } else { self.timer.scope("shadows") };
-        self.shadows.record(device, queue, &mut encoder, scene, gpu, shadow_ts);
+        self.shadows.record(device, queue, &mut encoder, gpu, shadow_ts);
         self.lighting.record(
             &mut encoder,
             lighting_inputs,

@@ -5,7 +5,6 @@ use super::layouts::Layouts;
 use super::scene_gpu::{SceneGpu, Vertex};
 use super::shaders::{self, ShaderError};
 use super::targets::{ViewTargets, formats};
-use crate::scene::Scene;
 
 /// The G-buffer pipeline.
 pub struct GbufferPass {
@@ -64,7 +63,6 @@ impl GbufferPass {
         encoder: &mut wgpu::CommandEncoder,
         targets: &ViewTargets,
         frame_bind_group: &wgpu::BindGroup,
-        scene: &Scene,
         gpu: &SceneGpu,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
@@ -99,6 +97,6 @@ impl GbufferPass {
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, frame_bind_group, &[]);
-        gpu.draw_objects(&mut pass, scene);
+        gpu.draw_objects(&mut pass);
     }
 }

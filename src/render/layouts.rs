@@ -4,7 +4,8 @@
 pub struct Layouts {
     /// Group 0 of the G-buffer pass: the frame uniforms.
     pub frame: wgpu::BindGroupLayout,
-    /// Group 1 of the G-buffer pass: one object's uniforms (dynamic offset).
+    /// Group 1 of every pass that draws objects: the object array (read-only storage, indexed
+    /// by `instance_index`; see [`super::scene_gpu::Batch`]).
     pub object: wgpu::BindGroupLayout,
     /// Group 2 of the G-buffer pass: material uniforms, base colour and normal textures, sampler.
     pub material: wgpu::BindGroupLayout,
@@ -87,7 +88,7 @@ impl Layouts {
             }),
             object: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("object layout"),
-                entries: &[uniform_entry(0, vf, true)],
+                entries: &[storage_entry(0, wgpu::ShaderStages::VERTEX)],
             }),
             material: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("material layout"),

@@ -9,7 +9,7 @@ use glam::camera::rh::proj::directx;
 use glam::camera::rh::view::look_at_mat4;
 use glam::{Mat4, Vec3};
 
-use super::layouts::uniform_entry;
+use super::layouts::{Layouts, uniform_entry};
 use super::scene_gpu::{SceneGpu, Vertex};
 use super::shaders::{self, ShaderError};
 use super::targets::formats;
@@ -61,15 +61,15 @@ fn up_for(dir: Vec3) -> Vec3 {
 
 impl ShadowPass {
     /// Creates the pipeline and an initial array.
-    pub fn new(device: &wgpu::Device) -> Result<Self, ShaderError> {
+    pub fn new(device: &wgpu::Device, layouts: &Layouts) -> Result<Self, ShaderError> {
         let module = shaders::module(device, "render/shadow_depth.wgsl")?;
         let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("shadow draw layout"),
+            label: Some("shadow layer layout"),
             entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX, true)],
         });
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("shadow pipeline layout"),
-            bind_group_layouts: &[Some(&draw_layout)],
+            bind_group_layouts: &[Some(&draw_layout), Some(&layouts.object)],
             immediate_size: 0,
         });
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -112,13 +112,13 @@ impl ShadowPass {
         capacity: u64,
     ) -> (wgpu::Buffer, wgpu::BindGroup) {
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("shadow draw uniforms"),
+            label: Some("shadow layer uniforms"),
             size: DRAW_SLOT * capacity,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("shadow draw bind group"),
+            label: Some("shadow layer bind group"),
             layout,
             entries: &[wgpu::BindGroupEntry {
                 binding: 0,
@@ -232,27 +232,18 @@ impl ShadowPass {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        scene: &Scene,
         gpu: &SceneGpu,
         timestamps: Option<TimestampPair<'_>>,
     ) {
-        let objects: Vec<_> = scene
-            .objects()
-            .iter()
-            .filter(|o| o.is_rendered())
-            .filter_map(|o| gpu.meshes.get(o.mesh).map(|m| (o.transform.matrix(), m)))
-            .collect();
-        let draws = (self.layer_matrices.len() * objects.len()) as u64;
-        if draws > self.draw_capacity {
-            self.draw_capacity = draws.next_power_of_two();
+        let layers = self.layer_matrices.len() as u64;
+        if layers > self.draw_capacity {
+            self.draw_capacity = layers.next_power_of_two();
             (self.draw_buffer, self.draw_bind_group) = Self::draw_buffer(device, &self.draw_layout, self.draw_capacity);
         }
-        let mut data = vec![0u8; (DRAW_SLOT * draws) as usize];
+        let mut data = vec![0u8; (DRAW_SLOT * layers) as usize];
         for (l, m) in self.layer_matrices.iter().enumerate() {
-            for (o, (world, _)) in objects.iter().enumerate() {
-                let at = (l * objects.len() + o) * DRAW_SLOT as usize;
-                data[at..at + 64].copy_from_slice(bytemuck::cast_slice(&(*m * *world).to_cols_array()));
-            }
+            let at = l * DRAW_SLOT as usize;
+            data[at..at + 64].copy_from_slice(bytemuck::cast_slice(&m.to_cols_array()));
         }
         if !data.is_empty() {
             queue.write_buffer(&self.draw_buffer, 0, &data);
@@ -274,13 +265,9 @@ impl ShadowPass {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.pipeline);
-            for (o, (_, mesh)) in objects.iter().enumerate() {
-                let offset = ((l * objects.len() + o) as u64 * DRAW_SLOT) as u32;
-                pass.set_bind_group(0, &self.draw_bind_group, &[offset]);
-                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..mesh.index_count, 0, 0..1);
-            }
+            pass.set_bind_group(0, &self.draw_bind_group, &[(l as u64 * DRAW_SLOT) as u32]);
+            pass.set_bind_group(1, &gpu.object_bind_group, &[]);
+            gpu.draw_geometry(&mut pass);
         }
     }
 

@@ -34,8 +34,9 @@ struct VertexOut {
 }
 
 @vertex
-fn vs_main(v: MeshVertex) -> VertexOut {
+fn vs_main(v: MeshVertex, @builtin(instance_index) instance: u32) -> VertexOut {
     var out: VertexOut;
+    let object = objects[instance];
     let world = object.world_from_local * vec4<f32>(v.position, 1.0);
     out.world = world.xyz;
     out.clip = view.clip_from_world * world;

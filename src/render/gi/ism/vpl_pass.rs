@@ -386,7 +386,7 @@ impl VplPass {
                 let size = tiles.tile_size as f32;
                 pass.set_viewport(x as f32, y as f32, size, size, 0.0, 1.0);
                 pass.set_bind_group(0, &s.view_bind_group, &[(t as u64 * VIEW_SLOT) as u32]);
-                gpu.draw_objects(&mut pass, scene);
+                gpu.draw_objects(&mut pass);
             }
         }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
