@@ -64,10 +64,35 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgba8: Vec<u8>) -> Result
     write_atomic(path, bytes.get_ref())
 }
 
+/// The largest image `read_linear` decodes: 16384 pixels a side and 2 GiB of decoder memory
+/// (a 16k x 16k float image is 4 GiB, beyond any render this tool compares).
+const MAX_SIDE: u32 = 16384;
+const MAX_DECODE_BYTES: u64 = 2 << 30;
+
 /// Reads an image as linear RGBA float: EXR as stored, PNG/JPEG decoded from sRGB.
 pub fn read_linear(path: &Path) -> Result<HdrImage, ImageIoError> {
-    let img = image::open(path).map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })?;
-    let is_exr = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    let bytes =
+        std::fs::read(path).map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })?;
+    decode_linear(&bytes, path)
+}
+
+/// Decodes image bytes as [`read_linear`] does; `path` names the file in errors, and its
+/// extension picks the format (else the bytes' signature). Bounded in size, so a header that
+/// claims a huge image is an error rather than an allocation failure.
+pub fn decode_linear(bytes: &[u8], path: &Path) -> Result<HdrImage, ImageIoError> {
+    let codec = |e: image::ImageError| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() };
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes));
+    match image::ImageFormat::from_path(path) {
+        Ok(format) => reader.set_format(format),
+        Err(_) => reader = reader.with_guessed_format().map_err(|e| codec(image::ImageError::IoError(e)))?,
+    }
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_SIDE);
+    limits.max_image_height = Some(MAX_SIDE);
+    limits.max_alloc = Some(MAX_DECODE_BYTES);
+    reader.limits(limits);
+    let img = reader.decode().map_err(codec)?;
+    let is_exr = reader_is_exr(path, bytes);
     let rgba = img.to_rgba32f();
     let (width, height) = rgba.dimensions();
     let pixels = rgba
@@ -77,6 +102,11 @@ pub fn read_linear(path: &Path) -> Result<HdrImage, ImageIoError> {
         })
         .collect();
     Ok(HdrImage { width, height, pixels })
+}
+
+/// Whether the bytes are (or the path names) OpenEXR: linear data, no sRGB decoding.
+fn reader_is_exr(path: &Path, bytes: &[u8]) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) || bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01])
 }
 
 /// The sRGB decoding curve.

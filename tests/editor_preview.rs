@@ -138,3 +138,38 @@ fn an_idle_editor_stops_rendering_once_the_image_is_final() {
     assert_eq!(h.state().viewport_scale(), Some(1.0));
     assert!(!h.state().state().history.is_dirty(), "selecting is not an edit");
 }
+
+#[test]
+fn a_lost_viewport_device_is_reported_and_the_viewport_renders_again_on_a_new_one() {
+    if !gpu() {
+        return;
+    }
+    let mut h = harness(egui::vec2(640.0, 400.0));
+    h.state_mut().wait_viewport();
+    h.run_steps(1);
+    let (before, _) = h.state().viewport_frames(1);
+    assert!(before > 0, "the viewport rendered before the loss");
+    h.state_mut().simulate_device_loss();
+    let mut steps = 0;
+    while h.state().error_shown().is_none() && steps < 20 {
+        h.run_steps(1);
+        steps += 1;
+    }
+    let message = h.state().error_shown().map(str::to_owned).unwrap_or_default();
+    assert!(
+        message.contains("device was lost") && message.contains("restarted"),
+        "dialog after {steps} steps: {message:?}"
+    );
+    // The new device renders: frames finish again.
+    let mut after = before;
+    for _ in 0..20 {
+        h.run_steps(1);
+        h.state_mut().wait_viewport();
+        after = h.state().viewport_frames(1).0;
+        if after > before {
+            break;
+        }
+    }
+    assert!(after > before, "no frame finished on the new device ({before} before the loss, {after} after)");
+    assert!(!h.state().state().history.is_dirty(), "the loss did not touch the project");
+}

@@ -327,3 +327,27 @@ fn every_error_case_is_a_named_error() {
     let msg = import_gltf(&dir.join("nope.gltf")).expect_err("missing").to_string();
     assert!(msg.contains("nope.gltf"), "{msg}");
 }
+
+/// Found by fuzzing (`tools/fuzz.sh gltf_import`): a GLB whose header declares fewer bytes than
+/// the header itself made the gltf crate subtract past zero (a panic in debug builds).
+#[test]
+fn a_glb_header_declaring_a_bad_length_is_a_named_error() {
+    let json = br#"{"asset":{"version":"2.0"}}  "#;
+    for declared in [0u32, 11, 10_000] {
+        let mut bytes = b"glTF".to_vec();
+        bytes.extend(2u32.to_le_bytes());
+        bytes.extend(declared.to_le_bytes());
+        bytes.extend((json.len() as u32).to_le_bytes());
+        bytes.extend(0x4E4F_534Au32.to_le_bytes());
+        bytes.extend(json);
+        let path = Path::new("fuzzed.glb");
+        match import::import_slice(&bytes, Path::new("."), path) {
+            Err(ImportError::Parse { path: p, message }) => {
+                assert_eq!(p, path);
+                assert!(message.contains("GLB header declares"), "{message}");
+            }
+            Err(other) => panic!("declared {declared}: {other}"),
+            Ok(_) => panic!("declared {declared}: imported"),
+        }
+    }
+}

@@ -62,8 +62,15 @@ impl History {
         }
     }
 
-    /// Records a finished edit whose before-state is `before`.
+    /// Records a finished edit whose before-state is `before`. An edit still open (`begin`
+    /// without `commit`: the GI panel commits on the next idle frame) ends at `before` and is
+    /// recorded first, so both stay separate steps in the order they happened.
     pub fn record(&mut self, label: &str, before: Snapshot, project: &Project) {
+        if let Some((open, open_before)) = self.pending.take()
+            && open_before != before
+        {
+            self.push(open, open_before);
+        }
         if before != Snapshot::of(project) {
             self.push(label.to_owned(), before);
         }
@@ -100,6 +107,8 @@ impl History {
 
     /// Redoes the last undone step; returns its label.
     pub fn redo(&mut self, project: &mut Project) -> Option<String> {
+        // An open edit that changed something is a new step, which ends the redo branch.
+        self.commit(project);
         let entry = self.redo.pop()?;
         let current = Snapshot::of(project);
         self.undo.push(Entry { label: entry.label.clone(), state: current, id: self.current_id });

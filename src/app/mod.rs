@@ -37,6 +37,7 @@ use crate::render::device_descriptor;
 use crate::scene::{Camera, Resources, Scene, SceneDesc};
 use edits::Selection;
 use state::EditorState;
+pub use viewport::GpuMemory;
 
 /// Keys of the persisted UI state.
 const TREE_KEY: &str = "bouncelab.layout";
@@ -168,6 +169,16 @@ impl EditorApp {
     pub fn show_error(&mut self, message: String) {
         self.state.status = message.lines().next().unwrap_or_default().to_owned();
         self.modal = Modal::Error(message);
+    }
+
+    /// What the viewport's GPU device holds (soak tests; the timings pane).
+    pub fn viewport_gpu_memory(&self) -> Option<GpuMemory> {
+        self.viewport.gpu_memory()
+    }
+
+    /// Destroys the viewport's GPU device as a driver reset would (tests; the View menu).
+    pub fn simulate_device_loss(&mut self) {
+        self.viewport.simulate_device_loss();
     }
 
     /// The message of the error dialog, if one is open (tests).
@@ -453,6 +464,16 @@ impl EditorApp {
                 if ui.button("Reset layout").clicked() {
                     self.tree = panes::default_tree();
                 }
+                ui.separator();
+                if ui
+                    .button("Simulate GPU device loss")
+                    .on_hover_text(
+                        "Destroys the viewport's device as a driver reset would, to check that the editor recovers",
+                    )
+                    .clicked()
+                {
+                    self.viewport.simulate_device_loss();
+                }
             });
         });
     }
@@ -578,6 +599,12 @@ impl eframe::App for EditorApp {
         // The frame the GPU finished since the last UI frame, if any (never waits).
         if let Err(e) = self.viewport.poll() {
             self.state.report("render failed", &e);
+        }
+        for problem in self.viewport.gpu_problems() {
+            match problem {
+                preview::GpuProblem::Error(message) => self.state.report("GPU", &message),
+                preview::GpuProblem::Lost(message) => self.show_error(message),
+            }
         }
         self.shortcuts(ui);
         // Drag and drop a project or glTF onto the window to open it.

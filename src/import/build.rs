@@ -8,6 +8,7 @@ use crate::scene::{Material, TextureRef};
 
 pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset, ImportError> {
     let parse = |e: gltf::Error| ImportError::Parse { path: path.to_owned(), message: e.to_string() };
+    check_glb_header(bytes, path)?;
     let unvalidated = gltf::Gltf::from_slice_without_validation(bytes).map_err(parse)?;
     check_attribute_indices(unvalidated.document.as_json(), path)?;
     let gltf = gltf::Gltf {
@@ -38,6 +39,21 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset,
     let mut asset = Asset { primitives, images, materials, ..Asset::default() };
     nodes::build_scene(doc, &mut asset, path)?;
     Ok(asset)
+}
+
+/// The gltf crate subtracts the 12-byte header from a GLB's declared length unchecked (found by
+/// fuzzing: a debug build panics, a release build wraps); a declared length outside 12..=the
+/// file's size is an error here first.
+fn check_glb_header(bytes: &[u8], path: &Path) -> Result<(), ImportError> {
+    let (Some(b"glTF"), Some(length)) = (bytes.get(..4), bytes.get(8..12)) else { return Ok(()) };
+    let declared = u32::from_le_bytes([length[0], length[1], length[2], length[3]]) as usize;
+    if declared < 12 || declared > bytes.len() {
+        return Err(ImportError::Parse {
+            path: path.to_owned(),
+            message: format!("the GLB header declares {declared} bytes, but the file has {}", bytes.len()),
+        });
+    }
+    Ok(())
 }
 
 /// gltf-json's validation indexes `accessors` with a primitive's POSITION index unchecked (and

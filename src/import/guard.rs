@@ -9,6 +9,8 @@ use std::sync::Once;
 
 thread_local! {
     static GUARDED: Cell<bool> = const { Cell::new(false) };
+    /// Where the last silenced panic happened (named in the message, for bug reports).
+    static LOCATION: Cell<Option<String>> = const { Cell::new(None) };
 }
 
 static INSTALL: Once = Once::new();
@@ -18,7 +20,9 @@ pub(super) fn catch_quietly<T>(f: impl FnOnce() -> T + UnwindSafe) -> Result<T, 
     INSTALL.call_once(|| {
         let previous = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
-            if !GUARDED.with(Cell::get) {
+            if GUARDED.with(Cell::get) {
+                LOCATION.with(|l| l.set(info.location().map(|l| format!("{}:{}", l.file(), l.line()))));
+            } else {
                 previous(info);
             }
         }));
@@ -27,11 +31,15 @@ pub(super) fn catch_quietly<T>(f: impl FnOnce() -> T + UnwindSafe) -> Result<T, 
     let result = std::panic::catch_unwind(f);
     GUARDED.with(|g| g.set(was));
     result.map_err(|payload| {
-        payload
+        let message = payload
             .downcast_ref::<&str>()
             .map(|s| (*s).to_owned())
             .or_else(|| payload.downcast_ref::<String>().cloned())
-            .unwrap_or_else(|| "panic".into())
+            .unwrap_or_else(|| "panic".into());
+        match LOCATION.with(Cell::take) {
+            Some(location) => format!("{message} ({location})"),
+            None => message,
+        }
     })
 }
 

@@ -117,12 +117,15 @@ impl SceneGpu {
     /// caller's.
     pub fn draw_objects(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_bind_group(1, &self.object_bind_group, &[]);
+        let mut bound = None;
         for batch in &self.batches {
-            let (Some(mesh), Some(material)) = (self.meshes.get(batch.mesh), self.materials.get(batch.material))
-            else {
+            let (Some(mesh), Some(material)) = (self.meshes.get(batch.mesh), self.materials.get(batch.material)) else {
                 continue;
             };
-            pass.set_bind_group(2, material, &[]);
+            if bound != Some(batch.material) {
+                pass.set_bind_group(2, material, &[]);
+                bound = Some(batch.material);
+            }
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..mesh.index_count, 0, batch.instances.clone());
@@ -193,10 +196,7 @@ impl SceneGpu {
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("object bind group"),
             layout: &layouts.object,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: buffer.as_entire_binding(),
-            }],
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }],
         });
         (buffer, bind_group)
     }
@@ -243,7 +243,7 @@ impl SceneGpu {
             })
             .map(|(i, _)| i)
             .collect();
-        let key = |i: usize| (scene.objects()[i].mesh, scene.objects()[i].material);
+        let key = |i: usize| (scene.objects()[i].material, scene.objects()[i].mesh);
         order.sort_by_key(|&i| key(i));
         self.batches.clear();
         for (slot, &i) in order.iter().enumerate() {

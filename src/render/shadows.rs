@@ -217,8 +217,11 @@ impl ShadowPass {
             lights.push(GpuLight::new(light, Some(first), texel_factor));
         }
         let layers = (self.layer_matrices.len() as u32).max(1);
-        if res != self.resolution || layers > self.layer_views.len() as u32 {
-            let capacity = layers.max(self.layer_views.len() as u32);
+        // Exactly the layers needed: deleting lights gives back their maps (4 MiB a layer at
+        // 1024²); a new array costs nothing next to rendering its layers.
+        let capacity = self.layer_views.len() as u32;
+        if res != self.resolution || layers != capacity {
+            let capacity = layers;
             (self.texture, self.array_view, self.layer_views) = Self::array(device, res, capacity);
             self.resolution = res;
             self.generation += 1;

@@ -9,7 +9,8 @@
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-use crate::render::{RenderError, Renderer, device_descriptor, log_device_errors};
+use super::health::{DeviceHealth, GpuProblem};
+use crate::render::{RenderError, Renderer, device_descriptor};
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
 
@@ -58,6 +59,8 @@ pub struct AsyncView {
     /// frame is done, then calls `wake` (the editor asks egui to repaint). One long-lived
     /// thread for the view's life: it ends when this sender is dropped.
     waiter: Option<std::sync::mpsc::Sender<()>>,
+    /// Errors and loss reported by the device.
+    health: DeviceHealth,
 }
 
 impl AsyncView {
@@ -65,7 +68,7 @@ impl AsyncView {
     /// (from another thread) whenever a frame has finished.
     pub fn new(adapter: &wgpu::Adapter, wake: Arc<dyn Fn() + Send + Sync>) -> Result<Self, PreviewError> {
         let (device, queue) = pollster::block_on(adapter.request_device(&device_descriptor(adapter)))?;
-        log_device_errors(&device);
+        let health = DeviceHealth::watch(&device, Arc::clone(&wake));
         let renderer = Renderer::new(&device, &queue)?;
         let (tx, rx) = std::sync::mpsc::channel::<()>();
         let waiting = device.clone();
@@ -82,7 +85,29 @@ impl AsyncView {
                 None
             }
         };
-        Ok(Self { device, renderer, in_flight: None, spare: None, adapter: adapter.get_info(), waiter })
+        Ok(Self { device, renderer, in_flight: None, spare: None, adapter: adapter.get_info(), waiter, health })
+    }
+
+    /// GPU errors and the device's loss since the last call. After a loss the view is dead:
+    /// drop it and create a new one.
+    pub fn problems(&mut self) -> Vec<GpuProblem> {
+        let problems = self.health.take();
+        if problems.iter().any(|p| matches!(p, GpuProblem::Lost(_))) {
+            // Its mapping never completes on a lost device.
+            self.in_flight = None;
+        }
+        problems
+    }
+
+    /// The device's live objects and memory (wgpu's internal counters).
+    pub fn counters(&self) -> wgpu::InternalCounters {
+        self.device.get_internal_counters()
+    }
+
+    /// Destroys the device as a driver reset would (the "simulate device loss" command and
+    /// its test): everything on it fails from now on and the loss is reported.
+    pub fn lose_device(&self) {
+        self.device.destroy();
     }
 
     /// The adapter's description.

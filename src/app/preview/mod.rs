@@ -23,9 +23,14 @@
 //! history while the scale holds, and a scale change is a resize (they restart, as for a
 //! window resize). What cannot be hidden: a frame already in flight runs to its end, so a drag
 //! that starts during a full-resolution refinement shows its first preview after that frame.
+//!
+//! GPU errors on the viewport's device are shown once each; a lost device (driver reset, GPU
+//! removed) is reported and replaced by a new device and renderer ([`health`]).
 
 pub mod budget;
 pub mod frames;
+pub mod health;
 
 pub use budget::{LADDER, PreviewSettings, ScaleController, scaled_size};
 pub use frames::{AsyncView, Finished, PreviewError};
+pub use health::GpuProblem;
