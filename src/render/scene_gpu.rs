@@ -2,8 +2,8 @@
 //! textures), and one storage array of per-object data with this and the previous frame's
 //! matrices (for motion vectors). Geometry is re-uploaded only when the scene's resources change.
 //!
-//! Objects are drawn instanced: the array is ordered by (mesh, material), and each run of equal
-//! mesh and material is one draw whose instances index the array (`instance_index`). A level of
+//! Objects are drawn instanced: the array is ordered by (material, mesh), and each run of equal
+//! material and mesh is one draw whose instances index the array (`instance_index`). A level of
 //! 1,000 props of four meshes went from 13,000 draws and 2.5 GB resident to a handful of draws
 //! on lavapipe (figures in `docs/BENCHMARKS.md`, `examples/big_scene.rs`).
 
@@ -230,7 +230,7 @@ impl SceneGpu {
         self.prev_world = worlds;
     }
 
-    /// The drawn objects sorted by (mesh, material), and [`Self::batches`] over that order.
+    /// The drawn objects sorted by (material, mesh: each material is bound once), and [`Self::batches`] over that order.
     fn draw_order(&mut self, scene: &Scene) -> Vec<usize> {
         let mut order: Vec<usize> = scene
             .objects()
@@ -247,7 +247,7 @@ impl SceneGpu {
         order.sort_by_key(|&i| key(i));
         self.batches.clear();
         for (slot, &i) in order.iter().enumerate() {
-            let (mesh, material) = key(i);
+            let (material, mesh) = key(i);
             match self.batches.last_mut() {
                 Some(b) if b.mesh == mesh && b.material == material => b.instances.end = slot as u32 + 1,
                 _ => self.batches.push(Batch { mesh, material, instances: slot as u32..slot as u32 + 1 }),
