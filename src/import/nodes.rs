@@ -16,7 +16,9 @@ pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) 
     let roots: Vec<gltf::Node<'_>> = match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
         None => {
-            // No scene: treat nodes that are nobody's child as roots.
+            // No scene (the spec allows a file of assets only): treat nodes that are nobody's
+            // child as roots, and say so.
+            log::warn!("{}: the file has no scene; importing every root node", path.display());
             let mut is_child = vec![false; doc.nodes().len()];
             for n in doc.nodes() {
                 for c in n.children() {
