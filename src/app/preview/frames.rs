@@ -91,6 +91,8 @@ impl AsyncView {
     /// GPU errors and the device's loss since the last call. After a loss the view is dead:
     /// drop it and create a new one.
     pub fn problems(&mut self) -> Vec<GpuProblem> {
+        // wgpu runs the loss callback from a poll; an idle view polls nowhere else.
+        let _ = self.device.poll(wgpu::PollType::Poll);
         let problems = self.health.take();
         if problems.iter().any(|p| matches!(p, GpuProblem::Lost(_))) {
             // Its mapping never completes on a lost device.
