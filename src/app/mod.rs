@@ -36,8 +36,8 @@ use crate::project_file::{Project, default_project_path};
 use crate::render::device_descriptor;
 use crate::scene::{Camera, Resources, Scene, SceneDesc};
 use edits::Selection;
+pub use preview::GpuMemory;
 use state::EditorState;
-pub use viewport::GpuMemory;
 
 /// Keys of the persisted UI state.
 const TREE_KEY: &str = "bouncelab.layout";

@@ -12,7 +12,7 @@ use super::edits::Selection;
 use super::gizmo::{self, Drag, GizmoMode, View};
 use super::overlays;
 use super::pick::Picker;
-use super::preview::{AsyncView, GpuProblem, LADDER, PreviewSettings, ScaleController, scaled_size};
+use super::preview::{AsyncView, GpuMemory, GpuProblem, LADDER, PreviewSettings, ScaleController, scaled_size};
 use super::state::EditorState;
 use super::timings::Timings;
 use crate::render::{RenderError, Renderer};
@@ -61,25 +61,10 @@ struct FrameKey {
     size: (u32, u32),
 }
 
-/// What the viewport's device holds (see [`Viewport::gpu_memory`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct GpuMemory {
-    /// Bytes of buffer memory.
-    pub buffer_bytes: u64,
-    /// Bytes of texture memory.
-    pub texture_bytes: u64,
-    /// Live buffers, textures and bind groups.
-    pub objects: u64,
-}
-
 /// Renderer and display state of the viewport.
 pub struct Viewport {
     ctx: egui::Context,
     view: Option<AsyncView>,
-    /// eframe's adapter and the repaint request, to recreate the view after a device loss.
-    adapter: Option<(wgpu::Adapter, std::sync::Arc<dyn Fn() + Send + Sync>)>,
-    /// The buffer the inspector shows (re-applied to a recreated renderer).
-    inspected: Option<String>,
     /// The latest finished image and the ladder step it was rendered at.
     texture: Option<(egui::TextureHandle, usize)>,
     orbit: Orbit,
@@ -134,7 +119,6 @@ impl Viewport {
     pub fn new(ctx: &egui::Context, rs: Option<&egui_wgpu::RenderState>, state: &EditorState) -> Self {
         let repaint = ctx.clone();
         let wake: std::sync::Arc<dyn Fn() + Send + Sync> = std::sync::Arc::new(move || repaint.request_repaint());
-        let adapter = rs.map(|rs| (rs.adapter.clone(), std::sync::Arc::clone(&wake)));
         let (view, init_error) = match rs.map(|rs| AsyncView::new(&rs.adapter, wake)) {
             Some(Ok(v)) => (Some(v), None),
             Some(Err(e)) => (None, Some(e.to_string())),
@@ -146,8 +130,6 @@ impl Viewport {
         let mut v = Self {
             ctx: ctx.clone(),
             view,
-            adapter,
-            inspected: None,
             texture: None,
             orbit: Orbit { target: Vec3::ZERO, distance: 3.0, yaw: 0.0, pitch: 0.0 },
             last: None,
@@ -206,9 +188,8 @@ impl Viewport {
 
     /// Tells the renderer which buffer the inspector shows.
     pub fn set_inspected(&mut self, name: Option<&str>) {
-        self.inspected = name.map(str::to_owned);
         if let Some(v) = &mut self.view {
-            v.renderer_mut().set_inspected(name);
+            v.set_inspected(name);
         }
     }
 
@@ -226,48 +207,36 @@ impl Viewport {
     /// image on screen stays until the new renderer's first frame replaces it).
     pub fn gpu_problems(&mut self) -> Vec<GpuProblem> {
         let Some(view) = &mut self.view else { return Vec::new() };
-        let problems = view.problems();
         let mut messages = Vec::new();
-        for problem in problems {
-            match problem {
-                GpuProblem::Error(e) => messages.push(GpuProblem::Error(format!("GPU error in the viewport: {e}"))),
-                GpuProblem::Lost(why) => {
-                    self.view = None;
-                    let restarted = match &self.adapter {
-                        Some((adapter, wake)) => AsyncView::new(adapter, std::sync::Arc::clone(wake)),
-                        None => return vec![GpuProblem::Lost(format!("The viewport's GPU device was lost ({why})."))],
-                    };
-                    let outcome = match restarted {
-                        Ok(mut view) => {
-                            view.renderer_mut().set_inspected(self.inspected.as_deref());
-                            self.view = Some(view);
-                            self.submitted = None;
-                            self.controller = ScaleController::new();
-                            "the viewport restarted on a new device; the project is unchanged".to_owned()
-                        }
-                        Err(e) => {
-                            self.init_error = Some(e.to_string());
-                            format!("a new device could not be created ({e}); save your work and restart")
-                        }
-                    };
-                    messages.push(GpuProblem::Lost(format!("The viewport's GPU device was lost ({why}): {outcome}.")));
-                    break;
+        for problem in view.problems() {
+            let why = match problem {
+                GpuProblem::Error(e) => {
+                    messages.push(GpuProblem::Error(format!("GPU error in the viewport: {e}")));
+                    continue;
                 }
-            }
+                GpuProblem::Lost(why) => why,
+            };
+            let outcome = match view.restart() {
+                Ok(()) => {
+                    self.submitted = None;
+                    self.controller = ScaleController::new();
+                    "the viewport restarted on a new device; the project is unchanged".to_owned()
+                }
+                Err(e) => {
+                    self.init_error = Some(e.to_string());
+                    self.view = None;
+                    format!("a new device could not be created ({e}); save your work and restart")
+                }
+            };
+            messages.push(GpuProblem::Lost(format!("The viewport's GPU device was lost ({why}): {outcome}.")));
+            break;
         }
         messages
     }
 
-    /// The viewport device's GPU memory in bytes (buffers, textures) and live buffers, textures
-    /// and bind groups (wgpu's internal counters).
+    /// The viewport device's GPU memory and live objects (wgpu's internal counters).
     pub fn gpu_memory(&self) -> Option<GpuMemory> {
-        let c = self.view.as_ref()?.counters();
-        let get = |v: isize| u64::try_from(v).unwrap_or(0);
-        Some(GpuMemory {
-            buffer_bytes: get(c.hal.buffer_memory.read()),
-            texture_bytes: get(c.hal.texture_memory.read()),
-            objects: get(c.hal.buffers.read()) + get(c.hal.textures.read()) + get(c.hal.bind_groups.read()),
-        })
+        self.view.as_ref().map(AsyncView::gpu_memory)
     }
 
     /// Destroys the viewport's device as a driver reset would ("simulate device loss" in the

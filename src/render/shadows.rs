@@ -217,12 +217,10 @@ impl ShadowPass {
             lights.push(GpuLight::new(light, Some(first), texel_factor));
         }
         let layers = (self.layer_matrices.len() as u32).max(1);
-        // Exactly the layers needed: deleting lights gives back their maps (4 MiB a layer at
-        // 1024²); a new array costs nothing next to rendering its layers.
-        let capacity = self.layer_views.len() as u32;
-        if res != self.resolution || layers != capacity {
-            let capacity = layers;
-            (self.texture, self.array_view, self.layer_views) = Self::array(device, res, capacity);
+        // Exactly the layers needed, so deleting lights gives back their maps (4 MiB a layer at
+        // 1024²); the array is made anew only when the resolution or the layer count changes.
+        if res != self.resolution || layers as usize != self.layer_views.len() {
+            (self.texture, self.array_view, self.layer_views) = Self::array(device, res, layers);
             self.resolution = res;
             self.generation += 1;
         }

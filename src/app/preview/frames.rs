@@ -9,7 +9,7 @@
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-use super::health::{DeviceHealth, GpuProblem};
+use super::health::{DeviceHealth, GpuMemory, GpuProblem};
 use crate::render::{RenderError, Renderer, device_descriptor};
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
@@ -61,6 +61,10 @@ pub struct AsyncView {
     waiter: Option<std::sync::mpsc::Sender<()>>,
     /// Errors and loss reported by the device.
     health: DeviceHealth,
+    /// eframe's adapter and the repaint request: what [`AsyncView::restart`] starts over from.
+    source: (wgpu::Adapter, Arc<dyn Fn() + Send + Sync>),
+    /// The buffer the inspector shows (applied again after a restart).
+    inspected: Option<String>,
 }
 
 impl AsyncView {
@@ -69,6 +73,7 @@ impl AsyncView {
     pub fn new(adapter: &wgpu::Adapter, wake: Arc<dyn Fn() + Send + Sync>) -> Result<Self, PreviewError> {
         let (device, queue) = pollster::block_on(adapter.request_device(&device_descriptor(adapter)))?;
         let health = DeviceHealth::watch(&device, Arc::clone(&wake));
+        let source = (adapter.clone(), Arc::clone(&wake));
         let renderer = Renderer::new(&device, &queue)?;
         let (tx, rx) = std::sync::mpsc::channel::<()>();
         let waiting = device.clone();
@@ -85,25 +90,46 @@ impl AsyncView {
                 None
             }
         };
-        Ok(Self { device, renderer, in_flight: None, spare: None, adapter: adapter.get_info(), waiter, health })
+        let info = adapter.get_info();
+        Ok(Self {
+            device,
+            renderer,
+            in_flight: None,
+            spare: None,
+            adapter: info,
+            waiter,
+            health,
+            source,
+            inspected: None,
+        })
     }
 
     /// GPU errors and the device's loss since the last call. After a loss the view is dead:
-    /// drop it and create a new one.
+    /// [`AsyncView::restart`] it.
     pub fn problems(&mut self) -> Vec<GpuProblem> {
         // wgpu runs the loss callback from a poll; an idle view polls nowhere else.
         let _ = self.device.poll(wgpu::PollType::Poll);
-        let problems = self.health.take();
-        if problems.iter().any(|p| matches!(p, GpuProblem::Lost(_))) {
-            // Its mapping never completes on a lost device.
-            self.in_flight = None;
-        }
-        problems
+        self.health.take()
     }
 
-    /// The device's live objects and memory (wgpu's internal counters).
-    pub fn counters(&self) -> wgpu::InternalCounters {
-        self.device.get_internal_counters()
+    /// The device's memory and live objects.
+    pub fn gpu_memory(&self) -> GpuMemory {
+        GpuMemory::of(&self.device)
+    }
+
+    /// Tells the renderer which buffer the inspector shows (kept across a restart).
+    pub fn set_inspected(&mut self, name: Option<&str>) {
+        self.inspected = name.map(str::to_owned);
+        self.renderer.set_inspected(name);
+    }
+
+    /// Starts over on a new device of the same adapter (after a loss); the inspected buffer
+    /// carries over, the frame in flight and the temporal history do not.
+    pub fn restart(&mut self) -> Result<(), PreviewError> {
+        let mut fresh = Self::new(&self.source.0, Arc::clone(&self.source.1))?;
+        fresh.set_inspected(self.inspected.as_deref());
+        *self = fresh;
+        Ok(())
     }
 
     /// Destroys the device as a driver reset would (the "simulate device loss" command and

@@ -18,6 +18,30 @@ pub enum GpuProblem {
     Lost(String),
 }
 
+/// What a device holds, from wgpu's internal counters (the `counters` feature).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GpuMemory {
+    /// Bytes of buffer memory.
+    pub buffer_bytes: u64,
+    /// Bytes of texture memory.
+    pub texture_bytes: u64,
+    /// Live buffers, textures and bind groups.
+    pub objects: u64,
+}
+
+impl GpuMemory {
+    /// `device`'s counters now.
+    pub fn of(device: &wgpu::Device) -> Self {
+        let c = device.get_internal_counters();
+        let get = |v: isize| u64::try_from(v).unwrap_or(0);
+        Self {
+            buffer_bytes: get(c.hal.buffer_memory.read()),
+            texture_bytes: get(c.hal.texture_memory.read()),
+            objects: get(c.hal.buffers.read()) + get(c.hal.textures.read()) + get(c.hal.bind_groups.read()),
+        }
+    }
+}
+
 #[derive(Default)]
 struct Health {
     lost: Option<String>,

@@ -33,4 +33,4 @@ pub mod health;
 
 pub use budget::{LADDER, PreviewSettings, ScaleController, scaled_size};
 pub use frames::{AsyncView, Finished, PreviewError};
-pub use health::GpuProblem;
+pub use health::{GpuMemory, GpuProblem};
