@@ -48,22 +48,24 @@ fn ism_lookup(vpl: Vpl, k: u32, p: vec3<f32>, r: u32, c: u32, inv_d_max: f32) ->
 }
 
 // The point a receiver is looked up at: normal-offset ISM visibility (an extension of the
-// thesis's constant depth bias). A receiver on a surface sampled with point spacing s (one
-// ISM's points) sees its own surface's splats up to about s/2 tan(theta) nearer along a ray at
-// angle theta to its normal, and one atlas texel (angle 4 / r at the paraboloid's centre) adds
-// d 2/r tan(theta). Moving the receiver along its normal by delta gives a depth margin of
-// delta / cos(theta) against its own plane, so delta = s (c + k sin(theta)) + d (2/r) sin(theta)
-// covers both errors, growing at grazing angles as a slope-scaled depth bias does; but the
-// moved point stays on the receiver's side of every other surface, so unlike a depth bias it
-// lets no light through a wall, however grazing the ray (with the depth bias s k tan(theta),
-// k = 0.5, the suite's unlit room read 1.24 of the reference's energy, and 0.29 with k = 0). `p` and `n` are the receiver's position
-// and unit geometric normal, `light` the VPL's position; `b` = (s / d_max, c, k, 2 / r),
-// `inv_d_max` = 1 / d_max.
-fn ism_offset_point(b: vec4<f32>, inv_d_max: f32, light: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+// thesis's constant depth bias). Each ISM's points are spread by solid angle
+// (`ism_select.wgsl`), so on a surface at distance d from the VPL they lie about d sigma apart,
+// sigma = sqrt(W / P) the VPL's angular point spacing (its normal.w). A receiver sees its own
+// surface's splats up to about d sigma / 2 tan(theta) nearer along a ray at angle theta to its
+// normal, and one atlas texel (angle 4 / r at the paraboloid's centre) adds d 2/r tan(theta).
+// Moving the receiver along its normal by delta gives a depth margin of delta / cos(theta)
+// against its own plane, so delta = d (sigma (c + k sin(theta)) + (2/r) sin(theta)) covers
+// both errors, growing at grazing angles as a slope-scaled depth bias does; but the moved point
+// stays on the receiver's side of every other surface, so unlike a depth bias it lets no light
+// through a wall, however grazing the ray. Every term is a fraction of the VPL-receiver
+// distance: the offset means the same at every scene scale. `p` and `n` are the receiver's
+// position and unit geometric normal, `light` the VPL's position, `sigma` its angular spacing;
+// `b` = (unused, c, k, 2 / r).
+fn ism_offset_point(b: vec4<f32>, sigma: f32, light: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let to_light = light - p;
     let d = length(to_light);
     let cos_r = clamp(dot(n, to_light) / max(d, 1.0e-20), 0.0, 1.0);
     let sin_r = sqrt(max(1.0 - cos_r * cos_r, 0.0));
-    let delta = (b.x * (b.y + b.z * sin_r)) / inv_d_max + d * b.w * sin_r;
+    let delta = d * (sigma * (b.y + b.z * sin_r) + b.w * sin_r);
     return p + n * delta;
 }

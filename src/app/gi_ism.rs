@@ -13,8 +13,10 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
                 ui.selectable_value(&mut m.ism_resolution, r, r.to_string());
             }
         });
-        ui.add(egui::Slider::new(&mut m.total_points, 1024..=1 << 20).logarithmic(true).text("sample points"))
-            .on_hover_text("Split over the ISMs (points per ISM = points / VPLs). Too few: holes and light leaks.");
+        ui.add(egui::Slider::new(&mut m.total_points, 1024..=1 << 22).logarithmic(true).text("point pool"))
+            .on_hover_text("Scene sample points every ISM draws from. Too few: coarse detail next to VPLs.");
+        ui.add(egui::Slider::new(&mut m.points_per_ism, 64..=4096).logarithmic(true).text("points per ISM"))
+            .on_hover_text("Drawn by solid angle from each VPL. Too few: holes and light leaks; cost: linear.");
         ui.add(egui::Slider::new(&mut m.interleave, 1..=8).text("interleave n"))
             .on_hover_text("Each pixel sees VPLs / n² VPLs; the n x n filter hides the pattern.");
         ui.add(egui::Slider::new(&mut m.bounces, 1..=6).text("bounces")).on_hover_text("Each extra bounce: one VPL, ISM and shading pass.");

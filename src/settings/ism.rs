@@ -27,10 +27,18 @@ pub struct IsmSettings {
     /// Side of each VPL's paraboloid ISM (64..=256). Cost: atlas memory and pull-push grow with
     /// its square; quality: sharper indirect shadows (needs enough points per ISM).
     pub ism_resolution: u32,
-    /// Scene sample points splatted into the ISMs in all (each ISM gets total / VPLs). Cost:
-    /// linear splatting and bounce selection; quality: fewer holes and light leaks, and a
-    /// smaller lookup bias (it scales with the point spacing sqrt(area / points per ISM)).
+    /// Scene sample points in the pool every ISM draws its points from (stratified by area x
+    /// sampling weight, in clusters of 64). Cost: the per-VPL point choice weighs every
+    /// cluster (linear); quality: finer detail near VPLs (a VPL's points can be no denser than
+    /// the pool's).
     pub total_points: u32,
+    /// Points splatted into each VPL's ISM, drawn from the pool in proportion to the solid
+    /// angle they subtend from that VPL (an extension of the thesis, which gives each ISM an
+    /// equal share of uniformly spread points: at level scale a box next to a VPL then had one
+    /// or two points, and its light leaked through). Cost: splatting and the bounce pass grow
+    /// linearly; quality: fewer holes, a smaller lookup offset (it scales with the angular
+    /// spacing sqrt(2 pi / P)).
+    pub points_per_ism: u32,
     /// Interleave size n (the G-buffer splits into n x n tiles; 1..=8). Cost: none; quality:
     /// each pixel sees N/n^2 VPLs, the n x n filter hides the pattern but blurs detail.
     pub interleave: u32,
@@ -126,7 +134,8 @@ impl Default for IsmSettings {
         Self {
             vpl_count: 256,
             ism_resolution: 128,
-            total_points: 128 * 1024,
+            total_points: 256 * 1024,
+            points_per_ism: 1024,
             interleave: 4,
             base_confidence: 0.9,
             w_position: 20.0,
@@ -161,7 +170,7 @@ impl IsmSettings {
             m.clamp_disk,
             m.splat_radius,
         ];
-        let checks: [(&'static str, bool, String, &'static str); 9] = [
+        let checks: [(&'static str, bool, String, &'static str); 11] = [
             ("ism.vpl_count", (4..=1024).contains(&m.vpl_count), m.vpl_count.to_string(), "4..=1024"),
             (
                 "ism.ism_resolution",
@@ -174,6 +183,13 @@ impl IsmSettings {
                 (1024..=1 << 22).contains(&m.total_points),
                 m.total_points.to_string(),
                 "1024..=4194304",
+            ),
+            ("ism.points_per_ism", (64..=8192).contains(&m.points_per_ism), m.points_per_ism.to_string(), "64..=8192"),
+            (
+                "ism VPLs x points per ISM (one thread each, 64 per workgroup)",
+                u64::from(m.vpl_count) * u64::from(m.points_per_ism) <= 65_535 * 64,
+                format!("{} x {}", m.vpl_count, m.points_per_ism),
+                "<= 4194240",
             ),
             ("ism.interleave", (1..=8).contains(&m.interleave), m.interleave.to_string(), "1..=8"),
             ("ism.base_confidence", (0.0..=1.0).contains(&m.base_confidence), m.base_confidence.to_string(), "0..=1"),

@@ -1,6 +1,6 @@
-// ISM pass P11: one-pass multi-bounce VPL generation (Knecht 2009 section 3.6). Every scene
-// sample point belongs to one VPL of the source set (the same blocks as its ISM); it is lit by
-// that VPL (ISM-tested), and per source VPL one lit point becomes the new VPL, carrying the
+// ISM pass P11: one-pass multi-bounce VPL generation (Knecht 2009 section 3.6). Each VPL of the
+// source set owns the points of its ISM (`ism_select.wgsl`, each with the area it stands for);
+// a point is lit by that VPL (ISM-tested), and per source VPL one lit point becomes the new VPL, carrying the
 // source VPL's whole reflected power in the winner's colour (digest section 6.2):
 // - the thesis's pick: the brightest lit point (its >= depth test, here an atomic max on the
 //   luminance). The total power is right in expectation, but its position is not: the
@@ -13,7 +13,7 @@
 #import common/vpl.wgsl
 
 struct BounceParams {
-    // VPLs per set, points, tile side r, tiles per row C.
+    // VPLs per set, points per ISM P, tile side r, tiles per row C.
     counts: vec4<u32>,
     // source set's first VPL, destination set's first VPL, frame seed, pick (0: brightest,
     // 1: proportional to luminance).
@@ -22,7 +22,7 @@ struct BounceParams {
     params: vec4<f32>,
     // sum over the scene of area x weight, unused x3.
     area: vec4<f32>,
-    // ISM bias: point spacing / d_max, constant and slope factors, 2 / r (see ism_offset_point).
+    // ISM bias: unused, constant and slope factors, 2 / r (see ism_offset_point).
     bias: vec4<f32>,
 }
 
@@ -38,12 +38,14 @@ const PI: f32 = 3.14159265358979;
 @group(0) @binding(5) var<storage, read> atlas: array<u32>;
 // Per source VPL k: [2k] = the winning key's bits, [2k + 1] = the luminance sum.
 @group(0) @binding(6) var<storage, read_write> selection: array<atomic<u32>>;
-// Per point j, written by `pick` and read by `write_winner` (so the winner test
+// Per slot i, written by `pick` and read by `write_winner` (so the winner test
 // compares the very bits the atomic max saw, and each point does one ISM lookup):
-// [2j] = diffusely reflected power rgb, w = source VPL index (-1: none); [2j + 1] = incident power.
+// [2i] = diffusely reflected power rgb, w = source VPL index (-1: none); [2i + 1] = incident power.
 @group(0) @binding(7) var<storage, read_write> lit: array<vec4<f32>>;
 // rgb specular reflectance, w = Blinn-Phong exponent (0: no lobe).
 @group(0) @binding(8) var<storage, read> point_specular: array<vec4<f32>>;
+// Per source VPL k and slot i at k P + i: pool point index (0xffffffff: none), its area's bits.
+@group(0) @binding(9) var<storage, read> chosen: array<vec2<u32>>;
 
 
 // A hash of (point, frame) to a uniform number in (0, 1] (PCG, Jarzynski & Olano 2020).
@@ -62,13 +64,14 @@ fn pick_key(j: u32, y: f32) -> f32 {
     return y / max(-log(uniform01(j, bp.sets.z)), 1.0e-30);
 }
 
-// Power arriving at point j's patch from its source VPL (rgb) and that VPL's index (w).
-fn incident_power(j: u32) -> vec4<f32> {
-    let per = max(bp.counts.y / bp.counts.x, 1u);
-    let k = j / per;
-    if k >= bp.counts.x {
+// Power arriving at slot i's point's patch from its source VPL (rgb) and that VPL's index (w).
+fn incident_power(i: u32) -> vec4<f32> {
+    let k = i / bp.counts.y;
+    let pick = chosen[i];
+    if k >= bp.counts.x || pick.x == 0xffffffffu {
         return vec4<f32>(0.0, 0.0, 0.0, -1.0);
     }
+    let j = pick.x;
     let src = bp.sets.x + k;
     let vpl = vpls[src];
     if vpl.position.w <= 0.0 {
@@ -84,13 +87,13 @@ fn incident_power(j: u32) -> vec4<f32> {
     if cos_s <= 0.0 || cos_r <= 0.0 {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
-    let q = ism_offset_point(bp.bias, bp.params.x, vpl.position.xyz, p, n);
+    let q = ism_offset_point(bp.bias, vpl.normal.w, vpl.position.xyz, p, n);
     let ism = ism_lookup(vpl, src, q, bp.counts.z, bp.counts.w, bp.params.x);
     if ism.depth > bitcast<f32>(atlas[ism.index]) {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
-    // The area this point stands for among its VPL's points: sum(wA) / (per * w).
-    let area = bp.area.x / (f32(per) * max(point_normals[j].w, 1.0e-6));
+    // The area this point stands for among its VPL's points.
+    let area = bitcast<f32>(pick.y);
     // Physical power of the source VPL (its shading power carries the interleave factor n^2),
     // between two disks (the VPL's and the point's patch): clamping d^2 at R_vpl^2 + R_point^2
     // keeps the power a near point receives below what the VPL emits.
@@ -111,11 +114,12 @@ fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(64, 1, 1)
 fn pick(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= bp.counts.y {
+    if id.x >= bp.counts.x * bp.counts.y {
         return;
     }
     let incident = incident_power(id.x);
-    let r = vec4<f32>(point_albedo[id.x].rgb * incident.rgb, incident.w);
+    let j = min(chosen[id.x].x, arrayLength(&point_albedo) - 1u);
+    let r = vec4<f32>(point_albedo[j].rgb * incident.rgb, incident.w);
     lit[2u * id.x] = r;
     lit[2u * id.x + 1u] = incident;
     let y = luminance(r.rgb);
@@ -137,7 +141,7 @@ fn pick(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(64, 1, 1)
 fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x >= bp.counts.y {
+    if id.x >= bp.counts.x * bp.counts.y {
         return;
     }
     let r = lit[2u * id.x];
@@ -151,15 +155,16 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let total = bitcast<f32>(atomicLoad(&selection[2u * k + 1u]));
     let src = vpls[bp.sets.x + k];
-    let p = points[id.x].xyz;
+    let j = chosen[id.x].x;
+    let p = points[j].xyz;
     var out: Vpl;
     // The new VPL stands for every point its source lit: the area of one ISM's points.
     out.position = vec4<f32>(p, max(bp.area.x / (f32(bp.counts.x) * PI), 1.0e-20));
-    out.normal = vec4<f32>(point_normals[id.x].xyz, 0.0);
+    out.normal = vec4<f32>(point_normals[j].xyz, 0.0);
     let scale = (total / y) * bp.params.w;
     out.power = vec4<f32>(r.rgb * scale, 1.0);
     out.incident = vec4<f32>(normalize(src.position.xyz - p), 0.0);
-    let spec = point_specular[id.x];
+    let spec = point_specular[j];
     out.gloss = vec4<f32>(spec.rgb * lit[2u * id.x + 1u].rgb * scale, spec.w);
     vpls[bp.sets.y + k] = out;
 }

@@ -17,7 +17,7 @@ struct ShadeParams {
     params: vec4<f32>,
     // VPL sets (bounces), view width, view height, unused.
     sets: vec4<u32>,
-    // ISM bias: point spacing / d_max, constant and slope factors, 2 / r (see ism_offset_point).
+    // ISM bias: unused, constant and slope factors, 2 / r (see ism_offset_point).
     bias: vec4<f32>,
 }
 
@@ -54,7 +54,7 @@ fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
     if cos_s <= 0.0 || dot(ng, -dir) <= 0.0 {
         return out;
     }
-    let q = ism_offset_point(sh.bias, sh.params.x, vpl.position.xyz, p, ng);
+    let q = ism_offset_point(sh.bias, vpl.normal.w, vpl.position.xyz, p, ng);
     let ism = ism_lookup(vpl, k, q, sh.counts.y, sh.counts.z, sh.params.x);
     if ism.depth > bitcast<f32>(atlas[ism.index]) {
         return out;

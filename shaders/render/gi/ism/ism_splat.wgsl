@@ -1,10 +1,11 @@
 // ISM pass P7: imperfect shadow maps by point splatting (Ritschel et al. 2008 as used by Knecht
-// 2009). Each scene sample point belongs to one VPL (contiguous blocks of points per VPL) and is
-// splatted into that VPL's paraboloid tile of the atlas with an atomic min of its normalised
-// distance (positive floats keep their order as u32). `clear` empties the atlas (1.0).
-// Each bounce's VPL set has its own block of tiles (`sets.x` is the set's first VPL).
+// 2009). Each VPL's own points (`ism_select.wgsl`: P pool points chosen by solid angle, each
+// with the area it stands for) are splatted into that VPL's paraboloid tile of the atlas with
+// an atomic min of their normalised distance (positive floats keep their order as u32). `clear`
+// empties the atlas (1.0). Each bounce's VPL set has its own block of tiles (`sets.x` is the
+// set's first VPL).
 //
-// A point stands for a disk of its surface (the area its ISM's points share), and its splat is
+// A point stands for a disk of its surface (the area it was chosen to stand for), and its splat is
 // that disk's footprint in the paraboloid map: the ellipse spanned by the projections of two
 // tangent radii, widened by half a texel (an EWA-style footprint, so an edge-on disk still
 // writes a line of texels). Screen-aligned squares of the face-on size (the earlier splat)
@@ -16,10 +17,10 @@
 #import common/vpl.wgsl
 
 struct SplatParams {
-    // VPL count, points, tile side r, tiles per row C.
+    // VPL count, points per ISM P, tile side r, tiles per row C.
     counts: vec4<u32>,
-    // 1 / d_max (normalised distance), disk radius^2 at weight 1 (m^2), max splat half-extent
-    // in texels, unused.
+    // 1 / d_max (normalised distance), splat radius^2 / pi (disk radius^2 per m^2 of area),
+    // max splat half-extent in texels, unused.
     params: vec4<f32>,
     // first VPL (and atlas tile) of the set being splatted, unused x3.
     sets: vec4<u32>,
@@ -32,6 +33,8 @@ struct SplatParams {
 @group(0) @binding(3) var<storage, read_write> atlas: array<atomic<u32>>;
 // xyz normal, w = the object's sampling weight.
 @group(0) @binding(4) var<storage, read> point_normals: array<vec4<f32>>;
+// Per VPL k and slot i at k P + i: pool point index (0xffffffff: none), its area's bits.
+@group(0) @binding(5) var<storage, read> chosen: array<vec2<u32>>;
 
 @compute @workgroup_size(8, 8, 1)
 fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -43,22 +46,22 @@ fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(64, 1, 1)
 fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
-    let n_vpl = sp.counts.x;
-    let n_points = sp.counts.y;
-    if id.x >= n_points {
+    let per = sp.counts.y;
+    if id.x >= sp.counts.x * per {
         return;
     }
-    let per = max(n_points / n_vpl, 1u);
     let k = id.x / per;
-    if k >= n_vpl {
+    let pick = chosen[id.x];
+    if pick.x == 0xffffffffu {
         return;
     }
+    let j = pick.x;
     let tile = sp.sets.x + k;
     let vpl = vpls[tile];
     if vpl.position.w <= 0.0 {
         return;
     }
-    let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, points[id.x].xyz);
+    let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, points[j].xyz);
     if pb.w <= 0.0 {
         return;
     }
@@ -68,9 +71,9 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     let origin = vec2<i32>(i32((tile % c) * r), i32((tile / c) * r));
     // The disk's footprint: centre and the images of two orthogonal tangent radii (texels).
     let fr = f32(r);
-    let p = points[id.x].xyz;
-    let nw = point_normals[id.x];
-    let radius = sqrt(sp.params.y / max(nw.w, 1.0e-6));
+    let p = points[j].xyz;
+    let nw = point_normals[j];
+    let radius = sqrt(sp.params.y * bitcast<f32>(pick.y));
     let centre = pb.xy * fr;
     let ta = paraboloid(vpl.position.xyz, vpl.normal.xyz, p + onb_tangent(nw.xyz) * radius).xy * fr - centre;
     let tb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p + onb_bitangent(nw.xyz) * radius).xy * fr - centre;

@@ -1,6 +1,7 @@
-//! ISM passes P7, P8 and P11 on the GPU: splat the scene sample points into the imperfect
-//! shadow map atlas, fill holes by pull-push, and grow each further bounce's VPL set from the
-//! previous one (one-pass multi-bounce). The screen passes that shade with these VPLs and maps
+//! ISM passes P6b, P7, P8 and P11 on the GPU: choose each VPL's points from the scene's point
+//! pool by solid angle, splat them into the imperfect shadow map atlas, fill holes by
+//! pull-push, and grow each further bounce's VPL set from the previous one (one-pass
+//! multi-bounce). The screen passes that shade with these VPLs and maps
 //! live in [`super::screen`], which this type owns and feeds.
 
 use crate::render::layouts::{compute_pipeline, storage_entry, uniform_entry};
@@ -8,7 +9,7 @@ use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::ViewTargets;
 use crate::settings::IsmSettings;
 
-use super::params::{BounceParams, PullPushParams, SplatParams};
+use super::params::{BounceParams, GpuCluster, PullPushParams, SelectParams, SplatParams};
 use super::screen::{IsmInputs, IsmScreen};
 
 /// Pull-push levels below the finest (the thesis: "at least two mip levels"). Four instead of
@@ -38,7 +39,10 @@ struct Key {
     vpls: u32,
     bounces: u32,
     r: u32,
+    /// Pool points.
     points: u32,
+    /// Points per ISM.
+    per_ism: u32,
 }
 
 /// Per scene sample point, in point order, what the ISM passes read.
@@ -52,6 +56,10 @@ pub struct PointData {
     pub albedo: Vec<[f32; 4]>,
     /// Specular reflectance, w = Blinn-Phong exponent (0: no lobe).
     pub specular: Vec<[f32; 4]>,
+    /// The points' clusters (the points above are in their Morton order; [`super::clusters`]).
+    pub clusters: Vec<super::params::GpuCluster>,
+    /// Pool area per point at sampling weight 1 (m^2): a point of weight w stands for this / w.
+    pub area_unit: f32,
 }
 
 /// Bytes of one VPL (`GpuVpl`, WGSL `Vpl`).
@@ -73,6 +81,14 @@ struct Sized {
     specular: wgpu::Buffer,
     selection: wgpu::Buffer,
     lit: wgpu::Buffer,
+    clusters: wgpu::Buffer,
+    /// Clusters uploaded.
+    cluster_count: u32,
+    /// Pool area per point at weight 1 (m^2), as uploaded.
+    area_unit: f32,
+    /// Per VPL and slot: chosen pool point and its area (`ism_select.wgsl`).
+    chosen: wgpu::Buffer,
+    select_group: wgpu::BindGroup,
     /// The atlas before hole filling (inspector copy), when captured.
     splats: Option<wgpu::Buffer>,
     bounce_group: wgpu::BindGroup,
@@ -88,10 +104,10 @@ struct Sized {
 pub struct MapScale {
     /// Distance normalisation of the ISM depths (metres).
     pub d_max: f32,
-    /// ISM lookup bias (`ism_offset_point` in `common/vpl.wgsl`): point spacing / d_max, constant and
-    /// slope factors, 2 / r.
+    /// ISM lookup bias (`ism_offset_point` in `common/vpl.wgsl`): unused, constant and slope
+    /// factors, 2 / r.
     pub bias: [f32; 4],
-    /// Pull-push threshold tau at the finest level in normalised distance (one point spacing).
+    /// Pull-push threshold at the finest level as a fraction of the depth compared.
     pub pull_push: f32,
     /// Sum over the scene of area x sampling weight (m^2).
     pub total_area: f32,
@@ -104,6 +120,9 @@ pub struct IsmGather {
     /// This frame's seed of the bounce passes' random pick (the frame index).
     pub seed: u32,
     splat_layout: wgpu::BindGroupLayout,
+    select_layout: wgpu::BindGroupLayout,
+    select: wgpu::ComputePipeline,
+    select_params: wgpu::Buffer,
     clear: wgpu::ComputePipeline,
     splat: wgpu::ComputePipeline,
     pp_layout: wgpu::BindGroupLayout,
@@ -135,8 +154,20 @@ impl IsmGather {
                 storage_entry(2, c),
                 storage_rw(3),
                 storage_entry(4, c),
+                storage_entry(5, c),
             ],
         });
+        let select_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism point selection layout"),
+            entries: &[
+                uniform_entry(0, c, true),
+                storage_entry(1, c),
+                storage_entry(2, c),
+                storage_rw(3),
+                storage_rw(4),
+            ],
+        });
+        let select_module = shaders::module(device, "render/gi/ism/ism_select.wgsl")?;
         let splat_module = shaders::module(device, "render/gi/ism/ism_splat.wgsl")?;
         let pp_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ism pull-push layout"),
@@ -155,6 +186,7 @@ impl IsmGather {
                 storage_rw(6),
                 storage_rw(7),
                 storage_entry(8, c),
+                storage_entry(9, c),
             ],
         });
         let bounce_module = shaders::module(device, "render/gi/ism/ism_bounce.wgsl")?;
@@ -179,6 +211,9 @@ impl IsmGather {
             pull: compute_pipeline(device, "ism pull", &pp_layout, &pp_module, "pull"),
             push: compute_pipeline(device, "ism push", &pp_layout, &pp_module, "push"),
             splat_params: slots("ism splat params"),
+            select: compute_pipeline(device, "ism point selection", &select_layout, &select_module, "select_points"),
+            select_params: slots("ism point selection params"),
+            select_layout,
             pp_params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ism pull-push params"),
                 size: SLOT * MAX_SETS * PULL_LEVELS as u64,
@@ -233,7 +268,12 @@ impl IsmGather {
         let albedo = storage("ism sample point albedo", u64::from(key.points) * 16);
         let specular = storage("ism sample point specular", u64::from(key.points) * 16);
         let selection = storage("ism bounce selection", u64::from(key.vpls) * 8);
-        let lit = storage("ism bounce lit points", u64::from(key.points) * 32);
+        let slots = u64::from(key.vpls) * u64::from(key.per_ism);
+        let lit = storage("ism bounce lit points", slots * 32);
+        let chosen = storage("ism chosen points", slots * 8);
+        let cluster_count = key.points.div_ceil(super::clusters::CLUSTER_POINTS as u32);
+        let clusters =
+            storage("ism point clusters", u64::from(cluster_count) * std::mem::size_of::<GpuCluster>() as u64);
         fn slot(b: u32, x: &wgpu::Buffer, size: u64) -> wgpu::BindGroupEntry<'_> {
             wgpu::BindGroupEntry {
                 binding: b,
@@ -253,6 +293,18 @@ impl IsmGather {
                 buf(2, &all_vpls),
                 buf(3, &atlas[0]),
                 buf(4, &normals),
+                buf(5, &chosen),
+            ],
+        });
+        let select_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism point selection bind group"),
+            layout: &self.select_layout,
+            entries: &[
+                slot(0, &self.select_params, std::mem::size_of::<SelectParams>() as u64),
+                buf(1, &clusters),
+                buf(2, &normals),
+                buf(3, &all_vpls),
+                buf(4, &chosen),
             ],
         });
         let bounce_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -268,6 +320,7 @@ impl IsmGather {
                 buf(6, &selection),
                 buf(7, &lit),
                 buf(8, &specular),
+                buf(9, &chosen),
             ],
         });
         let pp = |fine: &wgpu::Buffer, coarse: &wgpu::Buffer| {
@@ -295,6 +348,11 @@ impl IsmGather {
             specular,
             selection,
             lit,
+            clusters,
+            cluster_count: 0,
+            area_unit: 0.0,
+            chosen,
+            select_group,
             splats: None,
             bounce_group,
             pull_groups,
@@ -318,7 +376,7 @@ impl IsmGather {
         self.sized.as_ref().map(|s| (s.atlas.as_slice(), s.key.r * Self::tiles_per_row(s.key.vpls * s.key.bounces)))
     }
 
-    /// Sizes the atlas and point buffers for `settings` and `points` sample points; returns a
+    /// Sizes the atlas and point buffers for `settings` and `points` pool points; returns a
     /// generation that changes whenever the buffers were recreated (their point data is then
     /// undefined until [`Self::upload_points`]).
     pub fn prepare(&mut self, device: &wgpu::Device, settings: &IsmSettings, points: u32) -> u64 {
@@ -327,6 +385,7 @@ impl IsmGather {
             bounces: settings.bounces.clamp(1, MAX_SETS as u32),
             r: settings.ism_resolution,
             points,
+            per_ism: settings.points_per_ism,
         };
         self.ensure(device, key);
         self.generation
@@ -334,8 +393,11 @@ impl IsmGather {
 
     /// Uploads the sample points' world positions, normals (w = sampling weight), albedo and
     /// specular lobes; only needed when they or the buffers changed.
-    pub fn upload_points(&self, queue: &wgpu::Queue, points: &PointData) {
-        let Some(s) = &self.sized else { return };
+    pub fn upload_points(&mut self, queue: &wgpu::Queue, points: &PointData) {
+        let Some(s) = &mut self.sized else { return };
+        queue.write_buffer(&s.clusters, 0, bytemuck::cast_slice(&points.clusters));
+        s.cluster_count = points.clusters.len() as u32;
+        s.area_unit = points.area_unit;
         queue.write_buffer(&s.points, 0, bytemuck::cast_slice(&points.positions));
         queue.write_buffer(&s.normals, 0, bytemuck::cast_slice(&points.normals));
         queue.write_buffer(&s.albedo, 0, bytemuck::cast_slice(&points.albedo));
@@ -373,15 +435,20 @@ impl IsmGather {
         }
         let s = &*s;
         let d_max = scale.d_max.max(1e-3);
-        // A point stands for a disk of the area its ISM's points share (over its weight); the
-        // splat is that disk's footprint, its radius scaled by `settings.splat_radius`.
-        let per_ism = (key.points / key.vpls.max(1)).max(1) as f32;
-        let disk_r2 = settings.splat_radius.powi(2) * scale.total_area / (per_ism * std::f32::consts::PI);
+        // A point stands for a disk of the area it was chosen to stand for; the splat is that
+        // disk's footprint, its radius scaled by `settings.splat_radius`.
+        let disk_r2 = settings.splat_radius.powi(2) / std::f32::consts::PI;
         encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(key.vpls) * VPL_BYTES);
         let n2 = (settings.interleave * settings.interleave) as f32;
         let d_min = settings.clamp_distance;
-        let counts = [key.vpls, key.points, key.r, c];
+        let counts = [key.vpls, key.per_ism, key.r, c];
         for b in 0..key.bounces {
+            let select = SelectParams {
+                counts: [key.vpls, key.per_ism, s.cluster_count, b * key.vpls],
+                params: [s.area_unit, 0.0, 0.0, 0.0],
+                seed: [self.seed.wrapping_mul(7).wrapping_add(b), 0, 0, 0],
+            };
+            queue.write_buffer(&self.select_params, u64::from(b) * SLOT, bytemuck::bytes_of(&select));
             let splat = SplatParams {
                 counts,
                 params: [1.0 / d_max, disk_r2, MAX_SPLAT_HALF_EXTENT, 0.0],
@@ -421,6 +488,7 @@ impl IsmGather {
                 queue.write_buffer(&self.pp_params, slot, bytemuck::bytes_of(&params));
             }
         }
+        let slots = key.vpls * key.per_ism;
         let begin_writes =
             timestamps.as_ref().map(|t| if capture { t.compute_begin_writes() } else { t.compute_writes() });
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -440,17 +508,22 @@ impl IsmGather {
                 pass.set_pipeline(&self.bounce_clear);
                 pass.dispatch_workgroups(key.vpls.div_ceil(64), 1, 1);
                 pass.set_pipeline(&self.bounce_select);
-                pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
+                pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
                 pass.set_pipeline(&self.bounce_write);
-                pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
+                pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
                 if b + 1 == key.bounces && settings.bounce_tail {
                     pass.set_pipeline(&self.bounce_tail);
                     pass.dispatch_workgroups(1, 1, 1);
                 }
             }
+            // This set's VPLs choose their points (after the bounce pass, which read the
+            // previous set's choice).
+            pass.set_bind_group(0, &s.select_group, &[(u64::from(b) * SLOT) as u32]);
+            pass.set_pipeline(&self.select);
+            pass.dispatch_workgroups(key.vpls, 1, 1);
             pass.set_bind_group(0, &s.splat_group, &[(u64::from(b) * SLOT) as u32]);
             pass.set_pipeline(&self.splat);
-            pass.dispatch_workgroups(key.points.div_ceil(64), 1, 1);
+            pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
             let (row0, rows) = set_rows(b);
             if let Some(splats) = &s.splats {
                 // Copies may not happen inside a pass: end it, copy this set's rows, go on.
@@ -531,7 +604,17 @@ impl IsmGather {
     /// Bytes of GPU memory held.
     pub fn gpu_bytes(&self) -> u64 {
         let own = self.sized.as_ref().map_or(0, |s| {
-            let buffers = [&s.points, &s.all_vpls, &s.normals, &s.albedo, &s.specular, &s.selection, &s.lit];
+            let buffers = [
+                &s.points,
+                &s.all_vpls,
+                &s.normals,
+                &s.albedo,
+                &s.specular,
+                &s.selection,
+                &s.lit,
+                &s.clusters,
+                &s.chosen,
+            ];
             s.atlas.iter().chain(buffers).chain(&s.splats).map(wgpu::Buffer::size).sum::<u64>()
         });
         own + self.screen.gpu_bytes()

@@ -13,6 +13,7 @@
 //! [`params`]. [`technique`] puts them behind the GI seam; [`points`] builds the sample points'
 //! per-point data.
 
+pub mod clusters;
 pub mod gather;
 pub mod halton;
 pub mod light_tiles;

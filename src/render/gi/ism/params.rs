@@ -6,14 +6,43 @@ use bytemuck::{Pod, Zeroable};
 
 use crate::render::uniforms::GpuLight;
 
+/// `SelectParams` in `ism_select.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct SelectParams {
+    /// VPLs per set, points per ISM P, clusters, first VPL of the set.
+    pub counts: [u32; 4],
+    /// Pool area per point at weight 1 (m^2), unused x3.
+    pub params: [f32; 4],
+    /// Frame seed, unused x3.
+    pub seed: [u32; 4],
+}
+
+/// `Cluster` in `ism_select.wgsl`: pool points `first..first + count` (consecutive in Morton
+/// order), their bounding sphere and total area.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuCluster {
+    /// Centre xyz, radius (m).
+    pub sphere: [f32; 4],
+    /// First pool point.
+    pub first: u32,
+    /// Points in the cluster.
+    pub count: u32,
+    /// Sum of the points' areas (m^2).
+    pub area: f32,
+    /// Padding.
+    pub pad: u32,
+}
+
 /// `SplatParams` in `ism_splat.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct SplatParams {
-    /// VPL count, points, tile side r, tiles per row C.
+    /// VPL count, points per ISM P, tile side r, tiles per row C.
     pub counts: [u32; 4],
-    /// 1 / d_max (normalised distance), disk radius^2 at weight 1 (m^2), max splat half-extent
-    /// in texels, unused.
+    /// 1 / d_max (normalised distance), splat radius^2 / pi (a splat's radius^2 per m^2 of the
+    /// area its point stands for), max splat half-extent in texels, unused.
     pub params: [f32; 4],
     /// First VPL (and atlas tile) of the set being splatted, unused x3.
     pub sets: [u32; 4],
@@ -23,7 +52,7 @@ pub struct SplatParams {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct BounceParams {
-    /// VPLs per set, points, tile side r, tiles per row C.
+    /// VPLs per set, points per ISM P, tile side r, tiles per row C.
     pub counts: [u32; 4],
     /// Source set's first VPL, destination set's first VPL, frame seed, pick
     /// ([`crate::settings::BouncePick`] as u32).
@@ -33,7 +62,7 @@ pub struct BounceParams {
     pub params: [f32; 4],
     /// Sum over the scene of area x weight, unused x3.
     pub area: [f32; 4],
-    /// ISM bias: point spacing / d_max, constant and slope factors, 2 / r (`ism_offset_point`).
+    /// ISM bias: unused, constant and slope factors, 2 / r (`ism_offset_point`).
     pub bias: [f32; 4],
 }
 
@@ -43,7 +72,8 @@ pub struct BounceParams {
 pub struct PullPushParams {
     /// Fine side (texels), level of the fine side (0 = finest), first fine row, unused.
     pub counts: [u32; 4],
-    /// Threshold tau (normalised distance), unused x3.
+    /// Relative threshold tau (two depths more than tau x depth x 2^level apart are two
+    /// surfaces), unused x3.
     pub params: [f32; 4],
 }
 
@@ -65,7 +95,7 @@ pub struct ShadeParams {
     pub params: [f32; 4],
     /// VPL sets (bounces), view width, view height, unused.
     pub sets: [u32; 4],
-    /// ISM bias: point spacing / d_max, constant and slope factors, 2 / r (`ism_offset_point`).
+    /// ISM bias: unused, constant and slope factors, 2 / r (`ism_offset_point`).
     pub bias: [f32; 4],
 }
 
@@ -132,6 +162,8 @@ impl GenParams {
     pub const SIZE: u64 = std::mem::size_of::<Self>() as u64;
 }
 
+const _: () = assert!(std::mem::size_of::<SelectParams>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuCluster>() == 32);
 const _: () = assert!(std::mem::size_of::<SplatParams>() == 48);
 const _: () = assert!(std::mem::size_of::<BounceParams>() == 80);
 const _: () = assert!(std::mem::size_of::<PullPushParams>() == 32);
@@ -145,6 +177,8 @@ const _: () = assert!(std::mem::size_of::<LightViewUniforms>() == 160);
 
 /// (shader file, WGSL struct, size of the Rust mirror) for every ISM parameter block.
 pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
+    ("render/gi/ism/ism_select.wgsl", "SelectParams", std::mem::size_of::<SelectParams>()),
+    ("render/gi/ism/ism_select.wgsl", "Cluster", std::mem::size_of::<GpuCluster>()),
     ("render/gi/ism/ism_splat.wgsl", "SplatParams", std::mem::size_of::<SplatParams>()),
     ("render/gi/ism/ism_bounce.wgsl", "BounceParams", std::mem::size_of::<BounceParams>()),
     ("render/gi/ism/pull_push.wgsl", "PullPushParams", std::mem::size_of::<PullPushParams>()),

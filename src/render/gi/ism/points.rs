@@ -1,6 +1,7 @@
-//! What the ISM passes need to know about each scene sample point: its world position and
-//! normal, its linear albedo (textures by their mean colour), its specular lobe for glossy
-//! bounce VPLs and its object's sampling weight, rebuilt only when something it reads changed.
+//! What the ISM passes need to know about each scene sample point of the pool: its world
+//! position and normal, its linear albedo (textures by their mean colour), its specular lobe for
+//! glossy bounce VPLs and its object's sampling weight, in cluster order with the clusters,
+//! rebuilt only when something it reads changed.
 
 use crate::precompute::sample_points::SamplePoints;
 use crate::render::gi::ism::gather::PointData;
@@ -43,6 +44,11 @@ pub(super) fn point_data(scene: &Scene, points: &SamplePoints, texture_means: &[
         out.albedo.push(a);
         out.specular.push(s);
     }
+    // A pool point of weight w stands for sum(area x weight) / (N w) of the scene's area.
+    let total: f64 = points.weighted_area.iter().sum();
+    out.area_unit = (total / points.points.len().max(1) as f64) as f32;
+    let unit = out.area_unit;
+    out.clusters = super::clusters::build(&mut out, |w| unit / w.max(1e-6));
     out
 }
 

@@ -31,8 +31,6 @@ use crate::settings::{GiMode, IsmSettings, RenderSettings};
 struct PointsKey {
     resources: u64,
     total: u32,
-    /// VPLs per set: one block of points per ISM.
-    blocks: u32,
     objects: Vec<(f32, bool, [f32; 3])>,
 }
 
@@ -204,7 +202,6 @@ impl IsmTechnique {
         let key = PointsKey {
             resources: scene.resources_revision(),
             total: ism.total_points,
-            blocks: ism.vpl_count,
             objects: scene
                 .objects()
                 .iter()
@@ -212,21 +209,21 @@ impl IsmTechnique {
                 .collect(),
         };
         if self.points.as_ref().is_none_or(|(k, _, _)| *k != key) {
-            let points = crate::precompute::sample_points::distribute(
-                scene,
-                ism.total_points as usize,
-                ism.vpl_count as usize,
-                1,
-            );
+            // One stratified pool; each VPL then draws its own points from it by solid angle.
+            let points = crate::precompute::sample_points::distribute(scene, ism.total_points as usize, 1, 1);
             let means = scene.resources().images.iter().map(mean_linear_colour).collect();
             // The ISMs' resolution on the surfaces, in the units the artist works in (once per
             // distribution, not per frame).
-            let (per_ism, spacing) = point_spacing(&points, ism.vpl_count);
             let total = points.weighted_area.iter().sum::<f64>();
+            let pool_spacing = (total / points.points.len().max(1) as f64).sqrt() as f32;
             let unseen = points.unseen_area / (points.unseen_area + total).max(1e-30);
             self.status.progress = Some(format!(
-                "ism: {per_ism:.0} points per ISM, {} apart; {:.0}% of the area faces nothing (no points)",
-                metres(spacing),
+                "ism: {} points per ISM, about {:.1} deg apart, drawn from a pool of {} ({} apart); \
+                 {:.0}% of the area faces nothing (no points)",
+                ism.points_per_ism,
+                angular_spacing(ism.points_per_ism).to_degrees(),
+                points.points.len(),
+                metres(pool_spacing),
                 100.0 * unseen
             ));
             self.points = Some((key, points, means));
@@ -311,20 +308,16 @@ impl GiTechnique for IsmTechnique {
         }
         let diameter = 2.0 * inputs.scene.bounds().map_or(1.0, |b| b.radius());
         let total_area = points.weighted_area.iter().sum::<f64>() as f32;
-        let (_, spacing) = point_spacing(points, settings.vpl_count);
         let scale = MapScale {
             d_max: diameter,
-            bias: [
-                spacing / diameter.max(1e-3),
-                settings.bias_constant,
-                settings.bias_slope,
-                2.0 / settings.ism_resolution as f32,
-            ],
-            // One point spacing (times 2^level in the shader): depths further apart than a
-            // splat's size on the surface are two surfaces, not one to average. It replaces
-            // Ritschel's 5% of the scene extent (by hand from the suite's areas, about the same:
-            // the Cornell box ~0.22 m against 0.17 m, the 60 m hall ~3.2 m against 3.2 m).
-            pull_push: spacing / diameter.max(1e-3),
+            bias: [0.0, settings.bias_constant, settings.bias_slope, 2.0 / settings.ism_resolution as f32],
+            // Two depths more than 15% apart are two surfaces, not one to average (a 2x2 block
+            // of one surface spans that much only beyond ~67 degrees of incidence). It replaces
+            // Ritschel's 5% of the scene extent, which no fixed length can stand for from a
+            // 20 cm diorama to a 60 m hall; a threshold of one angular point spacing (7.8% at
+            // 1024 points per ISM) kept less light (three rooms 1.03 against 1.07, cluttered
+            // room 0.935 against 0.941 of the reference's energy, `ism_probe`, 16 frames).
+            pull_push: PULL_PUSH_RELATIVE,
             total_area,
         };
         self.gather.seed = inputs.frame_index;
@@ -475,12 +468,14 @@ impl GiTechnique for IsmTechnique {
     }
 }
 
-/// Points per ISM and their world spacing, sqrt(area / points per ISM): the size of a splat on
-/// the surface, the unit of the lookup offset and the pull-push threshold.
-fn point_spacing(points: &crate::precompute::sample_points::SamplePoints, vpl_count: u32) -> (f32, f32) {
-    let total_area = points.weighted_area.iter().sum::<f64>() as f32;
-    let per_ism = (points.points.len() as f32 / vpl_count.max(1) as f32).max(1.0);
-    (per_ism, (total_area / per_ism).sqrt())
+/// Pull-push threshold: the relative depth difference that separates two surfaces.
+const PULL_PUSH_RELATIVE: f32 = 0.15;
+
+/// The angular spacing of `per_ism` points spread evenly over a VPL's hemisphere,
+/// sqrt(2 pi / P) radians (each VPL's own spacing, sqrt(W / P) with W the solid angle its
+/// geometry subtends counted through occluders, is its `normal.w`; `ism_select.wgsl`).
+fn angular_spacing(per_ism: u32) -> f32 {
+    (std::f32::consts::TAU / per_ism.max(1) as f32).sqrt()
 }
 
 /// A length for the viewport's status line: metres, centimetres or millimetres.

@@ -1,0 +1,202 @@
+//! An oracle for ISM visibility: renders `ism` on a suite scene (or a `.gltf`) and checks its
+//! imperfect shadow maps against rays through the scene's BVH, per bounce set:
+//! - per atlas texel (every fourth VPL), the share of cosine-weighted directions whose stored
+//!   depth is a false occluder (nearer than the first hit) or a hole (farther);
+//! - per (receiver, VPL) pair, receivers spread over the surfaces by area, the lit share the
+//!   ISM lookups give against the rays', with false shadow and false light (`CROSS=1` on the
+//!   three rooms: only pairs in different rooms, i.e. light through doorways);
+//! - the power the first set's VPLs hand to the second (bounce pass) against the power they
+//!   reflect with exact visibility.
+//!
+//! `cargo run --release --example ism_oracle -- clutter "(bounces: 3)"`
+use bouncelab::precompute::bvh::SceneBvh;
+use bouncelab::render::gi::ism::technique::IsmTechnique;
+use bouncelab::render::{GpuContext, Renderer};
+use bouncelab::settings::{GiMode, IsmSettings};
+use bouncelab::suite;
+use glam::Vec3;
+use std::path::Path;
+
+fn onb(n: Vec3) -> (Vec3, Vec3) {
+    let s = if n.z >= 0.0 { 1.0 } else { -1.0 };
+    let a = -1.0 / (s + n.z);
+    let b = n.x * n.y * a;
+    (Vec3::new(1.0 + s * n.x * n.x * a, s * b, -s * n.x), Vec3::new(b, s + n.y * n.y * a, -n.y))
+}
+
+fn main() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().collect();
+    let name = &args[1];
+    let ism: IsmSettings = ron::from_str(&args[2])?;
+    let ctx = GpuContext::new_headless()?;
+    let mut project = if name.ends_with(".gltf") {
+        bouncelab::project_file::Project::from_gltf(Path::new(name))?
+    } else {
+        suite::scene(name)?.load(Path::new("."))?
+    };
+    project.render.ism = ism.clone();
+    project.render.mode = GiMode::Ism;
+    let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
+    for _ in 0..2 {
+        r.render(&project.scene, &project.render, (128, 72))?;
+    }
+    let atlas = r.read_buffer("ism_atlas")?;
+    let t = r.technique_as::<IsmTechnique>().expect("ism");
+    let vpls = t.read_all_vpls(r.device(), r.queue())?;
+    let bvh = SceneBvh::build(&project.scene);
+    let d_max = 2.0 * project.scene.bounds().map_or(1.0, |b| b.radius());
+    let res = ism.ism_resolution as usize;
+    let c = atlas.width as usize / res;
+    let n = ism.vpl_count as usize;
+    for set in 0..ism.bounces as usize {
+        let (mut w_all, mut w_false, mut w_hole, mut w_near) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for k in (0..n).step_by(4) {
+            let tile = set * n + k;
+            let v = vpls[tile];
+            if v.position[3] <= 0.0 {
+                continue;
+            }
+            let o = Vec3::from_slice(&v.position[..3]);
+            let nn = Vec3::from_slice(&v.normal[..3]);
+            let (tx_, bx) = onb(nn);
+            let (tx, ty) = ((tile % c) * res, (tile / c) * res);
+            for y in 0..res {
+                for x in 0..res {
+                    let s = glam::Vec2::new(
+                        (x as f32 + 0.5) / res as f32 * 2.0 - 1.0,
+                        (y as f32 + 0.5) / res as f32 * 2.0 - 1.0,
+                    );
+                    let ss = s.dot(s);
+                    if ss > 1.0 {
+                        continue;
+                    }
+                    let l = Vec3::new(2.0 * s.x, 2.0 * s.y, 1.0 - ss) / (1.0 + ss);
+                    let dir = (tx_ * l.x + bx * l.y + nn * l.z).normalize();
+                    let w = f64::from(l.z * (1.0 + l.z) * (1.0 + l.z));
+                    let hit = bvh.intersect(o + nn * 1e-4, dir, 1e30);
+                    let truth = hit.map_or(f32::INFINITY, |h| h.t);
+                    let d = atlas.pixels[(ty + y) * atlas.width as usize + tx + x][0];
+                    let ism_t = if d >= 1.0 { f32::INFINITY } else { d * d_max };
+                    w_all += w;
+                    if ism_t < 0.8 * truth - 0.02 * d_max {
+                        w_false += w;
+                        if ism_t < 0.05 * d_max {
+                            w_near += w;
+                        }
+                    } else if ism_t > 1.25 * truth + 0.02 * d_max {
+                        w_hole += w;
+                    }
+                }
+            }
+        }
+        println!(
+            "{name} set {set}: false occluder {:.4} (near {:.4})  hole {:.4}",
+            w_false / w_all,
+            w_near / w_all,
+            w_hole / w_all
+        );
+    }
+    // Lookup oracle: receivers on the surfaces, set-0 VPLs, ISM visibility against BVH rays.
+    let receivers = bouncelab::precompute::sample_points::distribute(&project.scene, 20000, 1, 9);
+    let recv = receivers.world(&project.scene);
+    for set in 0..ism.bounces as usize {
+        let (mut w_true, mut w_ism, mut w_fs, mut w_fl) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for k in (0..n).step_by(4) {
+            let tile = set * n + k;
+            let v = vpls[tile];
+            if v.position[3] <= 0.0 {
+                continue;
+            }
+            let o = Vec3::from_slice(&v.position[..3]);
+            let nn = Vec3::from_slice(&v.normal[..3]);
+            let sigma = v.normal[3];
+            let (tx_, bx) = onb(nn);
+            let (tx, ty) = ((tile % c) * res, (tile / c) * res);
+            for (p, pn) in &recv {
+                let to_p = *p - o;
+                let d = to_p.length();
+                let dir = to_p / d;
+                let cos_s = nn.dot(dir);
+                let cos_r = pn.dot(-dir);
+                if cos_s <= 0.0 || cos_r <= 0.0 || d < 1e-3 {
+                    continue;
+                }
+                if std::env::var_os("CROSS").is_some() && (p.x / 5.2).floor() == (o.x / 5.2).floor() {
+                    continue;
+                }
+                let w = f64::from(cos_s * cos_r / (d * d).max(0.01));
+                let vis_true = !bvh.occluded(*p + *pn * 1e-4, -dir, d - 2e-4 - 1e-4);
+                let sin_r = (1.0 - cos_r * cos_r).max(0.0).sqrt();
+                let delta = d * (sigma * (ism.bias_constant + ism.bias_slope * sin_r) + 2.0 / res as f32 * sin_r);
+                let q = *p + *pn * delta;
+                let qq = q - o;
+                let qd = qq.length();
+                let lv = Vec3::new(qq.dot(tx_), qq.dot(bx), qq.dot(nn)) / qd.max(1e-9);
+                let uv = glam::Vec2::new(lv.x, lv.y) / (1.0 + lv.z) * 0.5 + glam::Vec2::splat(0.5);
+                let t = ((uv * res as f32).floor().max(glam::Vec2::ZERO)).min(glam::Vec2::splat(res as f32 - 1.0));
+                let stored = atlas.pixels[(ty + t.y as usize) * atlas.width as usize + tx + t.x as usize][0];
+                let vis_ism = qd / d_max <= stored;
+                if vis_true {
+                    w_true += w;
+                }
+                if vis_ism {
+                    w_ism += w;
+                }
+                if vis_true && !vis_ism {
+                    w_fs += w;
+                }
+                if !vis_true && vis_ism {
+                    w_fl += w;
+                }
+            }
+        }
+        println!(
+            "{name} set {set} lookups: ism/true {:.3}  false shadow {:.3}  false light {:.3} (of true)",
+            w_ism / w_true,
+            w_fs / w_true,
+            w_fl / w_true
+        );
+    }
+    // Bounce oracle: power each set-0 VPL reflects (true visibility, receivers by area) against
+    // the power of the set-1 VPL it made.
+    if ism.bounces > 1 {
+        let total_area: f64 = receivers.weighted_area.iter().sum();
+        let a_recv = total_area / recv.len() as f64;
+        let n2 = (ism.interleave * ism.interleave) as f64;
+        let lum = |c: [f32; 4]| 0.2126 * f64::from(c[0]) + 0.7152 * f64::from(c[1]) + 0.0722 * f64::from(c[2]);
+        let (mut sum_gpu, mut sum_true) = (0.0f64, 0.0f64);
+        for k in 0..n {
+            let v = vpls[k];
+            if v.position[3] <= 0.0 {
+                continue;
+            }
+            let o = Vec3::from_slice(&v.position[..3]);
+            let nn = Vec3::from_slice(&v.normal[..3]);
+            let mut e = 0.0f64;
+            for (ri, (p, pn)) in recv.iter().enumerate() {
+                let to_p = *p - o;
+                let d = to_p.length();
+                let dir = to_p / d;
+                let cos_s = nn.dot(dir);
+                let cos_r = pn.dot(-dir);
+                if cos_s <= 0.0 || cos_r <= 0.0 || d < 1e-3 {
+                    continue;
+                }
+                if bvh.occluded(*p + *pn * 1e-4, -dir, d - 3e-4) {
+                    continue;
+                }
+                let obj = &project.scene.objects()[receivers.points[ri].object as usize];
+                let m = project.scene.materials().get(obj.material).cloned().unwrap_or_default();
+                let alb = lum([m.base_color[0], m.base_color[1], m.base_color[2], 1.0]);
+                let r2 = f64::from(v.position[3]) + a_recv / std::f64::consts::PI;
+                e += alb * lum(v.power) / n2 / std::f64::consts::PI * f64::from(cos_s * cos_r)
+                    / (f64::from(d * d)).max(r2)
+                    * a_recv;
+            }
+            sum_true += e;
+            sum_gpu += lum(vpls[n + k].power) / n2;
+        }
+        println!("{name} bounce power set1/true {:.3}", sum_gpu / sum_true);
+    }
+    Ok(())
+}

@@ -1,0 +1,155 @@
+// ISM pass P6b: each VPL's own point set, sampled from the scene's point pool in proportion to
+// the solid angle it subtends from the VPL (an extension of Ritschel et al. 2008 in the spirit
+// of Hollander et al. 2011's ManyLoDs: detail where the VPL looks closely). The thesis gives
+// every ISM the same share of uniformly spread points; at level scale that leaves a box next to
+// a VPL with one or two points, a hole through which its light leaks (measured against BVH
+// rays: 31% of the cosine-weighted directions of a cluttered room's first-bounce ISMs were
+// holes at 4096 uniform points per ISM). Here every ISM gets about the same number of points
+// per steradian wherever its geometry lies.
+//
+// The pool is grouped in clusters of nearby points (Morton order, 64 points, bounding sphere).
+// One workgroup per VPL weighs every cluster by the projected solid angle it subtends (`weight`),
+// scans the weights, and draws P points by systematic sampling: P equally
+// spaced positions on the weights' CDF with one random offset per VPL and frame, each taking
+// the point at the same relative position inside its cluster (so the points are stratified in
+// space too). A chosen point stands for the area a_j n_c W / (P w_c) (a_j: its own pool area,
+// w_c: the cluster's weight, W: their sum), so sums over the chosen points estimate surface
+// integrals without bias; the same points feed the splats (their disks) and the bounce pass
+// (the power they reflect). The VPL's normal.w receives sqrt(W / P): the points' angular
+// spacing, the lookup offset's unit (`ism_offset_point`).
+#import common/vpl.wgsl
+
+struct SelectParams {
+    // VPLs per set, points per ISM P, clusters, first VPL of the set.
+    counts: vec4<u32>,
+    // pool area per point at weight 1 (m^2), unused x3.
+    params: vec4<f32>,
+    // frame seed, unused x3.
+    seed: vec4<u32>,
+}
+
+struct Cluster {
+    // Bounding sphere: centre, radius.
+    sphere: vec4<f32>,
+    first: u32,
+    count: u32,
+    // Sum of its points' areas (m^2).
+    area: f32,
+    pad: u32,
+}
+
+@group(0) @binding(0) var<uniform> sp: SelectParams;
+@group(0) @binding(1) var<storage, read> clusters: array<Cluster>;
+// xyz normal, w = the object's sampling weight.
+@group(0) @binding(2) var<storage, read> point_normals: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read_write> vpls: array<Vpl>;
+// Per VPL k and slot i at k P + i: x = pool point index (0xffffffff: none), y = its area bits.
+@group(0) @binding(4) var<storage, read_write> chosen: array<vec2<u32>>;
+
+const GROUP: u32 = 256u;
+const NONE: u32 = 0xffffffffu;
+
+var<workgroup> prefix: array<f32, 256>;
+
+// Weight of cluster c seen from a VPL at o with normal n: its projected solid angle, area x
+// cos / max(d^2, r^2), with the cosine of its nearest point to the VPL's plane (so a cluster
+// straddling that plane keeps a share) and zero when it lies wholly behind. The cosine matters:
+// by solid angle alone, the VPL's own surface (all of it on the map's rim, where it occludes
+// nothing) took most of the points, about log(extent / r) times any other surface's share.
+fn weight(c: Cluster, o: vec3<f32>, n: vec3<f32>) -> f32 {
+    let v = c.sphere.xyz - o;
+    let r = c.sphere.w;
+    let up = dot(v, n) + r;
+    if up <= 0.0 || c.count == 0u {
+        return 0.0;
+    }
+    let d = max(length(v), r);
+    return c.area * min(up / max(d, 1.0e-6), 1.0) / max(d * d, 1.0e-12);
+}
+
+// A hash of (VPL, frame) to [0, 1) (PCG, Jarzynski & Olano 2020).
+fn offset01(k: u32, seed: u32) -> f32 {
+    var v = k * 747796405u + 2891336453u + seed * 277803737u;
+    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
+    v = (v >> 22u) ^ v;
+    return f32(v >> 8u) / 16777216.0;
+}
+
+@compute @workgroup_size(256, 1, 1)
+fn select_points(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    let k = wid.x;
+    let p_count = sp.counts.y;
+    let n_clusters = sp.counts.z;
+    let vpl = vpls[sp.counts.w + k];
+    let alive = vpl.position.w > 0.0;
+    let o = vpl.position.xyz;
+    let n = vpl.normal.xyz;
+    let per = (n_clusters + GROUP - 1u) / GROUP;
+    let lo = min(lid * per, n_clusters);
+    let hi = min(lo + per, n_clusters);
+    var own = 0.0;
+    for (var c = lo; c < hi; c = c + 1u) {
+        own = own + weight(clusters[c], o, n);
+    }
+    prefix[lid] = own;
+    workgroupBarrier();
+    // Inclusive scan (Hillis-Steele).
+    for (var off = 1u; off < GROUP; off = off * 2u) {
+        var v = prefix[lid];
+        if lid >= off {
+            v = v + prefix[lid - off];
+        }
+        workgroupBarrier();
+        prefix[lid] = v;
+        workgroupBarrier();
+    }
+    let total = prefix[GROUP - 1u];
+    let base = k * p_count;
+    if !alive || total <= 0.0 {
+        for (var i = lid; i < p_count; i = i + GROUP) {
+            chosen[base + i] = vec2<u32>(NONE, 0u);
+        }
+        if lid == 0u {
+            vpls[sp.counts.w + k].normal.w = 0.0;
+        }
+        return;
+    }
+    if lid == 0u {
+        vpls[sp.counts.w + k].normal.w = sqrt(total / f32(p_count));
+    }
+    // Samples u_i = (i + xi) W / P in [start, end) are this thread's; neighbouring threads
+    // share the boundary value bit for bit, so every slot is written exactly once.
+    var start = 0.0;
+    if lid > 0u {
+        start = prefix[lid - 1u];
+    }
+    let end = prefix[lid];
+    let xi = offset01(k, sp.seed.x);
+    let scale = f32(p_count) / total;
+    let i0 = u32(max(ceil(start * scale - xi), 0.0));
+    let i1 = min(u32(max(ceil(end * scale - xi), 0.0)), p_count);
+    var c = lo;
+    var acc = start;
+    var w = 0.0;
+    if c < hi {
+        w = weight(clusters[c], o, n);
+    }
+    for (var i = i0; i < i1; i = i + 1u) {
+        let u = (f32(i) + xi) / scale;
+        while c + 1u < hi && (acc + w <= u || w <= 0.0) {
+            acc = acc + w;
+            c = c + 1u;
+            w = weight(clusters[c], o, n);
+        }
+        let cl = clusters[min(c, n_clusters - 1u)];
+        if w <= 0.0 || cl.count == 0u {
+            chosen[base + i] = vec2<u32>(NONE, 0u);
+            continue;
+        }
+        let f = clamp((u - acc) / w, 0.0, 0.99999);
+        let j = cl.first + min(u32(f * f32(cl.count)), cl.count - 1u);
+        let a = sp.params.x / max(point_normals[j].w, 1.0e-6);
+        let area = a * f32(cl.count) * total / (f32(p_count) * w);
+        chosen[base + i] = vec2<u32>(j, bitcast<u32>(area));
+    }
+}
