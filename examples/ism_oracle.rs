@@ -124,6 +124,13 @@ fn main() -> anyhow::Result<()> {
                 if std::env::var_os("CROSS").is_some() && (p.x / 5.2).floor() == (o.x / 5.2).floor() {
                     continue;
                 }
+                // PAIR=a,b: only VPLs in room a and receivers in room b (x / 5.2).
+                if let Ok(pair) = std::env::var("PAIR") {
+                    let rooms: Vec<f32> = pair.split(',').filter_map(|v| v.parse().ok()).collect();
+                    if rooms.len() == 2 && ((o.x / 5.2).floor() != rooms[0] || (p.x / 5.2).floor() != rooms[1]) {
+                        continue;
+                    }
+                }
                 let w = f64::from(cos_s * cos_r / (d * d).max(0.01));
                 let vis_true = !bvh.occluded(*p + *pn * 1e-4, -dir, d - 2e-4 - 1e-4);
                 let sin_r = (1.0 - cos_r * cos_r).max(0.0).sqrt();
@@ -157,46 +164,80 @@ fn main() -> anyhow::Result<()> {
             w_fl / w_true
         );
     }
-    // Bounce oracle: power each set-0 VPL reflects (true visibility, receivers by area) against
-    // the power of the set-1 VPL it made.
-    if ism.bounces > 1 {
-        let total_area: f64 = receivers.weighted_area.iter().sum();
-        let a_recv = total_area / recv.len() as f64;
-        let n2 = (ism.interleave * ism.interleave) as f64;
-        let lum = |c: [f32; 4]| 0.2126 * f64::from(c[0]) + 0.7152 * f64::from(c[1]) + 0.0722 * f64::from(c[2]);
-        let (mut sum_gpu, mut sum_true) = (0.0f64, 0.0f64);
-        for k in 0..n {
-            let v = vpls[k];
-            if v.position[3] <= 0.0 {
-                continue;
-            }
-            let o = Vec3::from_slice(&v.position[..3]);
-            let nn = Vec3::from_slice(&v.normal[..3]);
-            let mut e = 0.0f64;
-            for (ri, (p, pn)) in recv.iter().enumerate() {
-                let to_p = *p - o;
-                let d = to_p.length();
-                let dir = to_p / d;
-                let cos_s = nn.dot(dir);
-                let cos_r = pn.dot(-dir);
-                if cos_s <= 0.0 || cos_r <= 0.0 || d < 1e-3 {
-                    continue;
-                }
-                if bvh.occluded(*p + *pn * 1e-4, -dir, d - 3e-4) {
-                    continue;
-                }
-                let obj = &project.scene.objects()[receivers.points[ri].object as usize];
-                let m = project.scene.materials().get(obj.material).cloned().unwrap_or_default();
-                let alb = lum([m.base_color[0], m.base_color[1], m.base_color[2], 1.0]);
-                let r2 = f64::from(v.position[3]) + a_recv / std::f64::consts::PI;
-                e += alb * lum(v.power) / n2 / std::f64::consts::PI * f64::from(cos_s * cos_r)
-                    / (f64::from(d * d)).max(r2)
-                    * a_recv;
-            }
-            sum_true += e;
-            sum_gpu += lum(vpls[n + k].power) / n2;
+    // Bounce oracle over FRAMES frames (default 1): power each set's VPLs reflect (true
+    // visibility, receivers by area) against the power of the next set's VPLs they made.
+    let frames: usize = std::env::var("FRAMES").ok().and_then(|v| v.parse().ok()).unwrap_or(1);
+    let sets = ism.bounces.saturating_sub(1) as usize;
+    let mut acc = vec![([0.0f64; 3], [0.0f64; 3]); sets];
+    let mut vpls = vpls;
+    for f in 0..frames {
+        if f > 0 {
+            r.render(&project.scene, &project.render, (128, 72))?;
+            let t = r.technique_as::<IsmTechnique>().expect("ism");
+            vpls = t.read_all_vpls(r.device(), r.queue())?;
         }
-        println!("{name} bounce power set1/true {:.3}", sum_gpu / sum_true);
+        for (src, a) in acc.iter_mut().enumerate() {
+            let (g, t) = bounce_by_room(&project, &bvh, &receivers, &recv, &vpls, &ism, src);
+            (0..3).for_each(|i| {
+                a.0[i] += g[i];
+                a.1[i] += t[i];
+            });
+        }
+    }
+    for (src, (g, t)) in acc.iter().enumerate() {
+        println!("{name} bounce power set{}/true {:.3}", src + 1, g.iter().sum::<f64>() / t.iter().sum::<f64>());
+        if std::env::var_os("CROSS").is_some() {
+            println!("{name} bounce power by room x / 5.2, set{}/true: {:?}", src + 1, [0, 1, 2].map(|i| g[i] / t[i]));
+        }
     }
     Ok(())
+}
+
+/// Power set `src`'s VPLs hand to set `src + 1` (GPU) and the power they reflect with exact
+/// visibility (receivers by area), each by room of the three rooms (x / 5.2).
+#[allow(clippy::too_many_arguments)]
+fn bounce_by_room(
+    project: &bouncelab::project_file::Project,
+    bvh: &SceneBvh,
+    receivers: &bouncelab::precompute::sample_points::SamplePoints,
+    recv: &[(Vec3, Vec3)],
+    vpls: &[bouncelab::render::gi::ism::vpl_pass::GpuVpl],
+    ism: &IsmSettings,
+    src: usize,
+) -> ([f64; 3], [f64; 3]) {
+    let n = ism.vpl_count as usize;
+    let total_area: f64 = receivers.weighted_area.iter().sum();
+    let a_recv = total_area / recv.len() as f64;
+    let n2 = (ism.interleave * ism.interleave) as f64;
+    let lum = |c: [f32; 4]| 0.2126 * f64::from(c[0]) + 0.7152 * f64::from(c[1]) + 0.0722 * f64::from(c[2]);
+    let room = |x: f32| ((x / 5.2).floor().clamp(0.0, 2.0)) as usize;
+    let (mut room_gpu, mut room_true) = ([0.0f64; 3], [0.0f64; 3]);
+    for k in 0..n {
+        let v = vpls[src * n + k];
+        if v.position[3] <= 0.0 {
+            continue;
+        }
+        let o = Vec3::from_slice(&v.position[..3]);
+        let nn = Vec3::from_slice(&v.normal[..3]);
+        for (ri, (p, pn)) in recv.iter().enumerate() {
+            let to_p = *p - o;
+            let d = to_p.length();
+            let dir = to_p / d;
+            let cos_s = nn.dot(dir);
+            let cos_r = pn.dot(-dir);
+            if cos_s <= 0.0 || cos_r <= 0.0 || d < 1e-3 || bvh.occluded(*p + *pn * 1e-4, -dir, d - 3e-4) {
+                continue;
+            }
+            let obj = &project.scene.objects()[receivers.points[ri].object as usize];
+            let m = project.scene.materials().get(obj.material).cloned().unwrap_or_default();
+            let alb = lum([m.base_color[0], m.base_color[1], m.base_color[2], 1.0]);
+            let r2 = f64::from(v.position[3]) + a_recv / std::f64::consts::PI;
+            room_true[room(p.x)] += alb * lum(v.power) / n2 / std::f64::consts::PI * f64::from(cos_s * cos_r)
+                / f64::from(d * d).max(r2)
+                * a_recv;
+        }
+        let next = vpls[(src + 1) * n + k];
+        room_gpu[room(next.position[0])] += lum(next.power) / n2;
+    }
+    (room_gpu, room_true)
 }

@@ -5,6 +5,7 @@
 pub mod brdf;
 pub mod bvh;
 pub mod facing;
+pub mod open_edges;
 pub mod pathtracer;
 pub mod rng;
 pub mod sample_points;

@@ -10,14 +10,16 @@ pub const MAX_ATLAS_SIDE: u32 = 5792;
 
 /// Settings of the ISM techniques (`ism`, `ism-ritschel`; Knecht 2009). Defaults are the
 /// thesis's where it gives them (256 VPLs, 128^2 ISMs, c_base 0.9, alpha 0.01, beta 0.8) and
-/// measured elsewhere: 128k points instead of the thesis's 32k (128 points per ISM let light
-/// through the Cornell box's blocks: +8% energy with a spot on the floor, 512 per ISM bring it
-/// within 2%), a distance clamp scaled by each VPL's patch instead of 1 world unit, a
-/// normal-offset ISM lookup in units of the point spacing instead of a depth bias that is a
-/// fraction of the scene diameter, stratified point blocks on the faces that see any geometry
-/// only, splats sized as each point's surface disk with its plane's depth per texel, the next
-/// bounce's VPL picked in proportion to its power instead of the brightest, and a geometric
-/// tail after the last bounce (`docs/QUALITY.md` has the figures).
+/// measured elsewhere: each VPL draws 1024 points from a 256k-point pool in proportion to the
+/// projected solid angle they cover (the thesis gives every ISM an equal share of 32k evenly
+/// spread points, which at level scale left a crate beside a VPL with one or two points), a
+/// distance clamp scaled by each VPL's patch instead of 1 world unit, a normal-offset ISM
+/// lookup in units of the VPL's angular point spacing instead of a depth bias that is a
+/// fraction of the scene diameter, points on the faces that see any geometry only, splats
+/// sized as each point's surface disk with its plane's depth per texel and clipped at the
+/// surface's open edges, pull-push that fills only empty texels, the next bounce's VPL picked
+/// in proportion to its power instead of the brightest, and a geometric tail after the last
+/// bounce (`docs/QUALITY.md` has the figures).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct IsmSettings {
@@ -65,13 +67,15 @@ pub struct IsmSettings {
     /// Which lit point of a VPL's sample points becomes the next bounce's VPL. Free (one hash
     /// and a log per point).
     pub bounce_pick: BouncePick,
-    /// Radius of each sample point's ISM splat as a fraction of the radius of the disk it stands
-    /// for (the area one ISM's points share, over the point's weight); the splat is that disk's
-    /// elliptical footprint in the paraboloid map. Free at these sizes. Smaller: holes that
-    /// let light through walls; larger: occluders dilated by about that radius, closing
-    /// doorways and darkening contacts. Measured on the suite (`examples/ism_probe.rs`): the
-    /// unlit room behind two doorways read 1.31 / 1.06 / 0.89 of the reference's energy at
-    /// 0.7 / 0.75 / 0.8, the 60 m hall 0.905 / 0.894 / 0.882 (and 0.957 at 0.5).
+    /// Radius of each point's ISM splat as a fraction of the radius of the disk it stands for
+    /// (the area it was chosen to stand for); the splat is that disk's elliptical footprint in
+    /// the paraboloid map, clipped at its surface's open edges. Free at these sizes. Smaller:
+    /// holes that let light through walls; larger: occluders dilated where they end at seams
+    /// and at the map's resolution. Measured with `examples/ism_probe.rs` (mean of 16 frames,
+    /// `PROBE_AVG=1`): the held-out four-room flat read 2.36 / 1.28 / 1.04 of the reference's
+    /// energy at 1.0 / 1.15 / 1.25, the suite's unlit room behind two doorways 0.94 / 0.69 /
+    /// 0.66 (of which 0.88 / 0.61 / 0.57 in the unlit room alone), the Cornell box 0.99 at all
+    /// three.
     pub splat_radius: f32,
     /// Geometry-aware filter threshold alpha: a neighbour farther than alpha x the scene
     /// diameter from the pixel's tangent plane is rejected (the thesis's 0.01, applied along
@@ -147,7 +151,7 @@ impl Default for IsmSettings {
             sh_filter: false,
             bounce_tail: true,
             bounce_pick: BouncePick::Proportional,
-            splat_radius: 0.75,
+            splat_radius: 1.0,
             clamp_distance: 0.0,
             clamp_disk: 0.25,
             bias_constant: 0.1,

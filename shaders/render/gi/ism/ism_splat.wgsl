@@ -35,6 +35,11 @@ struct SplatParams {
 @group(0) @binding(4) var<storage, read> point_normals: array<vec4<f32>>;
 // Per VPL k and slot i at k P + i: pool point index (0xffffffff: none), its area's bits.
 @group(0) @binding(5) var<storage, read> chosen: array<vec2<u32>>;
+// CLIPS lines per pool point in the point's plane: xyz inward direction, w offset; a texel whose
+// ray meets the plane at h is on the surface when dot(xyz, h) >= w for all (`open_edges.rs`).
+@group(0) @binding(6) var<storage, read> clips: array<vec4<f32>>;
+
+const CLIPS: u32 = 4u;
 
 @compute @workgroup_size(8, 8, 1)
 fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -93,8 +98,15 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
             let inside = (m11 * q.x * q.x - 2.0 * m01 * q.x * q.y + m00 * q.y * q.y) <= det;
             let own = x == i32(centre.x) && y == i32(centre.y);
             if inside || own {
+                let dir = texel_ray(frame, (vec2<f32>(f32(x), f32(y)) + 0.5) / fr);
+                let hit = plane_hit(o, dir, p, nw.xyz);
+                // Texels whose ray meets the plane past the surface's open edges (over a
+                // doorway, past a wall's end) show no surface: the disk does not hang there.
+                if !own && hit > 0.0 && !on_surface(j, o + dir * hit, radius) {
+                    continue;
+                }
                 let a = origin + vec2<i32>(x, y);
-                let t = disk_depth(o, frame, (vec2<f32>(f32(x), f32(y)) + 0.5) / fr, p, nw.xyz, pb.z, radius);
+                let t = disk_depth(hit, pb.z, radius);
                 // Even bit patterns: pull-push marks the texels it fills with the lowest bit.
                 let bits = bitcast<u32>(min(t * sp.params.x, 1.0)) & ~1u;
                 atomicMin(&atlas[u32(a.y) * side + u32(a.x)], bits);
@@ -103,27 +115,48 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 
-// The distance from the VPL at `o` (tangent frame `frame`) to the point's disk plane (point `p`,
-// normal `n`) along the ray through paraboloid coordinate `uv` (0..1), never nearer than the
-// disk's nearest point d - radius (a ray that meets the plane in front of the disk, in the
-// footprint's half-texel margin) and the centre's distance d where the ray runs along the plane
-// or away from it. Writing the plane's depth per texel instead of the centre's lets a wall's
-// splats stop at the floor it stands on: a ray past the wall's lowest disk meets its plane
-// beyond the floor, so the floor's receivers next to the wall stay lit (with the centre's
-// depth those splats hung below the floor, nearer than the receivers, and shadowed them). Past
-// a surface's edge the plane is extrapolated by at most the footprint's margin: a receiver
-// behind the plane stays shadowed, as before.
-fn disk_depth(o: vec3<f32>, frame: mat3x3<f32>, uv: vec2<f32>, p: vec3<f32>, n: vec3<f32>, d: f32, radius: f32) -> f32 {
-    let s = uv * 2.0 - 1.0;
-    let ss = dot(s, s);
-    let dir = frame * (vec3<f32>(2.0 * s, 1.0 - ss) / (1.0 + ss));
-    let den = dot(dir, n);
-    var t = d;
-    if abs(den) > 1.0e-6 {
-        t = dot(p - o, n) / den;
-    }
+// The depth a splat writes: the distance `hit` from the VPL to the disk's plane along the
+// texel's ray, never nearer than the disk's nearest point d - radius (a ray that meets the plane
+// in front of the disk, in the footprint's half-texel margin) and the centre's distance d
+// where the ray runs along the plane or away from it. Writing the plane's depth per texel
+// instead of the centre's lets a wall's splats stop at the floor it stands on: a ray past the
+// wall's lowest disk meets its plane beyond the floor, so the floor's receivers next to the
+// wall stay lit (with the centre's depth those splats hung below the floor, nearer than the
+// receivers, and shadowed them).
+fn disk_depth(hit: f32, d: f32, radius: f32) -> f32 {
+    var t = hit;
     if t <= 0.0 {
         t = d;
     }
     return max(t, d - radius);
+}
+
+// The world direction of the paraboloid texel at `uv` (0..1) of a VPL with tangent frame `frame`.
+fn texel_ray(frame: mat3x3<f32>, uv: vec2<f32>) -> vec3<f32> {
+    let s = uv * 2.0 - 1.0;
+    let ss = dot(s, s);
+    return frame * (vec3<f32>(2.0 * s, 1.0 - ss) / (1.0 + ss));
+}
+
+// Distance along `dir` from `o` to the plane through `p` with normal `n`; 0 when the ray runs
+// along the plane, negative when the plane is behind.
+fn plane_hit(o: vec3<f32>, dir: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let den = dot(dir, n);
+    if abs(den) <= 1.0e-6 {
+        return 0.0;
+    }
+    return dot(p - o, n) / den;
+}
+
+// Whether `h` (on pool point `i`'s plane) lies inside all of the point's clip lines, with a
+// margin of 1% of the disk radius so that two faces meeting at an edge leave no crack between
+// them.
+fn on_surface(i: u32, h: vec3<f32>, radius: f32) -> bool {
+    for (var k = 0u; k < CLIPS; k = k + 1u) {
+        let line = clips[i * CLIPS + k];
+        if dot(line.xyz, h) < line.w - 0.01 * radius {
+            return false;
+        }
+    }
+    return true;
 }

@@ -56,6 +56,9 @@ pub struct PointData {
     pub albedo: Vec<[f32; 4]>,
     /// Specular reflectance, w = Blinn-Phong exponent (0: no lobe).
     pub specular: Vec<[f32; 4]>,
+    /// Splat clip lines, [`crate::precompute::open_edges::CLIPS_PER_POINT`] per point
+    /// (`PointClips::world_lines`).
+    pub clips: Vec<[f32; 4]>,
     /// The points' clusters (the points above are in their Morton order; [`super::clusters`]).
     pub clusters: Vec<super::params::GpuCluster>,
     /// Pool area per point at sampling weight 1 (m^2): a point of weight w stands for this / w.
@@ -82,6 +85,7 @@ struct Sized {
     selection: wgpu::Buffer,
     lit: wgpu::Buffer,
     clusters: wgpu::Buffer,
+    clips: wgpu::Buffer,
     /// Clusters uploaded.
     cluster_count: u32,
     /// Pool area per point at weight 1 (m^2), as uploaded.
@@ -155,6 +159,7 @@ impl IsmGather {
                 storage_rw(3),
                 storage_entry(4, c),
                 storage_entry(5, c),
+                storage_entry(6, c),
             ],
         });
         let select_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -271,6 +276,8 @@ impl IsmGather {
         let slots = u64::from(key.vpls) * u64::from(key.per_ism);
         let lit = storage("ism bounce lit points", slots * 32);
         let chosen = storage("ism chosen points", slots * 8);
+        let clip_bytes = u64::from(key.points) * 16 * crate::precompute::open_edges::CLIPS_PER_POINT as u64;
+        let clips = storage("ism sample point clip lines", clip_bytes);
         let cluster_count = key.points.div_ceil(super::clusters::CLUSTER_POINTS as u32);
         let clusters =
             storage("ism point clusters", u64::from(cluster_count) * std::mem::size_of::<GpuCluster>() as u64);
@@ -294,6 +301,7 @@ impl IsmGather {
                 buf(3, &atlas[0]),
                 buf(4, &normals),
                 buf(5, &chosen),
+                buf(6, &clips),
             ],
         });
         let select_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -349,6 +357,7 @@ impl IsmGather {
             selection,
             lit,
             clusters,
+            clips,
             cluster_count: 0,
             area_unit: 0.0,
             chosen,
@@ -396,6 +405,7 @@ impl IsmGather {
     pub fn upload_points(&mut self, queue: &wgpu::Queue, points: &PointData) {
         let Some(s) = &mut self.sized else { return };
         queue.write_buffer(&s.clusters, 0, bytemuck::cast_slice(&points.clusters));
+        queue.write_buffer(&s.clips, 0, bytemuck::cast_slice(&points.clips));
         s.cluster_count = points.clusters.len() as u32;
         s.area_unit = points.area_unit;
         queue.write_buffer(&s.points, 0, bytemuck::cast_slice(&points.positions));
@@ -613,6 +623,7 @@ impl IsmGather {
                 &s.selection,
                 &s.lit,
                 &s.clusters,
+                &s.clips,
                 &s.chosen,
             ];
             s.atlas.iter().chain(buffers).chain(&s.splats).map(wgpu::Buffer::size).sum::<u64>()

@@ -22,7 +22,12 @@ pub(super) fn mean_linear_colour(img: &crate::scene::Image) -> [f32; 3] {
 /// What the ISM passes read per sample point (see [`PointData`]): world position and normal
 /// under the objects' current transforms, the object's sampling weight, albedo (base colour
 /// factor times the mean of its texture, `texture_means` indexed by image) and specular lobe.
-pub(super) fn point_data(scene: &Scene, points: &SamplePoints, texture_means: &[[f32; 3]]) -> PointData {
+pub(super) fn point_data(
+    scene: &Scene,
+    points: &SamplePoints,
+    texture_means: &[[f32; 3]],
+    clips: &crate::precompute::open_edges::PointClips,
+) -> PointData {
     let mean_texture = |image: usize| texture_means.get(image).copied().unwrap_or([1.0; 3]);
     let per_object: Vec<([f32; 4], [f32; 4], f32)> = scene
         .objects()
@@ -37,7 +42,10 @@ pub(super) fn point_data(scene: &Scene, points: &SamplePoints, texture_means: &[
         })
         .collect();
     let mut out = PointData::default();
-    for (p, (position, normal)) in points.points.iter().zip(points.world(scene)) {
+    let world = points.world(scene);
+    let normals: Vec<glam::Vec3> = world.iter().map(|(_, n)| *n).collect();
+    out.clips = clips.world_lines(scene, &normals);
+    for (p, (position, normal)) in points.points.iter().zip(world) {
         let (a, s, w) = per_object.get(p.object as usize).copied().unwrap_or(([0.0; 4], [0.0; 4], 1.0));
         out.positions.push(position.extend(1.0).to_array());
         out.normals.push(normal.extend(w).to_array());

@@ -14,6 +14,7 @@ use super::light_tiles::LightTiles;
 use super::points::{mean_linear_colour, point_data, point_data_key};
 use super::vpl_pass::{GpuVpl, VplPass};
 use crate::image_io::HdrImage;
+use crate::precompute::open_edges::PointClips;
 use crate::precompute::sample_points::SamplePoints;
 use crate::render::RenderError;
 use crate::render::gi::inputs::GiInputs;
@@ -62,7 +63,7 @@ pub fn settle_frames(base_confidence: f32) -> u32 {
 pub struct IsmTechnique {
     vpl_pass: VplPass,
     gather: IsmGather,
-    points: Option<(PointsKey, SamplePoints, Vec<[f32; 3]>)>,
+    points: Option<(PointsKey, SamplePoints, Vec<[f32; 3]>, PointClips)>,
     points_generation: u64,
     /// (gather buffer generation, point set generation, [`point_data_key`]) of the uploaded
     /// point data; the upload is skipped while it stays equal.
@@ -208,7 +209,7 @@ impl IsmTechnique {
                 .map(|o| (o.sampling_weight, o.is_rendered(), o.transform.scale.to_array()))
                 .collect(),
         };
-        if self.points.as_ref().is_none_or(|(k, _, _)| *k != key) {
+        if self.points.as_ref().is_none_or(|(k, ..)| *k != key) {
             // One stratified pool; each VPL then draws its own points from it by solid angle.
             let points = crate::precompute::sample_points::distribute(scene, ism.total_points as usize, 1, 1);
             let means = scene.resources().images.iter().map(mean_linear_colour).collect();
@@ -226,7 +227,12 @@ impl IsmTechnique {
                 metres(pool_spacing),
                 100.0 * unseen
             ));
-            self.points = Some((key, points, means));
+            // Open edges to clip the splats at: the nearest of each point's own surface (a
+            // splat's disk can reach across any face; a slab face has four edges), seams where
+            // other geometry continues the surface within 0.2% of the scene's size excluded.
+            let diameter = 2.0 * scene.bounds().map_or(1.0, |b| b.radius());
+            let clips = crate::precompute::open_edges::point_clips(scene, &points.points, diameter, 0.002 * diameter);
+            self.points = Some((key, points, means, clips));
             self.points_generation += 1;
             self.rebuilds += 1;
         }
@@ -285,7 +291,7 @@ impl GiTechnique for IsmTechnique {
 
     fn render(&mut self, inputs: &mut GiInputs<'_>) -> Result<GiOutput, RenderError> {
         let settings = &inputs.settings.ism;
-        let Some((_, points, means)) = self.points.as_ref() else { return Ok(GiOutput::Nothing) };
+        let Some((_, points, means, clips)) = self.points.as_ref() else { return Ok(GiOutput::Nothing) };
         self.last_frame = inputs.frame_index;
         let recorded = self.vpl_pass.record(
             inputs.device,
@@ -301,7 +307,7 @@ impl GiTechnique for IsmTechnique {
         let buffers = self.gather.prepare(inputs.device, settings, points.points.len() as u32);
         let current = (buffers, self.points_generation, point_data_key(inputs.scene));
         if self.uploaded.as_ref() != Some(&current) {
-            let data: PointData = point_data(inputs.scene, points, means);
+            let data: PointData = point_data(inputs.scene, points, means, clips);
             self.gather.upload_points(inputs.queue, &data);
             self.uploaded = Some(current);
             self.uploads += 1;

@@ -1,0 +1,215 @@
+//! Where each ISM sample point's surface ends: the open edges (boundaries and creases sharper
+//! than [`CREASE_DEGREES`]) of the surface within reach of the point's splat. An ISM splat is the
+//! footprint of a disk standing for the point's share of the surface; near an edge that disk
+//! hangs past the geometry (over a doorway, past a wall's end) and casts a shadow no surface
+//! casts. The splat pass clips each disk against the point's nearby open edges, so occluders
+//! stop where the geometry stops and splats can be large enough to leave no holes.
+//!
+//! Edges are found in object space once per point distribution (they move with their
+//! objects); [`PointClips::world_lines`] turns them into world-space lines in each point's plane.
+
+use std::collections::HashMap;
+
+use glam::Vec3;
+
+use super::bvh::SceneBvh;
+use super::sample_points::SamplePoint;
+use crate::scene::{Mesh, Scene};
+
+/// Clip lines kept per point (the nearest open edges; a box face's corner needs two).
+pub const CLIPS_PER_POINT: usize = 4;
+
+/// Edges whose two faces' normals differ by more than this are creases (open): a box's 90°
+/// edges are, a 16-sided cylinder's 22.5° facet edges are not (the disk spans smooth curvature
+/// as before).
+pub const CREASE_DEGREES: f32 = 30.0;
+
+/// Triangles searched per point at most (the coplanar region within the splat's reach).
+const MAX_VISITS: usize = 64;
+
+/// No clip line (the slot's index).
+pub const NO_CLIP: u32 = u32::MAX;
+
+/// One open edge in object space: its end points and a point on its inner side (the opposite
+/// vertex of its triangle).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClipEdge {
+    /// Object index in the scene.
+    pub object: u32,
+    /// The edge's end points (object space).
+    pub a: Vec3,
+    /// Second end point.
+    pub b: Vec3,
+    /// The opposite vertex of the edge's triangle: the side the surface is on.
+    pub inner: Vec3,
+}
+
+/// The open edges near each sample point.
+#[derive(Clone, Debug, Default)]
+pub struct PointClips {
+    /// Distinct edges (object space).
+    pub edges: Vec<ClipEdge>,
+    /// Per point, up to [`CLIPS_PER_POINT`] indices into `edges` (nearest first; [`NO_CLIP`]
+    /// fills the rest).
+    pub per_point: Vec<[u32; CLIPS_PER_POINT]>,
+}
+
+/// For each triangle edge (k: vertex k to k + 1) the triangle across it when the two join
+/// smoothly, else `NO_CLIP` (an open edge).
+fn smooth_neighbours(mesh: &Mesh) -> Vec<[u32; 3]> {
+    let key = |p: Vec3| (p + Vec3::ZERO).to_array().map(f32::to_bits);
+    let mut by_edge: HashMap<([u32; 3], [u32; 3]), Vec<(u32, usize)>> = HashMap::new();
+    let tris = mesh.triangle_count();
+    for t in 0..tris {
+        let v = mesh.triangle(t);
+        for k in 0..3 {
+            let (a, b) = (key(v[k]), key(v[(k + 1) % 3]));
+            by_edge.entry(if a < b { (a, b) } else { (b, a) }).or_default().push((t as u32, k));
+        }
+    }
+    let normal = |t: u32| {
+        let [a, b, c] = mesh.triangle(t as usize);
+        (b - a).cross(c - a).normalize_or_zero()
+    };
+    let crease = CREASE_DEGREES.to_radians().cos();
+    let mut out = vec![[NO_CLIP; 3]; tris];
+    for sharing in by_edge.values() {
+        if let [(t0, k0), (t1, k1)] = sharing.as_slice()
+            && normal(*t0).dot(normal(*t1)) >= crease
+        {
+            out[*t0 as usize][*k0] = *t1;
+            out[*t1 as usize][*k1] = *t0;
+        }
+    }
+    out
+}
+
+/// Distance from `p` to the segment a..b.
+fn segment_distance(p: Vec3, a: Vec3, b: Vec3) -> f32 {
+    let ab = b - a;
+    let s = ((p - a).dot(ab) / ab.length_squared().max(f32::MIN_POSITIVE)).clamp(0.0, 1.0);
+    (p - (a + ab * s)).length()
+}
+
+/// Whether other geometry continues the surface past `edge` (world transform `m`): a wall's
+/// face ending on the floor it stands on, or against the wall it butts into. Rays from just
+/// inside the edge and `eps` in front of the face, running outwards along the face, hit that
+/// geometry within a few `eps` at all three test positions. Such an edge is a concave seam, not
+/// a place where the surface ends: a disk overhanging it hangs into solid geometry and casts no
+/// shadow that geometry does not, and clipping there would leave a crack along every seam
+/// (light leaked through the held-out apartment's wall bases).
+fn abuts(bvh: &SceneBvh, edge: &ClipEdge, m: glam::Mat4, eps: f32) -> bool {
+    let (a, b, inner) = (m.transform_point3(edge.a), m.transform_point3(edge.b), m.transform_point3(edge.inner));
+    let Some(n) = (b - a).cross(inner - a).try_normalize() else { return false };
+    let Some(mut inward) = n.cross(b - a).try_normalize() else { return false };
+    if inward.dot(inner - a) < 0.0 {
+        inward = -inward;
+    }
+    // The front side only: from behind, a ray inside a slab meets the slab's own next face.
+    [0.25f32, 0.5, 0.75].into_iter().all(|s| {
+        let origin = a + (b - a) * s + inward * eps + n * eps;
+        bvh.occluded(origin, -inward, 4.0 * eps)
+    })
+}
+
+/// Finds the open edges within `reach` metres of each point (searched over the smooth surface
+/// around the point's triangle), keeping only edges the point lies inside of; `eps` is the
+/// distance within which other geometry continuing the surface makes an edge a seam (`abuts`).
+pub fn point_clips(scene: &Scene, points: &[SamplePoint], reach: f32, eps: f32) -> PointClips {
+    let objects = scene.objects();
+    let meshes = &scene.resources().meshes;
+    let mut topology: HashMap<usize, Vec<[u32; 3]>> = HashMap::new();
+    let bvh = SceneBvh::build(scene);
+    // Per (object, triangle, edge): the edge's index in `edges`, or NO_CLIP where it abuts
+    // other geometry.
+    let mut ids: HashMap<(u32, u32, usize), u32> = HashMap::new();
+    let mut out = PointClips { edges: Vec::new(), per_point: Vec::with_capacity(points.len()) };
+    for sp in points {
+        let mut slots = [NO_CLIP; CLIPS_PER_POINT];
+        let Some((object, mesh)) = objects.get(sp.object as usize).and_then(|o| meshes.get(o.mesh).map(|m| (o, m)))
+        else {
+            out.per_point.push(slots);
+            continue;
+        };
+        if sp.triangle as usize >= mesh.triangle_count() {
+            out.per_point.push(slots);
+            continue;
+        }
+        let neighbours = topology.entry(object.mesh).or_insert_with(|| smooth_neighbours(mesh));
+        // Reach in object space: the world radius over the smallest scale.
+        let scale = object.transform.scale.abs().min_element().max(1.0e-6);
+        let r = reach / scale;
+        let [a, b, c] = mesh.triangle(sp.triangle as usize);
+        let p = a + (b - a) * sp.bary.x + (c - a) * sp.bary.y;
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        let mut found: Vec<(f32, u32, usize)> = Vec::new();
+        let mut queue = vec![sp.triangle];
+        let mut seen = vec![sp.triangle];
+        while let Some(t) = queue.pop() {
+            let v = mesh.triangle(t as usize);
+            for k in 0..3 {
+                let (ea, eb, inner) = (v[k], v[(k + 1) % 3], v[(k + 2) % 3]);
+                let d = segment_distance(p, ea, eb);
+                if d > r {
+                    continue;
+                }
+                let across = neighbours[t as usize][k];
+                if across == NO_CLIP {
+                    let inward = n.cross(eb - ea);
+                    let side = inward.dot(inner - ea).signum();
+                    if inward.dot(p - ea) * side > 0.0 {
+                        found.push((d, t, k));
+                    }
+                } else if !seen.contains(&across) && seen.len() < MAX_VISITS {
+                    seen.push(across);
+                    queue.push(across);
+                }
+            }
+        }
+        found.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let m = object.transform.matrix();
+        let clipping = found.into_iter().filter_map(|(_, t, k)| {
+            let id = *ids.entry((sp.object, t, k)).or_insert_with(|| {
+                let v = mesh.triangle(t as usize);
+                let edge = ClipEdge { object: sp.object, a: v[k], b: v[(k + 1) % 3], inner: v[(k + 2) % 3] };
+                if abuts(&bvh, &edge, m, eps) {
+                    return NO_CLIP;
+                }
+                out.edges.push(edge);
+                (out.edges.len() - 1) as u32
+            });
+            (id != NO_CLIP).then_some(id)
+        });
+        for (slot, id) in slots.iter_mut().zip(clipping) {
+            *slot = id;
+        }
+        out.per_point.push(slots);
+    }
+    out
+}
+
+impl PointClips {
+    /// World-space clip lines, [`CLIPS_PER_POINT`] per point in point order: xyz the inward
+    /// direction in the point's plane (world normal `normals[i]`), w its offset; a texel's hit h
+    /// on the point's plane is on the surface when dot(xyz, h) >= w for every line. Empty slots
+    /// are (0, 0, 0, -1), which every hit passes.
+    pub fn world_lines(&self, scene: &Scene, normals: &[Vec3]) -> Vec<[f32; 4]> {
+        let objects = scene.objects();
+        let mut lines = Vec::with_capacity(self.per_point.len() * CLIPS_PER_POINT);
+        for (slots, n) in self.per_point.iter().zip(normals) {
+            for &slot in slots {
+                let line = self.edges.get(slot as usize).and_then(|e| {
+                    let m = objects.get(e.object as usize)?.transform.matrix();
+                    let (a, b, inner) = (m.transform_point3(e.a), m.transform_point3(e.b), m.transform_point3(e.inner));
+                    let mut inward = n.cross(b - a).normalize_or_zero();
+                    if inward.dot(inner - a) < 0.0 {
+                        inward = -inward;
+                    }
+                    (inward != Vec3::ZERO).then(|| inward.extend(inward.dot(a)).to_array())
+                });
+                lines.push(line.unwrap_or([0.0, 0.0, 0.0, -1.0]));
+            }
+        }
+        lines
+    }
+}
