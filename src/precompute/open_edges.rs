@@ -213,3 +213,61 @@ impl PointClips {
         lines
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Material, Mesh, MeshSource, Object, ObjectRole, Resources, SceneDesc, Transform};
+
+    /// A 4 x 4 m floor slab and a free-standing 2 m wide, 2 m high, 0.2 m thick wall on it.
+    fn wall_on_floor() -> Scene {
+        let slab = |name: &str, centre: Vec3, size: Vec3, mesh: usize| Object {
+            name: name.into(),
+            source: MeshSource::Cuboid { size, openings: [false; 6] },
+            mesh,
+            material: 0,
+            transform: Transform { translation: centre, ..Transform::default() },
+            sampling_weight: 1.0,
+            role: ObjectRole::Static,
+            visible: true,
+        };
+        let parts = [
+            ("floor", Vec3::new(0.0, -0.1, 0.0), Vec3::new(4.0, 0.2, 4.0)),
+            ("wall", Vec3::new(0.0, 1.0, 0.0), Vec3::new(2.0, 2.0, 0.2)),
+        ];
+        let objects = parts.iter().enumerate().map(|(i, (n, c, s))| slab(n, *c, *s, i)).collect();
+        let meshes = parts.iter().map(|(n, _, s)| Mesh::cuboid(n, *s)).collect();
+        let desc = SceneDesc { materials: vec![Material::default()], objects, ..SceneDesc::default() };
+        Scene::new(desc, Resources { meshes, images: vec![] }).expect("scene")
+    }
+
+    #[test]
+    fn splats_are_clipped_at_a_walls_free_end_and_top_but_not_where_it_stands() {
+        let scene = wall_on_floor();
+        let points = crate::precompute::sample_points::distribute(&scene, 4000, 1, 3);
+        let clips = point_clips(&scene, &points.points, 10.0, 0.01);
+        let world = points.world(&scene);
+        let normals: Vec<Vec3> = world.iter().map(|(_, n)| *n).collect();
+        let lines = clips.world_lines(&scene, &normals);
+        let inside = |i: usize, h: Vec3| {
+            lines[i * CLIPS_PER_POINT..(i + 1) * CLIPS_PER_POINT]
+                .iter()
+                .all(|l| Vec3::new(l[0], l[1], l[2]).dot(h) >= l[3])
+        };
+        let mut checked = 0;
+        for (i, (p, n)) in world.iter().enumerate() {
+            // Points on the wall's front face (z = 0.1, facing +z).
+            if points.points[i].object != 1 || n.z < 0.99 {
+                continue;
+            }
+            checked += 1;
+            // Past the free end (x > 1) and above the top (y > 2): off the surface.
+            assert!(!inside(i, Vec3::new(1.2, p.y, 0.1)), "point {p}: the free end clips");
+            assert!(!inside(i, Vec3::new(p.x, 2.2, 0.1)), "point {p}: the top clips");
+            // Below the bottom edge the wall stands on the floor: a seam, never clipped.
+            assert!(inside(i, Vec3::new(p.x, -0.2, 0.1)), "point {p}: the seam with the floor clips");
+            assert!(inside(i, *p), "point {p} lies inside its own lines");
+        }
+        assert!(checked > 50, "points on the wall's front face: {checked}");
+    }
+}

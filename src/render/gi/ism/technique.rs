@@ -317,12 +317,10 @@ impl GiTechnique for IsmTechnique {
         let scale = MapScale {
             d_max: diameter,
             bias: [0.0, settings.bias_constant, settings.bias_slope, 2.0 / settings.ism_resolution as f32],
-            // Two depths more than 15% apart are two surfaces, not one to average (a 2x2 block
-            // of one surface spans that much only beyond ~67 degrees of incidence). It replaces
-            // Ritschel's 5% of the scene extent, which no fixed length can stand for from a
-            // 20 cm diorama to a 60 m hall; a threshold of one angular point spacing (7.8% at
-            // 1024 points per ISM) kept less light (three rooms 1.03 against 1.07, cluttered
-            // room 0.935 against 0.941 of the reference's energy, `ism_probe`, 16 frames).
+            // Two depths more than 15% apart are two surfaces, not one to average, when a coarse
+            // level is pulled (a 2x2 block of one surface spans that much only beyond ~67
+            // degrees of incidence). It replaces Ritschel's 5% of the scene extent, which no fixed
+            // length can stand for from a 20 cm diorama to a 60 m hall.
             pull_push: PULL_PUSH_RELATIVE,
             total_area,
         };
