@@ -11,6 +11,7 @@
 //! `cargo run --release --example ism_oracle -- clutter "(bounces: 3)"`
 use bouncelab::precompute::bvh::SceneBvh;
 use bouncelab::render::gi::ism::technique::IsmTechnique;
+use bouncelab::render::gi::ism::vpl_pass::GpuVpl;
 use bouncelab::render::{GpuContext, Renderer};
 use bouncelab::settings::{GiMode, IsmSettings};
 use bouncelab::suite;
@@ -22,6 +23,15 @@ fn onb(n: Vec3) -> (Vec3, Vec3) {
     let a = -1.0 / (s + n.z);
     let b = n.x * n.y * a;
     (Vec3::new(1.0 + s * n.x * n.x * a, s * b, -s * n.x), Vec3::new(b, s + n.y * n.y * a, -n.y))
+}
+
+/// Every fourth live VPL of set `set`: its atlas tile, the VPL, its position and normal.
+fn sampled_vpls(vpls: &[GpuVpl], set: usize, n: usize) -> impl Iterator<Item = (usize, GpuVpl, Vec3, Vec3)> + '_ {
+    (0..n)
+        .step_by(4)
+        .map(move |k| (set * n + k, vpls[set * n + k]))
+        .filter(|(_, v)| v.position[3] > 0.0)
+        .map(|(tile, v)| (tile, v, Vec3::from_slice(&v.position[..3]), Vec3::from_slice(&v.normal[..3])))
 }
 
 fn main() -> anyhow::Result<()> {
@@ -50,14 +60,7 @@ fn main() -> anyhow::Result<()> {
     let n = ism.vpl_count as usize;
     for set in 0..ism.bounces as usize {
         let (mut w_all, mut w_false, mut w_hole, mut w_near) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-        for k in (0..n).step_by(4) {
-            let tile = set * n + k;
-            let v = vpls[tile];
-            if v.position[3] <= 0.0 {
-                continue;
-            }
-            let o = Vec3::from_slice(&v.position[..3]);
-            let nn = Vec3::from_slice(&v.normal[..3]);
+        for (tile, _, o, nn) in sampled_vpls(&vpls, set, n) {
             let (tx_, bx) = onb(nn);
             let (tx, ty) = ((tile % c) * res, (tile / c) * res);
             for y in 0..res {
@@ -101,14 +104,7 @@ fn main() -> anyhow::Result<()> {
     let recv = receivers.world(&project.scene);
     for set in 0..ism.bounces as usize {
         let (mut w_true, mut w_ism, mut w_fs, mut w_fl) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-        for k in (0..n).step_by(4) {
-            let tile = set * n + k;
-            let v = vpls[tile];
-            if v.position[3] <= 0.0 {
-                continue;
-            }
-            let o = Vec3::from_slice(&v.position[..3]);
-            let nn = Vec3::from_slice(&v.normal[..3]);
+        for (tile, v, o, nn) in sampled_vpls(&vpls, set, n) {
             let sigma = v.normal[3];
             let (tx_, bx) = onb(nn);
             let (tx, ty) = ((tile % c) * res, (tile / c) * res);
@@ -201,7 +197,7 @@ fn bounce_by_room(
     bvh: &SceneBvh,
     receivers: &bouncelab::precompute::sample_points::SamplePoints,
     recv: &[(Vec3, Vec3)],
-    vpls: &[bouncelab::render::gi::ism::vpl_pass::GpuVpl],
+    vpls: &[GpuVpl],
     ism: &IsmSettings,
     src: usize,
 ) -> ([f64; 3], [f64; 3]) {

@@ -70,20 +70,10 @@ fn sees_geometry(bvh: &SceneBvh, [a, b, c]: [Vec3; 3], n: Vec3, eps: f32) -> boo
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Material, Mesh, MeshSource, Object, ObjectRole, Resources, SceneDesc, Transform};
+    use crate::scene::{Mesh, MeshSource, Object, ObjectRole, Transform};
 
     /// A closed 2 m box of 0.2 m slabs (six cuboids) and a lone plane far outside it.
     fn box_and_plane() -> Scene {
-        let slab = |name: &str, centre: Vec3, size: Vec3, mesh: usize| Object {
-            name: name.into(),
-            source: MeshSource::Cuboid { size, openings: [false; 6] },
-            mesh,
-            material: 0,
-            transform: Transform { translation: centre, ..Transform::default() },
-            sampling_weight: 1.0,
-            role: ObjectRole::Static,
-            visible: true,
-        };
         let (t, w) = (0.2, 2.4);
         let parts = [
             ("floor", Vec3::new(0.0, -1.1, 0.0), Vec3::new(w, t, w)),
@@ -93,22 +83,17 @@ mod tests {
             ("back", Vec3::new(0.0, 0.0, -1.1), Vec3::new(2.0, 2.0, t)),
             ("front", Vec3::new(0.0, 0.0, 1.1), Vec3::new(2.0, 2.0, t)),
         ];
-        let mut objects: Vec<Object> =
-            parts.iter().enumerate().map(|(i, (name, c, s))| slab(name, *c, *s, i)).collect();
-        let mut meshes: Vec<Mesh> = parts.iter().map(|(name, _, s)| Mesh::cuboid(name, *s)).collect();
-        objects.push(Object {
+        let plane = Object {
             name: "plane".into(),
             source: MeshSource::Plane { size: 1.0 },
-            mesh: meshes.len(),
+            mesh: 0,
             material: 0,
             transform: Transform { translation: Vec3::new(50.0, 0.0, 0.0), ..Transform::default() },
             sampling_weight: 1.0,
             role: ObjectRole::Static,
             visible: true,
-        });
-        meshes.push(Mesh::plane("plane", 1.0));
-        let desc = SceneDesc { materials: vec![Material::default()], objects, ..SceneDesc::default() };
-        Scene::new(desc, Resources { meshes, images: vec![] }).expect("scene")
+        };
+        crate::precompute::test_scenes::scene_of_slabs(&parts, vec![(plane, Mesh::plane("plane", 1.0))])
     }
 
     #[test]

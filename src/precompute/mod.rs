@@ -9,3 +9,5 @@ pub mod open_edges;
 pub mod pathtracer;
 pub mod rng;
 pub mod sample_points;
+#[cfg(test)]
+pub(crate) mod test_scenes;

@@ -54,11 +54,14 @@ pub struct PointClips {
     pub per_point: Vec<[u32; CLIPS_PER_POINT]>,
 }
 
+/// An undirected edge by the bit patterns of its end points (lower first).
+type EdgeKey = ([u32; 3], [u32; 3]);
+
 /// For each triangle edge (k: vertex k to k + 1) the triangle across it when the two join
 /// smoothly, else `NO_CLIP` (an open edge).
 fn smooth_neighbours(mesh: &Mesh) -> Vec<[u32; 3]> {
     let key = |p: Vec3| (p + Vec3::ZERO).to_array().map(f32::to_bits);
-    let mut by_edge: HashMap<([u32; 3], [u32; 3]), Vec<(u32, usize)>> = HashMap::new();
+    let mut by_edge: HashMap<EdgeKey, Vec<(u32, usize)>> = HashMap::new();
     let tris = mesh.triangle_count();
     for t in 0..tris {
         let v = mesh.triangle(t);
@@ -217,28 +220,14 @@ impl PointClips {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::{Material, Mesh, MeshSource, Object, ObjectRole, Resources, SceneDesc, Transform};
 
     /// A 4 x 4 m floor slab and a free-standing 2 m wide, 2 m high, 0.2 m thick wall on it.
     fn wall_on_floor() -> Scene {
-        let slab = |name: &str, centre: Vec3, size: Vec3, mesh: usize| Object {
-            name: name.into(),
-            source: MeshSource::Cuboid { size, openings: [false; 6] },
-            mesh,
-            material: 0,
-            transform: Transform { translation: centre, ..Transform::default() },
-            sampling_weight: 1.0,
-            role: ObjectRole::Static,
-            visible: true,
-        };
         let parts = [
             ("floor", Vec3::new(0.0, -0.1, 0.0), Vec3::new(4.0, 0.2, 4.0)),
             ("wall", Vec3::new(0.0, 1.0, 0.0), Vec3::new(2.0, 2.0, 0.2)),
         ];
-        let objects = parts.iter().enumerate().map(|(i, (n, c, s))| slab(n, *c, *s, i)).collect();
-        let meshes = parts.iter().map(|(n, _, s)| Mesh::cuboid(n, *s)).collect();
-        let desc = SceneDesc { materials: vec![Material::default()], objects, ..SceneDesc::default() };
-        Scene::new(desc, Resources { meshes, images: vec![] }).expect("scene")
+        crate::precompute::test_scenes::scene_of_slabs(&parts, Vec::new())
     }
 
     #[test]
