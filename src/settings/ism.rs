@@ -70,7 +70,7 @@ pub struct IsmSettings {
     pub bounce_pick: BouncePick,
     /// Radius of each point's ISM splat as a fraction of the radius of the disk it stands for
     /// (the area it was chosen to stand for); the splat is that disk's elliptical footprint in
-    /// the paraboloid map, clipped at its surface's open edges. Free at these sizes. Smaller:
+    /// the paraboloid map, clipped at its surface's open edges. Smaller:
     /// holes that let light through walls; larger: occluders dilated where they end at seams
     /// and at the map's resolution. Measured with `examples/ism_probe.rs` (mean of 16 frames,
     /// `PROBE_AVG=1`): the held-out four-room flat read 2.36 / 1.28 / 1.04 of the reference's
