@@ -10,7 +10,7 @@
 //!
 //! `cargo run --release --example ism_oracle -- clutter "(bounces: 3)"`
 use bouncelab::precompute::bvh::SceneBvh;
-use bouncelab::render::gi::ism::technique::IsmTechnique;
+use bouncelab::render::gi::ism::technique::{IsmTechnique, atlas_plane_normal};
 use bouncelab::render::gi::ism::vpl_pass::GpuVpl;
 use bouncelab::render::{GpuContext, Renderer};
 use bouncelab::settings::{GiMode, IsmSettings};
@@ -23,6 +23,16 @@ fn onb(n: Vec3) -> (Vec3, Vec3) {
     let a = -1.0 / (s + n.z);
     let b = n.x * n.y * a;
     (Vec3::new(1.0 + s * n.x * n.x * a, s * b, -s * n.x), Vec3::new(b, s + n.y * n.y * a, -n.y))
+}
+
+/// The room a point is in: `GRID=x,z` splits the plan at x and z (room = [x >] + 2 [z >]),
+/// otherwise the three rooms' x / 5.2.
+fn room_of(p: Vec3) -> f32 {
+    match std::env::var("GRID").ok().and_then(|g| g.split_once(',').map(|(a, b)| (a.parse::<f32>(), b.parse::<f32>())))
+    {
+        Some((Ok(x), Ok(z))) => f32::from(u8::from(p.x > x)) + 2.0 * f32::from(u8::from(p.z > z)),
+        _ => (p.x / 5.2).floor(),
+    }
 }
 
 /// Every fourth live VPL of set `set`: its atlas tile, the VPL, its position and normal.
@@ -52,6 +62,7 @@ fn main() -> anyhow::Result<()> {
     }
     let atlas = r.read_buffer("ism_atlas")?;
     let t = r.technique_as::<IsmTechnique>().expect("ism");
+    let (words, _) = t.read_atlas_words(r.device(), r.queue())?;
     let vpls = t.read_all_vpls(r.device(), r.queue())?;
     let bvh = SceneBvh::build(&project.scene);
     let d_max = 2.0 * project.scene.bounds().map_or(1.0, |b| b.radius());
@@ -63,6 +74,9 @@ fn main() -> anyhow::Result<()> {
         for (tile, _, o, nn) in sampled_vpls(&vpls, set, n) {
             let (tx_, bx) = onb(nn);
             let (tx, ty) = ((tile % c) * res, (tile / c) * res);
+            // DUMP=tile: that tile's stored depth (left) and the rays' (right) as a PNG.
+            let dump = std::env::var("DUMP").ok().and_then(|v| v.parse::<usize>().ok()) == Some(tile);
+            let mut png = vec![0u8; res * 2 * res * 4];
             for y in 0..res {
                 for x in 0..res {
                     let s = glam::Vec2::new(
@@ -76,10 +90,17 @@ fn main() -> anyhow::Result<()> {
                     let l = Vec3::new(2.0 * s.x, 2.0 * s.y, 1.0 - ss) / (1.0 + ss);
                     let dir = (tx_ * l.x + bx * l.y + nn * l.z).normalize();
                     let w = f64::from(l.z * (1.0 + l.z) * (1.0 + l.z));
-                    let hit = bvh.intersect(o + nn * 1e-4, dir, 1e30);
+                    let hit = bvh.intersect(o + nn * 2e-3, dir, 1e30);
                     let truth = hit.map_or(f32::INFINITY, |h| h.t);
                     let d = atlas.pixels[(ty + y) * atlas.width as usize + tx + x][0];
                     let ism_t = if d >= 1.0 { f32::INFINITY } else { d * d_max };
+                    if dump {
+                        let shade = |t: f32| (255.0 * (1.0 - (t / (0.5 * d_max)).min(1.0))) as u8;
+                        for (col, t) in [(x, ism_t), (x + res, truth)] {
+                            let i = (y * 2 * res + col) * 4;
+                            png[i..i + 4].copy_from_slice(&[shade(t), shade(t), shade(t), 255]);
+                        }
+                    }
                     w_all += w;
                     if ism_t < 0.8 * truth - 0.02 * d_max {
                         w_false += w;
@@ -90,6 +111,9 @@ fn main() -> anyhow::Result<()> {
                         w_hole += w;
                     }
                 }
+            }
+            if dump {
+                bouncelab::image_io::write_png(Path::new("/tmp/ism_tile.png"), 2 * res as u32, res as u32, png)?;
             }
         }
         println!(
@@ -104,6 +128,8 @@ fn main() -> anyhow::Result<()> {
     let recv = receivers.world(&project.scene);
     for set in 0..ism.bounces as usize {
         let (mut w_true, mut w_ism, mut w_fs, mut w_fl) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        let mut shown = 0;
+        let mut w_pairs = 0.0f64;
         for (tile, v, o, nn) in sampled_vpls(&vpls, set, n) {
             let sigma = v.normal[3];
             let (tx_, bx) = onb(nn);
@@ -117,28 +143,44 @@ fn main() -> anyhow::Result<()> {
                 if cos_s <= 0.0 || cos_r <= 0.0 || d < 1e-3 {
                     continue;
                 }
-                if std::env::var_os("CROSS").is_some() && (p.x / 5.2).floor() == (o.x / 5.2).floor() {
+                if std::env::var_os("CROSS").is_some() && room_of(*p) == room_of(o) {
                     continue;
                 }
-                // PAIR=a,b: only VPLs in room a and receivers in room b (x / 5.2).
+                // PAIR=a,b: only VPLs in room a and receivers in room b (see `room_of`).
                 if let Ok(pair) = std::env::var("PAIR") {
                     let rooms: Vec<f32> = pair.split(',').filter_map(|v| v.parse().ok()).collect();
-                    if rooms.len() == 2 && ((o.x / 5.2).floor() != rooms[0] || (p.x / 5.2).floor() != rooms[1]) {
+                    if rooms.len() == 2 && (room_of(o) != rooms[0] || room_of(*p) != rooms[1]) {
                         continue;
                     }
                 }
                 let w = f64::from(cos_s * cos_r / (d * d).max(0.01));
                 let vis_true = !bvh.occluded(*p + *pn * 1e-4, -dir, d - 2e-4 - 1e-4);
                 let sin_r = (1.0 - cos_r * cos_r).max(0.0).sqrt();
-                let delta = d * (sigma * (ism.bias_constant + ism.bias_slope * sin_r) + 2.0 / res as f32 * sin_r);
+                let delta = d * sigma * (ism.bias_constant + ism.bias_slope * sin_r);
                 let q = *p + *pn * delta;
                 let qq = q - o;
                 let qd = qq.length();
                 let lv = Vec3::new(qq.dot(tx_), qq.dot(bx), qq.dot(nn)) / qd.max(1e-9);
                 let uv = glam::Vec2::new(lv.x, lv.y) / (1.0 + lv.z) * 0.5 + glam::Vec2::splat(0.5);
                 let t = ((uv * res as f32).floor().max(glam::Vec2::ZERO)).min(glam::Vec2::splat(res as f32 - 1.0));
-                let stored = atlas.pixels[(ty + t.y as usize) * atlas.width as usize + tx + t.x as usize][0];
-                let vis_ism = qd / d_max <= stored;
+                let at = (ty + t.y as usize) * atlas.width as usize + tx + t.x as usize;
+                let stored = atlas.pixels[at][0];
+                // As `ism_lit`: the stored plane met along q's own ray, or the depth with a margin.
+                let limit = match atlas_plane_normal(words[at]) {
+                    Some(pn) => {
+                        let s = (t + glam::Vec2::splat(0.5)) / res as f32 * 2.0 - glam::Vec2::ONE;
+                        let ss = s.dot(s);
+                        let l = Vec3::new(2.0 * s.x, 2.0 * s.y, 1.0 - ss) / (1.0 + ss);
+                        let centre = tx_ * l.x + bx * l.y + nn * l.z;
+                        let den = (qq / qd).dot(pn);
+                        let plane = if den.abs() > 0.05 { stored * centre.dot(pn) / den } else { stored };
+                        plane.max(0.0) * 1.002 + 2.0 / 65534.0
+                    }
+                    None if stored >= 1.0 => f32::INFINITY,
+                    None => stored * (1.0 + 8.0 / res as f32),
+                };
+                let vis_ism = qd / d_max <= limit;
+                w_pairs += w;
                 if vis_true {
                     w_true += w;
                 }
@@ -147,17 +189,35 @@ fn main() -> anyhow::Result<()> {
                 }
                 if vis_true && !vis_ism {
                     w_fs += w;
+                    if std::env::var_os("SHOW_SHADOW").is_some() && shown < 12 && cos_s > 0.2 && cos_r > 0.2 {
+                        shown += 1;
+                        let hit = bvh.intersect(o + nn * 2e-3, qq / qd, 1e30).map_or(f32::INFINITY, |h| h.t);
+                        println!(
+                            "  false shadow: tile {tile} vpl {o:.2} n {nn:.2}  recv {p:.2} n {pn:.2}  texel {t}  stored {:.3} m  plane {}  q at {qd:.3} m  first hit along q {hit:.3} m",
+                            stored * d_max,
+                            atlas_plane_normal(words[at]).map_or("none".to_string(), |n| format!("{n:.2}"))
+                        );
+                    }
                 }
                 if !vis_true && vis_ism {
                     w_fl += w;
+                    if std::env::var_os("SHOW").is_some() && shown < 12 {
+                        shown += 1;
+                        let wall = bvh.intersect(o + nn * 2e-3, qq / qd, 1e30).map_or(f32::INFINITY, |h| h.t);
+                        println!(
+                            "  false light: tile {tile} vpl {o:.2} n {nn:.2} sigma {sigma:.4}  recv {p:.2} n {pn:.2}  q {q:.2}  texel {t}  stored {:.3} m  q at {qd:.3} m  first hit along q {wall:.3} m",
+                            stored * d_max
+                        );
+                    }
                 }
             }
         }
         println!(
-            "{name} set {set} lookups: ism/true {:.3}  false shadow {:.3}  false light {:.3} (of true)",
+            "{name} set {set} lookups: ism/true {:.3}  false shadow {:.3}  false light {:.3} (of true; of all pairs {:.4})",
             w_ism / w_true,
             w_fs / w_true,
-            w_fl / w_true
+            w_fl / w_true,
+            w_fl / w_pairs
         );
     }
     // Bounce oracle over FRAMES frames (default 1): power each set's VPLs reflect (true

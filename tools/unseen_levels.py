@@ -3,7 +3,7 @@
 
 Written independently of the suite's Rust generator (src/suite/levels.rs) and never used to
 tune anything: walls, floors and ceilings are solid slabs with outward normals, as level
-geometry is modelled. Three scenes, the kinds issue 10's "done when" names:
+geometry is modelled. Four scenes, the kinds issue 10's "done when" names:
 
 - apartment: four rooms of different sizes in a 2 x 2 grid, 0.25 m walls, three doorways in an
   L (so no straight line joins the lit rooms and the camera's room), a ceiling lamp in one room
@@ -12,6 +12,8 @@ geometry is modelled. Three scenes, the kinds issue 10's "done when" names:
   and a spot.
 - storeroom: a 7 x 3 x 9 m room with two shelving units (thin slabs on posts), forty boxes
   and a spot and a lamp.
+- offices: a corridor with a lamp and three offices behind 0.15 m partitions, a spot in the
+  first; the camera in the unlit third (added later, see `offices`).
 
 Usage: python3 tools/unseen_levels.py OUT_DIR  (writes OUT_DIR/<name>.gltf)
 """
@@ -268,10 +270,53 @@ def storeroom():
     return w
 
 
+def offices():
+    """Added at stop 15, after the apartment had been used to diagnose ISM's holes: a second
+    held-out multi-room level, never used for tuning. Thin (0.15 m) partitions, a 12 m corridor
+    with a lamp at its west end, three offices off it, a spot in the first; the camera stands
+    in the third office, lit only through its door (and by bounces off the corridor)."""
+    w = Writer()
+    wall, floor, ceil = w.material("paint", (0.7, 0.7, 0.62)), w.material("carpet", (0.3, 0.32, 0.4)), w.material("tiles", CEILING)
+    desk = w.material("desk", (0.55, 0.4, 0.25))
+    accent = w.material("accent", (0.65, 0.3, 0.25))
+    t, h = 0.15, 2.7
+    X = 12.3  # corridor x in [0, X], z in [0, 2]; offices z in [2 + t, 6 + t]
+    zc, zo = 2.0, 2.0 + t
+    Z = zo + 4.0
+    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
+    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
+    w.slab("south", [-t, 0, -t], [X + t, h, 0], wall)
+    w.slab("north", [-t, 0, Z], [X + t, h, Z + t], wall)
+    w.slab("west", [-t, 0, 0], [0, h, Z], accent)
+    w.slab("east", [X, 0, 0], [X + t, h, Z], wall)
+    # Office partitions along z at x = 4 and 8.15 (each t thick).
+    parts = [(4.0, 4.0 + t), (8.15, 8.15 + t)]
+    for i, (a, b) in enumerate(parts):
+        w.slab(f"partition_{i}", [a, 0, zo], [b, h, Z], wall)
+    # The corridor wall (z in [2, 2.15]) with one 0.9 m door per office, at different places.
+    doors = [(2.8, 3.7), (4.6, 5.5), (11.0, 11.9)]
+    door_h = 2.1
+    edges = [0.0] + [e for d in doors for e in d] + [X]
+    for i in range(0, len(edges), 2):
+        w.slab(f"corridor_wall_{i}", [edges[i], 0, zc], [edges[i + 1], h, zo], wall)
+    for k, (a, b) in enumerate(doors):
+        w.slab(f"lintel_{k}", [a, door_h, zc], [b, h, zo], wall)
+    # Desks (a top on two side panels) in each office, and a cabinet in the third.
+    for k, x in enumerate([1.0, 5.2, 9.4]):
+        w.slab(f"desk_top_{k}", [x, 0.72, Z - 1.0], [x + 1.6, 0.75, Z - 0.2], desk)
+        for px in [x, x + 1.55]:
+            w.slab(f"desk_side_{k}_{px}", [px, 0, Z - 1.0], [px + 0.05, 0.72, Z - 0.2], desk)
+    w.slab("cabinet", [11.4, 0, 4.0], [12.2, 1.3, 5.0], accent)
+    w.light("lamp", "point", 5.0, [0.8, 2.4, 1.0], [0, -1, 0])
+    w.light("spot", "spot", 30.0, [2.0, 2.6, 4.5], [0.3, -1.0, 0.4], cone=(0.35, 0.6))
+    w.camera([8.7, 1.7, 5.7], [11.2, 0.9, 2.3], 1.2, 0.05)
+    return w
+
+
 def main():
     out = Path(sys.argv[1] if len(sys.argv) > 1 else "unseen")
     out.mkdir(parents=True, exist_ok=True)
-    for name, make in [("apartment", apartment), ("sunroom", sunroom), ("storeroom", storeroom)]:
+    for name, make in [("apartment", apartment), ("sunroom", sunroom), ("storeroom", storeroom), ("offices", offices)]:
         make().write(out / f"{name}.gltf")
         print(out / f"{name}.gltf")
 

@@ -13,9 +13,9 @@ pub const MAX_ATLAS_SIDE: u32 = 5792;
 /// measured elsewhere: each VPL draws 1024 points from a 256k-point pool in proportion to the
 /// projected solid angle they cover (the thesis gives every ISM an equal share of 32k evenly
 /// spread points, which at level scale left a crate beside a VPL with one or two points), a
-/// distance clamp scaled by each VPL's patch instead of 1 world unit, a normal-offset ISM
-/// lookup in units of the VPL's angular point spacing instead of a depth bias that is a
-/// fraction of the scene diameter, points on the faces that see any geometry only, splats
+/// distance clamp scaled by each VPL's patch instead of 1 world unit, ISM lookups against the
+/// splat's plane stored per texel with a small normal offset in units of the VPL's angular
+/// point spacing instead of a depth bias that is a fraction of the scene diameter, points on the faces that see any geometry only, splats
 /// sized as each point's surface disk with its plane's depth per texel and clipped at the
 /// surface's open edges, pull-push that fills only empty texels, the next bounce's VPL picked
 /// in proportion to its power instead of the brightest, and a geometric tail after the last
@@ -70,14 +70,17 @@ pub struct IsmSettings {
     pub bounce_pick: BouncePick,
     /// Radius of each point's ISM splat as a fraction of the radius of the disk it stands for
     /// (the area it was chosen to stand for); the splat is that disk's elliptical footprint in
-    /// the paraboloid map, clipped at its surface's open edges. Smaller:
-    /// holes that let light through walls; larger: occluders dilated where they end at seams
-    /// and at the map's resolution. Measured with `examples/ism_probe.rs` (mean of 16 frames,
-    /// `PROBE_AVG=1`): the held-out four-room flat read 2.36 / 1.28 / 1.04 of the reference's
-    /// energy at 1.0 / 1.15 / 1.25, the suite's unlit room behind two doorways 0.94 / 0.69 /
-    /// 0.66 (of which 0.88 / 0.61 / 0.57 in the unlit room alone), the Cornell box 0.99 at all
-    /// three. Cost: the ISM maps' texel writes grow with its square (`ism_probe cornell "()" 8`
-    /// on lavapipe: 7.9 s at 0.5, 11.9 s at 1.0; `ism maps` 1.3 s per frame at 320x180).
+    /// the paraboloid map, clipped at its surface's open edges. Disks of their surface's area
+    /// leave gaps between them (on a square grid a disk must have 1.57x its cell's area, radius
+    /// 1.25x, to cover it), through which light leaks; larger ones close doorways seen at
+    /// grazing angles. Measured with `examples/ism_probe.rs` (mean of 8 frames, `PROBE_AVG=1`,
+    /// plane lookups, offset 0.05): the held-out four-room flat read 1.41 / 0.90 / 0.77 of the
+    /// reference's energy at 1.2 / 1.25 / 1.35 (1.09 over 16 frames at 1.25: its leak is on the
+    /// edge), the held-out offices 0.74 / 0.73 at 1.2 / 1.25 (1.01 with the earlier radius 1.0
+    /// and slope offset, whose leaks made up for the doorway light the maps miss), the suite's
+    /// three rooms 0.95 / 0.89 at 1.25 / 1.35, the Cornell box 0.99 at both. Cost: the ISM
+    /// maps' texel writes grow with its square (`ism_probe cornell "()" 8` on lavapipe: 7.9 s
+    /// at 0.5, 11.9 s at 1.0).
     pub splat_radius: f32,
     /// Geometry-aware filter threshold alpha: a neighbour farther than alpha x the scene
     /// diameter from the pixel's tangent plane is rejected (the thesis's 0.01, applied along
@@ -109,13 +112,18 @@ pub struct IsmSettings {
     pub clamp_disk: f32,
     /// ISM lookup normal offset, constant part, as a fraction of the world spacing of one
     /// ISM's sample points (sqrt(area / points per ISM): a splat's size on the surface): the
-    /// receiver is looked up at p + n delta (`ism_offset_point` in `common/vpl.wgsl`). Free;
-    /// larger: less self-shadowing acne, softer contact shadows. Unlike the thesis's depth
-    /// bias it lets no light through a wall at any size.
+    /// receiver is looked up at p + n delta (`ism_offset_point` in `common/vpl.wgsl`). The maps
+    /// store each splat's plane, so flat surfaces need none; this covers curved ones, whose
+    /// neighbours' tangent disks lie in front of them. Free; larger: softer contact shadows and
+    /// light beyond a doorway shifted (a raised receiver is seen through the doorway higher up).
+    /// Measured (`ism_probe`, 8 frames, splat radius 1.25): 0 / 0.05 gave the three rooms 0.933
+    /// / 0.948 of the reference's energy, the Cornell box 0.983 / 0.989, the cluttered room 0.928
+    /// / 0.938. Unlike a depth bias it lets no light through a wall at any size.
     pub bias_constant: f32,
     /// ISM lookup normal offset, slope part: times sin(angle between the receiver's normal and
-    /// the VPL) x the point spacing, plus an ISM texel's footprint x sin. Free; the
-    /// grazing-angle margin (a margin delta / cos against the receiver's own plane).
+    /// the VPL) x the point spacing. Free; off by default: with plane lookups the grazing
+    /// margin it gave is not needed, and it shifts the light beyond doorways (0.2 took the
+    /// three rooms from 0.90 to 0.64 of the reference's energy).
     pub bias_slope: f32,
 }
 
@@ -153,11 +161,11 @@ impl Default for IsmSettings {
             sh_filter: false,
             bounce_tail: true,
             bounce_pick: BouncePick::Proportional,
-            splat_radius: 1.0,
+            splat_radius: 1.25,
             clamp_distance: 0.0,
             clamp_disk: 0.25,
-            bias_constant: 0.1,
-            bias_slope: 0.5,
+            bias_constant: 0.05,
+            bias_slope: 0.0,
         }
     }
 }

@@ -22,7 +22,8 @@ struct BounceParams {
     params: vec4<f32>,
     // sum over the scene of area x weight, unused x3.
     area: vec4<f32>,
-    // ISM bias: unused, constant and slope factors, 2 / r (see ism_offset_point).
+    // ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    // relative depth margin of texels pull-push filled (`ism_lit`).
     bias: vec4<f32>,
 }
 
@@ -89,7 +90,7 @@ fn incident_power(i: u32) -> vec4<f32> {
     }
     let q = ism_offset_point(bp.bias, vpl.normal.w, vpl.position.xyz, p, n);
     let ism = ism_lookup(vpl, src, q, bp.counts.z, bp.counts.w, bp.params.x);
-    if ism.depth > bitcast<f32>(atlas[ism.index]) {
+    if !ism_lit(vpl, ism, atlas[ism.index], bp.counts.z, bp.bias.w) {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     // The area this point stands for among its VPL's points.

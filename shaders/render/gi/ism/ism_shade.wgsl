@@ -17,7 +17,8 @@ struct ShadeParams {
     params: vec4<f32>,
     // VPL sets (bounces), view width, view height, unused.
     sets: vec4<u32>,
-    // ISM bias: unused, constant and slope factors, 2 / r (see ism_offset_point).
+    // ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    // relative depth margin of texels pull-push filled (`ism_lit`).
     bias: vec4<f32>,
 }
 
@@ -56,7 +57,7 @@ fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
     }
     let q = ism_offset_point(sh.bias, vpl.normal.w, vpl.position.xyz, p, ng);
     let ism = ism_lookup(vpl, k, q, sh.counts.y, sh.counts.z, sh.params.x);
-    if ism.depth > bitcast<f32>(atlas[ism.index]) {
+    if !ism_lit(vpl, ism, atlas[ism.index], sh.counts.y, sh.bias.w) {
         return out;
     }
     out.dir = -dir;

@@ -1,8 +1,8 @@
 // ISM pass P7: imperfect shadow maps by point splatting (Ritschel et al. 2008 as used by Knecht
 // 2009). Each VPL's own points (`ism_select.wgsl`: P pool points chosen by solid angle, each
 // with the area it stands for) are splatted into that VPL's paraboloid tile of the atlas with
-// an atomic min of their normalised distance (positive floats keep their order as u32). `clear`
-// empties the atlas (1.0). Each bounce's VPL set has its own block of tiles (`sets.x` is the
+// an atomic min of their packed normalised distance (depth in the high bits). `clear` empties
+// the atlas. Each bounce's VPL set has its own block of tiles (`sets.x` is the
 // set's first VPL).
 //
 // A point stands for a disk of its surface (the area it was chosen to stand for), and its splat is
@@ -12,7 +12,9 @@
 // were too small at the paraboloid's rim (twice the texels per radian of its centre; the atlas
 // showed empty rings round every map), and squares twice that size closed the doorways (the
 // wall lit through the suite's second doorway kept 2% of its one-bounce light). Each texel
-// stores the depth of the disk's plane along its own ray (`disk_depth`), not the centre's.
+// stores the depth of the disk's plane along its own ray (`disk_depth`), not the centre's, and
+// the plane's normal (`ism_pack` in `common/vpl.wgsl`), so lookups meet the plane along their
+// own rays.
 #import common/onb.wgsl
 #import common/vpl.wgsl
 
@@ -45,7 +47,7 @@ const CLIPS: u32 = 4u;
 fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
     let side = sp.counts.z * sp.counts.w;
     if id.x < side && id.y < side {
-        atomicStore(&atlas[id.y * side + id.x], bitcast<u32>(1.0));
+        atomicStore(&atlas[id.y * side + id.x], ISM_EMPTY);
     }
 }
 
@@ -107,8 +109,8 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
                 }
                 let a = origin + vec2<i32>(x, y);
                 let t = disk_depth(hit, pb.z, radius);
-                // Even bit patterns: pull-push marks the texels it fills with the lowest bit.
-                let bits = bitcast<u32>(min(t * sp.params.x, 1.0)) & ~1u;
+                // The plane goes with the depth where the depth lies on it.
+                let bits = ism_pack(t * sp.params.x, nw.xyz, t == hit);
                 atomicMin(&atlas[u32(a.y) * side + u32(a.x)], bits);
             }
         }
@@ -129,13 +131,6 @@ fn disk_depth(hit: f32, d: f32, radius: f32) -> f32 {
         t = d;
     }
     return max(t, d - radius);
-}
-
-// The world direction of the paraboloid texel at `uv` (0..1) of a VPL with tangent frame `frame`.
-fn texel_ray(frame: mat3x3<f32>, uv: vec2<f32>) -> vec3<f32> {
-    let s = uv * 2.0 - 1.0;
-    let ss = dot(s, s);
-    return frame * (vec3<f32>(2.0 * s, 1.0 - ss) / (1.0 + ss));
 }
 
 // Distance along `dir` from `o` to the plane through `p` with normal `n`; 0 when the ray runs

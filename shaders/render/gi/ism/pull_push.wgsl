@@ -1,10 +1,11 @@
 // ISM pass P8: pull-push hole filling of the ISM atlas (Grossman & Dally 1998, Marroquim et al.
 // 2008; Ritschel et al. 2008's threshold times 2^level, but relative to the depth compared
-// instead of their 5% of the scene extent). Depths are
-// f32 bit patterns in u32 storage; 1.0 is empty. Tiles are powers of two, so 2x2 reductions never
-// mix two VPLs' maps. Splats store even bit patterns; the push marks the finest-level texels it
-// fills with the lowest mantissa bit (one ulp, far below any bias), so the inspector can show
-// the atlas before and after hole filling from the one buffer.
+// instead of their 5% of the scene extent). Every level holds atlas words (`ism_pack` in
+// `common/vpl.wgsl`: 16-bit depth, 0xffff empty); the coarse levels' carry no plane. Tiles are
+// powers of two, so 2x2 reductions never mix two VPLs' maps. The push marks the finest-level
+// texels it fills with the lowest bit (a depth without a plane), so lookups know them and the
+// inspector can show the atlas before and after hole filling from the one buffer.
+#import common/vpl.wgsl
 struct PullPushParams {
     // fine side (texels), level of the fine side (0 = finest), first fine row, unused.
     counts: vec4<u32>,
@@ -31,10 +32,10 @@ fn pull(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let b = id.xy * 2u;
     let v = array<f32, 4>(
-        bitcast<f32>(fine[b.y * fs + b.x]),
-        bitcast<f32>(fine[b.y * fs + b.x + 1u]),
-        bitcast<f32>(fine[(b.y + 1u) * fs + b.x]),
-        bitcast<f32>(fine[(b.y + 1u) * fs + b.x + 1u]),
+        ism_depth(fine[b.y * fs + b.x]),
+        ism_depth(fine[b.y * fs + b.x + 1u]),
+        ism_depth(fine[(b.y + 1u) * fs + b.x]),
+        ism_depth(fine[(b.y + 1u) * fs + b.x + 1u]),
     );
     var nearest = 1.0;
     for (var i = 0; i < 4; i = i + 1) {
@@ -48,11 +49,11 @@ fn pull(@builtin(global_invocation_id) gid: vec3<u32>) {
             count = count + 1.0;
         }
     }
-    var out = 1.0;
+    var out = ISM_EMPTY;
     if count > 0.0 {
-        out = sum / count;
+        out = ism_pack(sum / count, vec3<f32>(0.0, 0.0, 1.0), false);
     }
-    coarse[id.y * cs + id.x] = bitcast<u32>(out);
+    coarse[id.y * cs + id.x] = out;
 }
 
 // One thread per coarse texel fills its 2x2 fine texels (one coarse read for four writes).
@@ -64,8 +65,8 @@ fn push(@builtin(global_invocation_id) gid: vec3<u32>) {
     if id.x >= cs || id.y >= cs {
         return;
     }
-    let c = bitcast<f32>(coarse[id.y * cs + id.x]);
-    if c >= 1.0 {
+    let c = coarse[id.y * cs + id.x];
+    if c == ISM_EMPTY {
         return;
     }
     let mark = select(0u, 1u, pp.counts.y == 0u);
@@ -78,9 +79,8 @@ fn push(@builtin(global_invocation_id) gid: vec3<u32>) {
     for (var k = 0u; k < 4u; k = k + 1u) {
         let f = id * 2u + vec2<u32>(k & 1u, k >> 1u);
         let i = f.y * fs + f.x;
-        let v = bitcast<f32>(fine[i]);
-        if v >= 1.0 {
-            fine[i] = bitcast<u32>(c) | mark;
+        if fine[i] == ISM_EMPTY {
+            fine[i] = c | mark;
         }
     }
 }

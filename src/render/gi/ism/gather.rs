@@ -108,8 +108,8 @@ struct Sized {
 pub struct MapScale {
     /// Distance normalisation of the ISM depths (metres).
     pub d_max: f32,
-    /// ISM lookup bias (`ism_offset_point` in `common/vpl.wgsl`): unused, constant and slope
-    /// factors, 2 / r.
+    /// ISM lookup (`common/vpl.wgsl`): unused, the normal offset's constant and slope factors
+    /// (`ism_offset_point`), the relative depth margin of texels pull-push filled (`ism_lit`).
     pub bias: [f32; 4],
     /// Pull-push threshold at the finest level as a fraction of the depth compared.
     pub pull_push: f32,

@@ -62,7 +62,8 @@ pub struct BounceParams {
     pub params: [f32; 4],
     /// Sum over the scene of area x weight, unused x3.
     pub area: [f32; 4],
-    /// ISM bias: unused, constant and slope factors, 2 / r (`ism_offset_point`).
+    /// ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    /// relative depth margin of texels pull-push filled (`ism_lit`).
     pub bias: [f32; 4],
 }
 
@@ -95,7 +96,8 @@ pub struct ShadeParams {
     pub params: [f32; 4],
     /// VPL sets (bounces), view width, view height, unused.
     pub sets: [u32; 4],
-    /// ISM bias: unused, constant and slope factors, 2 / r (`ism_offset_point`).
+    /// ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    /// relative depth margin of texels pull-push filled (`ism_lit`).
     pub bias: [f32; 4],
 }
 
