@@ -10,7 +10,7 @@
 //!
 //! `cargo run --release --example ism_oracle -- clutter "(bounces: 3)"`
 use bouncelab::precompute::bvh::SceneBvh;
-use bouncelab::render::gi::ism::technique::{IsmTechnique, atlas_plane_normal};
+use bouncelab::render::gi::ism::technique::IsmTechnique;
 use bouncelab::render::gi::ism::vpl_pass::GpuVpl;
 use bouncelab::render::{GpuContext, Renderer};
 use bouncelab::settings::{GiMode, IsmSettings};
@@ -63,6 +63,7 @@ fn main() -> anyhow::Result<()> {
     let atlas = r.read_buffer("ism_atlas")?;
     let t = r.technique_as::<IsmTechnique>().expect("ism");
     let (words, _) = t.read_atlas_words(r.device(), r.queue())?;
+    let lookup = t.read_lookup_data(r.device(), r.queue())?;
     let vpls = t.read_all_vpls(r.device(), r.queue())?;
     let bvh = SceneBvh::build(&project.scene);
     let d_max = 2.0 * project.scene.bounds().map_or(1.0, |b| b.radius());
@@ -165,21 +166,8 @@ fn main() -> anyhow::Result<()> {
                 let t = ((uv * res as f32).floor().max(glam::Vec2::ZERO)).min(glam::Vec2::splat(res as f32 - 1.0));
                 let at = (ty + t.y as usize) * atlas.width as usize + tx + t.x as usize;
                 let stored = atlas.pixels[at][0];
-                // As `ism_lit`: the stored plane met along q's own ray, or the depth with a margin.
-                let limit = match atlas_plane_normal(words[at]) {
-                    Some(pn) => {
-                        let s = (t + glam::Vec2::splat(0.5)) / res as f32 * 2.0 - glam::Vec2::ONE;
-                        let ss = s.dot(s);
-                        let l = Vec3::new(2.0 * s.x, 2.0 * s.y, 1.0 - ss) / (1.0 + ss);
-                        let centre = tx_ * l.x + bx * l.y + nn * l.z;
-                        let den = (qq / qd).dot(pn);
-                        let plane = if den.abs() > 0.05 { stored * centre.dot(pn) / den } else { stored };
-                        plane.max(0.0) * 1.002 + 2.0 / 65534.0
-                    }
-                    None if stored >= 1.0 => f32::INFINITY,
-                    None => stored * (1.0 + 8.0 / res as f32),
-                };
-                let vis_ism = qd / d_max <= limit;
+                // As `ism_lit`: the stored point's surface along q's own ray.
+                let vis_ism = lookup.lit(o, tile as u32, qq / qd, qd, qd / d_max, words[at], 8.0 / res as f32);
                 w_pairs += w;
                 if vis_true {
                     w_true += w;
@@ -193,9 +181,9 @@ fn main() -> anyhow::Result<()> {
                         shown += 1;
                         let hit = bvh.intersect(o + nn * 2e-3, qq / qd, 1e30).map_or(f32::INFINITY, |h| h.t);
                         println!(
-                            "  false shadow: tile {tile} vpl {o:.2} n {nn:.2}  recv {p:.2} n {pn:.2}  texel {t}  stored {:.3} m  plane {}  q at {qd:.3} m  first hit along q {hit:.3} m",
+                            "  false shadow: tile {tile} vpl {o:.2} n {nn:.2}  recv {p:.2} n {pn:.2}  texel {t}  stored {:.3} m  slot {:?}  q at {qd:.3} m  first hit along q {hit:.3} m",
                             stored * d_max,
-                            atlas_plane_normal(words[at]).map_or("none".to_string(), |n| format!("{n:.2}"))
+                            bouncelab::render::gi::ism::atlas_word::slot(words[at])
                         );
                     }
                 }

@@ -1,6 +1,5 @@
 // A virtual point light as the ISM passes store it (mirrors render::gi::ism::vpl_pass::GpuVpl).
 #import common/onb.wgsl
-#import common/octahedral.wgsl
 
 struct Vpl {
     // xyz position, w = R^2 of the disk the VPL stands for (its patch's area / pi; the shading
@@ -34,50 +33,39 @@ fn vpl_intensity(vpl: Vpl, dir: vec3<f32>, cos_s: f32) -> vec3<f32> {
 }
 
 // The ISM atlas word (`ism_splat.wgsl` writes it with an atomic min, so the nearest surface
-// wins): bits 31..16 the depth along the texel's centre ray, normalised by the scene diameter
-// (0xffff: empty); bits 15..1 the octahedral normal of the splat's plane (8 + 7 bits; 0: no
-// plane, a depth only); bit 0 set where pull-push filled a hole. With the plane, a lookup
-// evaluates the occluder's depth along the receiver's own ray instead of the texel centre's, so
-// a surface no longer shadows itself where the receiver's ray and the texel's meet it at
-// different depths (what a slope-scaled bias or normal offset otherwise has to cover; such an
-// offset shifts the light falling through a doorway, see `ism_offset_point`).
+// wins): bits 31..15 the depth along the texel's centre ray, normalised by the scene diameter
+// (all ones: empty); bits 14..1 the slot + 1 of the VPL's point whose splat it is (0: none, a
+// depth only); bit 0 set where pull-push filled a hole. With the point, a lookup tests the
+// receiver's own ray against that point's surface (`ism_lookup.wgsl`) instead of comparing
+// depths at the texel centre.
 const ISM_EMPTY: u32 = 0xffffffffu;
-const ISM_DEPTH_MAX: f32 = 65534.0;
+const ISM_DEPTH_MAX: f32 = 131070.0;
 
-fn ism_pack(depth: f32, n: vec3<f32>, with_plane: bool) -> u32 {
+fn ism_pack(depth: f32, slot1: u32) -> u32 {
     let d = u32(round(clamp(depth, 0.0, 1.0) * ISM_DEPTH_MAX));
-    var code = 0u;
-    if with_plane {
-        let e = oct_encode(n) * 0.5 + 0.5;
-        let u = 1u + u32(round(clamp(e.x, 0.0, 1.0) * 254.0));
-        let v = u32(round(clamp(e.y, 0.0, 1.0) * 127.0));
-        code = (u << 7u) | v;
-    }
-    return (d << 16u) | (code << 1u);
+    return (d << 15u) | ((slot1 & 0x3fffu) << 1u);
 }
 
 // The normalised depth of an atlas word (1.0 for an empty texel).
 fn ism_depth(bits: u32) -> f32 {
-    if bits >> 16u == 0xffffu {
+    if bits >> 15u == 0x1ffffu {
         return 1.0;
     }
-    return f32(bits >> 16u) / ISM_DEPTH_MAX;
+    return f32(bits >> 15u) / ISM_DEPTH_MAX;
 }
 
-// The world direction of the paraboloid texel at `uv` (0..1) of a VPL with tangent frame `frame`.
-fn texel_ray(frame: mat3x3<f32>, uv: vec2<f32>) -> vec3<f32> {
-    let s = uv * 2.0 - 1.0;
-    let ss = dot(s, s);
-    return frame * (vec3<f32>(2.0 * s, 1.0 - ss) / (1.0 + ss));
+// The slot + 1 of the point whose splat an atlas word holds (0: none).
+fn ism_slot1(bits: u32) -> u32 {
+    return (bits >> 1u) & 0x3fffu;
 }
 
 // Where receiver `p` falls in VPL `k`'s imperfect shadow map: the atlas index (tiles of side r,
-// c per row), its texel, p's unit direction from the VPL and its distance normalised by the
-// scene diameter.
+// c per row), p's unit direction from the VPL, its distance and that distance normalised by
+// the scene diameter.
 struct IsmLookup {
     index: u32,
-    texel: vec2<u32>,
     dir: vec3<f32>,
+    dist: f32,
     depth: f32,
 }
 
@@ -86,46 +74,20 @@ fn ism_lookup(vpl: Vpl, k: u32, p: vec3<f32>, r: u32, c: u32, inv_d_max: f32) ->
     let texel = min(vec2<u32>(pb.xy * f32(r)), vec2<u32>(r - 1u));
     let a = vec2<u32>((k % c) * r, (k / c) * r) + texel;
     let dir = (p - vpl.position.xyz) / max(pb.z, 1.0e-20);
-    return IsmLookup(a.y * r * c + a.x, texel, dir, pb.z * inv_d_max);
-}
-
-// Whether the lookup `l` into VPL `vpl`'s map (tile side r) is lit, given the atlas word
-// `stored` at `l.index`. With a plane, the occluder's depth along the receiver's ray: the plane
-// through the texel centre's stored point, met by the receiver's ray (the centre's depth where
-// that ray runs within 3 degrees of the plane). Without one (a hole pull-push filled), the
-// stored depth plus `margin` (its share of the depth). The tolerance covers the 16-bit depth
-// and the normal's 8 / 7 bits over the half texel between the two rays.
-fn ism_lit(vpl: Vpl, l: IsmLookup, stored: u32, r: u32, margin: f32) -> bool {
-    if stored >> 16u == 0xffffu {
-        return true;
-    }
-    let t = ism_depth(stored);
-    let code = (stored >> 1u) & 0x7fffu;
-    if code == 0u {
-        return l.depth <= t * (1.0 + margin);
-    }
-    let e = vec2<f32>(f32((code >> 7u) - 1u) / 254.0, f32(code & 0x7fu) / 127.0) * 2.0 - 1.0;
-    let n = oct_decode(e);
-    let frame = mat3x3<f32>(onb_tangent(vpl.normal.xyz), onb_bitangent(vpl.normal.xyz), vpl.normal.xyz);
-    let centre = texel_ray(frame, (vec2<f32>(l.texel) + 0.5) / f32(r));
-    let den = dot(l.dir, n);
-    var plane = t;
-    if abs(den) > 0.05 {
-        plane = t * dot(centre, n) / den;
-    }
-    return l.depth <= max(plane, 0.0) * 1.002 + 2.0 / ISM_DEPTH_MAX;
+    return IsmLookup(a.y * r * c + a.x, dir, pb.z, pb.z * inv_d_max);
 }
 
 // The point a receiver is looked up at: a normal offset (an extension of the thesis's constant
 // depth bias). Each ISM's points are spread by solid angle (`ism_select.wgsl`), so on a surface
 // at distance d from the VPL they lie about d sigma apart, sigma = sqrt(W / P) the VPL's angular
-// point spacing (its normal.w). The plane stored per texel (`ism_lit`) removes the self-shadowing
-// of flat surfaces; what is left is a curved surface's, which lies behind its neighbours' tangent
+// point spacing (its normal.w). The surface lookup (`ism_lit`) removes the self-shadowing of
+// flat surfaces; what is left is a curved surface's, which lies behind its neighbours' tangent
 // disks by a fraction of their spacing, hence delta = d sigma (c + k sin(theta)), theta the angle
 // between the receiver's normal and the VPL. An offset moves the receiver's ray, though: a floor
 // receiver beyond a doorway, raised by delta, is looked up through the doorway higher up and falls
-// in the lintel's shadow sooner (with the texel-sized term d 2/r sin(theta) the plane replaced, the
-// suite's three rooms read 0.90 of the reference's energy; with k = 0.2, 0.64). `p` and `n` are
+// in the lintel's shadow sooner (with the texel-sized term d 2/r sin(theta) that the surface
+// lookups replaced, the suite's three rooms read 0.90 of the reference's energy; with k = 0.2,
+// 0.64). `p` and `n` are
 // the receiver's position and unit geometric normal, `light` the VPL's position, `sigma` its
 // angular spacing; `b` = (unused, c, k, unused).
 fn ism_offset_point(b: vec4<f32>, sigma: f32, light: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {

@@ -45,7 +45,7 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut m.clamp_distance, 0.0..=2.0).text("extra clamp distance (m)"))
             .on_hover_text("A fixed minimum VPL distance on top of the disk clamp (0 = none). Larger: fewer spikes near VPLs, darker corners (bias).");
         ui.add(egui::Slider::new(&mut m.bias_constant, 0.0..=1.0).text("ISM normal offset (x point spacing)"))
-            .on_hover_text("Constant part of the ISM lookup's normal offset, in units of the spacing of one ISM's sample points. The maps store each splat's plane, so only curved surfaces need it. Larger: softer contact shadows, light beyond doorways shifted.");
+            .on_hover_text("Constant part of the ISM lookup's normal offset, in units of the spacing of one ISM's sample points. Lookups test the receiver's own ray against the splat's surface, so only curved surfaces need it. Larger: softer contact shadows, light beyond doorways shifted.");
         ui.add(egui::Slider::new(&mut m.bias_slope, 0.0..=2.0).text("ISM slope offset"))
             .on_hover_text("Receiver-slope part of the normal offset: x sin(angle to the VPL) x the point spacing. Off by default: it shifts the light beyond doorways.");
         ui.add(egui::Slider::new(&mut m.filter_depth, 0.001..=0.1).logarithmic(true).text("filter plane tolerance"))

@@ -13,9 +13,10 @@ pub const MAX_ATLAS_SIDE: u32 = 5792;
 /// measured elsewhere: each VPL draws 1024 points from a 256k-point pool in proportion to the
 /// projected solid angle they cover (the thesis gives every ISM an equal share of 32k evenly
 /// spread points, which at level scale left a crate beside a VPL with one or two points), a
-/// distance clamp scaled by each VPL's patch instead of 1 world unit, ISM lookups against the
-/// splat's plane stored per texel with a small normal offset in units of the VPL's angular
-/// point spacing instead of a depth bias that is a fraction of the scene diameter, points on the faces that see any geometry only, splats
+/// distance clamp scaled by each VPL's patch instead of 1 world unit, ISM lookups that test the
+/// receiver's own ray against the surface of the point whose splat fills the texel (its plane
+/// within its open edges) with a small normal offset in units of the VPL's angular point
+/// spacing, instead of a depth compare with a bias that is a fraction of the scene diameter, points on the faces that see any geometry only, splats
 /// sized as each point's surface disk with its plane's depth per texel and clipped at the
 /// surface's open edges, pull-push that fills only empty texels, the next bounce's VPL picked
 /// in proportion to its power instead of the brightest, and a geometric tail after the last
@@ -74,13 +75,12 @@ pub struct IsmSettings {
     /// leave gaps between them (on a square grid a disk must have 1.57x its cell's area, radius
     /// 1.25x, to cover it), through which light leaks; larger ones close doorways seen at
     /// grazing angles. Measured with `examples/ism_probe.rs` (mean of 8 frames, `PROBE_AVG=1`,
-    /// plane lookups, offset 0.05): the held-out four-room flat read 1.41 / 0.90 / 0.77 of the
-    /// reference's energy at 1.2 / 1.25 / 1.35 (1.09 over 16 frames at 1.25: its leak is on the
-    /// edge), the held-out offices 0.74 / 0.73 at 1.2 / 1.25 (1.01 with the earlier radius 1.0
-    /// and slope offset, whose leaks made up for the doorway light the maps miss), the suite's
-    /// three rooms 0.95 / 0.89 at 1.25 / 1.35, the Cornell box 0.99 at both. Cost: the ISM
-    /// maps' texel writes grow with its square (`ism_probe cornell "()" 8` on lavapipe: 7.9 s
-    /// at 0.5, 11.9 s at 1.0).
+    /// point-surface lookups, offset 0.05), energy against the reference at 1.25 / 1.35 / 1.5:
+    /// the held-out four-room flat 1.20 / 1.09 / 1.03 (1.22 at 1.35 over 16 frames: some light
+    /// still leaks where its floor VPLs see a wall's foot at a few degrees), the held-out
+    /// offices 1.06 / 1.02 / 0.78, the suite's three rooms 1.015 / 0.975 / 0.932, the Cornell
+    /// box 0.993 at 1.25 and 1.35. Cost: the ISM maps' texel writes grow with its square
+    /// (`ism_probe cornell "()" 8` on lavapipe: 7.9 s at 0.5, 11.9 s at 1.0).
     pub splat_radius: f32,
     /// Geometry-aware filter threshold alpha: a neighbour farther than alpha x the scene
     /// diameter from the pixel's tangent plane is rejected (the thesis's 0.01, applied along
@@ -112,18 +112,20 @@ pub struct IsmSettings {
     pub clamp_disk: f32,
     /// ISM lookup normal offset, constant part, as a fraction of the world spacing of one
     /// ISM's sample points (sqrt(area / points per ISM): a splat's size on the surface): the
-    /// receiver is looked up at p + n delta (`ism_offset_point` in `common/vpl.wgsl`). The maps
-    /// store each splat's plane, so flat surfaces need none; this covers curved ones, whose
+    /// receiver is looked up at p + n delta (`ism_offset_point` in `common/vpl.wgsl`). A lookup
+    /// tests the receiver's own ray against the surface of the point whose splat fills the texel
+    /// (`ism_lookup.wgsl`), so flat surfaces need no offset; this covers curved ones, whose
     /// neighbours' tangent disks lie in front of them. Free; larger: softer contact shadows and
     /// light beyond a doorway shifted (a raised receiver is seen through the doorway higher up).
-    /// Measured (`ism_probe`, 8 frames, splat radius 1.25): 0 / 0.05 gave the three rooms 0.933
-    /// / 0.948 of the reference's energy, the Cornell box 0.983 / 0.989, the cluttered room 0.928
-    /// / 0.938. Unlike a depth bias it lets no light through a wall at any size.
+    /// Measured before the point-surface lookups (`ism_probe`, 8 frames, splat radius 1.25,
+    /// depths compared against the plane through the texel): 0 / 0.05 gave the three rooms
+    /// 0.933 / 0.948 of the reference's energy, the Cornell box 0.983 / 0.989, the cluttered
+    /// room 0.928 / 0.938. Unlike a depth bias it lets no light through a wall at any size.
     pub bias_constant: f32,
     /// ISM lookup normal offset, slope part: times sin(angle between the receiver's normal and
-    /// the VPL) x the point spacing. Free; off by default: with plane lookups the grazing
-    /// margin it gave is not needed, and it shifts the light beyond doorways (0.2 took the
-    /// three rooms from 0.90 to 0.64 of the reference's energy).
+    /// the VPL) x the point spacing. Free; off by default: lookups along the receiver's own ray
+    /// need no grazing margin, and it shifts the light beyond doorways (0.2 took the three
+    /// rooms from 0.90 to 0.64 of the reference's energy, measured with texel-centre depths).
     pub bias_slope: f32,
 }
 
@@ -161,7 +163,7 @@ impl Default for IsmSettings {
             sh_filter: false,
             bounce_tail: true,
             bounce_pick: BouncePick::Proportional,
-            splat_radius: 1.25,
+            splat_radius: 1.35,
             clamp_distance: 0.0,
             clamp_disk: 0.25,
             bias_constant: 0.05,

@@ -11,6 +11,7 @@
 //   power and its spatial distribution unbiased.
 #import common/color.wgsl
 #import common/vpl.wgsl
+#import render/gi/ism/ism_lookup.wgsl
 
 struct BounceParams {
     // VPLs per set, points per ISM P, tile side r, tiles per row C.
@@ -23,7 +24,7 @@ struct BounceParams {
     // sum over the scene of area x weight, unused x3.
     area: vec4<f32>,
     // ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
-    // relative depth margin of texels pull-push filled (`ism_lit`).
+    // relative depth margin of texels without a point (`ism_lit`).
     bias: vec4<f32>,
 }
 
@@ -47,6 +48,9 @@ const PI: f32 = 3.14159265358979;
 @group(0) @binding(8) var<storage, read> point_specular: array<vec4<f32>>;
 // Per source VPL k and slot i at k P + i: pool point index (0xffffffff: none), its area's bits.
 @group(0) @binding(9) var<storage, read> chosen: array<vec2<u32>>;
+// For the lookups (`ism_lookup.wgsl`): clip lines, and per VPL of every set and slot the pool point.
+@group(0) @binding(10) var<storage, read> clips: array<vec4<f32>>;
+@group(0) @binding(11) var<storage, read> chosen_all: array<u32>;
 
 
 // A hash of (point, frame) to a uniform number in (0, 1] (PCG, Jarzynski & Olano 2020).
@@ -90,7 +94,7 @@ fn incident_power(i: u32) -> vec4<f32> {
     }
     let q = ism_offset_point(bp.bias, vpl.normal.w, vpl.position.xyz, p, n);
     let ism = ism_lookup(vpl, src, q, bp.counts.z, bp.counts.w, bp.params.x);
-    if !ism_lit(vpl, ism, atlas[ism.index], bp.counts.z, bp.bias.w) {
+    if !ism_lit(vpl, src, ism, atlas[ism.index], bp.counts.y, bp.bias.w) {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     // The area this point stands for among its VPL's points.

@@ -45,6 +45,9 @@ struct Cluster {
 @group(0) @binding(3) var<storage, read_write> vpls: array<Vpl>;
 // Per VPL k and slot i at k P + i: x = pool point index (0xffffffff: none), y = its area bits.
 @group(0) @binding(4) var<storage, read_write> chosen: array<vec2<u32>>;
+// Per VPL of every set (at its atlas tile) and slot: the pool point alone, kept for the lookups
+// after later sets have overwritten `chosen` (`ism_lookup.wgsl`).
+@group(0) @binding(5) var<storage, read_write> chosen_all: array<u32>;
 
 const GROUP: u32 = 256u;
 const NONE: u32 = 0xffffffffu;
@@ -105,9 +108,11 @@ fn select_points(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocatio
     }
     let total = prefix[GROUP - 1u];
     let base = k * p_count;
+    let all_base = (sp.counts.w + k) * p_count;
     if !alive || total <= 0.0 {
         for (var i = lid; i < p_count; i = i + GROUP) {
             chosen[base + i] = vec2<u32>(NONE, 0u);
+            chosen_all[all_base + i] = NONE;
         }
         if lid == 0u {
             vpls[sp.counts.w + k].normal.w = 0.0;
@@ -144,6 +149,7 @@ fn select_points(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocatio
         let cl = clusters[min(c, n_clusters - 1u)];
         if w <= 0.0 || cl.count == 0u {
             chosen[base + i] = vec2<u32>(NONE, 0u);
+            chosen_all[all_base + i] = NONE;
             continue;
         }
         let f = clamp((u - acc) / w, 0.0, 0.99999);
@@ -151,5 +157,6 @@ fn select_points(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocatio
         let a = sp.params.x / max(point_normals[j].w, 1.0e-6);
         let area = a * f32(cl.count) * total / (f32(p_count) * w);
         chosen[base + i] = vec2<u32>(j, bitcast<u32>(area));
+        chosen_all[all_base + i] = j;
     }
 }

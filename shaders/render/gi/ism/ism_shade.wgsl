@@ -9,16 +9,17 @@
 #import common/octahedral.wgsl
 #import common/sh9.wgsl
 #import common/vpl.wgsl
+#import render/gi/ism/ism_lookup.wgsl
 
 struct ShadeParams {
     // VPL count, tile side r, tiles per row C, interleave n.
     counts: vec4<u32>,
     // 1 / d_max, unused, d_min^2, clamp factor on the VPL's disk radius squared.
     params: vec4<f32>,
-    // VPL sets (bounces), view width, view height, unused.
+    // VPL sets (bounces), view width, view height, points per ISM.
     sets: vec4<u32>,
     // ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
-    // relative depth margin of texels pull-push filled (`ism_lit`).
+    // relative depth margin of texels without a point (`ism_lit`).
     bias: vec4<f32>,
 }
 
@@ -29,6 +30,12 @@ struct ShadeParams {
 @group(0) @binding(4) var split_normal: texture_2d<f32>;
 @group(0) @binding(5) var out_indirect: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(6) var<storage, read_write> out_sh: array<u32>;
+// For the lookups (`ism_lookup.wgsl`): pool positions, normals, clip lines, and per VPL of
+// every set and slot the pool point.
+@group(0) @binding(7) var<storage, read> points: array<vec4<f32>>;
+@group(0) @binding(8) var<storage, read> point_normals: array<vec4<f32>>;
+@group(0) @binding(9) var<storage, read> clips: array<vec4<f32>>;
+@group(0) @binding(10) var<storage, read> chosen_all: array<u32>;
 
 const PI: f32 = 3.14159265358979;
 const SH_WORDS: u32 = 14u;
@@ -57,7 +64,7 @@ fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
     }
     let q = ism_offset_point(sh.bias, vpl.normal.w, vpl.position.xyz, p, ng);
     let ism = ism_lookup(vpl, k, q, sh.counts.y, sh.counts.z, sh.params.x);
-    if !ism_lit(vpl, ism, atlas[ism.index], sh.counts.y, sh.bias.w) {
+    if !ism_lit(vpl, k, ism, atlas[ism.index], sh.sets.w, sh.bias.w) {
         return out;
     }
     out.dir = -dir;

@@ -13,10 +13,11 @@
 // showed empty rings round every map), and squares twice that size closed the doorways (the
 // wall lit through the suite's second doorway kept 2% of its one-bounce light). Each texel
 // stores the depth of the disk's plane along its own ray (`disk_depth`), not the centre's, and
-// the plane's normal (`ism_pack` in `common/vpl.wgsl`), so lookups meet the plane along their
-// own rays.
+// which point it is (`ism_pack` in `common/vpl.wgsl`), so lookups test their own rays against
+// that point's surface (`ism_lookup.wgsl`).
 #import common/onb.wgsl
 #import common/vpl.wgsl
+#import render/gi/ism/ism_clips.wgsl
 
 struct SplatParams {
     // VPL count, points per ISM P, tile side r, tiles per row C.
@@ -37,11 +38,9 @@ struct SplatParams {
 @group(0) @binding(4) var<storage, read> point_normals: array<vec4<f32>>;
 // Per VPL k and slot i at k P + i: pool point index (0xffffffff: none), its area's bits.
 @group(0) @binding(5) var<storage, read> chosen: array<vec2<u32>>;
-// CLIPS lines per pool point in the point's plane: xyz inward direction, w offset; a texel whose
-// ray meets the plane at h is on the surface when dot(xyz, h) >= w for all (`open_edges.rs`).
+// CLIPS lines per pool point (`ism_clips.wgsl`).
 @group(0) @binding(6) var<storage, read> clips: array<vec4<f32>>;
 
-const CLIPS: u32 = 4u;
 
 @compute @workgroup_size(8, 8, 1)
 fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -104,13 +103,15 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
                 let hit = plane_hit(o, dir, p, nw.xyz);
                 // Texels whose ray meets the plane past the surface's open edges (over a
                 // doorway, past a wall's end) show no surface: the disk does not hang there.
-                if !own && hit > 0.0 && !on_surface(j, o + dir * hit, radius) {
+                // (A margin of 1% of the disk radius: two faces meeting at an edge leave no
+                // crack between them.)
+                if !own && hit > 0.0 && !on_surface(j, o + dir * hit, 0.01 * radius) {
                     continue;
                 }
                 let a = origin + vec2<i32>(x, y);
                 let t = disk_depth(hit, pb.z, radius);
-                // The plane goes with the depth where the depth lies on it.
-                let bits = ism_pack(t * sp.params.x, nw.xyz, t == hit);
+                // The point goes with the depth where its texel's ray meets its plane ahead.
+                let bits = ism_pack(t * sp.params.x, select(0u, id.x % per + 1u, hit > 0.0));
                 atomicMin(&atlas[u32(a.y) * side + u32(a.x)], bits);
             }
         }
@@ -143,15 +144,9 @@ fn plane_hit(o: vec3<f32>, dir: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> f32 {
     return dot(p - o, n) / den;
 }
 
-// Whether `h` (on pool point `i`'s plane) lies inside all of the point's clip lines, with a
-// margin of 1% of the disk radius so that two faces meeting at an edge leave no crack between
-// them.
-fn on_surface(i: u32, h: vec3<f32>, radius: f32) -> bool {
-    for (var k = 0u; k < CLIPS; k = k + 1u) {
-        let line = clips[i * CLIPS + k];
-        if dot(line.xyz, h) < line.w - 0.01 * radius {
-            return false;
-        }
-    }
-    return true;
+// The world direction of the paraboloid texel at `uv` (0..1) of a VPL with tangent frame `frame`.
+fn texel_ray(frame: mat3x3<f32>, uv: vec2<f32>) -> vec3<f32> {
+    let s = uv * 2.0 - 1.0;
+    let ss = dot(s, s);
+    return frame * (vec3<f32>(2.0 * s, 1.0 - ss) / (1.0 + ss));
 }

@@ -1,9 +1,9 @@
 // ISM pass P8: pull-push hole filling of the ISM atlas (Grossman & Dally 1998, Marroquim et al.
 // 2008; Ritschel et al. 2008's threshold times 2^level, but relative to the depth compared
 // instead of their 5% of the scene extent). Every level holds atlas words (`ism_pack` in
-// `common/vpl.wgsl`: 16-bit depth, 0xffff empty); the coarse levels' carry no plane. Tiles are
+// `common/vpl.wgsl`: 17-bit depth, all ones empty); the coarse levels' name no point. Tiles are
 // powers of two, so 2x2 reductions never mix two VPLs' maps. The push marks the finest-level
-// texels it fills with the lowest bit (a depth without a plane), so lookups know them and the
+// texels it fills with the lowest bit (a depth without a point), so the
 // inspector can show the atlas before and after hole filling from the one buffer.
 #import common/vpl.wgsl
 struct PullPushParams {
@@ -51,7 +51,7 @@ fn pull(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     var out = ISM_EMPTY;
     if count > 0.0 {
-        out = ism_pack(sum / count, vec3<f32>(0.0, 0.0, 1.0), false);
+        out = ism_pack(sum / count, 0u);
     }
     coarse[id.y * cs + id.x] = out;
 }

@@ -92,6 +92,8 @@ struct Sized {
     area_unit: f32,
     /// Per VPL and slot: chosen pool point and its area (`ism_select.wgsl`).
     chosen: wgpu::Buffer,
+    /// Per VPL of every set and slot: the chosen pool point alone (the lookups' `chosen_all`).
+    chosen_all: wgpu::Buffer,
     select_group: wgpu::BindGroup,
     /// The atlas before hole filling (inspector copy), when captured.
     splats: Option<wgpu::Buffer>,
@@ -109,7 +111,7 @@ pub struct MapScale {
     /// Distance normalisation of the ISM depths (metres).
     pub d_max: f32,
     /// ISM lookup (`common/vpl.wgsl`): unused, the normal offset's constant and slope factors
-    /// (`ism_offset_point`), the relative depth margin of texels pull-push filled (`ism_lit`).
+    /// (`ism_offset_point`), the relative depth margin of texels without a point (`ism_lit`).
     pub bias: [f32; 4],
     /// Pull-push threshold at the finest level as a fraction of the depth compared.
     pub pull_push: f32,
@@ -170,6 +172,7 @@ impl IsmGather {
                 storage_entry(2, c),
                 storage_rw(3),
                 storage_rw(4),
+                storage_rw(5),
             ],
         });
         let select_module = shaders::module(device, "render/gi/ism/ism_select.wgsl")?;
@@ -192,6 +195,8 @@ impl IsmGather {
                 storage_rw(7),
                 storage_entry(8, c),
                 storage_entry(9, c),
+                storage_entry(10, c),
+                storage_entry(11, c),
             ],
         });
         let bounce_module = shaders::module(device, "render/gi/ism/ism_bounce.wgsl")?;
@@ -256,7 +261,8 @@ impl IsmGather {
         let points = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("ism scene sample points"),
             size: u64::from(key.points.max(1)) * 16,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            // COPY_SRC: read back for oracles (`IsmTechnique::read_lookup_data`).
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
         use super::screen::buf;
@@ -276,6 +282,7 @@ impl IsmGather {
         let slots = u64::from(key.vpls) * u64::from(key.per_ism);
         let lit = storage("ism bounce lit points", slots * 32);
         let chosen = storage("ism chosen points", slots * 8);
+        let chosen_all = storage("ism chosen points of every set", slots * u64::from(key.bounces) * 4);
         let clip_bytes = u64::from(key.points) * 16 * crate::precompute::open_edges::CLIPS_PER_POINT as u64;
         let clips = storage("ism sample point clip lines", clip_bytes);
         let cluster_count = key.points.div_ceil(super::clusters::CLUSTER_POINTS as u32);
@@ -313,6 +320,7 @@ impl IsmGather {
                 buf(2, &normals),
                 buf(3, &all_vpls),
                 buf(4, &chosen),
+                buf(5, &chosen_all),
             ],
         });
         let bounce_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -329,6 +337,8 @@ impl IsmGather {
                 buf(7, &lit),
                 buf(8, &specular),
                 buf(9, &chosen),
+                buf(10, &clips),
+                buf(11, &chosen_all),
             ],
         });
         let pp = |fine: &wgpu::Buffer, coarse: &wgpu::Buffer| {
@@ -361,6 +371,7 @@ impl IsmGather {
             cluster_count: 0,
             area_unit: 0.0,
             chosen,
+            chosen_all,
             select_group,
             splats: None,
             bounce_group,
@@ -378,6 +389,12 @@ impl IsmGather {
     /// The VPLs of every bounce of the last frame (set b at `b * vpl_count`).
     pub fn all_vpls(&self) -> Option<&wgpu::Buffer> {
         self.sized.as_ref().map(|s| &s.all_vpls)
+    }
+
+    /// What the lookups read besides the atlas (`ism_lookup.wgsl`): per VPL of every set and
+    /// slot the pool point, the pool's positions, normals and clip lines, and points per ISM.
+    pub fn lookup_buffers(&self) -> Option<([&wgpu::Buffer; 4], u32)> {
+        self.sized.as_ref().map(|s| ([&s.chosen_all, &s.points, &s.normals, &s.clips], s.key.per_ism))
     }
 
     /// The ISM atlas levels (f32 bit patterns, 1.0 = empty) of the last frame, for the inspector.
@@ -593,6 +610,11 @@ impl IsmGather {
         let inputs = IsmInputs {
             vpls: &s.all_vpls,
             atlas: &s.atlas[0],
+            points: &s.points,
+            normals: &s.normals,
+            clips: &s.clips,
+            chosen_all: &s.chosen_all,
+            per_ism: s.key.per_ism,
             generation: s.generation,
             vpl_count: s.key.vpls,
             sets: s.key.bounces,
@@ -625,6 +647,7 @@ impl IsmGather {
                 &s.clusters,
                 &s.clips,
                 &s.chosen,
+                &s.chosen_all,
             ];
             s.atlas.iter().chain(buffers).chain(&s.splats).map(wgpu::Buffer::size).sum::<u64>()
         });

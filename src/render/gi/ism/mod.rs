@@ -5,7 +5,8 @@
 //! - [`paraboloid`]: the VPL frame and paraboloid map used by the ISM splat and lookup (P7, P10);
 //! - [`power`]: the unbiased VPL power the thesis leaves out (digest section 7.3).
 //!
-//! - [`light_tiles`]: where every light's view lives in the light G-buffer atlas.
+//! - [`light_tiles`]: where every light's view lives in the light G-buffer atlas;
+//! - [`atlas_word`]: the ISM atlas word and the lookup made of it (P7, P10).
 //!
 //! The GPU passes: [`vpl_pass`] (light G-buffer of every light, importance, VPLs), [`gather`]
 //! (ISM atlas and further bounces), [`screen`] (split G-buffer, shading, temporal merge,
@@ -13,6 +14,7 @@
 //! [`params`]. [`technique`] puts them behind the GI seam; [`points`] builds the sample points'
 //! per-point data.
 
+pub mod atlas_word;
 pub mod clusters;
 pub mod gather;
 pub mod halton;

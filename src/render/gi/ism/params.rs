@@ -63,7 +63,7 @@ pub struct BounceParams {
     /// Sum over the scene of area x weight, unused x3.
     pub area: [f32; 4],
     /// ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
-    /// relative depth margin of texels pull-push filled (`ism_lit`).
+    /// relative depth margin of texels without a point (`ism_lit`).
     pub bias: [f32; 4],
 }
 
@@ -94,10 +94,10 @@ pub struct ShadeParams {
     pub counts: [u32; 4],
     /// 1 / d_max, unused, d_min^2, clamp factor on the VPL's disk radius squared.
     pub params: [f32; 4],
-    /// VPL sets (bounces), view width, view height, unused.
+    /// VPL sets (bounces), view width, view height, points per ISM.
     pub sets: [u32; 4],
     /// ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
-    /// relative depth margin of texels pull-push filled (`ism_lit`).
+    /// relative depth margin of texels without a point (`ism_lit`).
     pub bias: [f32; 4],
 }
 

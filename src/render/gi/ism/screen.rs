@@ -20,8 +20,16 @@ fn size_of<T>() -> u64 {
 pub struct IsmInputs<'a> {
     /// VPLs of every set (set b at `b * vpl_count`).
     pub vpls: &'a wgpu::Buffer,
-    /// The finest ISM atlas level (f32 bit patterns).
+    /// The finest ISM atlas level (`ism_pack` words).
     pub atlas: &'a wgpu::Buffer,
+    /// Pool point positions, normals and clip lines, and per VPL of every set and slot the
+    /// pool point (what `ism_lookup.wgsl` tests a receiver's ray against).
+    pub points: &'a wgpu::Buffer,
+    pub normals: &'a wgpu::Buffer,
+    pub clips: &'a wgpu::Buffer,
+    pub chosen_all: &'a wgpu::Buffer,
+    /// Points per ISM.
+    pub per_ism: u32,
     /// Changes whenever `vpls` or `atlas` were recreated.
     pub generation: u64,
     /// VPLs per set.
@@ -34,7 +42,8 @@ pub struct IsmInputs<'a> {
     pub tiles_per_row: u32,
     /// Scene diameter (the ISM depth normalisation and the filters' depth range), metres.
     pub d_max: f32,
-    /// ISM lookup bias (`ism_offset_point`): point spacing / d_max, constant and slope factors, 2 / r.
+    /// ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    /// relative depth margin of texels without a point (`ism_lookup.wgsl`).
     pub bias: [f32; 4],
 }
 
@@ -133,6 +142,10 @@ impl IsmScreen {
                 texture_entry(4, c, unfilterable),
                 storage_texture_entry(5, formats::HDR),
                 super::gather::storage_rw(6),
+                storage_entry(7, c),
+                storage_entry(8, c),
+                storage_entry(9, c),
+                storage_entry(10, c),
             ],
         });
         let shade_module = shaders::module(device, "render/gi/ism/ism_shade.wgsl")?;
@@ -241,6 +254,10 @@ impl IsmScreen {
                 tex(4, &split_normal.view),
                 tex(5, &raw.view),
                 buf(6, sh_buffer),
+                buf(7, ism.points),
+                buf(8, ism.normals),
+                buf(9, ism.clips),
+                buf(10, ism.chosen_all),
             ],
         });
         let history = [
@@ -383,7 +400,7 @@ impl IsmScreen {
         let shade = ShadeParams {
             counts: [ism.vpl_count, ism.r, ism.tiles_per_row, n],
             params: [1.0 / ism.d_max, 0.0, d_min * d_min, settings.clamp_disk],
-            sets: [ism.sets, w, h, 0],
+            sets: [ism.sets, w, h, ism.per_ism],
             bias: ism.bias,
         };
         queue.write_buffer(&self.shade_params, 0, bytemuck::bytes_of(&shade));

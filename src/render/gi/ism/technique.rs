@@ -262,6 +262,26 @@ impl IsmTechnique {
         Ok(bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, buffer)?))
     }
 
+    /// What the last frame's ISM lookups read (for oracles): the pool point of every VPL's
+    /// slots, the pool's positions, normals and clip lines, and points per ISM.
+    pub fn read_lookup_data(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<super::atlas_word::IsmLookupData, RenderError> {
+        let ([chosen, points, normals, clips], per_ism) = self.gather.lookup_buffers().ok_or_else(|| {
+            RenderError::UnknownBuffer { name: "ism lookup data".into(), known: "render an ism mode first".into() }
+        })?;
+        let read = |b: &wgpu::Buffer| readback::read_buffer(device, queue, b);
+        Ok(super::atlas_word::IsmLookupData {
+            chosen_all: bytemuck::pod_collect_to_vec(&read(chosen)?),
+            points: bytemuck::pod_collect_to_vec(&read(points)?),
+            normals: bytemuck::pod_collect_to_vec(&read(normals)?),
+            clips: bytemuck::pod_collect_to_vec(&read(clips)?),
+            per_ism,
+        })
+    }
+
     /// The filled ISM atlas of the last frame as its raw words (`ism_pack` in
     /// `common/vpl.wgsl`), row-major, and its side in texels.
     pub fn read_atlas_words(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<(Vec<u32>, u32), RenderError> {
@@ -282,7 +302,8 @@ impl IsmTechnique {
             levels.first().ok_or_else(|| missing("render an ism mode first"))?
         };
         let bytes = readback::read_buffer(device, queue, buffer)?;
-        let pixels = bytemuck::pod_collect_to_vec::<u8, u32>(&bytes).into_iter().map(atlas_texel).collect();
+        let pixels =
+            bytemuck::pod_collect_to_vec::<u8, u32>(&bytes).into_iter().map(super::atlas_word::texel).collect();
         Ok(HdrImage { width: side, height: side, pixels })
     }
 }
@@ -320,8 +341,8 @@ impl GiTechnique for IsmTechnique {
         let total_area = points.weighted_area.iter().sum::<f64>() as f32;
         let scale = MapScale {
             d_max: diameter,
-            // A filled hole's depth (no plane) is compared with a margin of two texels' angle
-            // at the paraboloid's centre (4 / r each) as a share of its depth.
+            // A texel without a point (pull-push filled it) is compared by depth with a margin
+            // of two texels' angle at the paraboloid's centre (4 / r each) as a share of it.
             bias: [0.0, settings.bias_constant, settings.bias_slope, 8.0 / settings.ism_resolution as f32],
             // Two depths more than 15% apart are two surfaces, not one to average, when a coarse
             // level is pulled (a 2x2 block of one surface spans that much only beyond ~67
@@ -497,28 +518,4 @@ fn metres(x: f32) -> String {
     } else {
         format!("{:.1} mm", x * 1000.0)
     }
-}
-
-/// An ISM atlas word (`ism_pack` in `common/vpl.wgsl`) as the inspector shows it: rgb = the
-/// normalised depth (1 = empty), its lowest mantissa bit set where pull-push filled the texel
-/// (one ulp, invisible); alpha = 1.
-fn atlas_texel(bits: u32) -> [f32; 4] {
-    let depth = if bits >> 16 == 0xffff { 1.0 } else { (bits >> 16) as f32 / 65534.0 };
-    let v = f32::from_bits((depth.to_bits() & !1) | (bits & 1));
-    [v, v, v, 1.0]
-}
-
-/// The unit normal of the splat plane an atlas word holds, or `None` (empty, or a depth without a
-/// plane); the CPU twin of the decoding in `ism_lit` (`common/vpl.wgsl`).
-pub fn atlas_plane_normal(bits: u32) -> Option<glam::Vec3> {
-    let code = (bits >> 1) & 0x7fff;
-    if bits >> 16 == 0xffff || code == 0 {
-        return None;
-    }
-    let e = glam::Vec2::new(((code >> 7) - 1) as f32 / 254.0, (code & 0x7f) as f32 / 127.0) * 2.0 - glam::Vec2::ONE;
-    let mut n = glam::Vec3::new(e.x, e.y, 1.0 - e.x.abs() - e.y.abs());
-    let t = (-n.z).clamp(0.0, 1.0);
-    n.x += if n.x >= 0.0 { -t } else { t };
-    n.y += if n.y >= 0.0 { -t } else { t };
-    Some(n.normalize())
 }
