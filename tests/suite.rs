@@ -77,11 +77,13 @@ fn ism_puts_no_light_through_the_walls_into_the_unlit_room() {
     let (ism, truth) = (mean(&img), mean(&reference));
     eprintln!("unlit third room over {} px: ism {ism:.5}, reference {truth:.5}, ratio {:.3}", third.len(), ism / truth);
     // No leak: at most 10% over the reference; and the light that reaches the room through the
-    // two doorways (three bounces and more) not lost: below 0.6 the bounces would have lost it.
-    // Measured 1.031 (mean of frames 17-32, per-VPL points and clipped splats).
+    // two doorways (three bounces and more) not lost: at most 10% under it (lookups that dilate
+    // the doorways, or bounces that keep light near where it landed, fall below). Measured
+    // 1.004 (mean of frames 17-32, lookups against the splat point's surface, splat radius
+    // 1.35); 1.031 before those lookups, with splat radius 1.0.
     let ratio = ism / truth;
     assert!(ratio < 1.1, "light through the walls: the unlit room reads {ratio:.3} of the reference");
-    assert!(ratio > 0.6, "too little light through the doorways: {ratio:.3} of the reference");
+    assert!(ratio > 0.9, "too little light through the doorways: {ratio:.3} of the reference");
 }
 
 #[test]
