@@ -76,8 +76,8 @@ pub struct IsmSettings {
     /// 1.25x, to cover it), through which light leaks; larger ones close doorways seen at
     /// grazing angles. Measured with `examples/ism_probe.rs` (mean of 8 frames, `PROBE_AVG=1`,
     /// point-surface lookups, offset 0.05), energy against the reference at 1.25 / 1.35 / 1.5:
-    /// the held-out four-room flat 1.20 / 1.09 / 1.03 (1.22 at 1.35 over 16 frames: some light
-    /// still leaks where its floor VPLs see a wall's foot at a few degrees), the held-out
+    /// the held-out four-room flat 1.20 / 1.09 / 1.03 (at 1.35: 1.22 over 16 frames, 1.56 over
+    /// 32; light still leaks where its floor VPLs see a wall's foot at a few degrees), the held-out
     /// offices 1.06 / 1.02 / 0.78, the suite's three rooms 1.015 / 0.975 / 0.932, the Cornell
     /// box 0.993 at 1.25 and 1.35. Cost: the ISM maps' texel writes grow with its square
     /// (`ism_probe cornell "()" 8` on lavapipe: 7.9 s at 0.5, 11.9 s at 1.0).
