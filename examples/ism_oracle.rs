@@ -10,6 +10,7 @@
 //!
 //! `cargo run --release --example ism_oracle -- clutter "(bounces: 3)"`
 use bouncelab::precompute::bvh::SceneBvh;
+use bouncelab::render::gi::ism::atlas_word;
 use bouncelab::render::gi::ism::technique::IsmTechnique;
 use bouncelab::render::gi::ism::vpl_pass::GpuVpl;
 use bouncelab::render::{GpuContext, Renderer};
@@ -60,15 +61,15 @@ fn main() -> anyhow::Result<()> {
     for _ in 0..2 {
         r.render(&project.scene, &project.render, (128, 72))?;
     }
-    let atlas = r.read_buffer("ism_atlas")?;
     let t = r.technique_as::<IsmTechnique>().expect("ism");
-    let (words, _) = t.read_atlas_words(r.device(), r.queue())?;
+    let (words, side) = t.read_atlas_words(r.device(), r.queue())?;
+    let side = side as usize;
     let lookup = t.read_lookup_data(r.device(), r.queue())?;
     let vpls = t.read_all_vpls(r.device(), r.queue())?;
     let bvh = SceneBvh::build(&project.scene);
     let d_max = 2.0 * project.scene.bounds().map_or(1.0, |b| b.radius());
     let res = ism.ism_resolution as usize;
-    let c = atlas.width as usize / res;
+    let c = side / res;
     let n = ism.vpl_count as usize;
     for set in 0..ism.bounces as usize {
         let (mut w_all, mut w_false, mut w_hole, mut w_near) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
@@ -93,7 +94,7 @@ fn main() -> anyhow::Result<()> {
                     let w = f64::from(l.z * (1.0 + l.z) * (1.0 + l.z));
                     let hit = bvh.intersect(o + nn * 2e-3, dir, 1e30);
                     let truth = hit.map_or(f32::INFINITY, |h| h.t);
-                    let d = atlas.pixels[(ty + y) * atlas.width as usize + tx + x][0];
+                    let d = atlas_word::depth(words[(ty + y) * side + tx + x]);
                     let ism_t = if d >= 1.0 { f32::INFINITY } else { d * d_max };
                     if dump {
                         let shade = |t: f32| (255.0 * (1.0 - (t / (0.5 * d_max)).min(1.0))) as u8;
@@ -164,8 +165,8 @@ fn main() -> anyhow::Result<()> {
                 let lv = Vec3::new(qq.dot(tx_), qq.dot(bx), qq.dot(nn)) / qd.max(1e-9);
                 let uv = glam::Vec2::new(lv.x, lv.y) / (1.0 + lv.z) * 0.5 + glam::Vec2::splat(0.5);
                 let t = ((uv * res as f32).floor().max(glam::Vec2::ZERO)).min(glam::Vec2::splat(res as f32 - 1.0));
-                let at = (ty + t.y as usize) * atlas.width as usize + tx + t.x as usize;
-                let stored = atlas.pixels[at][0];
+                let at = (ty + t.y as usize) * side + tx + t.x as usize;
+                let stored = atlas_word::depth(words[at]);
                 // As `ism_lit`: the stored point's surface along q's own ray.
                 let vis_ism = lookup.lit(o, tile as u32, qq / qd, qd, qd / d_max, words[at], 8.0 / res as f32);
                 w_pairs += w;
@@ -183,7 +184,7 @@ fn main() -> anyhow::Result<()> {
                         println!(
                             "  false shadow: tile {tile} vpl {o:.2} n {nn:.2}  recv {p:.2} n {pn:.2}  texel {t}  stored {:.3} m  slot {:?}  q at {qd:.3} m  first hit along q {hit:.3} m",
                             stored * d_max,
-                            bouncelab::render::gi::ism::atlas_word::slot(words[at])
+                            atlas_word::slot(words[at])
                         );
                     }
                 }

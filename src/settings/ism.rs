@@ -80,7 +80,9 @@ pub struct IsmSettings {
     /// 32; light still leaks where its floor VPLs see a wall's foot at a few degrees), the held-out
     /// offices 1.06 / 1.02 / 0.78, the suite's three rooms 1.015 / 0.975 / 0.932, the Cornell
     /// box 0.993 at 1.25 and 1.35. Cost: the ISM maps' texel writes grow with its square
-    /// (`ism_probe cornell "()" 8` on lavapipe: 7.9 s at 0.5, 11.9 s at 1.0).
+    /// (`ism_probe cornell "()" 8` on lavapipe, before the point-surface lookups: 7.9 s at 0.5,
+    /// 11.9 s at 1.0; `bench --quick`: `ism maps` 1.75 s per frame at 1.35 against 1.31-1.34 s
+    /// at 1.0, lookups included).
     pub splat_radius: f32,
     /// Geometry-aware filter threshold alpha: a neighbour farther than alpha x the scene
     /// diameter from the pixel's tangent plane is rejected (the thesis's 0.01, applied along

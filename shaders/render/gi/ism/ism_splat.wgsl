@@ -41,7 +41,6 @@ struct SplatParams {
 // CLIPS lines per pool point (`ism_clips.wgsl`).
 @group(0) @binding(6) var<storage, read> clips: array<vec4<f32>>;
 
-
 @compute @workgroup_size(8, 8, 1)
 fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
     let side = sp.counts.z * sp.counts.w;

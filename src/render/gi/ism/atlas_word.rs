@@ -6,6 +6,8 @@
 
 use glam::Vec3;
 
+use crate::precompute::open_edges::CLIPS_PER_POINT;
+
 /// Depth levels of the word's 17-bit depth field (all ones is empty).
 const DEPTH_MAX: f32 = 131_070.0;
 
@@ -35,7 +37,7 @@ pub struct IsmLookupData {
     /// Pool positions (xyz) and normals (xyz; w = sampling weight).
     pub points: Vec<[f32; 4]>,
     pub normals: Vec<[f32; 4]>,
-    /// Clip lines, four per pool point (xyz inward direction, w offset).
+    /// Clip lines, [`CLIPS_PER_POINT`] per pool point (xyz inward direction, w offset).
     pub clips: Vec<[f32; 4]>,
     /// Points per ISM.
     pub per_ism: u32,
@@ -67,7 +69,8 @@ impl IsmLookupData {
             return true;
         }
         let h = o + dir * t;
-        !self.clips[j * 4..j * 4 + 4].iter().all(|c| Vec3::from_slice(&c[..3]).dot(h) >= c[3])
+        let lines = &self.clips[j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT];
+        !lines.iter().all(|c| Vec3::from_slice(&c[..3]).dot(h) >= c[3])
     }
 }
 

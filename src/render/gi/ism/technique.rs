@@ -285,14 +285,16 @@ impl IsmTechnique {
     /// The filled ISM atlas of the last frame as its raw words (`ism_pack` in
     /// `common/vpl.wgsl`), row-major, and its side in texels.
     pub fn read_atlas_words(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<(Vec<u32>, u32), RenderError> {
-        let missing =
-            || RenderError::UnknownBuffer { name: "ism atlas".into(), known: "render an ism mode first".into() };
-        let (levels, side) = self.gather.atlas().ok_or_else(missing)?;
-        let buffer = levels.first().ok_or_else(missing)?;
-        Ok((bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, buffer)?), side))
+        self.atlas_words(device, queue, false)
     }
 
-    fn read_atlas(&self, device: &wgpu::Device, queue: &wgpu::Queue, splats: bool) -> Result<HdrImage, RenderError> {
+    /// The atlas words after hole filling, or as splatted (the inspector's copy).
+    fn atlas_words(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        splats: bool,
+    ) -> Result<(Vec<u32>, u32), RenderError> {
         let name = if splats { "ism_atlas_splats" } else { "ism_atlas" };
         let missing = |why: &str| RenderError::UnknownBuffer { name: name.into(), known: why.into() };
         let (levels, side) = self.gather.atlas().ok_or_else(|| missing("render an ism mode first"))?;
@@ -301,10 +303,12 @@ impl IsmTechnique {
         } else {
             levels.first().ok_or_else(|| missing("render an ism mode first"))?
         };
-        let bytes = readback::read_buffer(device, queue, buffer)?;
-        let pixels =
-            bytemuck::pod_collect_to_vec::<u8, u32>(&bytes).into_iter().map(super::atlas_word::texel).collect();
-        Ok(HdrImage { width: side, height: side, pixels })
+        Ok((bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, buffer)?), side))
+    }
+
+    fn read_atlas(&self, device: &wgpu::Device, queue: &wgpu::Queue, splats: bool) -> Result<HdrImage, RenderError> {
+        let (words, side) = self.atlas_words(device, queue, splats)?;
+        Ok(HdrImage { width: side, height: side, pixels: words.into_iter().map(super::atlas_word::texel).collect() })
     }
 }
 
