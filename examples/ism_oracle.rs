@@ -8,6 +8,13 @@
 //! - the power the first set's VPLs hand to the second (bounce pass) against the power they
 //!   reflect with exact visibility.
 //!
+//!
+//! Diagnostics (environment): `GRID=x,z` and `PAIR=a,b` pick rooms, `SHOW=1` / `SHOW_SHADOW=1`
+//! list false-light / false-shadow pairs (`NEIGHBOURS=1`: with the four neighbouring texels'
+//! points), `DUMP=tile` writes that tile beside the rays' depths, `POINTS=tile[,box]` lists a
+//! tile's chosen points with their splat radius and footprint (`TEXEL=x,y`: whether each covers
+//! that texel as the splat pass decides it; `CLIPS=1`: with their clip lines).
+//!
 //! `cargo run --release --example ism_oracle -- clutter "(bounces: 3)"`
 use bouncelab::precompute::bvh::SceneBvh;
 use bouncelab::render::gi::ism::atlas_word;
@@ -45,6 +52,28 @@ fn sampled_vpls(vpls: &[GpuVpl], set: usize, n: usize) -> impl Iterator<Item = (
         .map(|(tile, v)| (tile, v, Vec3::from_slice(&v.position[..3]), Vec3::from_slice(&v.normal[..3])))
 }
 
+/// The pool point (position, normal) an atlas word of tile `tile` names, if any.
+fn word_point(word: u32, tile: usize, lookup: &atlas_word::IsmLookupData) -> Option<([f32; 4], [f32; 4])> {
+    let j = *lookup.chosen_all.get(tile * lookup.per_ism as usize + atlas_word::slot(word)? as usize)? as usize;
+    Some((*lookup.points.get(j)?, *lookup.normals.get(j)?))
+}
+
+/// With NEIGHBOURS=1: the texel at atlas index `at` and its four neighbours, their depths and
+/// points (one texel holds one surface; the lost one is often next door).
+fn show_neighbours(words: &[u32], at: usize, side: usize, tile: usize, lookup: &atlas_word::IsmLookupData, d_max: f32) {
+    if std::env::var_os("NEIGHBOURS").is_none() {
+        return;
+    }
+    for (dx, dy) in [(0i64, 0i64), (-1, 0), (1, 0), (0, -1), (0, 1)] {
+        let Some(&w) = words.get((at as i64 + dy * side as i64 + dx) as usize) else { continue };
+        println!(
+            "      ({dx},{dy}) depth {:.3} point {:.2?}",
+            atlas_word::depth(w) * d_max,
+            word_point(w, tile, lookup)
+        );
+    }
+}
+
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
     let name = &args[1];
@@ -68,6 +97,70 @@ fn main() -> anyhow::Result<()> {
     let vpls = t.read_all_vpls(r.device(), r.queue())?;
     let bvh = SceneBvh::build(&project.scene);
     let d_max = 2.0 * project.scene.bounds().map_or(1.0, |b| b.radius());
+    // POINTS=tile[,x0,y0,z0,x1,y1,z1]: that tile's chosen points (inside the box), as splatted.
+    if let Some(spec) = std::env::var("POINTS").ok() {
+        let v: Vec<f32> = spec.split(',').filter_map(|x| x.parse().ok()).collect();
+        let tile = v.first().copied().unwrap_or(0.0) as usize;
+        let inside = |p: [f32; 4]| v.len() < 7 || (0..3).all(|a| p[a] >= v[1 + a] && p[a] <= v[4 + a]);
+        let per = lookup.per_ism as usize;
+        let vpl = vpls[tile];
+        let chosen = t.read_chosen(r.device(), r.queue())?;
+        // TEXEL=x,y: whether each listed point's splat covers that texel of the tile, as
+        // `ism_splat.wgsl` decides it (footprint ellipse, plane hit, clip lines).
+        let texel: Option<(f32, f32)> = std::env::var("TEXEL")
+            .ok()
+            .and_then(|t| t.split_once(',').and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?))));
+        let (o, n) = (Vec3::from_slice(&vpl.position[..3]), Vec3::from_slice(&vpl.normal[..3]));
+        let (tu, tv) = onb(n);
+        let fr = ism.ism_resolution as f32;
+        let map = |q: Vec3| {
+            let v = q - o;
+            let l = Vec3::new(v.dot(tu), v.dot(tv), v.dot(n)) / v.length().max(1e-9);
+            (glam::Vec2::new(l.x, l.y) / (1.0 + l.z) * 0.5 + glam::Vec2::splat(0.5)) * fr
+        };
+        println!("tile {tile} vpl {:?} n {:?}", vpl.position, vpl.normal);
+        for slot in 0..per {
+            let j = lookup.chosen_all[tile * per + slot];
+            if j == u32::MAX || !inside(lookup.points[j as usize]) {
+                continue;
+            }
+            let (p, nn) = (lookup.points[j as usize], lookup.normals[j as usize]);
+            let area = chosen.get(tile % ism.vpl_count as usize * per + slot).map_or(0.0, |c| c.1);
+            let radius = (ism.splat_radius.powi(2) / std::f32::consts::PI * area).sqrt();
+            let (pp, pn) = (Vec3::new(p[0], p[1], p[2]), Vec3::new(nn[0], nn[1], nn[2]));
+            let (a, b) = onb(pn);
+            let centre = map(pp);
+            let (ta, tb) = (map(pp + a * radius) - centre, map(pp + b * radius) - centre);
+            let m00 = ta.x * ta.x + tb.x * tb.x + 0.25;
+            let m01 = ta.x * ta.y + tb.x * tb.y;
+            let m11 = ta.y * ta.y + tb.y * tb.y + 0.25;
+            let det = m00 * m11 - m01 * m01;
+            let mut cover = String::new();
+            if let Some((x, y)) = texel {
+                let q = glam::Vec2::new(x + 0.5, y + 0.5) - centre;
+                let inside = m11 * q.x * q.x - 2.0 * m01 * q.x * q.y + m00 * q.y * q.y <= det;
+                let s = glam::Vec2::new(x + 0.5, y + 0.5) / fr * 2.0 - glam::Vec2::ONE;
+                let ss = s.dot(s);
+                let l = Vec3::new(2.0 * s.x, 2.0 * s.y, 1.0 - ss) / (1.0 + ss);
+                let dir = tu * l.x + tv * l.y + n * l.z;
+                let den = dir.dot(pn);
+                let hit = if den.abs() <= 1e-6 { 0.0 } else { (pp - o).dot(pn) / den };
+                let on = lookup.on_surface(j, o + dir * hit, 0.01 * radius);
+                if std::env::var_os("CLIPS").is_some() {
+                    println!(
+                        "    clips {:?} hit point {:?}",
+                        &lookup.clips[j as usize * 4..j as usize * 4 + 4],
+                        o + dir * hit
+                    );
+                }
+                cover = format!("  texel: inside {inside} hit {hit:.3} on surface {on}");
+            }
+            println!(
+                "  slot {slot} point {j} at [{:.3}, {:.3}, {:.3}] n [{:.2}, {:.2}, {:.2}] r {radius:.3} centre {centre:.1} ta {ta:.1} tb {tb:.1}{cover}",
+                p[0], p[1], p[2], nn[0], nn[1], nn[2]
+            );
+        }
+    }
     let res = ism.ism_resolution as usize;
     let c = side / res;
     let n = ism.vpl_count as usize;
@@ -178,7 +271,12 @@ fn main() -> anyhow::Result<()> {
                 }
                 if vis_true && !vis_ism {
                     w_fs += w;
-                    if std::env::var_os("SHOW_SHADOW").is_some() && shown < 12 && cos_s > 0.2 && cos_r > 0.2 {
+                    if std::env::var_os("SHOW_SHADOW").is_some()
+                        && shown < 12
+                        && cos_s > 0.2
+                        && cos_r > 0.2
+                        && set + 1 >= ism.bounces as usize
+                    {
                         shown += 1;
                         let hit = bvh.intersect(o + nn * 2e-3, qq / qd, 1e30).map_or(f32::INFINITY, |h| h.t);
                         println!(
@@ -186,6 +284,7 @@ fn main() -> anyhow::Result<()> {
                             stored * d_max,
                             atlas_word::slot(words[at])
                         );
+                        show_neighbours(&words, at, side, tile, &lookup, d_max);
                     }
                 }
                 if !vis_true && vis_ism {
@@ -193,10 +292,13 @@ fn main() -> anyhow::Result<()> {
                     if std::env::var_os("SHOW").is_some() && shown < 12 {
                         shown += 1;
                         let wall = bvh.intersect(o + nn * 2e-3, qq / qd, 1e30).map_or(f32::INFINITY, |h| h.t);
+                        let point = word_point(words[at], tile, &lookup);
                         println!(
-                            "  false light: tile {tile} vpl {o:.2} n {nn:.2} sigma {sigma:.4}  recv {p:.2} n {pn:.2}  q {q:.2}  texel {t}  stored {:.3} m  q at {qd:.3} m  first hit along q {wall:.3} m",
-                            stored * d_max
+                            "  false light: tile {tile} vpl {o:.2} n {nn:.2} sigma {sigma:.4}  recv {p:.2} n {pn:.2}  q {q:.2}  texel {t}  stored {:.3} m (mark {}) point {point:.2?}  q at {qd:.3} m  first hit along q {wall:.3} m",
+                            stored * d_max,
+                            words[at] & 1
                         );
+                        show_neighbours(&words, at, side, tile, &lookup, d_max);
                     }
                 }
             }

@@ -68,9 +68,16 @@ impl IsmLookupData {
         if t <= 0.0 || t >= dist * (1.0 - 1e-4) {
             return true;
         }
-        let h = o + dir * t;
-        let lines = &self.clips[j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT];
-        !lines.iter().all(|c| Vec3::from_slice(&c[..3]).dot(h) >= c[3])
+        !self.on_surface(j as u32, o + dir * t, 0.0)
+    }
+
+    /// Whether `h` (on pool point `j`'s plane) lies inside all of its clip lines, less `margin`:
+    /// the twin of `on_surface` in `ism_clips.wgsl`.
+    pub fn on_surface(&self, j: u32, h: Vec3, margin: f32) -> bool {
+        let j = j as usize;
+        self.clips
+            .get(j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT)
+            .is_none_or(|lines| lines.iter().all(|c| Vec3::from_slice(&c[..3]).dot(h) >= c[3] - margin))
     }
 }
 

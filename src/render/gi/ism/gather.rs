@@ -397,6 +397,11 @@ impl IsmGather {
         self.sized.as_ref().map(|s| ([&s.chosen_all, &s.points, &s.normals, &s.clips], s.key.per_ism))
     }
 
+    /// The last set's chosen points with the areas they stand for (`ism_select.wgsl`).
+    pub fn chosen(&self) -> Option<&wgpu::Buffer> {
+        self.sized.as_ref().map(|s| &s.chosen)
+    }
+
     /// The ISM atlas levels (f32 bit patterns, 1.0 = empty) of the last frame, for the inspector.
     pub fn atlas(&self) -> Option<(&[wgpu::Buffer], u32)> {
         self.sized.as_ref().map(|s| (s.atlas.as_slice(), s.key.r * Self::tiles_per_row(s.key.vpls * s.key.bounces)))

@@ -282,6 +282,17 @@ impl IsmTechnique {
         })
     }
 
+    /// The last set's chosen points per VPL and slot: pool point (`u32::MAX`: none) and the
+    /// area (m^2) it stands for, as the splats and the bounce pass read them.
+    pub fn read_chosen(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<(u32, f32)>, RenderError> {
+        let buffer = self.gather.chosen().ok_or_else(|| RenderError::UnknownBuffer {
+            name: "ism chosen points".into(),
+            known: "render an ism mode first".into(),
+        })?;
+        let words: Vec<[u32; 2]> = bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, buffer)?);
+        Ok(words.into_iter().map(|[j, a]| (j, f32::from_bits(a))).collect())
+    }
+
     /// The filled ISM atlas of the last frame as its raw words (`ism_pack` in
     /// `common/vpl.wgsl`), row-major, and its side in texels.
     pub fn read_atlas_words(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<(Vec<u32>, u32), RenderError> {
