@@ -98,7 +98,7 @@ fn main() -> anyhow::Result<()> {
     let bvh = SceneBvh::build(&project.scene);
     let d_max = 2.0 * project.scene.bounds().map_or(1.0, |b| b.radius());
     // POINTS=tile[,x0,y0,z0,x1,y1,z1]: that tile's chosen points (inside the box), as splatted.
-    if let Some(spec) = std::env::var("POINTS").ok() {
+    if let Ok(spec) = std::env::var("POINTS") {
         let v: Vec<f32> = spec.split(',').filter_map(|x| x.parse().ok()).collect();
         let tile = v.first().copied().unwrap_or(0.0) as usize;
         let inside = |p: [f32; 4]| v.len() < 7 || (0..3).all(|a| p[a] >= v[1 + a] && p[a] <= v[4 + a]);
