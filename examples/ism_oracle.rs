@@ -17,6 +17,7 @@
 //!
 //! `cargo run --release --example ism_oracle -- clutter "(bounces: 3)"`
 use bouncelab::precompute::bvh::SceneBvh;
+use bouncelab::precompute::open_edges::CLIPS_PER_POINT;
 use bouncelab::render::gi::ism::atlas_word;
 use bouncelab::render::gi::ism::technique::IsmTechnique;
 use bouncelab::render::gi::ism::vpl_pass::GpuVpl;
@@ -33,13 +34,38 @@ fn onb(n: Vec3) -> (Vec3, Vec3) {
     (Vec3::new(1.0 + s * n.x * n.x * a, s * b, -s * n.x), Vec3::new(b, s + n.y * n.y * a, -n.y))
 }
 
-/// The room a point is in: `GRID=x,z` splits the plan at x and z (room = [x >] + 2 [z >]),
-/// otherwise the three rooms' x / 5.2.
-fn room_of(p: Vec3) -> f32 {
-    match std::env::var("GRID").ok().and_then(|g| g.split_once(',').map(|(a, b)| (a.parse::<f32>(), b.parse::<f32>())))
-    {
-        Some((Ok(x), Ok(z))) => f32::from(u8::from(p.x > x)) + 2.0 * f32::from(u8::from(p.z > z)),
-        _ => (p.x / 5.2).floor(),
+/// Which (VPL, receiver) pairs the lookup oracle counts, from the environment (read once):
+/// `GRID=x,z` splits the plan into rooms at x and z (room = [x >] + 2 [z >], otherwise the three
+/// rooms' x / 5.2); `CROSS=1` keeps pairs in different rooms; `PAIR=a,b` VPLs in room a and
+/// receivers in room b.
+struct PairFilter {
+    grid: Option<(f32, f32)>,
+    cross: bool,
+    pair: Option<(f32, f32)>,
+}
+
+impl PairFilter {
+    fn from_env() -> Self {
+        let two = |name: &str| {
+            std::env::var(name)
+                .ok()
+                .and_then(|g| g.split_once(',').and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?))))
+        };
+        Self { grid: two("GRID"), cross: std::env::var_os("CROSS").is_some(), pair: two("PAIR") }
+    }
+
+    /// The room point `p` is in.
+    fn room(&self, p: Vec3) -> f32 {
+        match self.grid {
+            Some((x, z)) => f32::from(u8::from(p.x > x)) + 2.0 * f32::from(u8::from(p.z > z)),
+            None => (p.x / 5.2).floor(),
+        }
+    }
+
+    /// Whether the pair of a VPL at `o` and a receiver at `p` counts.
+    fn keeps(&self, o: Vec3, p: Vec3) -> bool {
+        let (a, b) = (self.room(o), self.room(p));
+        !(self.cross && a == b) && self.pair.is_none_or(|pair| pair == (a, b))
     }
 }
 
@@ -74,6 +100,117 @@ fn show_neighbours(words: &[u32], at: usize, side: usize, tile: usize, lookup: &
     }
 }
 
+/// A VPL's paraboloid map frame: its position, tangents and normal (`paraboloid` in
+/// `common/onb.wgsl`).
+struct MapFrame {
+    o: Vec3,
+    t: Vec3,
+    b: Vec3,
+    n: Vec3,
+}
+
+impl MapFrame {
+    fn new(o: Vec3, n: Vec3) -> Self {
+        let (t, b) = onb(n);
+        Self { o, t, b, n }
+    }
+
+    /// The map coordinates (0..1 across the tile) of the point `q`.
+    fn uv(&self, q: Vec3) -> glam::Vec2 {
+        let v = q - self.o;
+        let l = Vec3::new(v.dot(self.t), v.dot(self.b), v.dot(self.n)) / v.length().max(1e-9);
+        glam::Vec2::new(l.x, l.y) / (1.0 + l.z) * 0.5 + glam::Vec2::splat(0.5)
+    }
+
+    /// The direction of the centre of texel (x, y) of a map of side `res` in the frame's own
+    /// coordinates (z along the normal), `None` past the rim.
+    fn texel_local(x: f32, y: f32, res: f32) -> Option<Vec3> {
+        let s = glam::Vec2::new(x + 0.5, y + 0.5) / res * 2.0 - glam::Vec2::ONE;
+        let ss = s.dot(s);
+        (ss <= 1.0).then(|| Vec3::new(2.0 * s.x, 2.0 * s.y, 1.0 - ss) / (1.0 + ss))
+    }
+
+    /// A direction in the frame's coordinates, in the world.
+    fn world(&self, l: Vec3) -> Vec3 {
+        (self.t * l.x + self.b * l.y + self.n * l.z).normalize()
+    }
+}
+
+/// POINTS=tile[,x0,y0,z0,x1,y1,z1]: that tile's chosen points (inside the box), each with the
+/// splat radius and footprint (centre, tangent images, texels) `ism_splat.wgsl` gives it;
+/// TEXEL=x,y: whether each covers that texel as the splat pass decides it (footprint ellipse,
+/// plane hit, clip lines; CLIPS=1 prints the lines). `chosen` (`IsmTechnique::read_chosen`)
+/// holds the last set's areas only: a tile of an earlier set is listed without footprints.
+fn list_points(
+    spec: &str,
+    chosen: Vec<(u32, f32)>,
+    ism: &IsmSettings,
+    lookup: &atlas_word::IsmLookupData,
+    vpls: &[GpuVpl],
+) {
+    let v: Vec<f32> = spec.split(',').filter_map(|x| x.parse().ok()).collect();
+    let tile = v.first().copied().unwrap_or(0.0) as usize;
+    let inside = |p: [f32; 4]| v.len() < 7 || (0..3).all(|a| p[a] >= v[1 + a] && p[a] <= v[4 + a]);
+    let (per, n_vpls) = (lookup.per_ism as usize, ism.vpl_count as usize);
+    let Some(vpl) = vpls.get(tile) else { return println!("no tile {tile}") };
+    let last_set = tile / n_vpls + 1 == ism.bounces.max(1) as usize;
+    let texel: Option<(f32, f32)> = std::env::var("TEXEL")
+        .ok()
+        .and_then(|t| t.split_once(',').and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?))));
+    let frame = MapFrame::new(Vec3::from_slice(&vpl.position[..3]), Vec3::from_slice(&vpl.normal[..3]));
+    let fr = ism.ism_resolution as f32;
+    println!(
+        "tile {tile} vpl {:?} n {:?}{}",
+        vpl.position,
+        vpl.normal,
+        if last_set { "" } else { " (not the last set: no areas)" }
+    );
+    for slot in 0..per {
+        let j = lookup.chosen_all[tile * per + slot];
+        if j == u32::MAX || !inside(lookup.points[j as usize]) {
+            continue;
+        }
+        let (p, nn) = (lookup.points[j as usize], lookup.normals[j as usize]);
+        print!(
+            "  slot {slot} point {j} at [{:.3}, {:.3}, {:.3}] n [{:.2}, {:.2}, {:.2}]",
+            p[0], p[1], p[2], nn[0], nn[1], nn[2]
+        );
+        let Some(area) = chosen.get(tile % n_vpls * per + slot).map(|c| c.1).filter(|_| last_set) else {
+            println!();
+            continue;
+        };
+        let radius = (ism.splat_radius.powi(2) / std::f32::consts::PI * area).sqrt();
+        let (pp, pn) = (Vec3::new(p[0], p[1], p[2]), Vec3::new(nn[0], nn[1], nn[2]));
+        let (a, b) = onb(pn);
+        let centre = frame.uv(pp) * fr;
+        let (ta, tb) = (frame.uv(pp + a * radius) * fr - centre, frame.uv(pp + b * radius) * fr - centre);
+        print!(" r {radius:.3} centre {centre:.1} ta {ta:.1} tb {tb:.1}");
+        let Some((x, y)) = texel else {
+            println!();
+            continue;
+        };
+        let Some(l) = MapFrame::texel_local(x, y, fr) else {
+            println!("  texel: past the rim");
+            continue;
+        };
+        let m00 = ta.x * ta.x + tb.x * tb.x + 0.25;
+        let m01 = ta.x * ta.y + tb.x * tb.y;
+        let m11 = ta.y * ta.y + tb.y * tb.y + 0.25;
+        let q = glam::Vec2::new(x + 0.5, y + 0.5) - centre;
+        let in_ellipse = m11 * q.x * q.x - 2.0 * m01 * q.x * q.y + m00 * q.y * q.y <= m00 * m11 - m01 * m01;
+        let dir = frame.world(l);
+        let den = dir.dot(pn);
+        let hit = if den.abs() <= 1e-6 { 0.0 } else { (pp - frame.o).dot(pn) / den };
+        let h = frame.o + dir * hit;
+        let on = lookup.on_surface(j, h, 0.01 * radius);
+        println!("  texel: inside {in_ellipse} hit {hit:.3} on surface {on}");
+        if std::env::var_os("CLIPS").is_some() {
+            let k = j as usize * CLIPS_PER_POINT;
+            println!("    clips {:?} hit point {h:?}", &lookup.clips[k..k + CLIPS_PER_POINT]);
+        }
+    }
+}
+
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
     let name = &args[1];
@@ -97,69 +234,8 @@ fn main() -> anyhow::Result<()> {
     let vpls = t.read_all_vpls(r.device(), r.queue())?;
     let bvh = SceneBvh::build(&project.scene);
     let d_max = 2.0 * project.scene.bounds().map_or(1.0, |b| b.radius());
-    // POINTS=tile[,x0,y0,z0,x1,y1,z1]: that tile's chosen points (inside the box), as splatted.
     if let Ok(spec) = std::env::var("POINTS") {
-        let v: Vec<f32> = spec.split(',').filter_map(|x| x.parse().ok()).collect();
-        let tile = v.first().copied().unwrap_or(0.0) as usize;
-        let inside = |p: [f32; 4]| v.len() < 7 || (0..3).all(|a| p[a] >= v[1 + a] && p[a] <= v[4 + a]);
-        let per = lookup.per_ism as usize;
-        let vpl = vpls[tile];
-        let chosen = t.read_chosen(r.device(), r.queue())?;
-        // TEXEL=x,y: whether each listed point's splat covers that texel of the tile, as
-        // `ism_splat.wgsl` decides it (footprint ellipse, plane hit, clip lines).
-        let texel: Option<(f32, f32)> = std::env::var("TEXEL")
-            .ok()
-            .and_then(|t| t.split_once(',').and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?))));
-        let (o, n) = (Vec3::from_slice(&vpl.position[..3]), Vec3::from_slice(&vpl.normal[..3]));
-        let (tu, tv) = onb(n);
-        let fr = ism.ism_resolution as f32;
-        let map = |q: Vec3| {
-            let v = q - o;
-            let l = Vec3::new(v.dot(tu), v.dot(tv), v.dot(n)) / v.length().max(1e-9);
-            (glam::Vec2::new(l.x, l.y) / (1.0 + l.z) * 0.5 + glam::Vec2::splat(0.5)) * fr
-        };
-        println!("tile {tile} vpl {:?} n {:?}", vpl.position, vpl.normal);
-        for slot in 0..per {
-            let j = lookup.chosen_all[tile * per + slot];
-            if j == u32::MAX || !inside(lookup.points[j as usize]) {
-                continue;
-            }
-            let (p, nn) = (lookup.points[j as usize], lookup.normals[j as usize]);
-            let area = chosen.get(tile % ism.vpl_count as usize * per + slot).map_or(0.0, |c| c.1);
-            let radius = (ism.splat_radius.powi(2) / std::f32::consts::PI * area).sqrt();
-            let (pp, pn) = (Vec3::new(p[0], p[1], p[2]), Vec3::new(nn[0], nn[1], nn[2]));
-            let (a, b) = onb(pn);
-            let centre = map(pp);
-            let (ta, tb) = (map(pp + a * radius) - centre, map(pp + b * radius) - centre);
-            let m00 = ta.x * ta.x + tb.x * tb.x + 0.25;
-            let m01 = ta.x * ta.y + tb.x * tb.y;
-            let m11 = ta.y * ta.y + tb.y * tb.y + 0.25;
-            let det = m00 * m11 - m01 * m01;
-            let mut cover = String::new();
-            if let Some((x, y)) = texel {
-                let q = glam::Vec2::new(x + 0.5, y + 0.5) - centre;
-                let inside = m11 * q.x * q.x - 2.0 * m01 * q.x * q.y + m00 * q.y * q.y <= det;
-                let s = glam::Vec2::new(x + 0.5, y + 0.5) / fr * 2.0 - glam::Vec2::ONE;
-                let ss = s.dot(s);
-                let l = Vec3::new(2.0 * s.x, 2.0 * s.y, 1.0 - ss) / (1.0 + ss);
-                let dir = tu * l.x + tv * l.y + n * l.z;
-                let den = dir.dot(pn);
-                let hit = if den.abs() <= 1e-6 { 0.0 } else { (pp - o).dot(pn) / den };
-                let on = lookup.on_surface(j, o + dir * hit, 0.01 * radius);
-                if std::env::var_os("CLIPS").is_some() {
-                    println!(
-                        "    clips {:?} hit point {:?}",
-                        &lookup.clips[j as usize * 4..j as usize * 4 + 4],
-                        o + dir * hit
-                    );
-                }
-                cover = format!("  texel: inside {inside} hit {hit:.3} on surface {on}");
-            }
-            println!(
-                "  slot {slot} point {j} at [{:.3}, {:.3}, {:.3}] n [{:.2}, {:.2}, {:.2}] r {radius:.3} centre {centre:.1} ta {ta:.1} tb {tb:.1}{cover}",
-                p[0], p[1], p[2], nn[0], nn[1], nn[2]
-            );
-        }
+        list_points(&spec, t.read_chosen(r.device(), r.queue())?, &ism, &lookup, &vpls);
     }
     let res = ism.ism_resolution as usize;
     let c = side / res;
@@ -167,23 +243,15 @@ fn main() -> anyhow::Result<()> {
     for set in 0..ism.bounces as usize {
         let (mut w_all, mut w_false, mut w_hole, mut w_near) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         for (tile, _, o, nn) in sampled_vpls(&vpls, set, n) {
-            let (tx_, bx) = onb(nn);
+            let frame = MapFrame::new(o, nn);
             let (tx, ty) = ((tile % c) * res, (tile / c) * res);
             // DUMP=tile: that tile's stored depth (left) and the rays' (right) as a PNG.
             let dump = std::env::var("DUMP").ok().and_then(|v| v.parse::<usize>().ok()) == Some(tile);
             let mut png = vec![0u8; res * 2 * res * 4];
             for y in 0..res {
                 for x in 0..res {
-                    let s = glam::Vec2::new(
-                        (x as f32 + 0.5) / res as f32 * 2.0 - 1.0,
-                        (y as f32 + 0.5) / res as f32 * 2.0 - 1.0,
-                    );
-                    let ss = s.dot(s);
-                    if ss > 1.0 {
-                        continue;
-                    }
-                    let l = Vec3::new(2.0 * s.x, 2.0 * s.y, 1.0 - ss) / (1.0 + ss);
-                    let dir = (tx_ * l.x + bx * l.y + nn * l.z).normalize();
+                    let Some(l) = MapFrame::texel_local(x as f32, y as f32, res as f32) else { continue };
+                    let dir = frame.world(l);
                     let w = f64::from(l.z * (1.0 + l.z) * (1.0 + l.z));
                     let hit = bvh.intersect(o + nn * 2e-3, dir, 1e30);
                     let truth = hit.map_or(f32::INFINITY, |h| h.t);
@@ -221,13 +289,14 @@ fn main() -> anyhow::Result<()> {
     // Lookup oracle: receivers on the surfaces, set-0 VPLs, ISM visibility against BVH rays.
     let receivers = bouncelab::precompute::sample_points::distribute(&project.scene, 20000, 1, 9);
     let recv = receivers.world(&project.scene);
+    let filter = PairFilter::from_env();
     for set in 0..ism.bounces as usize {
         let (mut w_true, mut w_ism, mut w_fs, mut w_fl) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         let mut shown = 0;
         let mut w_pairs = 0.0f64;
         for (tile, v, o, nn) in sampled_vpls(&vpls, set, n) {
             let sigma = v.normal[3];
-            let (tx_, bx) = onb(nn);
+            let frame = MapFrame::new(o, nn);
             let (tx, ty) = ((tile % c) * res, (tile / c) * res);
             for (p, pn) in &recv {
                 let to_p = *p - o;
@@ -238,15 +307,8 @@ fn main() -> anyhow::Result<()> {
                 if cos_s <= 0.0 || cos_r <= 0.0 || d < 1e-3 {
                     continue;
                 }
-                if std::env::var_os("CROSS").is_some() && room_of(*p) == room_of(o) {
+                if !filter.keeps(o, *p) {
                     continue;
-                }
-                // PAIR=a,b: only VPLs in room a and receivers in room b (see `room_of`).
-                if let Ok(pair) = std::env::var("PAIR") {
-                    let rooms: Vec<f32> = pair.split(',').filter_map(|v| v.parse().ok()).collect();
-                    if rooms.len() == 2 && (room_of(o) != rooms[0] || room_of(*p) != rooms[1]) {
-                        continue;
-                    }
                 }
                 let w = f64::from(cos_s * cos_r / (d * d).max(0.01));
                 let vis_true = !bvh.occluded(*p + *pn * 1e-4, -dir, d - 2e-4 - 1e-4);
@@ -255,8 +317,7 @@ fn main() -> anyhow::Result<()> {
                 let q = *p + *pn * delta;
                 let qq = q - o;
                 let qd = qq.length();
-                let lv = Vec3::new(qq.dot(tx_), qq.dot(bx), qq.dot(nn)) / qd.max(1e-9);
-                let uv = glam::Vec2::new(lv.x, lv.y) / (1.0 + lv.z) * 0.5 + glam::Vec2::splat(0.5);
+                let uv = frame.uv(q);
                 let t = ((uv * res as f32).floor().max(glam::Vec2::ZERO)).min(glam::Vec2::splat(res as f32 - 1.0));
                 let at = (ty + t.y as usize) * side + tx + t.x as usize;
                 let stored = atlas_word::depth(words[at]);
