@@ -84,6 +84,48 @@ fn word_point(word: u32, tile: usize, lookup: &atlas_word::IsmLookupData) -> Opt
     Some((*lookup.points.get(j)?, *lookup.normals.get(j)?))
 }
 
+/// What a false-light texel holds: the classes of [`fl_kind`].
+const FL_KINDS: [&str; 6] = [
+    "empty",
+    "pull-push fill or depth only",
+    "the receiver's own surface (a hole)",
+    "a surface beyond the true occluder",
+    "a nearer surface, receiver on its plane",
+    "a nearer surface, ray past its clips",
+];
+
+/// Cosines of the VPL elevation bands (3, 10 and 30 degrees).
+const FL_BANDS: [f32; 3] = [0.0523, 0.1736, 0.5];
+
+/// Which of [`FL_KINDS`] a false-light lookup's texel word is: receiver `p` (normal `pn`) whose
+/// ray from VPL `o` along `dir` first meets geometry at `wall`.
+#[allow(clippy::too_many_arguments)]
+fn fl_kind(
+    word: u32,
+    tile: usize,
+    lookup: &atlas_word::IsmLookupData,
+    p: Vec3,
+    pn: Vec3,
+    wall: f32,
+    dir: Vec3,
+    o: Vec3,
+) -> usize {
+    if word == u32::MAX {
+        return 0;
+    }
+    let Some((sp, sn)) = word_point(word, tile, lookup).filter(|_| word & 1 == 0) else { return 1 };
+    let (sp, sn) = (Vec3::from_slice(&sp[..3]), Vec3::from_slice(&sn[..3]));
+    if sn.dot(pn) > 0.99 && (sp - p).dot(pn).abs() < 0.02 {
+        return 2;
+    }
+    if (sp - o).length() > wall * 1.05 {
+        return 3;
+    }
+    let den = dir.dot(sn);
+    let t = if den.abs() > 1e-6 { (sp - o).dot(sn) / den } else { -1.0 };
+    if t <= 0.0 || t >= (p - o).length() * 0.999 { 4 } else { 5 }
+}
+
 /// With NEIGHBOURS=1: the texel at atlas index `at` and its four neighbours, their depths and
 /// points (one texel holds one surface; the lost one is often next door).
 fn show_neighbours(words: &[u32], at: usize, side: usize, tile: usize, lookup: &atlas_word::IsmLookupData, d_max: f32) {
@@ -290,10 +332,23 @@ fn main() -> anyhow::Result<()> {
     let receivers = bouncelab::precompute::sample_points::distribute(&project.scene, 20000, 1, 9);
     let recv = receivers.world(&project.scene);
     let filter = PairFilter::from_env();
+    if std::env::var_os("VPLS").is_some() {
+        let n = ism.vpl_count as usize;
+        for (set, chunk) in vpls.chunks(n).enumerate().take(ism.bounces as usize) {
+            let mut by_room = std::collections::BTreeMap::<i32, (u32, f64)>::new();
+            for v in chunk.iter().filter(|v| v.position[3] > 0.0) {
+                let e = by_room.entry(filter.room(Vec3::from_slice(&v.position[..3])) as i32).or_default();
+                e.0 += 1;
+                e.1 += f64::from(0.2126 * v.power[0] + 0.7152 * v.power[1] + 0.0722 * v.power[2]);
+            }
+            println!("{name} set {set} VPLs by room (count, luminance power): {by_room:?}");
+        }
+    }
     for set in 0..ism.bounces as usize {
         let (mut w_true, mut w_ism, mut w_fs, mut w_fl) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         let mut shown = 0;
         let mut w_pairs = 0.0f64;
+        let mut fl_classes = [[0.0f64; 4]; FL_KINDS.len()];
         for (tile, v, o, nn) in sampled_vpls(&vpls, set, n) {
             let sigma = v.normal[3];
             let frame = MapFrame::new(o, nn);
@@ -350,9 +405,13 @@ fn main() -> anyhow::Result<()> {
                 }
                 if !vis_true && vis_ism {
                     w_fl += w;
-                    if std::env::var_os("SHOW").is_some() && shown < 12 {
+                    let wall = bvh.intersect(o + nn * 2e-3, qq / qd, 1e30).map_or(f32::INFINITY, |h| h.t);
+                    let kind = fl_kind(words[at], tile, &lookup, *p, *pn, wall, qq / qd, o);
+                    let band = FL_BANDS.iter().position(|&b| cos_s < b).unwrap_or(FL_BANDS.len());
+                    fl_classes[kind][band] += w * f64::from(v.power[0] + v.power[1] + v.power[2]);
+                    let min_cos: f32 = std::env::var("SHOW_MIN_COS").ok().and_then(|v| v.parse().ok()).unwrap_or(0.0);
+                    if std::env::var_os("SHOW").is_some() && shown < 12 && cos_s >= min_cos {
                         shown += 1;
-                        let wall = bvh.intersect(o + nn * 2e-3, qq / qd, 1e30).map_or(f32::INFINITY, |h| h.t);
                         let point = word_point(words[at], tile, &lookup);
                         println!(
                             "  false light: tile {tile} vpl {o:.2} n {nn:.2} sigma {sigma:.4}  recv {p:.2} n {pn:.2}  q {q:.2}  texel {t}  stored {:.3} m (mark {}) point {point:.2?}  q at {qd:.3} m  first hit along q {wall:.3} m",
@@ -362,6 +421,15 @@ fn main() -> anyhow::Result<()> {
                         show_neighbours(&words, at, side, tile, &lookup, d_max);
                     }
                 }
+            }
+        }
+        let fl_total: f64 = fl_classes.iter().flatten().sum();
+        if fl_total > 0.0 {
+            println!(
+                "{name} set {set} false light by what the texel holds (share of its power; VPL elevation bands <3, 3-10, 10-30, >30 degrees):"
+            );
+            for (k, row) in FL_KINDS.iter().zip(&fl_classes) {
+                println!("    {k:38} {:.3}  {:.3?}", row.iter().sum::<f64>() / fl_total, row.map(|x| x / fl_total));
             }
         }
         println!(
@@ -375,7 +443,12 @@ fn main() -> anyhow::Result<()> {
     // Bounce oracle over FRAMES frames (default 1): power each set's VPLs reflect (true
     // visibility, receivers by area) against the power of the next set's VPLs they made.
     let frames: usize = std::env::var("FRAMES").ok().and_then(|v| v.parse().ok()).unwrap_or(1);
-    let sets = ism.bounces.saturating_sub(1) as usize;
+    // The last set carries the bounce tail's 1 / (1 - r) (`bounce_tail`), the later bounces'
+    // power, not the power its sources reflect: it is compared only without the tail.
+    let sets = ism.bounces.saturating_sub(1 + u32::from(ism.bounce_tail)) as usize;
+    if ism.bounce_tail && ism.bounces > 1 {
+        println!("{name}: the last set carries the bounce tail; `(bounce_tail: false)` compares it too");
+    }
     let mut acc = vec![([0.0f64; 3], [0.0f64; 3]); sets];
     let mut vpls = vpls;
     for f in 0..frames {
