@@ -6,6 +6,9 @@
 //!
 //! `cargo run --release --example ism_probe -- rooms,clutter "(total_points: 524288)"`
 //!
+//! `PROBE_SSHGI="()"` renders `sshgi` with those settings in place of `ism` (the ISM settings
+//! argument is then ignored).
+//!
 //! A name ending in `.gltf` is a scene outside the suite, compared with the `.exr` next to it
 //! (`tools/unseen_levels.py` writes the held-out levels; `bouncelab render --mode reference
 //! --width 128 --height 72` their references).
@@ -77,6 +80,11 @@ fn main() -> anyhow::Result<()> {
         let (direct, _) = render(&ctx, &project, 1)?;
         project.render.mode =
             if std::env::var_os("PROBE_RITSCHEL").is_some() { GiMode::IsmRitschel } else { GiMode::Ism };
+        // PROBE_SSHGI: render `sshgi` with these settings (RON) instead of `ism`.
+        if let Ok(ron_text) = std::env::var("PROBE_SSHGI") {
+            project.render.sshgi = ron::from_str(&ron_text)?;
+            project.render.mode = GiMode::Sshgi;
+        }
         let (img, r) = render(&ctx, &project, frames)?;
         let c = metrics::compare(&img, &reference, ev)?;
         let d = metrics::compare(&direct, &reference, ev)?;

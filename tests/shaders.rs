@@ -63,11 +63,11 @@ fn every_pipeline_of_every_mode_builds_on_the_noop_backend() {
     let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let project = Project::load(&default_project_path()).expect("project");
-    let modes = [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel, GiMode::Reference];
+    let modes = [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel, GiMode::Sshgi, GiMode::Reference];
     for mode in modes {
         for sh_filter in [false, true] {
             // Inspecting the splats and a pyramid level adds the capture copies and the pyramid.
-            for inspected in [None, Some("ism_atlas_splats"), Some("pyramid_2")] {
+            for inspected in [None, Some("ism_atlas_splats"), Some("pyramid_2"), Some("sshgi_gather_1")] {
                 let mut settings = RenderSettings { mode, ..project.render.clone() };
                 settings.ism.sh_filter = sh_filter;
                 settings.ism.bounces = 2;
@@ -80,7 +80,7 @@ fn every_pipeline_of_every_mode_builds_on_the_noop_backend() {
         panic!("validation error on the noop backend: {e}");
     }
     // Every mode that is not built says so instead of failing later.
-    for mode in [GiMode::Mrt, GiMode::Sshgi, GiMode::Rcs] {
+    for mode in [GiMode::Mrt, GiMode::Rcs] {
         let settings = RenderSettings { mode, ..project.render.clone() };
         let e = renderer.support(&settings, (32, 16)).expect_err("not built yet");
         assert!(e.contains("not implemented"), "{e}");

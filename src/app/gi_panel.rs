@@ -1,7 +1,7 @@
 //! The GI panel: the live mode switch (modes this build or adapter cannot run are disabled
 //! with the reason), what the active technique leaves out, its history and GPU memory, and
 //! every setting with its cost/quality trade-off as a tooltip. Each technique's own section
-//! lives in its own file (`gi_ism.rs`).
+//! lives in its own file (`gi_ism.rs`, `gi_sshgi.rs`).
 
 use super::state::EditorState;
 use crate::render::Renderer;
@@ -66,6 +66,9 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
     });
     if matches!(render.mode, GiMode::Ism | GiMode::IsmRitschel) {
         super::gi_ism::ism_ui(&mut render.ism, ui);
+    }
+    if render.mode == GiMode::Sshgi {
+        super::gi_sshgi::sshgi_ui(&mut render.sshgi, ui);
     }
     egui::CollapsingHeader::new("Reference path tracer").default_open(false).show(ui, |ui| {
         let r = &mut render.reference;

@@ -11,6 +11,7 @@
 pub mod edits;
 mod gi_ism;
 mod gi_panel;
+mod gi_sshgi;
 pub mod gizmo;
 pub mod history;
 mod inspector;

@@ -35,6 +35,9 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/gi/ism/light_gbuffer.wgsl", include_str!("../../shaders/render/gi/ism/light_gbuffer.wgsl")),
     ("render/gi/ism/pull_push.wgsl", include_str!("../../shaders/render/gi/ism/pull_push.wgsl")),
     ("render/gi/ism/vpl_generate.wgsl", include_str!("../../shaders/render/gi/ism/vpl_generate.wgsl")),
+    ("render/gi/sshgi/sshgi_gather.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_gather.wgsl")),
+    ("render/gi/sshgi/sshgi_mip.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_mip.wgsl")),
+    ("render/gi/sshgi/sshgi_upsample.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_upsample.wgsl")),
     ("render/lighting.wgsl", include_str!("../../shaders/render/lighting.wgsl")),
     ("render/pyramid.wgsl", include_str!("../../shaders/render/pyramid.wgsl")),
     ("render/shadow_depth.wgsl", include_str!("../../shaders/render/shadow_depth.wgsl")),
@@ -61,6 +64,9 @@ pub const ENTRY_SHADERS: &[&str] = &[
     "render/gi/ism/pull_push.wgsl",
     "render/gi/ism/light_gbuffer.wgsl",
     "render/gi/ism/vpl_generate.wgsl",
+    "render/gi/sshgi/sshgi_gather.wgsl",
+    "render/gi/sshgi/sshgi_mip.wgsl",
+    "render/gi/sshgi/sshgi_upsample.wgsl",
 ];
 
 /// A shader that could not be assembled.

@@ -8,8 +8,10 @@ use serde::{Deserialize, Serialize};
 
 mod ism;
 mod preview;
+mod sshgi;
 
 pub use ism::{BouncePick, IsmSettings, MAX_ATLAS_SIDE};
+pub use sshgi::SshgiSettings;
 
 /// The GI technique that produces indirect light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
@@ -139,6 +141,8 @@ pub struct RenderSettings {
     pub reference: ReferenceSettings,
     /// ISM temporal GI.
     pub ism: IsmSettings,
+    /// Screen-space hierarchical GI.
+    pub sshgi: SshgiSettings,
 }
 
 /// A settings value outside its valid range.
@@ -189,6 +193,7 @@ impl RenderSettings {
             return Err(SettingsError { name: "reference.clamp", value: format!("{:?}", r.clamp), range: "> 0" });
         }
         self.ism.validate()?;
+        self.sshgi.validate()?;
         if !(-32.0..=32.0).contains(&self.view.exposure_ev) {
             return Err(SettingsError {
                 name: "view.exposure_ev",

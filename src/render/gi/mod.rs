@@ -16,6 +16,7 @@ pub mod inputs;
 pub mod ism;
 pub mod reference;
 pub mod registry;
+pub mod sshgi;
 pub mod technique;
 
 pub use changes::ChangeDetector;

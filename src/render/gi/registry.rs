@@ -7,6 +7,7 @@
 use super::direct::DirectTechnique;
 use super::ism::technique::IsmTechnique;
 use super::reference::ReferenceTechnique;
+use super::sshgi::technique::SshgiTechnique;
 use super::technique::{BufferInfo, GiTechnique, ResetReason, SupportQuery};
 use crate::render::RenderError;
 use crate::render::layouts::Layouts;
@@ -41,6 +42,12 @@ pub const TECHNIQUES: &[TechniqueEntry] = &[
         support: IsmTechnique::support,
         buffers: super::ism::technique::BUFFERS,
         create: |device, layouts| Ok(Box::new(IsmTechnique::new(device, layouts)?)),
+    },
+    TechniqueEntry {
+        modes: &[GiMode::Sshgi],
+        support: SshgiTechnique::support,
+        buffers: super::sshgi::technique::BUFFERS,
+        create: |device, _| Ok(Box::new(SshgiTechnique::new(device)?)),
     },
     TechniqueEntry {
         modes: &[GiMode::Reference],

@@ -1,0 +1,120 @@
+// sshgi gather (Soler et al. 2010, digest C.1 step 4 and C.2): one shader for every level. A
+// texel of level k gathers N samples of the screen-space surface elements of its level: the
+// full disc of radius r texels on the start level, the ring r/2..r on coarser ones (so the
+// levels' rings tile the view without overlap), each with the bounded point-to-disc form factor
+// of Eq. 4, R^2 cos(theta) / (r^2 + R^2) with R^2 = cos(theta') ds / pi, whose 1/pi makes the
+// sum E / pi: the composite multiplies it by the receiver's albedo. ds is Eq. 2, the area the
+// sample's share dP of the region covers at its distance and tilt. The 2^(2k) energy scale of
+// coarse levels is in the texel solid angle of level k (4^k that of a view pixel), applied
+// once. Samples are stratified in area with a per-pixel (4x4 interleaved) and per-frame
+// rotation, so the temporal accumulation averages the pattern out.
+#import common/frame.wgsl
+#import common/octahedral.wgsl
+
+struct GatherParams {
+    // pyramid level l of this level, ring (0: full disc), samples N, frame seed.
+    level: vec4<u32>,
+    // ring radius r (texels of this level), solid angle of one texel of this level on the
+    // optical axis (sr), 2^l (view pixels per texel), unused.
+    geo: vec4<f32>,
+    // xyz the camera's forward axis, w unused.
+    forward: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> gp: GatherParams;
+// Depth/normal pyramid level l: r = distance to the camera, gb = octahedral normal, a = 1 where
+// geometry.
+@group(0) @binding(2) var geometry: texture_2d<f32>;
+// Outgoing radiance of this level.
+@group(0) @binding(3) var illumination: texture_2d<f32>;
+@group(0) @binding(4) var dest: texture_storage_2d<rgba32float, write>;
+
+const PI: f32 = 3.14159265358979;
+const GOLDEN_ANGLE: f32 = 2.39996322972865;
+
+// Unit view ray through texel t of a level of 2^l view pixels per texel.
+fn texel_ray(t: vec2<i32>) -> vec3<f32> {
+    let pixel = (vec2<f32>(t) + 0.5) * gp.geo.z;
+    let uv = pixel * frame.size.zw;
+    let h = frame.world_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 1.0, 1.0);
+    return normalize(h.xyz / h.w - frame.camera_position.xyz);
+}
+
+// A hash of (x, y, seed) to [0, 1) (PCG, Jarzynski & Olano 2020).
+fn hash01(x: u32, y: u32, seed: u32) -> f32 {
+    var v = x * 747796405u + y * 2891336453u + seed * 277803737u + 1442695041u;
+    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
+    v = (v >> 22u) ^ v;
+    return f32(v >> 8u) / 16777216.0;
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = vec2<i32>(textureDimensions(dest));
+    let t = vec2<i32>(id.xy);
+    if t.x >= size.x || t.y >= size.y {
+        return;
+    }
+    let g = textureLoad(geometry, t, 0);
+    if g.a < 0.5 {
+        textureStore(dest, t, vec4<f32>(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    let cam = frame.camera_position.xyz;
+    let x = cam + texel_ray(t) * g.r;
+    let nx = oct_decode(g.gb);
+    let n = gp.level.z;
+    let r = gp.geo.x;
+    let inner = select(0.0, 0.5 * r, gp.level.y != 0u);
+    let area = PI * (r * r - inner * inner);
+    // Each sample stands for dP = area / N texels of this level. Its disc (Eq. 4's bound) is
+    // never smaller than the texel it reads: where N exceeds the region's texels (small views,
+    // coarse levels), several samples hit one texel, and discs of their small shares summed like
+    // the unbounded point form factor of the whole texel (the default Cornell box at 64x36 found
+    // 1.21x the one-bounce reference's indirect light). Such a sample is the texel's disc,
+    // weighted by its share dP of it.
+    let dp = area / f32(n);
+    let dp_disc = max(dp, 1.0);
+    let share = dp / dp_disc;
+    // Per-pixel rotation from the 4x4 interleave cell and the frame; per-pixel radial jitter.
+    let cell = vec2<u32>(id.xy & vec2<u32>(3u));
+    let rotation = 2.0 * PI * hash01(cell.x, cell.y, gp.level.w);
+    let jitter = hash01(id.x, id.y, gp.level.w ^ 0x9e3779b9u);
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < n; i = i + 1u) {
+        let u = (f32(i) + jitter) / f32(n);
+        let rho = sqrt(inner * inner + u * (r * r - inner * inner));
+        let a = rotation + f32(i) * GOLDEN_ANGLE;
+        let y = vec2<i32>(floor(vec2<f32>(t) + 0.5 + rho * vec2<f32>(cos(a), sin(a))));
+        if all(y == t) || any(y < vec2<i32>(0)) || any(y >= size) {
+            continue;
+        }
+        let gy = textureLoad(geometry, y, 0);
+        if gy.a < 0.5 {
+            continue;
+        }
+        let dir_y = texel_ray(y);
+        let py = cam + dir_y * gy.r;
+        let ny = oct_decode(gy.gb);
+        let v = py - x;
+        let d2 = dot(v, v);
+        if d2 <= 1.0e-10 {
+            continue;
+        }
+        let vh = v * inverseSqrt(d2);
+        let cos_r = dot(nx, vh);
+        let cos_s = dot(ny, -vh);
+        if cos_r <= 0.0 || cos_s <= 0.0 {
+            continue;
+        }
+        // Eq. 2: the texel's solid angle (cos^3 alpha off the axis) times distance^2 over the
+        // tilt cos(beta) (clamped at 0.05), times the sample's share dP.
+        let cos_a = max(dot(dir_y, gp.forward.xyz), 0.0);
+        let cos_b = max(dot(ny, -dir_y), 0.05);
+        let ds = gp.geo.y * cos_a * cos_a * cos_a * gy.r * gy.r / cos_b * dp_disc;
+        let r2_disc = cos_s * ds / PI;
+        sum = sum + textureLoad(illumination, y, 0).rgb * (share * r2_disc * cos_r / (d2 + r2_disc));
+    }
+    textureStore(dest, t, vec4<f32>(sum, 1.0));
+}

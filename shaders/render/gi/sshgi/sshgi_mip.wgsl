@@ -1,0 +1,80 @@
+// sshgi illumination levels (Soler et al. 2010, digest C.1 steps 3 and 8): the start level's
+// outgoing radiance as the box average of the view's 2^s x 2^s blocks, coarser levels by 2x2
+// box averages (the paper does not say how it reduces illumination; depth and normal are voted
+// in `render/pyramid.wgsl`), a later bounce's start level as albedo x the previous bounce's
+// E / pi, and the sum of two levels (bounces).
+
+struct MipParams {
+    // block side (2^s, `box_seed`), unused x3.
+    counts: vec4<u32>,
+}
+
+@group(0) @binding(0) var<uniform> mp: MipParams;
+@group(0) @binding(1) var a_tex: texture_2d<f32>;
+@group(0) @binding(2) var b_tex: texture_2d<f32>;
+@group(0) @binding(3) var dest: texture_storage_2d<rgba32float, write>;
+
+// dest = the mean of a's block of side counts.x texels (clamped at a's border) over the texels
+// that hold geometry (b's alpha: the G-buffer albedo's coverage), alpha = that coverage. The
+// depth and normal levels take a surface by vote, so a texel on a silhouette must carry that
+// surface's light, not a mean with the empty background.
+@compute @workgroup_size(8, 8, 1)
+fn box_seed(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(dest);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let n = mp.counts.x;
+    let src = textureDimensions(a_tex);
+    var sum = vec3<f32>(0.0);
+    var covered = 0.0;
+    for (var y = 0u; y < n; y = y + 1u) {
+        for (var x = 0u; x < n; x = x + 1u) {
+            let q = min(id.xy * n + vec2<u32>(x, y), src - 1u);
+            let w = textureLoad(b_tex, q, 0).a;
+            sum = sum + textureLoad(a_tex, q, 0).rgb * w;
+            covered = covered + w;
+        }
+    }
+    textureStore(dest, id.xy, vec4<f32>(sum / max(covered, 1.0e-6), covered / f32(n * n)));
+}
+
+// dest = the mean of a's 2x2 children weighted by their coverage (alpha), alpha = its mean.
+@compute @workgroup_size(8, 8, 1)
+fn reduce(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(dest);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let src = textureDimensions(a_tex);
+    var sum = vec3<f32>(0.0);
+    var covered = 0.0;
+    for (var i = 0u; i < 4u; i = i + 1u) {
+        let v = textureLoad(a_tex, min(id.xy * 2u + vec2<u32>(i & 1u, i >> 1u), src - 1u), 0);
+        sum = sum + v.rgb * v.a;
+        covered = covered + v.a;
+    }
+    textureStore(dest, id.xy, vec4<f32>(sum / max(covered, 1.0e-6), covered * 0.25));
+}
+
+// dest = a x b (albedo x E / pi: the outgoing radiance a later bounce gathers), alpha = a's
+// coverage.
+@compute @workgroup_size(8, 8, 1)
+fn product(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(dest);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let albedo = textureLoad(a_tex, id.xy, 0);
+    textureStore(dest, id.xy, vec4<f32>(albedo.rgb * textureLoad(b_tex, id.xy, 0).rgb, albedo.a));
+}
+
+// dest = a + b (the bounces' sum).
+@compute @workgroup_size(8, 8, 1)
+fn add(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(dest);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    textureStore(dest, id.xy, vec4<f32>(textureLoad(a_tex, id.xy, 0).rgb + textureLoad(b_tex, id.xy, 0).rgb, 1.0));
+}

@@ -1,0 +1,389 @@
+//! sshgi's GPU passes and the targets they write (Soler et al. 2010, digest part C): per bounce,
+//! the illumination levels (`sshgi_mip.wgsl`), one gather per level (`sshgi_gather.wgsl`) and the
+//! coarse-to-fine joint bilateral up-sampling that sums them (`sshgi_upsample.wgsl`); then the
+//! bounces' sum, up-sampled from the start level to the view. Depth and normal levels come from
+//! the frame's shared voted pyramid (`render::pyramid`), shared by every bounce.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3, Vec4};
+
+use crate::render::gi::inputs::GiInputs;
+use crate::render::layouts::{compute_pipeline, storage_texture_entry, texture_entry, uniform_entry};
+use crate::render::shaders::{self, ShaderError};
+use crate::render::targets::{Target, formats};
+use crate::settings::SshgiSettings;
+
+/// Bytes between two parameter slots (WebGPU's minimum uniform offset alignment).
+const SLOT: u64 = 256;
+
+/// `MipParams` and `UpParams` in the shaders.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+struct Counts {
+    counts: [u32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<Counts>() == 16);
+
+/// `GatherParams` in `sshgi_gather.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+struct GatherParams {
+    level: [u32; 4],
+    geo: [f32; 4],
+    forward: [f32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<GatherParams>() == 48);
+
+/// The levels a frame gathers: which pyramid level starts, how many, how many bounces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Plan {
+    /// The view size in pixels.
+    pub view: (u32, u32),
+    /// Pyramid level of the start level.
+    pub start: u32,
+    /// Levels gathered.
+    pub levels: u32,
+    /// Bounces.
+    pub bounces: u32,
+}
+
+impl Plan {
+    /// The plan for `settings` over a pyramid of `pyramid_levels` levels: the start level and
+    /// the level count are cut to what the pyramid holds.
+    pub fn new(settings: &SshgiSettings, view: (u32, u32), pyramid_levels: u32) -> Self {
+        let start = settings.start_level.min(pyramid_levels.saturating_sub(1));
+        let levels = settings.levels.clamp(1, (pyramid_levels - start).max(1));
+        Self { view, start, levels, bounces: settings.bounces.max(1) }
+    }
+
+    /// Size of gather level k (pyramid level start + k).
+    pub fn level_size(&self, k: u32) -> (u32, u32) {
+        let l = self.start + k;
+        ((self.view.0 >> l).max(1), (self.view.1 >> l).max(1))
+    }
+}
+
+/// Targets of one plan.
+struct Sized {
+    plan: Plan,
+    /// Per level: outgoing radiance (the last bounce's).
+    illumination: Vec<Target>,
+    /// Per level: its gather Ind_k (the last bounce's).
+    gathered: Vec<Target>,
+    /// Per level below the coarsest: the up-sampled sum Acc_k (the last bounce's).
+    summed: Vec<Target>,
+    /// Start level: the view's albedo, box-averaged.
+    albedo: Target,
+    /// Start level: each bounce's E / pi.
+    bounce: Vec<Target>,
+    /// Start level: running sums of the bounces (ping-pong).
+    sums: [Target; 2],
+}
+
+/// Pipelines, parameter slots and targets of sshgi.
+pub struct SshgiPasses {
+    mip_layout: wgpu::BindGroupLayout,
+    gather_layout: wgpu::BindGroupLayout,
+    up_layout: wgpu::BindGroupLayout,
+    box_seed: wgpu::ComputePipeline,
+    reduce: wgpu::ComputePipeline,
+    product: wgpu::ComputePipeline,
+    add: wgpu::ComputePipeline,
+    gather: wgpu::ComputePipeline,
+    upsample: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    params_slots: u64,
+    sized: Option<Sized>,
+}
+
+impl SshgiPasses {
+    /// Creates the pipelines.
+    pub fn new(device: &wgpu::Device) -> Result<Self, ShaderError> {
+        let c = wgpu::ShaderStages::COMPUTE;
+        let float = wgpu::TextureSampleType::Float { filterable: false };
+        let mip_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("sshgi mip layout"),
+            entries: &[
+                uniform_entry(0, c, true),
+                texture_entry(1, c, float),
+                texture_entry(2, c, float),
+                storage_texture_entry(3, formats::HDR),
+            ],
+        });
+        let gather_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("sshgi gather layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                uniform_entry(1, c, true),
+                texture_entry(2, c, float),
+                texture_entry(3, c, float),
+                storage_texture_entry(4, formats::HDR),
+            ],
+        });
+        let up_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("sshgi upsample layout"),
+            entries: &[
+                uniform_entry(0, c, true),
+                texture_entry(1, c, float),
+                texture_entry(2, c, float),
+                texture_entry(3, c, float),
+                texture_entry(4, c, float),
+                storage_texture_entry(5, formats::HDR),
+            ],
+        });
+        let mip = shaders::module(device, "render/gi/sshgi/sshgi_mip.wgsl")?;
+        let gather = shaders::module(device, "render/gi/sshgi/sshgi_gather.wgsl")?;
+        let up = shaders::module(device, "render/gi/sshgi/sshgi_upsample.wgsl")?;
+        let params_slots = 64;
+        Ok(Self {
+            box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
+            reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
+            product: compute_pipeline(device, "sshgi product", &mip_layout, &mip, "product"),
+            add: compute_pipeline(device, "sshgi add", &mip_layout, &mip, "add"),
+            gather: compute_pipeline(device, "sshgi gather", &gather_layout, &gather, "gather"),
+            upsample: compute_pipeline(device, "sshgi upsample", &up_layout, &up, "upsample"),
+            params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("sshgi params"),
+                size: params_slots * SLOT,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            params_slots,
+            mip_layout,
+            gather_layout,
+            up_layout,
+            sized: None,
+        })
+    }
+
+    fn ensure(&mut self, device: &wgpu::Device, plan: Plan) {
+        if self.sized.as_ref().is_some_and(|s| s.plan == plan) {
+            return;
+        }
+        use wgpu::TextureUsages as U;
+        let usage = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
+        let target = |label: &str, k: u32| Target::new(device, label, plan.level_size(k), formats::HDR, usage);
+        self.sized = Some(Sized {
+            plan,
+            illumination: (0..plan.levels).map(|k| target("sshgi illumination", k)).collect(),
+            gathered: (0..plan.levels).map(|k| target("sshgi gather", k)).collect(),
+            summed: (0..plan.levels.saturating_sub(1)).map(|k| target("sshgi upsampled sum", k)).collect(),
+            albedo: target("sshgi albedo", 0),
+            bounce: (0..plan.bounces).map(|_| target("sshgi bounce", 0)).collect(),
+            sums: [target("sshgi bounce sum", 0), target("sshgi bounce sum", 0)],
+        });
+    }
+
+    /// Records every pass of a frame; writes E / pi into `inputs.targets.indirect`.
+    pub fn record(&mut self, inputs: &mut GiInputs<'_>, pyramid: &[Target], plan: Plan) {
+        self.ensure(inputs.device, plan);
+        let Some(s) = &self.sized else { return };
+        let settings = &inputs.settings.sshgi;
+        // Parameter slots: 0 the start level's box size, 1 zeros, 2 + k the up-sampling into
+        // level k (k = levels - 1: into the view), then the gathers per bounce and level.
+        let mut slots: Vec<Vec<u8>> = Vec::new();
+        slots.push(bytemuck::bytes_of(&Counts { counts: [1 << plan.start, 0, 0, 0] }).to_vec());
+        slots.push(bytemuck::bytes_of(&Counts::default()).to_vec());
+        for k in 0..plan.levels {
+            let counts = if k + 1 < plan.levels {
+                [1, 1 << (plan.start + k), 1 << (plan.start + k + 1), 0]
+            } else {
+                [0, 1, 1 << plan.start, 0]
+            };
+            slots.push(bytemuck::bytes_of(&Counts { counts }).to_vec());
+        }
+        let gather_slot0 = slots.len() as u32;
+        let world_from_clip = Mat4::from_cols_array_2d(&inputs.frame.world_from_clip);
+        let camera = Vec3::from_slice(&inputs.frame.camera_position[..3]);
+        let ray = |x: f32, y: f32| {
+            let h = world_from_clip * Vec4::new(x, y, 1.0, 1.0);
+            (h.truncate() / h.w - camera).normalize_or_zero()
+        };
+        let forward = ray(0.0, 0.0);
+        let tan = |edge: Vec3| {
+            let c = forward.dot(edge).clamp(1e-6, 1.0);
+            (1.0 - c * c).max(0.0).sqrt() / c
+        };
+        let pixel_sr = 4.0 * tan(ray(1.0, 0.0)) * tan(ray(0.0, 1.0)) / (plan.view.0 as f32 * plan.view.1 as f32);
+        let radius = settings.ring_radius(plan.level_size(0), plan.levels);
+        for b in 0..plan.bounces {
+            for k in 0..plan.levels {
+                let l = plan.start + k;
+                let p = GatherParams {
+                    level: [l, u32::from(k > 0), settings.samples, inputs.frame_index.wrapping_mul(4).wrapping_add(b)],
+                    geo: [radius, pixel_sr * (1u32 << (2 * l)) as f32, (1u32 << l) as f32, 0.0],
+                    forward: [forward.x, forward.y, forward.z, 0.0],
+                };
+                slots.push(bytemuck::bytes_of(&p).to_vec());
+            }
+        }
+        let used = (slots.len() as u64).min(self.params_slots);
+        let mut bytes = vec![0u8; (used * SLOT) as usize];
+        for (i, slot) in slots.iter().take(used as usize).enumerate() {
+            bytes[i * SLOT as usize..i * SLOT as usize + slot.len()].copy_from_slice(slot);
+        }
+        inputs.queue.write_buffer(&self.params, 0, &bytes);
+
+        let device = inputs.device;
+        let slot_offset = |i: u32| (u64::from(i).min(self.params_slots - 1) * SLOT) as u32;
+        let params_binding = |size: u64| {
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: &self.params,
+                offset: 0,
+                size: wgpu::BufferSize::new(size),
+            })
+        };
+        let mip_group = |a: &wgpu::TextureView, b: &wgpu::TextureView, dest: &wgpu::TextureView| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("sshgi mip bind group"),
+                layout: &self.mip_layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: params_binding(16) },
+                    wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(a) },
+                    wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(b) },
+                    wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(dest) },
+                ],
+            })
+        };
+        let up_group = |coarse: &wgpu::TextureView,
+                        coarse_geo: &wgpu::TextureView,
+                        fine_geo: &wgpu::TextureView,
+                        add: &wgpu::TextureView,
+                        dest: &wgpu::TextureView| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("sshgi upsample bind group"),
+                layout: &self.up_layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: params_binding(16) },
+                    wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(coarse) },
+                    wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(coarse_geo) },
+                    wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(fine_geo) },
+                    wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(add) },
+                    wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(dest) },
+                ],
+            })
+        };
+        let dispatch = |pass: &mut wgpu::ComputePass<'_>,
+                        pipeline: &wgpu::ComputePipeline,
+                        group: &wgpu::BindGroup,
+                        offset: u32,
+                        t: &Target| {
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, group, &[offset]);
+            pass.dispatch_workgroups(t.texture.width().div_ceil(8), t.texture.height().div_ceil(8), 1);
+        };
+        let levels = plan.levels as usize;
+        let geo = |k: usize| &pyramid[plan.start as usize + k].view;
+        for b in 0..plan.bounces as usize {
+            // Illumination levels: the direct term (first bounce) or albedo x the previous
+            // bounce's E / pi, then 2x2 box averages.
+            {
+                let ts = if b == 0 { inputs.timer.scope("sshgi illumination") } else { None };
+                let mut pass = inputs.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("sshgi illumination"),
+                    timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
+                });
+                if b == 0 {
+                    let g =
+                        mip_group(&inputs.targets.direct.view, &inputs.targets.albedo.view, &s.illumination[0].view);
+                    dispatch(&mut pass, &self.box_seed, &g, slot_offset(0), &s.illumination[0]);
+                    let g = mip_group(&inputs.targets.albedo.view, &inputs.targets.albedo.view, &s.albedo.view);
+                    dispatch(&mut pass, &self.box_seed, &g, slot_offset(0), &s.albedo);
+                } else {
+                    let g = mip_group(&s.albedo.view, &s.bounce[b - 1].view, &s.illumination[0].view);
+                    dispatch(&mut pass, &self.product, &g, slot_offset(1), &s.illumination[0]);
+                }
+                for k in 1..levels {
+                    let g =
+                        mip_group(&s.illumination[k - 1].view, &s.illumination[k - 1].view, &s.illumination[k].view);
+                    dispatch(&mut pass, &self.reduce, &g, slot_offset(1), &s.illumination[k]);
+                }
+            }
+            // One gather per level; a single level writes the bounce directly.
+            for k in 0..levels {
+                let dest = if levels == 1 { &s.bounce[b] } else { &s.gathered[k] };
+                let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("sshgi gather bind group"),
+                    layout: &self.gather_layout,
+                    entries: &[
+                        wgpu::BindGroupEntry { binding: 0, resource: inputs.frame_buffer.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 1, resource: params_binding(48) },
+                        wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(geo(k)) },
+                        wgpu::BindGroupEntry {
+                            binding: 3,
+                            resource: wgpu::BindingResource::TextureView(&s.illumination[k].view),
+                        },
+                        wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&dest.view) },
+                    ],
+                });
+                let name = format!("sshgi gather level {k}");
+                let ts = if b == 0 { inputs.timer.scope(&name) } else { None };
+                let mut pass = inputs.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("sshgi gather"),
+                    timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
+                });
+                let slot = gather_slot0 + (b * levels + k) as u32;
+                dispatch(&mut pass, &self.gather, &group, slot_offset(slot), dest);
+            }
+            // Coarse to fine: Acc_k = JBU(Acc_k+1) + Ind_k; level 0's sum is the bounce.
+            if levels > 1 {
+                let ts = if b == 0 { inputs.timer.scope("sshgi up-sampling") } else { None };
+                let mut pass = inputs.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("sshgi up-sampling"),
+                    timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
+                });
+                for k in (0..levels - 1).rev() {
+                    let coarse = if k + 1 == levels - 1 { &s.gathered[k + 1] } else { &s.summed[k + 1] };
+                    let dest = if k == 0 { &s.bounce[b] } else { &s.summed[k] };
+                    let g = up_group(&coarse.view, geo(k + 1), geo(k), &s.gathered[k].view, &dest.view);
+                    dispatch(&mut pass, &self.upsample, &g, slot_offset(2 + k as u32), dest);
+                }
+            }
+        }
+        // The bounces' sum, up-sampled to the view.
+        let ts = inputs.timer.scope("sshgi output");
+        let mut pass = inputs.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("sshgi output"),
+            timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
+        });
+        let mut total = &s.bounce[0];
+        for b in 1..plan.bounces as usize {
+            let dest = &s.sums[b % 2];
+            let g = mip_group(&total.view, &s.bounce[b].view, &dest.view);
+            dispatch(&mut pass, &self.add, &g, slot_offset(1), dest);
+            total = dest;
+        }
+        let out = &inputs.targets.indirect;
+        let g = up_group(&total.view, geo(0), &pyramid[0].view, &total.view, &out.view);
+        dispatch(&mut pass, &self.upsample, &g, slot_offset(2 + plan.levels - 1), out);
+    }
+
+    /// The texture behind inspector buffer `name` of the last frame (see `technique::BUFFERS`).
+    pub fn buffer(&self, name: &str) -> Option<&wgpu::Texture> {
+        let s = self.sized.as_ref()?;
+        let (kind, index) = name.rsplit_once('_')?;
+        let i: usize = index.parse().ok()?;
+        let list = match kind {
+            "sshgi_illumination" => &s.illumination,
+            "sshgi_gather" => &s.gathered,
+            "sshgi_sum" => &s.summed,
+            "sshgi_bounce" => return s.bounce.get(i.checked_sub(1)?).map(|t| &t.texture),
+            _ => return None,
+        };
+        list.get(i).map(|t| &t.texture)
+    }
+
+    /// Frees the targets.
+    pub fn release(&mut self) {
+        self.sized = None;
+    }
+
+    /// Bytes of the targets.
+    pub fn gpu_bytes(&self) -> u64 {
+        let Some(s) = &self.sized else { return 0 };
+        let all = s.illumination.iter().chain(&s.gathered).chain(&s.summed).chain(&s.bounce).chain(&s.sums);
+        all.chain(std::iter::once(&s.albedo)).map(|t| crate::render::gi::technique::texture_bytes(&t.texture)).sum()
+    }
+}
