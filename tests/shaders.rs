@@ -42,7 +42,7 @@ fn every_entry_shader_validates_with_naga() {
 #[test]
 fn every_parameter_block_matches_its_wgsl_struct() {
     use bouncelab::render::gi::ism::params::PARAM_BLOCKS;
-    for (path, name, size) in PARAM_BLOCKS {
+    for (path, name, size) in PARAM_BLOCKS.iter().chain(bouncelab::render::gi::sshgi::PARAM_BLOCKS) {
         let text = assemble(path).expect("assembles");
         let module =
             naga::front::wgsl::parse_str(&text).unwrap_or_else(|e| panic!("{path}: {}", e.emit_to_string(&text)));

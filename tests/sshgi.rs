@@ -69,15 +69,100 @@ fn sshgi_on_the_cornell_box_has_the_first_bounces_units_and_bounces_add_energy_w
 #[test]
 fn sshgi_on_the_cornell_box_has_under_six_tenths_of_directs_flip_and_energy_within_ten_percent() {
     let Some(ctx) = common::gpu() else { return };
+    // As the quality matrix renders it: default settings at 256x144, box-filtered to the cached
+    // reference's 128x72 pixels.
     let project = suite::scene("cornell").expect("suite scene").load(Path::new(".")).expect("cornell");
     let reference = suite::scene("cornell").expect("suite scene").reference(Path::new(".")).expect("cached reference");
-    let direct = render(&ctx, &project, &with(&project, GiMode::Direct, SshgiSettings::default()), 1);
-    let settings = SshgiSettings { start_level: START, ..Default::default() };
-    let sshgi = render(&ctx, &project, &with(&project, GiMode::Sshgi, settings), 8);
-    let fd = metrics::flip(&direct, &reference, 0.0).expect("flip").0;
-    let fs = metrics::flip(&sshgi, &reference, 0.0).expect("flip").0;
+    let big = (SIZE.0 * 2, SIZE.1 * 2);
+    let render_big = |settings: &RenderSettings, frames: usize| {
+        let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        let mut sum = vec![[0.0f32; 4]; (big.0 * big.1) as usize];
+        for _ in 0..frames {
+            r.render(&project.scene, settings, big).expect("render");
+            for (s, p) in sum.iter_mut().zip(r.read_hdr().expect("hdr")) {
+                (0..4).for_each(|c| s[c] += p[c] / frames as f32);
+            }
+        }
+        HdrImage { width: SIZE.0, height: SIZE.1, pixels: bouncelab::image_io::box_downsample(&sum, big, 2) }
+    };
+    let direct = render_big(&with(&project, GiMode::Direct, SshgiSettings::default()), 1);
+    let sshgi = render_big(&with(&project, GiMode::Sshgi, SshgiSettings::default()), 8);
+    let ev = bouncelab::cli::quality::exposure(&reference);
+    let fd = metrics::flip(&direct, &reference, ev).expect("flip").0;
+    let fs = metrics::flip(&sshgi, &reference, ev).expect("flip").0;
     let energy = metrics::luminance_ratio(&sshgi, &reference).expect("ratio");
     eprintln!("sshgi FLIP {fs:.4} vs direct {fd:.4} ({:.2}); energy {energy:.3}", fs / fd);
     assert!(fs < 0.6 * fd, "sshgi FLIP {fs:.4} is not below 0.6 x direct's {fd:.4}");
     assert!((0.9..=1.1).contains(&energy), "sshgi energy {energy:.3} of the reference");
+}
+
+/// A floor with a spot-lit patch on its left, a closed 0.3 m wall standing across it, and a
+/// receiver block on the right whose -X face looks at the patch over the wall: every path from
+/// the patch to that face passes through the wall.
+fn walled_scene() -> bouncelab::scene::Scene {
+    use bouncelab::scene::{Camera, Light, Material, MeshSource, Transform};
+    use glam::Vec3;
+    let cuboid = |size: Vec3| MeshSource::Cuboid { size, openings: [false; 6] };
+    let at = |p: Vec3| Transform { translation: p, ..Default::default() };
+    let objects = vec![
+        common::object("floor", MeshSource::Plane { size: 8.0 }, 0, Transform::default()),
+        common::object("wall", cuboid(Vec3::new(0.3, 1.5, 3.0)), 0, at(Vec3::new(0.0, 0.75, 0.0))),
+        common::object("receiver", cuboid(Vec3::new(0.3, 1.5, 3.0)), 0, at(Vec3::new(1.3, 0.75, 0.0))),
+    ];
+    let spot = Light::spot("spot", Vec3::new(-1.6, 3.0, 0.0), Vec3::NEG_Y, 30.0, 0.25, 0.35);
+    let camera = Camera::look_at(Vec3::new(-0.6, 4.0, 5.0), Vec3::new(0.2, 0.3, 0.0), 0.9);
+    common::scene(objects, vec![Material::diffuse("grey", [0.8; 3])], vec![spot], camera)
+}
+
+#[test]
+fn sshgi_visibility_stops_the_light_a_closed_wall_blocks_which_leaks_without_it() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = Project::load(&bouncelab::project_file::default_project_path()).expect("project");
+    project.scene = walled_scene();
+    let receiver_light = |visibility: bool| {
+        let sshgi =
+            SshgiSettings { start_level: START, bounces: 1, visibility, temporal_weight: 0.0, ..Default::default() };
+        let settings = with(&project, GiMode::Sshgi, sshgi);
+        let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        r.render(&project.scene, &settings, SIZE).expect("render");
+        let indirect = r.read_buffer("indirect").expect("indirect");
+        let ids = r.read_buffer("object_id").expect("ids");
+        let receiver = 3.0;
+        let values: Vec<f64> = ids
+            .pixels
+            .iter()
+            .zip(&indirect.pixels)
+            .filter(|(id, _)| id[0] == receiver)
+            .map(|(_, p)| f64::from(0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]))
+            .collect();
+        assert!(values.len() > 100, "the receiver covers {} pixels", values.len());
+        values.iter().sum::<f64>() / values.len() as f64
+    };
+    let (with_vis, without) = (receiver_light(true), receiver_light(false));
+    eprintln!("receiver E/pi: visibility on {with_vis:.5}, off {without:.5}");
+    assert!(without > 1e-3, "without visibility the patch's light leaks onto the receiver: {without:.5}");
+    assert!(with_vis < 0.2 * without, "visibility leaves {with_vis:.5} of the leak's {without:.5}");
+}
+
+#[test]
+fn sshgi_temporal_filter_steadies_a_moving_camera() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = suite::scene("cornell").expect("suite scene").load(Path::new(".")).expect("cornell");
+    let start = project.scene.desc().camera.position;
+    let change = |temporal_weight: f32, project: &mut Project| {
+        let sshgi = SshgiSettings { start_level: START, temporal_weight, ..Default::default() };
+        let settings = with(project, GiMode::Sshgi, sshgi);
+        let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        let frames: Vec<HdrImage> = (0..16)
+            .map(|i| {
+                project.scene.desc_mut().camera.position = start + glam::Vec3::new(0.004 * i as f32, 0.0, 0.0);
+                r.render(&project.scene, &settings, SIZE).expect("render");
+                HdrImage { width: SIZE.0, height: SIZE.1, pixels: r.read_hdr().expect("hdr") }
+            })
+            .collect();
+        metrics::mean_frame_change(&frames[6..]).expect("frames")
+    };
+    let (filtered, raw) = (change(0.85, &mut project), change(0.0, &mut project));
+    eprintln!("mean frame change on a moving camera: temporal {filtered:.5}, none {raw:.5}");
+    assert!(filtered < 0.7 * raw, "the temporal filter leaves {filtered:.5} of {raw:.5}");
 }

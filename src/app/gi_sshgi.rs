@@ -22,5 +22,20 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
             .on_hover_text("Automatic: the smallest radius whose disc on the coarsest level spans the view.");
         ui.add(egui::Slider::new(&mut m.bounces, 1..=4).text("bounces"))
             .on_hover_text("Each bounce gathers albedo x the previous one again: one more gather chain (linear cost).");
+        ui.checkbox(&mut m.visibility, "indirect shadows (voxel visibility)")
+            .on_hover_text("March a solid voxelisation of the view between receiver and sender. Off: light passes through walls; on: the paper's frame cost rose 6x.");
+        ui.add_enabled(m.visibility, egui::Checkbox::new(&mut m.visibility_all_bounces, "on every bounce"))
+            .on_hover_text("The paper marches the first bounce only (later bounces are smooth); on: no bounce leaks, each costs as much as the first.");
+        ui.horizontal(|ui| {
+            ui.label("voxel depth range (m, 0 0 = scene bounds)");
+            ui.add(egui::DragValue::new(&mut m.voxel_range[0]).range(0.0..=1.0e4).speed(0.1));
+            ui.add(egui::DragValue::new(&mut m.voxel_range[1]).range(0.0..=1.0e4).speed(0.1));
+        })
+        .response
+        .on_hover_text("The 128 slices cover this view depth; occluders thinner than a slice can vanish.");
+        ui.add(egui::Slider::new(&mut m.temporal_weight, 0.0..=0.99).text("temporal weight a"))
+            .on_hover_text("History share of the blend (0: none). Higher: less noise, more lag; history is dropped at disocclusions.");
+        ui.checkbox(&mut m.temporal_two_tap, "2-tap blend (paper)")
+            .on_hover_text("Blend with the previous raw frame instead of the recursive history: less lag, more noise.");
     });
 }

@@ -50,7 +50,9 @@ pub struct RenderArgs {
     /// Write an intermediate buffer instead of the final image: albedo, normal, material,
     /// motion, object_id, depth, direct, indirect, hdr, ldr, shadow_map, pyramid_0/2/4, and the
     /// mode's own (ISM: ism_light_*, ism_importance, ism_atlas(_splats), ism_split_*, ism_raw,
-    /// ism_confidence, ism_history, ism_sh_*); an unknown name lists the mode's buffers.
+    /// ism_confidence, ism_history, ism_sh_*; sshgi: sshgi_illumination_k, sshgi_gather_k,
+    /// sshgi_sum_k, sshgi_bounce_b, sshgi_raw, sshgi_acceptance, sshgi_voxels(_start)); an unknown
+    /// name lists the mode's buffers.
     #[arg(long)]
     pub buffer: Option<String>,
     /// Supersampling per axis for raster modes: renders at N times the size and box-filters

@@ -38,6 +38,10 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/gi/sshgi/sshgi_gather.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_gather.wgsl")),
     ("render/gi/sshgi/sshgi_mip.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_mip.wgsl")),
     ("render/gi/sshgi/sshgi_upsample.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_upsample.wgsl")),
+    ("render/gi/sshgi/sshgi_voxel_mip.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_voxel_mip.wgsl")),
+    ("render/gi/sshgi/sshgi_voxelize.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_voxelize.wgsl")),
+    ("render/gi/sshgi/sshgi_visibility.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_visibility.wgsl")),
+    ("render/gi/sshgi/sshgi_temporal.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_temporal.wgsl")),
     ("render/lighting.wgsl", include_str!("../../shaders/render/lighting.wgsl")),
     ("render/pyramid.wgsl", include_str!("../../shaders/render/pyramid.wgsl")),
     ("render/shadow_depth.wgsl", include_str!("../../shaders/render/shadow_depth.wgsl")),
@@ -67,6 +71,9 @@ pub const ENTRY_SHADERS: &[&str] = &[
     "render/gi/sshgi/sshgi_gather.wgsl",
     "render/gi/sshgi/sshgi_mip.wgsl",
     "render/gi/sshgi/sshgi_upsample.wgsl",
+    "render/gi/sshgi/sshgi_voxel_mip.wgsl",
+    "render/gi/sshgi/sshgi_voxelize.wgsl",
+    "render/gi/sshgi/sshgi_temporal.wgsl",
 ];
 
 /// A shader that could not be assembled.

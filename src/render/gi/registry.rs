@@ -47,7 +47,7 @@ pub const TECHNIQUES: &[TechniqueEntry] = &[
         modes: &[GiMode::Sshgi],
         support: SshgiTechnique::support,
         buffers: super::sshgi::technique::BUFFERS,
-        create: |device, _| Ok(Box::new(SshgiTechnique::new(device)?)),
+        create: |device, layouts| Ok(Box::new(SshgiTechnique::new(device, layouts)?)),
     },
     TechniqueEntry {
         modes: &[GiMode::Reference],

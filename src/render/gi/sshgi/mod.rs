@@ -5,3 +5,18 @@
 
 pub mod passes;
 pub mod technique;
+pub mod temporal;
+pub mod voxels;
+
+use std::mem::size_of;
+
+/// (shader file, WGSL struct, size of the Rust mirror) for every sshgi parameter block, checked
+/// against naga's layout by `tests/shaders.rs`.
+pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
+    ("render/gi/sshgi/sshgi_mip.wgsl", "MipParams", size_of::<passes::Counts>()),
+    ("render/gi/sshgi/sshgi_upsample.wgsl", "UpParams", size_of::<passes::UpParams>()),
+    ("render/gi/sshgi/sshgi_gather.wgsl", "GatherParams", size_of::<passes::GatherParams>()),
+    ("render/gi/sshgi/sshgi_voxelize.wgsl", "VoxelParams", size_of::<voxels::VoxelParams>()),
+    ("render/gi/sshgi/sshgi_voxel_mip.wgsl", "VoxelMipParams", size_of::<voxels::MipParams>()),
+    ("render/gi/sshgi/sshgi_temporal.wgsl", "TemporalParams", size_of::<temporal::TemporalParams>()),
+];

@@ -8,7 +8,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3, Vec4};
 
 use crate::render::gi::inputs::GiInputs;
-use crate::render::layouts::{compute_pipeline, storage_texture_entry, texture_entry, uniform_entry};
+use crate::render::layouts::{compute_pipeline, storage_entry, storage_texture_entry, texture_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::{Target, formats};
 use crate::settings::SshgiSettings;
@@ -19,22 +19,81 @@ const SLOT: u64 = 256;
 /// `MipParams` and `UpParams` in the shaders.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
-struct Counts {
-    counts: [u32; 4],
+pub struct Counts {
+    /// The block's four values.
+    pub counts: [u32; 4],
 }
 
 const _: () = assert!(std::mem::size_of::<Counts>() == 16);
 
+/// `UpParams` in `sshgi_upsample.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct UpParams {
+    /// Add the fine gather, view pixels per fine texel, per coarse texel, unused.
+    pub counts: [u32; 4],
+    /// Angular width of a view pixel on the axis (rad), unused x3.
+    pub params: [f32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<UpParams>() == 32);
+
 /// `GatherParams` in `sshgi_gather.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
-struct GatherParams {
-    level: [u32; 4],
-    geo: [f32; 4],
-    forward: [f32; 4],
+pub struct GatherParams {
+    /// Pyramid level, ring, samples, frame seed.
+    pub level: [u32; 4],
+    /// Ring radius, texel solid angle, pixels per texel.
+    pub geo: [f32; 4],
+    /// Camera forward axis.
+    pub forward: [f32; 4],
+    /// Voxel slices: near, far, slices per metre, on.
+    pub vox: [f32; 4],
+    /// Voxel columns: width, columns per texel, height.
+    pub grid: [u32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<GatherParams>() == 48);
+const _: () = assert!(std::mem::size_of::<GatherParams>() == 80);
+
+/// The voxel columns the gathers march, per gather level, with the slices' depth range.
+pub struct Visibility<'a> {
+    /// Column buffers by pyramid level (level 0 = the view).
+    pub levels: Vec<&'a wgpu::Buffer>,
+    /// near, far (view depth, m).
+    pub range: (f32, f32),
+}
+
+/// The camera's position, forward axis and half-field-of-view tangents, from the frame's
+/// matrices.
+pub struct ViewAxis {
+    /// Camera position.
+    pub camera: Vec3,
+    /// Unit view axis.
+    pub forward: Vec3,
+    /// tan of half the horizontal field of view.
+    pub tan_x: f32,
+    /// tan of half the vertical field of view.
+    pub tan_y: f32,
+}
+
+impl ViewAxis {
+    /// The axis of `frame`'s camera.
+    pub fn new(frame: &crate::render::uniforms::FrameUniforms) -> Self {
+        let world_from_clip = Mat4::from_cols_array_2d(&frame.world_from_clip);
+        let camera = Vec3::from_slice(&frame.camera_position[..3]);
+        let ray = |x: f32, y: f32| {
+            let h = world_from_clip * Vec4::new(x, y, 1.0, 1.0);
+            (h.truncate() / h.w - camera).normalize_or_zero()
+        };
+        let forward = ray(0.0, 0.0);
+        let tan = |edge: Vec3| {
+            let c = forward.dot(edge).clamp(1e-6, 1.0);
+            (1.0 - c * c).max(0.0).sqrt() / c
+        };
+        Self { camera, forward, tan_x: tan(ray(1.0, 0.0)), tan_y: tan(ray(0.0, 1.0)) }
+    }
+}
 
 /// The levels a frame gathers: which pyramid level starts, how many, how many bounces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -95,6 +154,8 @@ pub struct SshgiPasses {
     upsample: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     params_slots: u64,
+    /// Bound in place of voxel columns when visibility is off.
+    no_voxels: wgpu::Buffer,
     sized: Option<Sized>,
 }
 
@@ -120,6 +181,7 @@ impl SshgiPasses {
                 texture_entry(2, c, float),
                 texture_entry(3, c, float),
                 storage_texture_entry(4, formats::HDR),
+                storage_entry(5, c),
             ],
         });
         let up_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -131,6 +193,7 @@ impl SshgiPasses {
                 texture_entry(3, c, float),
                 texture_entry(4, c, float),
                 storage_texture_entry(5, formats::HDR),
+                uniform_entry(6, c, false),
             ],
         });
         let mip = shaders::module(device, "render/gi/sshgi/sshgi_mip.wgsl")?;
@@ -151,6 +214,12 @@ impl SshgiPasses {
                 mapped_at_creation: false,
             }),
             params_slots,
+            no_voxels: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("sshgi no voxels"),
+                size: 16,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            }),
             mip_layout,
             gather_layout,
             up_layout,
@@ -176,8 +245,15 @@ impl SshgiPasses {
         });
     }
 
-    /// Records every pass of a frame; writes E / pi into `inputs.targets.indirect`.
-    pub fn record(&mut self, inputs: &mut GiInputs<'_>, pyramid: &[Target], plan: Plan) {
+    /// Records every pass of a frame; writes E / pi into `out` (view-sized).
+    pub fn record(
+        &mut self,
+        inputs: &mut GiInputs<'_>,
+        pyramid: &[Target],
+        plan: Plan,
+        visibility: Option<&Visibility<'_>>,
+        out: &Target,
+    ) {
         self.ensure(inputs.device, plan);
         let Some(s) = &self.sized else { return };
         let settings = &inputs.settings.sshgi;
@@ -186,28 +262,24 @@ impl SshgiPasses {
         let mut slots: Vec<Vec<u8>> = Vec::new();
         slots.push(bytemuck::bytes_of(&Counts { counts: [1 << plan.start, 0, 0, 0] }).to_vec());
         slots.push(bytemuck::bytes_of(&Counts::default()).to_vec());
+        let axis = ViewAxis::new(inputs.frame);
+        let forward = axis.forward;
+        let pixel_sr = 4.0 * axis.tan_x * axis.tan_y / (plan.view.0 as f32 * plan.view.1 as f32);
         for k in 0..plan.levels {
             let counts = if k + 1 < plan.levels {
                 [1, 1 << (plan.start + k), 1 << (plan.start + k + 1), 0]
             } else {
                 [0, 1, 1 << plan.start, 0]
             };
-            slots.push(bytemuck::bytes_of(&Counts { counts }).to_vec());
+            slots.push(bytemuck::bytes_of(&UpParams { counts, params: [pixel_sr.sqrt(), 0.0, 0.0, 0.0] }).to_vec());
         }
         let gather_slot0 = slots.len() as u32;
-        let world_from_clip = Mat4::from_cols_array_2d(&inputs.frame.world_from_clip);
-        let camera = Vec3::from_slice(&inputs.frame.camera_position[..3]);
-        let ray = |x: f32, y: f32| {
-            let h = world_from_clip * Vec4::new(x, y, 1.0, 1.0);
-            (h.truncate() / h.w - camera).normalize_or_zero()
-        };
-        let forward = ray(0.0, 0.0);
-        let tan = |edge: Vec3| {
-            let c = forward.dot(edge).clamp(1e-6, 1.0);
-            (1.0 - c * c).max(0.0).sqrt() / c
-        };
-        let pixel_sr = 4.0 * tan(ray(1.0, 0.0)) * tan(ray(0.0, 1.0)) / (plan.view.0 as f32 * plan.view.1 as f32);
-        let radius = settings.ring_radius(plan.level_size(0), plan.levels);
+        let start_size = plan.level_size(0);
+        let radius = settings.ring_radius(start_size, plan.levels);
+        let vox = visibility.map_or([0.0; 4], |v| {
+            let (near, far) = v.range;
+            [near, far, 128.0 / (far - near).max(1e-6), 1.0]
+        });
         for b in 0..plan.bounces {
             for k in 0..plan.levels {
                 let l = plan.start + k;
@@ -215,6 +287,9 @@ impl SshgiPasses {
                     level: [l, u32::from(k > 0), settings.samples, inputs.frame_index.wrapping_mul(4).wrapping_add(b)],
                     geo: [radius, pixel_sr * (1u32 << (2 * l)) as f32, (1u32 << l) as f32, 0.0],
                     forward: [forward.x, forward.y, forward.z, 0.0],
+                    // The paper's saving: later bounces may skip visibility.
+                    vox: if b == 0 || settings.visibility_all_bounces { vox } else { [0.0; 4] },
+                    grid: [start_size.0, 1 << k, start_size.1, 0],
                 };
                 slots.push(bytemuck::bytes_of(&p).to_vec());
             }
@@ -256,12 +331,13 @@ impl SshgiPasses {
                 label: Some("sshgi upsample bind group"),
                 layout: &self.up_layout,
                 entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: params_binding(16) },
+                    wgpu::BindGroupEntry { binding: 0, resource: params_binding(32) },
                     wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(coarse) },
                     wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(coarse_geo) },
                     wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(fine_geo) },
                     wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(add) },
                     wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(dest) },
+                    wgpu::BindGroupEntry { binding: 6, resource: inputs.frame_buffer.as_entire_binding() },
                 ],
             })
         };
@@ -276,6 +352,9 @@ impl SshgiPasses {
         };
         let levels = plan.levels as usize;
         let geo = |k: usize| &pyramid[plan.start as usize + k].view;
+        // Every level marches the start level's columns (`sshgi_visibility.wgsl` says why).
+        let voxels =
+            |_k: usize| visibility.and_then(|v| v.levels.get(plan.start as usize).copied()).unwrap_or(&self.no_voxels);
         for b in 0..plan.bounces as usize {
             // Illumination levels: the direct term (first bounce) or albedo x the previous
             // bounce's E / pi, then 2x2 box averages.
@@ -309,13 +388,14 @@ impl SshgiPasses {
                     layout: &self.gather_layout,
                     entries: &[
                         wgpu::BindGroupEntry { binding: 0, resource: inputs.frame_buffer.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 1, resource: params_binding(48) },
+                        wgpu::BindGroupEntry { binding: 1, resource: params_binding(80) },
                         wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(geo(k)) },
                         wgpu::BindGroupEntry {
                             binding: 3,
                             resource: wgpu::BindingResource::TextureView(&s.illumination[k].view),
                         },
                         wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&dest.view) },
+                        wgpu::BindGroupEntry { binding: 5, resource: voxels(k).as_entire_binding() },
                     ],
                 });
                 let name = format!("sshgi gather level {k}");
@@ -355,7 +435,6 @@ impl SshgiPasses {
             dispatch(&mut pass, &self.add, &g, slot_offset(1), dest);
             total = dest;
         }
-        let out = &inputs.targets.indirect;
         let g = up_group(&total.view, geo(0), &pyramid[0].view, &total.view, &out.view);
         dispatch(&mut pass, &self.upsample, &g, slot_offset(2 + plan.levels - 1), out);
     }

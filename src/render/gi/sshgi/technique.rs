@@ -1,7 +1,9 @@
 //! The `sshgi` technique behind the GI seam: asks the frame for the shared voted depth/normal
 //! pyramid, runs [`super::passes`] and returns E / pi for the composite to multiply by albedo.
 
-use super::passes::{Plan, SshgiPasses};
+use super::passes::{Plan, SshgiPasses, ViewAxis, Visibility};
+use super::temporal::TemporalPass;
+use super::voxels::{VoxelParams, VoxelPass, automatic_range};
 use crate::image_io::HdrImage;
 use crate::render::gi::inputs::GiInputs;
 use crate::render::gi::technique::{
@@ -35,18 +37,61 @@ pub const BUFFERS: &[BufferInfo] = &[
     level("sshgi_bounce_2", "second bounce's E / pi (albedo x the first, gathered again)"),
     level("sshgi_bounce_3", "third bounce's E / pi"),
     level("sshgi_bounce_4", "fourth bounce's E / pi"),
+    level("sshgi_raw", "this frame's E / pi before the temporal blend (view resolution)"),
+    BufferInfo {
+        name: "sshgi_voxels",
+        description: "solid voxelisation of the view, per pixel: r = solid share of the 128 slices, g = first solid slice, b = last (closed objects show solid cross-sections; open meshes streak to the end)",
+        format: "4 x u32 per pixel",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "sshgi_voxels_start",
+        description: "the start level's voxel columns the gathers march (OR of the view's), as sshgi_voxels",
+        format: "4 x u32 per texel",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "sshgi_acceptance",
+        description: "temporal blend: r = the history's weight (0 at disocclusions and after resets), g = bilinear taps kept",
+        format: "rgba32f",
+        view: BufferView::Scalar,
+    },
 ];
 
 /// Screen-space hierarchical GI.
 pub struct SshgiTechnique {
     passes: SshgiPasses,
+    voxels: VoxelPass,
+    /// The voxel level the last frame's gathers marched.
+    voxel_start: usize,
+    temporal: TemporalPass,
     status: TechniqueStatus,
 }
 
 impl SshgiTechnique {
     /// Creates the pipelines.
-    pub fn new(device: &wgpu::Device) -> Result<Self, RenderError> {
-        Ok(Self { passes: SshgiPasses::new(device)?, status: TechniqueStatus::default() })
+    pub fn new(device: &wgpu::Device, layouts: &crate::render::layouts::Layouts) -> Result<Self, RenderError> {
+        Ok(Self {
+            passes: SshgiPasses::new(device)?,
+            voxels: VoxelPass::new(device, layouts)?,
+            voxel_start: 0,
+            temporal: TemporalPass::new(device)?,
+            status: TechniqueStatus::default(),
+        })
+    }
+
+    /// The voxel slices' depth range this frame: the setting, or the scene's bounds along the
+    /// view axis; `None` when visibility is off or nothing lies in front.
+    fn voxel_range(inputs: &GiInputs<'_>, axis: &ViewAxis) -> Option<(f32, f32)> {
+        let s = &inputs.settings.sshgi;
+        if !s.visibility {
+            return None;
+        }
+        if s.voxel_range != [0.0, 0.0] {
+            return Some((s.voxel_range[0], s.voxel_range[1]));
+        }
+        let bounds = inputs.scene.bounds()?;
+        automatic_range(axis.camera, axis.forward, (bounds.min, bounds.max))
     }
 
     /// Needs compute with storage textures only, which every adapter the renderer runs on has.
@@ -71,9 +116,47 @@ impl GiTechnique for SshgiTechnique {
         if pyramid.is_empty() {
             return Ok(GiOutput::Nothing);
         }
-        let plan = Plan::new(&inputs.settings.sshgi, inputs.targets.size, pyramid.len() as u32);
-        self.passes.record(inputs, pyramid, plan);
+        let settings = inputs.settings.sshgi.clone();
+        let plan = Plan::new(&settings, inputs.targets.size, pyramid.len() as u32);
+        let axis = ViewAxis::new(inputs.frame);
+        let range = Self::voxel_range(inputs, &axis);
+        if let Some((near, far)) = range {
+            let params = VoxelParams {
+                range: [near, far, 128.0 / (far - near).max(1e-6), 0.0],
+                forward: [axis.forward.x, axis.forward.y, axis.forward.z, 0.0],
+            };
+            let ts = inputs.timer.scope("sshgi voxelize");
+            self.voxels.record(
+                inputs.device,
+                inputs.queue,
+                inputs.encoder,
+                inputs.frame_buffer,
+                inputs.scene_gpu,
+                inputs.targets.size,
+                plan.start + 1,
+                params,
+                ts,
+            );
+        }
+        self.voxel_start = plan.start as usize;
+        let visibility = range.map(|range| Visibility {
+            levels: (0..=plan.start as usize).filter_map(|l| self.voxels.level(l)).collect(),
+            range,
+        });
+        let targets = inputs.targets;
+        if settings.temporal_weight > 0.0 {
+            self.temporal.ensure(inputs.device, targets.size);
+            let Some(current) = self.temporal.current() else { return Ok(GiOutput::Nothing) };
+            self.passes.record(inputs, pyramid, plan, visibility.as_ref(), current);
+            self.temporal.record(inputs, settings.temporal_weight, settings.temporal_two_tap);
+        } else {
+            self.passes.record(inputs, pyramid, plan, visibility.as_ref(), &targets.indirect);
+        }
         self.status.history_frames = self.status.history_frames.saturating_add(1);
+        // The history has converged when the first frame's weight a^n is below 1%.
+        let a = settings.temporal_weight;
+        self.status.refine_target = if a > 0.0 { (0.01f32.ln() / a.ln()).ceil() as u32 } else { 0 };
+        self.status.refining = self.status.history_frames < self.status.refine_target;
         Ok(GiOutput::IrradianceOverPi)
     }
 
@@ -90,7 +173,26 @@ impl GiTechnique for SshgiTechnique {
         if !BUFFERS.iter().any(|b| b.name == name) {
             return None;
         }
-        let Some(texture) = self.passes.buffer(name) else {
+        let voxel_level = match name {
+            "sshgi_voxels" => Some(0),
+            "sshgi_voxels_start" => Some(self.voxel_start),
+            _ => None,
+        };
+        if let Some(l) = voxel_level {
+            let missing = || RenderError::UnknownBuffer {
+                name: name.into(),
+                known: "render sshgi with visibility on first".into(),
+            };
+            return Some(
+                self.voxels.read_level(device, queue, l).ok_or_else(missing).and_then(|r| r.map_err(Into::into)),
+            );
+        }
+        let texture = match name {
+            "sshgi_raw" => self.temporal.raw(),
+            "sshgi_acceptance" => self.temporal.acceptance(),
+            _ => self.passes.buffer(name),
+        };
+        let Some(texture) = texture else {
             return Some(Err(RenderError::UnknownBuffer {
                 name: name.into(),
                 known: "render sshgi first (with enough levels and bounces for this buffer)".into(),
@@ -104,16 +206,22 @@ impl GiTechnique for SshgiTechnique {
     }
 
     fn reset(&mut self, reason: ResetReason) {
+        // Every reason invalidates the screen-space history: a moved light or object changes
+        // the gathered light everywhere, and the paper's blend has no per-pixel confidence to
+        // let it fade (ISM's has).
         note_reset(&mut self.status, reason);
         self.status.history_frames = 0;
+        self.temporal.reset();
     }
 
     fn release(&mut self) {
         self.passes.release();
+        self.voxels.release();
+        self.temporal.release();
     }
 
     fn gpu_bytes(&self) -> u64 {
-        self.passes.gpu_bytes()
+        self.passes.gpu_bytes() + self.voxels.gpu_bytes() + self.temporal.gpu_bytes()
     }
 
     fn limitations(&self, _scene: &Scene, _settings: &RenderSettings) -> Vec<String> {
