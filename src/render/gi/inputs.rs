@@ -29,8 +29,9 @@ pub struct GpuLights<'a> {
 
 /// The shared depth/normal pyramid (built only for techniques whose [`super::Needs`] ask).
 pub struct PyramidView<'a> {
-    /// Per level: linear view distance (r) and octahedral geometric normal (gb), a = 1 where
-    /// geometry; level 0 is the view resolution.
+    /// Per level: linear view distance (r) and octahedral geometric normal (gb), a = 1 + the
+    /// copied view pixel's row-major index where geometry (0 where none; `pyramid_point` in
+    /// `common/frame.wgsl` rebuilds its point); level 0 is the view resolution.
     pub levels: &'a [Target],
 }
 

@@ -43,14 +43,6 @@ struct GatherParams {
 const PI: f32 = 3.14159265358979;
 const GOLDEN_ANGLE: f32 = 2.39996322972865;
 
-// Unit view ray through texel t of a level of 2^l view pixels per texel.
-fn texel_ray(t: vec2<i32>) -> vec3<f32> {
-    let pixel = (vec2<f32>(t) + 0.5) * gp.geo.z;
-    let uv = pixel * frame.size.zw;
-    let h = frame.world_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 1.0, 1.0);
-    return normalize(h.xyz / h.w - frame.camera_position.xyz);
-}
-
 // A hash of (x, y, seed) to [0, 1) (PCG, Jarzynski & Olano 2020).
 fn hash01(x: u32, y: u32, seed: u32) -> f32 {
     var v = x * 747796405u + y * 2891336453u + seed * 277803737u + 1442695041u;
@@ -72,7 +64,7 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let cam = frame.camera_position.xyz;
-    let x = cam + texel_ray(t) * g.r;
+    let x = pyramid_point(frame, g);
     let nx = oct_decode(g.gb);
     let n = gp.level.z;
     let r = gp.geo.x;
@@ -104,8 +96,8 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
         if gy.a < 0.5 {
             continue;
         }
-        let dir_y = texel_ray(y);
-        let py = cam + dir_y * gy.r;
+        let py = pyramid_point(frame, gy);
+        let dir_y = (py - cam) / max(gy.r, 1.0e-20);
         let ny = oct_decode(gy.gb);
         let v = py - x;
         let d2 = dot(v, v);

@@ -28,13 +28,6 @@ struct UpParams {
 @group(0) @binding(5) var dest: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(6) var<uniform> frame: Frame;
 
-// World position of texel t of a level of `ppt` view pixels per texel at distance `dist`.
-fn texel_point(t: vec2<f32>, ppt: f32, dist: f32) -> vec3<f32> {
-    let uv = (t + 0.5) * ppt * frame.size.zw;
-    let h = frame.world_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 1.0, 1.0);
-    return frame.camera_position.xyz + normalize(h.xyz / h.w - frame.camera_position.xyz) * dist;
-}
-
 @compute @workgroup_size(8, 8, 1)
 fn upsample(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = textureDimensions(dest);
@@ -51,7 +44,7 @@ fn upsample(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let nf = oct_decode(f.gb);
-    let pf = texel_point(vec2<f32>(id.xy), f32(up.counts.y), f.r);
+    let pf = pyramid_point(frame, f);
     let width = f.r * up.params.x * f32(up.counts.z);
     let csize = vec2<i32>(textureDimensions(coarse_value));
     // The fine texel's centre in coarse texel coordinates.
@@ -70,7 +63,7 @@ fn upsample(@builtin(global_invocation_id) id: vec3<u32>) {
         if g.a < 0.5 {
             continue;
         }
-        let h = dot(nf, texel_point(vec2<f32>(q), f32(up.counts.z), g.r) - pf) / width;
+        let h = dot(nf, pyramid_point(frame, g) - pf) / width;
         let similarity = exp(-h * h) * pow(max(dot(nf, oct_decode(g.gb)), 0.0), 16.0);
         let bilinear = select(1.0 - w.x, w.x, o.x == 1) * select(1.0 - w.y, w.y, o.y == 1);
         let v = textureLoad(coarse_value, q, 0).rgb;

@@ -227,7 +227,7 @@ impl GiTechnique for SshgiTechnique {
     fn limitations(&self, _scene: &Scene, _settings: &RenderSettings) -> Vec<String> {
         vec![
             "only surfaces on screen send indirect light: off-screen and hidden senders are missing".to_owned(),
-            "no indirect visibility yet: light gathered from a surface passes through whatever lies between".to_owned(),
+            "indirect shadows come from a voxelisation of the view: occluders hidden behind others or off screen cast none, and meshes must be closed".to_owned(),
             "senders are diffuse: they send the direct term's outgoing radiance".to_owned(),
         ]
     }
