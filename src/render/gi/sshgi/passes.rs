@@ -356,28 +356,28 @@ impl SshgiPasses {
         let voxels =
             |_k: usize| visibility.and_then(|v| v.levels.get(plan.start as usize).copied()).unwrap_or(&self.no_voxels);
         for b in 0..plan.bounces as usize {
+            // Bounce 1's phases each get their own timed pass; a later bounce shares one, timed
+            // whole (ended with the iteration).
+            let mut bounce_pass: Option<wgpu::ComputePass<'static>> = None;
             // Illumination levels: the direct term (first bounce) or albedo x the previous
             // bounce's E / pi, then 2x2 box averages.
             {
-                let ts = if b == 0 { inputs.timer.scope("sshgi illumination") } else { None };
-                let mut pass = inputs.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("sshgi illumination"),
-                    timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
-                });
+                let mut own = None;
+                let pass = phase_pass(&mut own, &mut bounce_pass, inputs, b, "sshgi illumination");
                 if b == 0 {
                     let g =
                         mip_group(&inputs.targets.direct.view, &inputs.targets.albedo.view, &s.illumination[0].view);
-                    dispatch(&mut pass, &self.box_seed, &g, slot_offset(0), &s.illumination[0]);
+                    dispatch(pass, &self.box_seed, &g, slot_offset(0), &s.illumination[0]);
                     let g = mip_group(&inputs.targets.albedo.view, &inputs.targets.albedo.view, &s.albedo.view);
-                    dispatch(&mut pass, &self.box_seed, &g, slot_offset(0), &s.albedo);
+                    dispatch(pass, &self.box_seed, &g, slot_offset(0), &s.albedo);
                 } else {
                     let g = mip_group(&s.albedo.view, &s.bounce[b - 1].view, &s.illumination[0].view);
-                    dispatch(&mut pass, &self.product, &g, slot_offset(1), &s.illumination[0]);
+                    dispatch(pass, &self.product, &g, slot_offset(1), &s.illumination[0]);
                 }
                 for k in 1..levels {
                     let g =
                         mip_group(&s.illumination[k - 1].view, &s.illumination[k - 1].view, &s.illumination[k].view);
-                    dispatch(&mut pass, &self.reduce, &g, slot_offset(1), &s.illumination[k]);
+                    dispatch(pass, &self.reduce, &g, slot_offset(1), &s.illumination[k]);
                 }
             }
             // One gather per level; a single level writes the bounce directly.
@@ -398,45 +398,34 @@ impl SshgiPasses {
                         wgpu::BindGroupEntry { binding: 5, resource: voxels(k).as_entire_binding() },
                     ],
                 });
-                let name = format!("sshgi gather level {k}");
-                let ts = if b == 0 { inputs.timer.scope(&name) } else { None };
-                let mut pass = inputs.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("sshgi gather"),
-                    timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
-                });
+                let mut own = None;
+                let pass = phase_pass(&mut own, &mut bounce_pass, inputs, b, &format!("sshgi gather level {k}"));
                 let slot = gather_slot0 + (b * levels + k) as u32;
-                dispatch(&mut pass, &self.gather, &group, slot_offset(slot), dest);
+                dispatch(pass, &self.gather, &group, slot_offset(slot), dest);
             }
             // Coarse to fine: Acc_k = JBU(Acc_k+1) + Ind_k; level 0's sum is the bounce.
             if levels > 1 {
-                let ts = if b == 0 { inputs.timer.scope("sshgi up-sampling") } else { None };
-                let mut pass = inputs.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("sshgi up-sampling"),
-                    timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
-                });
+                let mut own = None;
+                let pass = phase_pass(&mut own, &mut bounce_pass, inputs, b, "sshgi up-sampling");
                 for k in (0..levels - 1).rev() {
                     let coarse = if k + 1 == levels - 1 { &s.gathered[k + 1] } else { &s.summed[k + 1] };
                     let dest = if k == 0 { &s.bounce[b] } else { &s.summed[k] };
                     let g = up_group(&coarse.view, geo(k + 1), geo(k), &s.gathered[k].view, &dest.view);
-                    dispatch(&mut pass, &self.upsample, &g, slot_offset(2 + k as u32), dest);
+                    dispatch(pass, &self.upsample, &g, slot_offset(2 + k as u32), dest);
                 }
             }
         }
         // The bounces' sum, up-sampled to the view.
-        let ts = inputs.timer.scope("sshgi output");
-        let mut pass = inputs.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("sshgi output"),
-            timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
-        });
+        let pass = &mut open_pass(inputs, "sshgi output");
         let mut total = &s.bounce[0];
         for b in 1..plan.bounces as usize {
             let dest = &s.sums[b % 2];
             let g = mip_group(&total.view, &s.bounce[b].view, &dest.view);
-            dispatch(&mut pass, &self.add, &g, slot_offset(1), dest);
+            dispatch(pass, &self.add, &g, slot_offset(1), dest);
             total = dest;
         }
         let g = up_group(&total.view, geo(0), &pyramid[0].view, &total.view, &out.view);
-        dispatch(&mut pass, &self.upsample, &g, slot_offset(2 + plan.levels - 1), out);
+        dispatch(pass, &self.upsample, &g, slot_offset(2 + plan.levels - 1), out);
     }
 
     /// The texture behind inspector buffer `name` of the last frame (see `technique::BUFFERS`).
@@ -464,5 +453,34 @@ impl SshgiPasses {
         let Some(s) = &self.sized else { return 0 };
         let all = s.illumination.iter().chain(&s.gathered).chain(&s.summed).chain(&s.bounce).chain(&s.sums);
         all.chain(std::iter::once(&s.albedo)).map(|t| crate::render::gi::technique::texture_bytes(&t.texture)).sum()
+    }
+}
+
+/// A compute pass named and timed `name`, detached from the encoder's borrow (it must end before
+/// the encoder records anything else).
+fn open_pass(inputs: &mut GiInputs<'_>, name: &str) -> wgpu::ComputePass<'static> {
+    let ts = inputs.timer.scope(name);
+    inputs
+        .encoder
+        .begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(name),
+            timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
+        })
+        .forget_lifetime()
+}
+
+/// The pass for phase `name` of bounce `b`: its own (kept in `own`) on the first bounce, the
+/// bounce's shared one after.
+fn phase_pass<'p>(
+    own: &'p mut Option<wgpu::ComputePass<'static>>,
+    shared: &'p mut Option<wgpu::ComputePass<'static>>,
+    inputs: &mut GiInputs<'_>,
+    b: usize,
+    name: &str,
+) -> &'p mut wgpu::ComputePass<'static> {
+    if b == 0 {
+        own.insert(open_pass(inputs, name))
+    } else {
+        shared.get_or_insert_with(|| open_pass(inputs, &format!("sshgi bounce {}", b + 1)))
     }
 }
