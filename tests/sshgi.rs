@@ -3,8 +3,9 @@
 //! start, the same start level): the first bounce's units (Eq. 4's form factor and the levels'
 //! 2^(2k) energy scale applied once), bounces that add energy without creating any, and the
 //! issue's FLIP bar for the whole technique (less than 0.6x the FLIP of `direct`; its mean
-//! luminance reads 0.890, so 15% here where the issue asks 10%); a closed wall that stops the
-//! light with visibility and leaks it without; the temporal filter on a moving camera.
+//! luminance reads 0.881, so 15% here where the issue asks 10%); a closed wall that stops the
+//! light with visibility and leaks it without; the temporal filter on a moving camera; voting
+//! that drops a one-pixel pole from the coarse levels instead of letting it flicker.
 
 mod common;
 
@@ -94,8 +95,8 @@ fn sshgi_on_the_cornell_box_has_under_six_tenths_of_directs_flip_and_energy_with
     let energy = metrics::luminance_ratio(&sshgi, &reference).expect("ratio");
     eprintln!("sshgi FLIP {fs:.4} vs direct {fd:.4} ({:.2}); energy {energy:.3}", fs / fd);
     assert!(fs < 0.6 * fd, "sshgi FLIP {fs:.4} is not below 0.6 x direct's {fd:.4}");
-    // The issue asks for 10%; the defaults read 0.890 (off-screen and hidden senders send
-    // nothing, and Eq. 4's bound loses 3% at 64 samples against 256).
+    // The issue asks for 10%; the defaults read 0.881 (off-screen and hidden senders send
+    // nothing, and Eq. 4's bound loses 2% at 64 samples against 256).
     assert!((0.85..=1.1).contains(&energy), "sshgi energy {energy:.3} of the reference");
 }
 
@@ -168,4 +169,39 @@ fn sshgi_temporal_filter_steadies_a_moving_camera() {
     let (filtered, raw) = (change(0.85, &mut project), change(0.0, &mut project));
     eprintln!("mean frame change on a moving camera: temporal {filtered:.5}, none {raw:.5}");
     assert!(filtered < 0.7 * raw, "the temporal filter leaves {filtered:.5} of {raw:.5}");
+}
+
+#[test]
+fn voting_drops_a_one_pixel_pole_from_coarse_levels_in_every_frame_of_a_slow_pan() {
+    use bouncelab::scene::{Camera, Light, Material, MeshSource, Transform};
+    use glam::Vec3;
+    let Some(ctx) = common::gpu() else { return };
+    // A 6 cm pole 4 m away in a 64x36 view (8.7 cm per pixel) in front of a wall 2 m behind it.
+    let size = (64, 36);
+    let cuboid = |size: Vec3| MeshSource::Cuboid { size, openings: [false; 6] };
+    let at = |p: Vec3| Transform { translation: p, ..Default::default() };
+    let objects = vec![
+        common::object("wall", cuboid(Vec3::new(12.0, 6.0, 0.2)), 0, at(Vec3::new(0.0, 1.0, -2.1))),
+        common::object("pole", cuboid(Vec3::new(0.06, 4.0, 0.06)), 0, at(Vec3::new(0.0, 1.0, 0.0))),
+    ];
+    let light = Light::point("lamp", Vec3::new(0.0, 2.0, 3.0), 20.0);
+    let mut project = Project::load(&bouncelab::project_file::default_project_path()).expect("project");
+    let settings = with(&project, GiMode::Sshgi, SshgiSettings::default());
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let (mut frames_with_pole, mut coarse_hits) = (0, Vec::new());
+    for i in 0..8 {
+        // A quarter of a pixel per frame.
+        let x = 0.022 * i as f32;
+        let camera = Camera::look_at(Vec3::new(x, 1.0, 4.0), Vec3::new(x, 1.0, 0.0), 0.8);
+        let materials = vec![Material::diffuse("grey", [0.7; 3])];
+        project.scene = common::scene(objects.clone(), materials, vec![light.clone()], camera);
+        r.render(&project.scene, &settings, size).expect("render");
+        // Pyramid texels nearer than the wall (6 m) are the pole's.
+        let pole = |img: &HdrImage| img.pixels.iter().filter(|p| p[3] > 0.5 && p[0] < 5.0).count();
+        let fine = pole(&r.read_buffer("pyramid_0").expect("level 0"));
+        frames_with_pole += usize::from(fine > 0);
+        coarse_hits.push((1..3).map(|l| pole(&r.read_buffer(&format!("pyramid_{l}")).expect("level"))).sum::<usize>());
+    }
+    assert!(frames_with_pole >= 4, "the pole is on screen in {frames_with_pole} of 8 frames");
+    assert!(coarse_hits.iter().all(|&n| n == 0), "pole texels on levels 1-2 per frame: {coarse_hits:?}");
 }
