@@ -34,9 +34,8 @@
 // 0.2526); the slope with the normal Gaussian g2 (sigma 0.2) 0.863 / 0.1551; the slope alone
 // 0.881 / 0.1410, against 0.890 / 0.1414 for the earlier nearest-of-agreeing-siblings rule. A
 // crease between two surfaces is a steep slope, so the slope covers g2's job there.
-fn support(a: vec4<f32>, b: vec4<f32>) -> f32 {
-    let na = oct_decode(a.gb);
-    let pa = pyramid_point(frame, a);
+// `pa`, `na`: a's point and normal (the caller decodes them once for all four neighbours).
+fn support(pa: vec3<f32>, na: vec3<f32>, b: vec4<f32>) -> f32 {
     let delta = pyramid_point(frame, b) - pa;
     let slope = dot(na, delta) / (0.1 * max(length(delta), 1.0e-6));
     return exp(-0.5 * slope * slope);
@@ -76,6 +75,8 @@ fn reduce(@builtin(global_invocation_id) id: vec3<u32>) {
         let c = min(vec2<i32>(id.xy) * 2 + vec2<i32>(i & 1, i >> 1), fine - 1);
         let child = textureLoad(source, c, 0);
         let geometry = child.a > 0.5;
+        let pa = pyramid_point(frame, child);
+        let na = oct_decode(child.gb);
         var score = 1.0;
         var count = 1.0;
         for (var k = 0; k < 4; k = k + 1) {
@@ -87,7 +88,7 @@ fn reduce(@builtin(global_invocation_id) id: vec3<u32>) {
             if (n.a > 0.5) == geometry {
                 count = count + g1;
                 if geometry {
-                    score = score + g1 * support(child, n);
+                    score = score + g1 * support(pa, na, n);
                 }
             }
         }

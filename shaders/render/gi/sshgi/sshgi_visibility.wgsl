@@ -5,7 +5,7 @@
 // on solid boundaries, so two columns at each end are skipped (the start level's columns are
 // ORed from the view's, so a surface's own column can hold its neighbour's nearer depth; one
 // column read 0.894 of the one-bounce reference's indirect light on the Cornell box, two 0.923,
-// three 0.938 with FLIP 0.1005 / 0.1019 / 0.1038) and the interval is moved one slice towards the
+// three 0.938 with FLIP 0.1005 / 0.1019 / 0.1038, before the pyramid's voting and point changes) and the interval is moved one slice towards the
 // camera (a segment leaving a visible surface runs just in front of it). The including shader binds `voxels: array<vec4<u32>>` (the start
 // level's columns, row-major), `gp.vox` = (near, far, slices per metre, on) and `gp.grid` =
 // (their width, columns per gather texel, their height, unused).

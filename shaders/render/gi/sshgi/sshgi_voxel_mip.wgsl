@@ -6,8 +6,8 @@
 // wall at a half-resolution start level, none with OR. OR dilates occluders by up to a coarse
 // texel at their silhouettes instead; the march skips two columns at each end for the surfaces
 // the segment starts and ends on (one-bounce Cornell box against a one-bounce reference, 256x144
-// and ¼ start: FLIP 0.1019 with OR, 0.1101 with the paper's AND at every level, 0.1090 without
-// visibility).
+// and ¼ start, before the pyramid named its pixels and voted by Eq. 5: FLIP 0.1019 with OR, 0.1101
+// with the paper's AND at every level, 0.1090 without visibility).
 
 struct VoxelMipParams {
     // fine width, fine height, coarse width, coarse height.

@@ -16,6 +16,9 @@ use crate::settings::SshgiSettings;
 /// Bytes between two parameter slots (WebGPU's minimum uniform offset alignment).
 const SLOT: u64 = 256;
 
+/// Parameter slots: 2 + levels + bounces x levels <= 2 + 6 + 4 x 6 (the settings' ranges).
+const PARAM_SLOTS: u64 = 32;
+
 /// `MipParams` and `UpParams` in the shaders.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
@@ -56,10 +59,10 @@ pub struct GatherParams {
 
 const _: () = assert!(std::mem::size_of::<GatherParams>() == 80);
 
-/// The voxel columns the gathers march, per gather level, with the slices' depth range.
+/// The voxel columns the gathers march, with the slices' depth range.
 pub struct Visibility<'a> {
-    /// Column buffers by pyramid level (level 0 = the view).
-    pub levels: Vec<&'a wgpu::Buffer>,
+    /// The start level's columns (every level marches them).
+    pub columns: &'a wgpu::Buffer,
     /// near, far (view depth, m).
     pub range: (f32, f32),
 }
@@ -153,10 +156,52 @@ pub struct SshgiPasses {
     gather: wgpu::ComputePipeline,
     upsample: wgpu::ComputePipeline,
     params: wgpu::Buffer,
-    params_slots: u64,
     /// Bound in place of voxel columns when visibility is off.
     no_voxels: wgpu::Buffer,
     sized: Option<Sized>,
+    /// The frame's dispatches, built for the inputs they were built with.
+    steps: Option<(Inputs, Vec<Step>)>,
+    /// This frame's parameter slots before upload (kept to reuse its allocation).
+    staging: Vec<u8>,
+}
+
+/// The textures and buffers a frame's bind groups name besides sshgi's own targets: when any of
+/// them is another object than last frame's, the bind groups are rebuilt.
+#[derive(PartialEq)]
+struct Inputs {
+    pyramid: Vec<wgpu::TextureView>,
+    direct: wgpu::TextureView,
+    albedo: wgpu::TextureView,
+    out: wgpu::TextureView,
+    voxels: wgpu::Buffer,
+    frame: wgpu::Buffer,
+}
+
+/// Which pipeline a [`Step`] runs.
+#[derive(Clone, Copy)]
+enum Pipe {
+    BoxSeed,
+    Reduce,
+    Product,
+    Add,
+    Gather,
+    Upsample,
+}
+
+/// One dispatch: the (timed) pass it belongs to, its pipeline, bind group, parameter slot and
+/// the size of the target it writes.
+struct Step {
+    pass: String,
+    pipeline: Pipe,
+    group: wgpu::BindGroup,
+    slot: u32,
+    size: (u32, u32),
+}
+
+/// The parameter slot of bounce `b`'s gather of level `k`: after the two mip slots and the
+/// levels' up-sampling slots.
+fn gather_slot(plan: Plan, b: usize, k: usize) -> u32 {
+    2 + plan.levels + (b * plan.levels as usize + k) as u32
 }
 
 impl SshgiPasses {
@@ -199,7 +244,6 @@ impl SshgiPasses {
         let mip = shaders::module(device, "render/gi/sshgi/sshgi_mip.wgsl")?;
         let gather = shaders::module(device, "render/gi/sshgi/sshgi_gather.wgsl")?;
         let up = shaders::module(device, "render/gi/sshgi/sshgi_upsample.wgsl")?;
-        let params_slots = 64;
         Ok(Self {
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
             reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
@@ -209,11 +253,10 @@ impl SshgiPasses {
             upsample: compute_pipeline(device, "sshgi upsample", &up_layout, &up, "upsample"),
             params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("sshgi params"),
-                size: params_slots * SLOT,
+                size: PARAM_SLOTS * SLOT,
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }),
-            params_slots,
             no_voxels: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("sshgi no voxels"),
                 size: 16,
@@ -224,6 +267,8 @@ impl SshgiPasses {
             gather_layout,
             up_layout,
             sized: None,
+            steps: None,
+            staging: Vec::new(),
         })
     }
 
@@ -234,6 +279,7 @@ impl SshgiPasses {
         use wgpu::TextureUsages as U;
         let usage = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
         let target = |label: &str, k: u32| Target::new(device, label, plan.level_size(k), formats::HDR, usage);
+        self.steps = None;
         self.sized = Some(Sized {
             plan,
             illumination: (0..plan.levels).map(|k| target("sshgi illumination", k)).collect(),
@@ -245,25 +291,75 @@ impl SshgiPasses {
         });
     }
 
-    /// Records every pass of a frame; writes E / pi into `out` (view-sized).
+    /// Records every pass of a frame; writes E / pi into `out` (view-sized). The bind groups
+    /// are built once per plan and set of input textures ([`Inputs`]); a frame only writes the
+    /// parameter slots and dispatches.
     pub fn record(
         &mut self,
         inputs: &mut GiInputs<'_>,
         pyramid: &[Target],
         plan: Plan,
+        axis: &ViewAxis,
         visibility: Option<&Visibility<'_>>,
         out: &Target,
     ) {
         self.ensure(inputs.device, plan);
-        let Some(s) = &self.sized else { return };
+        let key = Inputs {
+            pyramid: pyramid.iter().map(|t| t.view.clone()).collect(),
+            direct: inputs.targets.direct.view.clone(),
+            albedo: inputs.targets.albedo.view.clone(),
+            out: out.view.clone(),
+            voxels: visibility.map_or(&self.no_voxels, |v| v.columns).clone(),
+            frame: inputs.frame_buffer.clone(),
+        };
+        if self.steps.as_ref().is_none_or(|(k, _)| *k != key) {
+            let steps = self.build_steps(inputs.device, &key);
+            self.steps = Some((key, steps));
+        }
+        self.write_params(inputs, plan, axis, visibility);
+        let Some((_, steps)) = &self.steps else { return };
+        // Consecutive steps of one pass share it: bounce 1's phases are timed one by one, a later
+        // bounce as a whole.
+        let mut open: Option<(&str, wgpu::ComputePass<'static>)> = None;
+        for step in steps {
+            if open.as_ref().is_none_or(|(name, _)| *name != step.pass) {
+                // The previous pass ends before the next begins (the encoder is locked meanwhile).
+                drop(open.take());
+                open = Some((step.pass.as_str(), open_pass(inputs, &step.pass)));
+            }
+            let Some((_, pass)) = open.as_mut() else { return };
+            pass.set_pipeline(match step.pipeline {
+                Pipe::BoxSeed => &self.box_seed,
+                Pipe::Reduce => &self.reduce,
+                Pipe::Product => &self.product,
+                Pipe::Add => &self.add,
+                Pipe::Gather => &self.gather,
+                Pipe::Upsample => &self.upsample,
+            });
+            pass.set_bind_group(0, &step.group, &[step.slot * SLOT as u32]);
+            pass.dispatch_workgroups(step.size.0.div_ceil(8), step.size.1.div_ceil(8), 1);
+        }
+    }
+
+    /// This frame's parameter slots: 0 the start level's box size, 1 zeros, 2 + k the
+    /// up-sampling into level k (k = levels - 1: into the view), then the gathers per bounce and
+    /// level ([`gather_slot`]).
+    fn write_params(
+        &mut self,
+        inputs: &GiInputs<'_>,
+        plan: Plan,
+        axis: &ViewAxis,
+        visibility: Option<&Visibility<'_>>,
+    ) {
         let settings = &inputs.settings.sshgi;
-        // Parameter slots: 0 the start level's box size, 1 zeros, 2 + k the up-sampling into
-        // level k (k = levels - 1: into the view), then the gathers per bounce and level.
-        let mut slots: Vec<Vec<u8>> = Vec::new();
-        slots.push(bytemuck::bytes_of(&Counts { counts: [1 << plan.start, 0, 0, 0] }).to_vec());
-        slots.push(bytemuck::bytes_of(&Counts::default()).to_vec());
-        let axis = ViewAxis::new(inputs.frame);
-        let forward = axis.forward;
+        let bytes = &mut self.staging;
+        bytes.clear();
+        bytes.resize((gather_slot(plan, plan.bounces as usize, 0) as usize) * SLOT as usize, 0);
+        let mut put = |slot: u32, data: &[u8]| {
+            let at = slot as usize * SLOT as usize;
+            bytes[at..at + data.len()].copy_from_slice(data);
+        };
+        put(0, bytemuck::bytes_of(&Counts { counts: [1 << plan.start, 0, 0, 0] }));
         let pixel_sr = 4.0 * axis.tan_x * axis.tan_y / (plan.view.0 as f32 * plan.view.1 as f32);
         for k in 0..plan.levels {
             let counts = if k + 1 < plan.levels {
@@ -271,15 +367,15 @@ impl SshgiPasses {
             } else {
                 [0, 1, 1 << plan.start, 0]
             };
-            slots.push(bytemuck::bytes_of(&UpParams { counts, params: [pixel_sr.sqrt(), 0.0, 0.0, 0.0] }).to_vec());
+            put(2 + k, bytemuck::bytes_of(&UpParams { counts, params: [pixel_sr.sqrt(), 0.0, 0.0, 0.0] }));
         }
-        let gather_slot0 = slots.len() as u32;
         let start_size = plan.level_size(0);
         let radius = settings.ring_radius(start_size, plan.levels);
         let vox = visibility.map_or([0.0; 4], |v| {
             let (near, far) = v.range;
             [near, far, 128.0 / (far - near).max(1e-6), 1.0]
         });
+        let forward = axis.forward;
         for b in 0..plan.bounces {
             for k in 0..plan.levels {
                 let l = plan.start + k;
@@ -291,18 +387,16 @@ impl SshgiPasses {
                     vox: if b == 0 || settings.visibility_all_bounces { vox } else { [0.0; 4] },
                     grid: [start_size.0, 1 << k, start_size.1, 0],
                 };
-                slots.push(bytemuck::bytes_of(&p).to_vec());
+                put(gather_slot(plan, b as usize, k as usize), bytemuck::bytes_of(&p));
             }
         }
-        let used = (slots.len() as u64).min(self.params_slots);
-        let mut bytes = vec![0u8; (used * SLOT) as usize];
-        for (i, slot) in slots.iter().take(used as usize).enumerate() {
-            bytes[i * SLOT as usize..i * SLOT as usize + slot.len()].copy_from_slice(slot);
-        }
-        inputs.queue.write_buffer(&self.params, 0, &bytes);
+        inputs.queue.write_buffer(&self.params, 0, bytes);
+    }
 
-        let device = inputs.device;
-        let slot_offset = |i: u32| (u64::from(i).min(self.params_slots - 1) * SLOT) as u32;
+    /// Every dispatch of a frame with its bind group, for the current plan and `key`'s inputs.
+    fn build_steps(&self, device: &wgpu::Device, key: &Inputs) -> Vec<Step> {
+        let Some(s) = &self.sized else { return Vec::new() };
+        let plan = s.plan;
         let params_binding = |size: u64| {
             wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                 buffer: &self.params,
@@ -337,48 +431,40 @@ impl SshgiPasses {
                     wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(fine_geo) },
                     wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(add) },
                     wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(dest) },
-                    wgpu::BindGroupEntry { binding: 6, resource: inputs.frame_buffer.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 6, resource: key.frame.as_entire_binding() },
                 ],
             })
         };
-        let dispatch = |pass: &mut wgpu::ComputePass<'_>,
-                        pipeline: &wgpu::ComputePipeline,
-                        group: &wgpu::BindGroup,
-                        offset: u32,
-                        t: &Target| {
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, group, &[offset]);
-            pass.dispatch_workgroups(t.texture.width().div_ceil(8), t.texture.height().div_ceil(8), 1);
-        };
+        let size = |t: &Target| (t.texture.width(), t.texture.height());
         let levels = plan.levels as usize;
-        let geo = |k: usize| &pyramid[plan.start as usize + k].view;
-        // Every level marches the start level's columns (`sshgi_visibility.wgsl` says why).
-        let voxels =
-            |_k: usize| visibility.and_then(|v| v.levels.get(plan.start as usize).copied()).unwrap_or(&self.no_voxels);
+        let geo = |k: usize| &key.pyramid[plan.start as usize + k];
+        let mut steps = Vec::new();
+        let mut step = |pass: String, pipeline, group, slot, dest: &Target| {
+            steps.push(Step { pass, pipeline, group, slot, size: size(dest) });
+        };
         for b in 0..plan.bounces as usize {
-            // Bounce 1's phases each get their own timed pass; a later bounce shares one, timed
-            // whole (ended with the iteration).
-            let mut bounce_pass: Option<wgpu::ComputePass<'static>> = None;
+            let pass = |phase: &str| if b == 0 { phase.to_owned() } else { format!("sshgi bounce {}", b + 1) };
             // Illumination levels: the direct term (first bounce) or albedo x the previous
             // bounce's E / pi, then 2x2 box averages.
-            {
-                let mut own = None;
-                let pass = phase_pass(&mut own, &mut bounce_pass, inputs, b, "sshgi illumination");
-                if b == 0 {
-                    let g =
-                        mip_group(&inputs.targets.direct.view, &inputs.targets.albedo.view, &s.illumination[0].view);
-                    dispatch(pass, &self.box_seed, &g, slot_offset(0), &s.illumination[0]);
-                    let g = mip_group(&inputs.targets.albedo.view, &inputs.targets.albedo.view, &s.albedo.view);
-                    dispatch(pass, &self.box_seed, &g, slot_offset(0), &s.albedo);
-                } else {
-                    let g = mip_group(&s.albedo.view, &s.bounce[b - 1].view, &s.illumination[0].view);
-                    dispatch(pass, &self.product, &g, slot_offset(1), &s.illumination[0]);
-                }
-                for k in 1..levels {
-                    let g =
-                        mip_group(&s.illumination[k - 1].view, &s.illumination[k - 1].view, &s.illumination[k].view);
-                    dispatch(pass, &self.reduce, &g, slot_offset(1), &s.illumination[k]);
-                }
+            let illumination = &s.illumination[0];
+            if b == 0 {
+                let g = mip_group(&key.direct, &key.albedo, &illumination.view);
+                step(pass("sshgi illumination"), Pipe::BoxSeed, g, 0, illumination);
+                let g = mip_group(&key.albedo, &key.albedo, &s.albedo.view);
+                step(pass("sshgi illumination"), Pipe::BoxSeed, g, 0, &s.albedo);
+            } else {
+                let g = mip_group(&s.albedo.view, &s.bounce[b - 1].view, &illumination.view);
+                step(pass("sshgi illumination"), Pipe::Product, g, 1, illumination);
+            }
+            for k in 1..levels {
+                let (fine, coarse) = (&s.illumination[k - 1], &s.illumination[k]);
+                step(
+                    pass("sshgi illumination"),
+                    Pipe::Reduce,
+                    mip_group(&fine.view, &fine.view, &coarse.view),
+                    1,
+                    coarse,
+                );
             }
             // One gather per level; a single level writes the bounce directly.
             for k in 0..levels {
@@ -387,7 +473,7 @@ impl SshgiPasses {
                     label: Some("sshgi gather bind group"),
                     layout: &self.gather_layout,
                     entries: &[
-                        wgpu::BindGroupEntry { binding: 0, resource: inputs.frame_buffer.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 1, resource: params_binding(80) },
                         wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(geo(k)) },
                         wgpu::BindGroupEntry {
@@ -395,37 +481,37 @@ impl SshgiPasses {
                             resource: wgpu::BindingResource::TextureView(&s.illumination[k].view),
                         },
                         wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&dest.view) },
-                        wgpu::BindGroupEntry { binding: 5, resource: voxels(k).as_entire_binding() },
+                        // Every level marches the start level's columns (`sshgi_visibility.wgsl`).
+                        wgpu::BindGroupEntry { binding: 5, resource: key.voxels.as_entire_binding() },
                     ],
                 });
-                let mut own = None;
-                let pass = phase_pass(&mut own, &mut bounce_pass, inputs, b, &format!("sshgi gather level {k}"));
-                let slot = gather_slot0 + (b * levels + k) as u32;
-                dispatch(pass, &self.gather, &group, slot_offset(slot), dest);
+                step(pass(&format!("sshgi gather level {k}")), Pipe::Gather, group, gather_slot(plan, b, k), dest);
             }
             // Coarse to fine: Acc_k = JBU(Acc_k+1) + Ind_k; level 0's sum is the bounce.
-            if levels > 1 {
-                let mut own = None;
-                let pass = phase_pass(&mut own, &mut bounce_pass, inputs, b, "sshgi up-sampling");
-                for k in (0..levels - 1).rev() {
-                    let coarse = if k + 1 == levels - 1 { &s.gathered[k + 1] } else { &s.summed[k + 1] };
-                    let dest = if k == 0 { &s.bounce[b] } else { &s.summed[k] };
-                    let g = up_group(&coarse.view, geo(k + 1), geo(k), &s.gathered[k].view, &dest.view);
-                    dispatch(pass, &self.upsample, &g, slot_offset(2 + k as u32), dest);
-                }
+            for k in (0..levels.saturating_sub(1)).rev() {
+                let coarse = if k + 1 == levels - 1 { &s.gathered[k + 1] } else { &s.summed[k + 1] };
+                let dest = if k == 0 { &s.bounce[b] } else { &s.summed[k] };
+                let g = up_group(&coarse.view, geo(k + 1), geo(k), &s.gathered[k].view, &dest.view);
+                step(pass("sshgi up-sampling"), Pipe::Upsample, g, 2 + k as u32, dest);
             }
         }
         // The bounces' sum, up-sampled to the view.
-        let pass = &mut open_pass(inputs, "sshgi output");
         let mut total = &s.bounce[0];
         for b in 1..plan.bounces as usize {
             let dest = &s.sums[b % 2];
-            let g = mip_group(&total.view, &s.bounce[b].view, &dest.view);
-            dispatch(pass, &self.add, &g, slot_offset(1), dest);
+            step("sshgi output".to_owned(), Pipe::Add, mip_group(&total.view, &s.bounce[b].view, &dest.view), 1, dest);
             total = dest;
         }
-        let g = up_group(&total.view, geo(0), &pyramid[0].view, &total.view, &out.view);
-        dispatch(pass, &self.upsample, &g, slot_offset(2 + plan.levels - 1), out);
+        let g = up_group(&total.view, geo(0), &key.pyramid[0], &total.view, &key.out);
+        let out_size = (key.out.texture().width(), key.out.texture().height());
+        steps.push(Step {
+            pass: "sshgi output".to_owned(),
+            pipeline: Pipe::Upsample,
+            group: g,
+            slot: 2 + plan.levels - 1,
+            size: out_size,
+        });
+        steps
     }
 
     /// The texture behind inspector buffer `name` of the last frame (see `technique::BUFFERS`).
@@ -446,6 +532,7 @@ impl SshgiPasses {
     /// Frees the targets.
     pub fn release(&mut self) {
         self.sized = None;
+        self.steps = None;
     }
 
     /// Bytes of the targets.
@@ -467,20 +554,4 @@ fn open_pass(inputs: &mut GiInputs<'_>, name: &str) -> wgpu::ComputePass<'static
             timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
         })
         .forget_lifetime()
-}
-
-/// The pass for phase `name` of bounce `b`: its own (kept in `own`) on the first bounce, the
-/// bounce's shared one after.
-fn phase_pass<'p>(
-    own: &'p mut Option<wgpu::ComputePass<'static>>,
-    shared: &'p mut Option<wgpu::ComputePass<'static>>,
-    inputs: &mut GiInputs<'_>,
-    b: usize,
-    name: &str,
-) -> &'p mut wgpu::ComputePass<'static> {
-    if b == 0 {
-        own.insert(open_pass(inputs, name))
-    } else {
-        shared.get_or_insert_with(|| open_pass(inputs, &format!("sshgi bounce {}", b + 1)))
-    }
 }

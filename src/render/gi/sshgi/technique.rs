@@ -139,18 +139,16 @@ impl GiTechnique for SshgiTechnique {
             );
         }
         self.voxel_start = plan.start as usize;
-        let visibility = range.map(|range| Visibility {
-            levels: (0..=plan.start as usize).filter_map(|l| self.voxels.level(l)).collect(),
-            range,
-        });
+        let visibility =
+            range.and_then(|range| Some(Visibility { columns: self.voxels.level(plan.start as usize)?, range }));
         let targets = inputs.targets;
         if settings.temporal_weight > 0.0 {
             self.temporal.ensure(inputs.device, targets.size);
             let Some(current) = self.temporal.current() else { return Ok(GiOutput::Nothing) };
-            self.passes.record(inputs, pyramid, plan, visibility.as_ref(), current);
+            self.passes.record(inputs, pyramid, plan, &axis, visibility.as_ref(), current);
             self.temporal.record(inputs, settings.temporal_weight, settings.temporal_two_tap);
         } else {
-            self.passes.record(inputs, pyramid, plan, visibility.as_ref(), &targets.indirect);
+            self.passes.record(inputs, pyramid, plan, &axis, visibility.as_ref(), &targets.indirect);
         }
         self.status.history_frames = self.status.history_frames.saturating_add(1);
         // The history has converged when the first frame's weight a^n is below 1%.

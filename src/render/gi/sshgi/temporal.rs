@@ -25,6 +25,16 @@ struct Sized {
     history: [Target; 2],
     geometry: [Target; 2],
     accept: Target,
+    /// Per history slot read (0, 1): the bind group, for the view targets and frame buffer it
+    /// names ([`Key`]).
+    groups: Option<(Key, [wgpu::BindGroup; 2])>,
+}
+
+/// The frame's textures and buffer the bind groups name.
+#[derive(PartialEq)]
+struct Key {
+    views: [wgpu::TextureView; 4],
+    frame: wgpu::Buffer,
 }
 
 /// The temporal pass and its history.
@@ -91,6 +101,7 @@ impl TemporalPass {
             history: [t("sshgi history"), t("sshgi history")],
             geometry: [t("sshgi history surfaces"), t("sshgi history surfaces")],
             accept: t("sshgi temporal acceptance"),
+            groups: None,
         });
         self.valid = false;
     }
@@ -102,43 +113,56 @@ impl TemporalPass {
 
     /// Blends [`Self::current`] with the history into `inputs.targets.indirect`.
     pub fn record(&mut self, inputs: &mut GiInputs<'_>, weight: f32, two_tap: bool) {
-        let Some(s) = &self.sized else { return };
+        let Some(s) = &mut self.sized else { return };
         let (read, write) = (self.latest, 1 - self.latest);
         let p = TemporalParams { p: [weight, f32::from(u8::from(two_tap)), f32::from(u8::from(self.valid)), 0.0] };
         inputs.queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
         let t = inputs.targets;
-        let views: [&wgpu::TextureView; 10] = [
-            &t.depth.view,
-            &t.normal.view,
-            &t.motion.view,
-            &s.current.view,
-            &s.history[read].view,
-            &s.geometry[read].view,
-            &t.indirect.view,
-            &s.history[write].view,
-            &s.geometry[write].view,
-            &s.accept.view,
-        ];
-        let mut entries = vec![
-            wgpu::BindGroupEntry { binding: 0, resource: inputs.frame_buffer.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: self.params.as_entire_binding() },
-        ];
-        entries.extend(views.iter().enumerate().map(|(i, v)| wgpu::BindGroupEntry {
-            binding: 2 + i as u32,
-            resource: wgpu::BindingResource::TextureView(v),
-        }));
-        let group = inputs.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("sshgi temporal bind group"),
-            layout: &self.layout,
-            entries: &entries,
-        });
+        let key = Key {
+            views: [t.depth.view.clone(), t.normal.view.clone(), t.motion.view.clone(), t.indirect.view.clone()],
+            frame: inputs.frame_buffer.clone(),
+        };
+        if s.groups.as_ref().is_none_or(|(k, _)| *k != key) {
+            let group = |read: usize| {
+                let write = 1 - read;
+                let views: [&wgpu::TextureView; 10] = [
+                    &key.views[0],
+                    &key.views[1],
+                    &key.views[2],
+                    &s.current.view,
+                    &s.history[read].view,
+                    &s.geometry[read].view,
+                    &key.views[3],
+                    &s.history[write].view,
+                    &s.geometry[write].view,
+                    &s.accept.view,
+                ];
+                let mut entries = vec![
+                    wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: self.params.as_entire_binding() },
+                ];
+                entries.extend(views.iter().enumerate().map(|(i, v)| wgpu::BindGroupEntry {
+                    binding: 2 + i as u32,
+                    resource: wgpu::BindingResource::TextureView(v),
+                }));
+                inputs.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("sshgi temporal bind group"),
+                    layout: &self.layout,
+                    entries: &entries,
+                })
+            };
+            let groups = [group(0), group(1)];
+            s.groups = Some((key, groups));
+        }
+        let Some((_, groups)) = &s.groups else { return };
+        let group = &groups[read];
         let ts = inputs.timer.scope("sshgi temporal");
         let mut pass = inputs.encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("sshgi temporal"),
             timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
         });
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &group, &[]);
+        pass.set_bind_group(0, group, &[]);
         pass.dispatch_workgroups(s.size.0.div_ceil(8), s.size.1.div_ceil(8), 1);
         self.latest = write;
         self.valid = true;

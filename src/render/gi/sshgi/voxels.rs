@@ -63,6 +63,8 @@ struct Sized {
     levels: Vec<wgpu::Buffer>,
     sizes: Vec<(u32, u32)>,
     dummy: Target,
+    /// The voxelisation's bind group and one per reduction, for the frame buffer they name.
+    groups: Option<(wgpu::Buffer, wgpu::BindGroup, Vec<wgpu::BindGroup>)>,
 }
 
 /// The voxelisation pipeline and the per-level column buffers.
@@ -187,7 +189,7 @@ impl VoxelPass {
             wgpu::TextureFormat::R8Unorm,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
-        self.sized = Some(Sized { size, levels: buffers, sizes, dummy });
+        self.sized = Some(Sized { size, levels: buffers, sizes, dummy, groups: None });
     }
 
     /// Voxelises the scene for a view of `size` and reduces `levels` levels (level 0 = the view).
@@ -205,25 +207,50 @@ impl VoxelPass {
         timestamps: Option<TimestampPair<'_>>,
     ) {
         self.ensure(device, size, levels);
-        let Some(s) = &self.sized else { return };
-        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
-        let mut slots = vec![0u8; (SLOT as usize) * s.levels.len()];
-        for l in 1..s.levels.len() {
-            let (f, c) = (s.sizes[l - 1], s.sizes[l]);
-            let p = MipParams { sizes: [f.0, f.1, c.0, c.1] };
-            slots[l * SLOT as usize..l * SLOT as usize + 16].copy_from_slice(bytemuck::bytes_of(&p));
+        let Some(s) = &mut self.sized else { return };
+        if s.groups.as_ref().is_none_or(|(frame, ..)| frame != frame_buffer) {
+            let draw = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("sshgi voxelize bind group"),
+                layout: &self.draw_layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: self.params.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: s.levels[0].as_entire_binding() },
+                ],
+            });
+            let mips = (1..s.levels.len())
+                .map(|l| {
+                    device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("sshgi voxel mip bind group"),
+                        layout: &self.mip_layout,
+                        entries: &[
+                            wgpu::BindGroupEntry {
+                                binding: 0,
+                                resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                                    buffer: &self.mip_params,
+                                    offset: 0,
+                                    size: wgpu::BufferSize::new(16),
+                                }),
+                            },
+                            wgpu::BindGroupEntry { binding: 1, resource: s.levels[l - 1].as_entire_binding() },
+                            wgpu::BindGroupEntry { binding: 2, resource: s.levels[l].as_entire_binding() },
+                        ],
+                    })
+                })
+                .collect();
+            // The reductions' sizes change only with the view.
+            let mut slots = [0u8; (SLOT * MAX_LEVELS) as usize];
+            for l in 1..s.levels.len() {
+                let (f, c) = (s.sizes[l - 1], s.sizes[l]);
+                let p = MipParams { sizes: [f.0, f.1, c.0, c.1] };
+                slots[l * SLOT as usize..l * SLOT as usize + 16].copy_from_slice(bytemuck::bytes_of(&p));
+            }
+            queue.write_buffer(&self.mip_params, 0, &slots[..SLOT as usize * s.levels.len()]);
+            s.groups = Some((frame_buffer.clone(), draw, mips));
         }
-        queue.write_buffer(&self.mip_params, 0, &slots);
+        let Some((_, draw_group, mip_groups)) = &s.groups else { return };
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         encoder.clear_buffer(&s.levels[0], 0, None);
-        let draw_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("sshgi voxelize bind group"),
-            layout: &self.draw_layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: self.params.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: s.levels[0].as_entire_binding() },
-            ],
-        });
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("sshgi voxelize"),
@@ -242,7 +269,7 @@ impl VoxelPass {
                 multiview_mask: None,
             });
             pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &draw_group, &[]);
+            pass.set_bind_group(0, draw_group, &[]);
             pass.set_bind_group(1, &gpu.object_bind_group, &[]);
             gpu.draw_geometry(&mut pass);
         }
@@ -252,24 +279,8 @@ impl VoxelPass {
                 timestamp_writes: timestamps.as_ref().map(|t| t.compute_end_writes()),
             });
             pass.set_pipeline(&self.mip_pipeline);
-            for l in 1..s.levels.len() {
-                let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("sshgi voxel mip bind group"),
-                    layout: &self.mip_layout,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                                buffer: &self.mip_params,
-                                offset: 0,
-                                size: wgpu::BufferSize::new(16),
-                            }),
-                        },
-                        wgpu::BindGroupEntry { binding: 1, resource: s.levels[l - 1].as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 2, resource: s.levels[l].as_entire_binding() },
-                    ],
-                });
-                pass.set_bind_group(0, &group, &[(l as u64 * SLOT) as u32]);
+            for (l, group) in mip_groups.iter().enumerate().map(|(i, g)| (i + 1, g)) {
+                pass.set_bind_group(0, group, &[(l as u64 * SLOT) as u32]);
                 pass.dispatch_workgroups(s.sizes[l].0.div_ceil(8), s.sizes[l].1.div_ceil(8), 1);
             }
         }
