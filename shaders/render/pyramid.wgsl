@@ -5,7 +5,7 @@
 // (`pyramid_point` in `common/frame.wgsl`). Rebuilt on the coarse texel's centre ray instead, the
 // copied distance put the point up to half a texel's depth slope off its surface, and coplanar
 // neighbours lit each other: sshgi's Cornell box read 0.929 of the reference's energy that way,
-// 0.890 with the points on their surfaces, whose first bounce has the better FLIP (0.1019).
+// 0.890 with the points on their surfaces (its first bounce's FLIP unchanged at 0.1019).
 // Each coarser texel copies one of its 2x2 children whole (Soler et al. 2010, Eq. 5), so a level
 // never holds an averaged depth or normal that no surface has. A child's score sums, over itself
 // and its four L1 neighbours in the finer level (also outside the 2x2 block), g1(distance) x
