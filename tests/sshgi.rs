@@ -149,6 +149,56 @@ fn sshgi_visibility_stops_the_light_a_closed_wall_blocks_which_leaks_without_it(
 }
 
 #[test]
+fn sshgi_inspector_difference_is_the_light_visibility_removes_and_the_slice_viewer_ors_its_range() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = Project::load(&bouncelab::project_file::default_project_path()).expect("project");
+    project.scene = walled_scene();
+    let settings = |visibility: bool| {
+        let sshgi =
+            SshgiSettings { start_level: START, bounces: 1, visibility, temporal_weight: 0.0, ..Default::default() };
+        with(&project, GiMode::Sshgi, sshgi)
+    };
+    // The first frame of a fresh renderer has the same sample pattern in both runs.
+    let mut open = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    open.render(&project.scene, &settings(false), SIZE).expect("render");
+    let unshadowed = open.read_buffer("sshgi_bounce_1").expect("bounce 1");
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    r.set_inspected(Some("sshgi_visibility_difference"));
+    r.render(&project.scene, &settings(true), SIZE).expect("render");
+    let shadowed = r.read_buffer("sshgi_bounce_1").expect("bounce 1");
+    let difference = r.read_buffer("sshgi_visibility_difference").expect("difference");
+    assert_eq!((difference.width, difference.height), (shadowed.width, shadowed.height));
+    let (mut blocked, mut worst) = (0.0f64, 0.0f32);
+    for ((d, o), s) in difference.pixels.iter().zip(&unshadowed.pixels).zip(&shadowed.pixels) {
+        blocked += f64::from(d[1]);
+        worst = worst.max((d[1] - (o[1] - s[1])).abs());
+    }
+    eprintln!(
+        "visibility removes {:.5} E/pi per texel; worst mismatch {worst:.2e}",
+        blocked / difference.pixels.len() as f64
+    );
+    assert!(blocked > 0.0, "the wall blocks light: the difference sums to {blocked}");
+    assert!(worst < 1e-4, "the difference differs from an unshadowed render's by {worst}");
+
+    // The slice viewer: the OR over every slice is the view's solid columns; the slices in
+    // front of the nearest voxel hold nothing.
+    let columns = r.read_buffer("sshgi_voxels").expect("voxels");
+    let all = r.read_buffer("sshgi_voxel_slices@0,0,127").expect("all slices");
+    assert_eq!((all.width, all.height), (columns.width, columns.height));
+    let solid: Vec<bool> = columns.pixels.iter().map(|p| p[0] > 0.0).collect();
+    assert!(solid.iter().any(|&s| s), "the wall voxelises");
+    assert!(all.pixels.iter().zip(&solid).all(|(p, &s)| (p[0] == 1.0) == s), "OR of all slices = solid columns");
+    let nearest = columns.pixels.iter().filter(|p| p[0] > 0.0).map(|p| (p[1] * 128.0) as u32).min().expect("solid");
+    if nearest > 0 {
+        let front = r.read_buffer(&format!("sshgi_voxel_slices@0,0,{}", nearest - 1)).expect("front");
+        assert!(front.pixels.iter().all(|p| p[0] == 0.0), "nothing before slice {nearest}");
+    }
+    let one = r.read_buffer(&format!("sshgi_voxel_slices@0,{nearest},{nearest}")).expect("one slice");
+    assert!(one.pixels.iter().any(|p| p[0] == 1.0), "slice {nearest} holds the nearest voxel");
+    assert!(r.read_buffer("sshgi_voxel_slices@0,9,3").is_err(), "a reversed range is an error");
+}
+
+#[test]
 fn sshgi_temporal_filter_steadies_a_moving_camera() {
     let Some(ctx) = common::gpu() else { return };
     let mut project = suite::scene("cornell").expect("suite scene").load(Path::new(".")).expect("cornell");

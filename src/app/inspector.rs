@@ -7,6 +7,7 @@ use crate::image_io::HdrImage;
 use crate::metrics;
 use crate::project_file::Project;
 use crate::render::Renderer;
+use crate::render::gi::BufferView;
 use crate::render::gi::reference::job::ReferenceJob;
 
 /// Which channels are shown.
@@ -63,6 +64,8 @@ pub struct Inspector {
     compared_spp: u32,
     compared_at: Option<std::time::Instant>,
     current_tex: Option<egui::TextureHandle>,
+    /// The slice viewer's level and slice range (buffers shown as [`BufferView::Slices`]).
+    slices: (u32, u32, u32),
 }
 
 impl Default for Inspector {
@@ -92,6 +95,7 @@ impl Default for Inspector {
             compared_spp: 0,
             compared_at: None,
             current_tex: None,
+            slices: (2, 0, 127),
         }
     }
 }
@@ -205,9 +209,10 @@ impl Inspector {
             ui.label("No renderer: the GPU is unavailable.");
             return;
         };
+        // The frame's buffers, then the active technique's own.
+        let buffers = Renderer::buffers_for(project.render.mode);
+        let sliced = buffers.iter().any(|b| b.name == self.buffer && b.view == BufferView::Slices);
         ui.horizontal_wrapped(|ui| {
-            // The frame's buffers, then the active technique's own.
-            let buffers = Renderer::buffers_for(project.render.mode);
             egui::ComboBox::from_label("buffer").height(800.0).selected_text(&self.buffer).show_ui(ui, |ui| {
                 for b in &buffers {
                     let r = ui
@@ -220,6 +225,9 @@ impl Inspector {
                 [(Channel::Rgb, "RGB"), (Channel::R, "R"), (Channel::G, "G"), (Channel::B, "B"), (Channel::A, "A")]
             {
                 ui.selectable_value(&mut self.channel, c, label);
+            }
+            if sliced {
+                self.pending |= self.slices_ui(ui);
             }
         });
         ui.horizontal_wrapped(|ui| {
@@ -238,7 +246,13 @@ impl Inspector {
             if frame.idle && frame.index > 0 && (self.pending || live) {
                 self.pending = false;
                 self.read_frame = frame.index;
-                match renderer.read_buffer(&self.buffer) {
+                let name = if sliced {
+                    let (l, a, b) = self.slices;
+                    format!("{}@{l},{a},{b}", self.buffer)
+                } else {
+                    self.buffer.clone()
+                };
+                match renderer.read_buffer(&name) {
                     Ok(img) => {
                         self.image = Some(img);
                         self.reads += 1;
@@ -280,6 +294,17 @@ impl Inspector {
                 }
             });
         }
+    }
+
+    /// The slice viewer's pickers: voxel level, first and last slice (their OR is shown).
+    /// Returns whether one changed.
+    fn slices_ui(&mut self, ui: &mut egui::Ui) -> bool {
+        let (l, a, b) = &mut self.slices;
+        let mut changed = ui.add(egui::DragValue::new(l).range(0..=7).prefix("level ")).changed();
+        changed |= ui.add(egui::DragValue::new(a).range(0..=127).prefix("slices ")).changed();
+        changed |= ui.add(egui::DragValue::new(b).range(0..=127).prefix("..")).changed();
+        *b = (*b).max(*a);
+        changed
     }
 
     fn export(&self) {

@@ -48,10 +48,11 @@ pub struct RenderArgs {
     #[arg(long)]
     pub rr_start: Option<u32>,
     /// Write an intermediate buffer instead of the final image: albedo, normal, material,
-    /// motion, object_id, depth, direct, indirect, hdr, ldr, shadow_map, pyramid_0/2/4, and the
+    /// motion, object_id, depth, direct, indirect, hdr, ldr, shadow_map, pyramid_0..5, and the
     /// mode's own (ISM: ism_light_*, ism_importance, ism_atlas(_splats), ism_split_*, ism_raw,
     /// ism_confidence, ism_history, ism_sh_*; sshgi: sshgi_illumination_k, sshgi_gather_k,
-    /// sshgi_sum_k, sshgi_bounce_b, sshgi_raw, sshgi_acceptance, sshgi_voxels(_start)); an unknown
+    /// sshgi_sum_k, sshgi_bounce_b, sshgi_bounce_sum, sshgi_raw, sshgi_visibility_difference,
+    /// sshgi_acceptance, sshgi_voxels(_start), sshgi_voxel_slices@level,first,last); an unknown
     /// name lists the mode's buffers.
     #[arg(long)]
     pub buffer: Option<String>,
@@ -91,7 +92,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     }
     if let Some(name) = &args.buffer {
         let names: Vec<&str> = Renderer::buffers_for(project.render.mode).iter().map(|b| b.name).collect();
-        if !names.contains(&name.as_str()) {
+        if !names.contains(&crate::render::gi::technique::buffer_base(name)) {
             anyhow::bail!(
                 "unknown buffer {name:?} for mode {}; available: {}",
                 project.render.mode.name(),

@@ -72,19 +72,17 @@ pub const FRAME_BUFFERS: &[BufferInfo] = &[
         format: "rgba32f",
         view: BufferView::Depth,
     },
-    BufferInfo {
-        name: "pyramid_2",
-        description: "Depth/normal pyramid level 2 (each texel one of its children, chosen by vote).",
-        format: "rgba32f",
-        view: BufferView::Depth,
-    },
-    BufferInfo {
-        name: "pyramid_4",
-        description: "Depth/normal pyramid level 4.",
-        format: "rgba32f",
-        view: BufferView::Depth,
-    },
+    pyramid("pyramid_1", "Depth/normal pyramid level 1 (each texel one of its children, chosen by vote)."),
+    pyramid("pyramid_2", "Depth/normal pyramid level 2 (sshgi's quarter start level)."),
+    pyramid("pyramid_3", "Depth/normal pyramid level 3."),
+    pyramid("pyramid_4", "Depth/normal pyramid level 4."),
+    pyramid("pyramid_5", "Depth/normal pyramid level 5."),
 ];
+
+/// An inspector entry of a pyramid level.
+const fn pyramid(name: &'static str, description: &'static str) -> BufferInfo {
+    BufferInfo { name, description, format: "rgba32f", view: BufferView::Depth }
+}
 
 impl Renderer {
     /// The buffers the inspector can show in `mode`: the frame's, then the technique's.

@@ -85,6 +85,14 @@ pub enum BufferView {
     Depth,
     /// Integer ids.
     Id,
+    /// Bits of voxel columns: the name takes `@level,first,last` (the inspector shows a level
+    /// and slice-range picker).
+    Slices,
+}
+
+/// A buffer name without its `@arguments` (the slice viewer's level and slice range).
+pub fn buffer_base(name: &str) -> &str {
+    name.split_once('@').map_or(name, |(base, _)| base)
 }
 
 /// One buffer the inspector can show.

@@ -16,8 +16,9 @@ use crate::settings::SshgiSettings;
 /// Bytes between two parameter slots (WebGPU's minimum uniform offset alignment).
 const SLOT: u64 = 256;
 
-/// Parameter slots: 2 + levels + bounces x levels <= 2 + 6 + 4 x 6 (the settings' ranges).
-const PARAM_SLOTS: u64 = 32;
+/// Parameter slots: 2 + levels + (bounces + 1) x levels <= 2 + 6 + 5 x 6 (the settings' ranges,
+/// with the inspector's unshadowed first bounce).
+const PARAM_SLOTS: u64 = 40;
 
 /// `MipParams` and `UpParams` in the shaders.
 #[repr(C)]
@@ -109,6 +110,9 @@ pub struct Plan {
     pub levels: u32,
     /// Bounces.
     pub bounces: u32,
+    /// Also gather the first bounce without visibility, with the same samples (the inspector's
+    /// visibility on/off difference; one more gather chain while it is shown).
+    pub unshadowed: bool,
 }
 
 impl Plan {
@@ -117,7 +121,7 @@ impl Plan {
     pub fn new(settings: &SshgiSettings, view: (u32, u32), pyramid_levels: u32) -> Self {
         let start = settings.start_level.min(pyramid_levels.saturating_sub(1));
         let levels = settings.levels.clamp(1, (pyramid_levels - start).max(1));
-        Self { view, start, levels, bounces: settings.bounces.max(1) }
+        Self { view, start, levels, bounces: settings.bounces.max(1), unshadowed: false }
     }
 
     /// Size of gather level k (pyramid level start + k).
@@ -142,6 +146,17 @@ struct Sized {
     bounce: Vec<Target>,
     /// Start level: running sums of the bounces (ping-pong).
     sums: [Target; 2],
+    /// Start level: the first bounce gathered without visibility (when the plan asks).
+    unshadowed: Option<Target>,
+    /// Which of `bounce[0]` and `sums` holds the bounces' sum.
+    total: Total,
+}
+
+/// Where the bounces' sum lies.
+#[derive(Clone, Copy)]
+enum Total {
+    Bounce,
+    Sum(usize),
 }
 
 /// Pipelines, parameter slots and targets of sshgi.
@@ -288,6 +303,8 @@ impl SshgiPasses {
             albedo: target("sshgi albedo", 0),
             bounce: (0..plan.bounces).map(|_| target("sshgi bounce", 0)).collect(),
             sums: [target("sshgi bounce sum", 0), target("sshgi bounce sum", 0)],
+            unshadowed: plan.unshadowed.then(|| target("sshgi unshadowed bounce", 0)),
+            total: if plan.bounces > 1 { Total::Sum((plan.bounces as usize - 1) % 2) } else { Total::Bounce },
         });
     }
 
@@ -354,7 +371,8 @@ impl SshgiPasses {
         let settings = &inputs.settings.sshgi;
         let bytes = &mut self.staging;
         bytes.clear();
-        bytes.resize((gather_slot(plan, plan.bounces as usize, 0) as usize) * SLOT as usize, 0);
+        let chains = plan.bounces as usize + usize::from(plan.unshadowed);
+        bytes.resize((gather_slot(plan, chains, 0) as usize) * SLOT as usize, 0);
         let mut put = |slot: u32, data: &[u8]| {
             let at = slot as usize * SLOT as usize;
             bytes[at..at + data.len()].copy_from_slice(data);
@@ -376,11 +394,18 @@ impl SshgiPasses {
             [near, far, 128.0 / (far - near).max(1e-6), 1.0]
         });
         let forward = axis.forward;
-        for b in 0..plan.bounces {
+        for b in 0..chains as u32 {
+            // The unshadowed chain repeats the first bounce's samples without the voxels.
+            let (seed, vox) = if b == plan.bounces { (0, [0.0; 4]) } else { (b, vox) };
             for k in 0..plan.levels {
                 let l = plan.start + k;
                 let p = GatherParams {
-                    level: [l, u32::from(k > 0), settings.samples, inputs.frame_index.wrapping_mul(4).wrapping_add(b)],
+                    level: [
+                        l,
+                        u32::from(k > 0),
+                        settings.samples,
+                        inputs.frame_index.wrapping_mul(4).wrapping_add(seed),
+                    ],
                     geo: [radius, pixel_sr * (1u32 << (2 * l)) as f32, (1u32 << l) as f32, 0.0],
                     forward: [forward.x, forward.y, forward.z, 0.0],
                     // The paper's saving: later bounces may skip visibility.
@@ -442,12 +467,27 @@ impl SshgiPasses {
         let mut step = |pass: String, pipeline, group, slot, dest: &Target| {
             steps.push(Step { pass, pipeline, group, slot, size: size(dest) });
         };
-        for b in 0..plan.bounces as usize {
-            let pass = |phase: &str| if b == 0 { phase.to_owned() } else { format!("sshgi bounce {}", b + 1) };
+        // Chain `b` (a bounce, or `plan.bounces`: the unshadowed first bounce, recorded first so
+        // the last bounce's level buffers stay the inspector's) into `out`.
+        let chains = (plan.unshadowed.then_some(plan.bounces as usize)).into_iter().chain(0..plan.bounces as usize);
+        for b in chains {
+            let (first, out) = match (b == plan.bounces as usize, &s.unshadowed) {
+                (true, Some(u)) => (true, u),
+                _ => (b == 0, &s.bounce[b.min(s.bounce.len() - 1)]),
+            };
+            let pass = |phase: &str| {
+                if b == plan.bounces as usize {
+                    "sshgi unshadowed (inspector)".to_owned()
+                } else if b == 0 {
+                    phase.to_owned()
+                } else {
+                    format!("sshgi bounce {}", b + 1)
+                }
+            };
             // Illumination levels: the direct term (first bounce) or albedo x the previous
             // bounce's E / pi, then 2x2 box averages.
             let illumination = &s.illumination[0];
-            if b == 0 {
+            if first {
                 let g = mip_group(&key.direct, &key.albedo, &illumination.view);
                 step(pass("sshgi illumination"), Pipe::BoxSeed, g, 0, illumination);
                 let g = mip_group(&key.albedo, &key.albedo, &s.albedo.view);
@@ -468,7 +508,7 @@ impl SshgiPasses {
             }
             // One gather per level; a single level writes the bounce directly.
             for k in 0..levels {
-                let dest = if levels == 1 { &s.bounce[b] } else { &s.gathered[k] };
+                let dest = if levels == 1 { out } else { &s.gathered[k] };
                 let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("sshgi gather bind group"),
                     layout: &self.gather_layout,
@@ -490,7 +530,7 @@ impl SshgiPasses {
             // Coarse to fine: Acc_k = JBU(Acc_k+1) + Ind_k; level 0's sum is the bounce.
             for k in (0..levels.saturating_sub(1)).rev() {
                 let coarse = if k + 1 == levels - 1 { &s.gathered[k + 1] } else { &s.summed[k + 1] };
-                let dest = if k == 0 { &s.bounce[b] } else { &s.summed[k] };
+                let dest = if k == 0 { out } else { &s.summed[k] };
                 let g = up_group(&coarse.view, geo(k + 1), geo(k), &s.gathered[k].view, &dest.view);
                 step(pass("sshgi up-sampling"), Pipe::Upsample, g, 2 + k as u32, dest);
             }
@@ -517,6 +557,16 @@ impl SshgiPasses {
     /// The texture behind inspector buffer `name` of the last frame (see `technique::BUFFERS`).
     pub fn buffer(&self, name: &str) -> Option<&wgpu::Texture> {
         let s = self.sized.as_ref()?;
+        match name {
+            "sshgi_bounce_sum" => {
+                return Some(match s.total {
+                    Total::Bounce => &s.bounce[0].texture,
+                    Total::Sum(i) => &s.sums[i].texture,
+                });
+            }
+            "sshgi_unshadowed" => return s.unshadowed.as_ref().map(|t| &t.texture),
+            _ => {}
+        }
         let (kind, index) = name.rsplit_once('_')?;
         let i: usize = index.parse().ok()?;
         let list = match kind {
@@ -539,6 +589,7 @@ impl SshgiPasses {
     pub fn gpu_bytes(&self) -> u64 {
         let Some(s) = &self.sized else { return 0 };
         let all = s.illumination.iter().chain(&s.gathered).chain(&s.summed).chain(&s.bounce).chain(&s.sums);
+        let all = all.chain(&s.unshadowed);
         all.chain(std::iter::once(&s.albedo)).map(|t| crate::render::gi::technique::texture_bytes(&t.texture)).sum()
     }
 }

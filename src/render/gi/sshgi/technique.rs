@@ -37,12 +37,23 @@ pub const BUFFERS: &[BufferInfo] = &[
     level("sshgi_bounce_2", "second bounce's E / pi (albedo x the first, gathered again)"),
     level("sshgi_bounce_3", "third bounce's E / pi"),
     level("sshgi_bounce_4", "fourth bounce's E / pi"),
+    level("sshgi_bounce_sum", "the bounces' E / pi summed at the start level (before the view up-sampling)"),
     level("sshgi_raw", "this frame's E / pi before the temporal blend (view resolution)"),
+    level(
+        "sshgi_visibility_difference",
+        "first bounce's E / pi without visibility minus with it, the same samples (light the voxels block: bright under occluders and behind walls, black elsewhere; one more gather chain while shown)",
+    ),
     BufferInfo {
         name: "sshgi_voxels",
         description: "solid voxelisation of the view, per pixel: r = solid share of the 128 slices, g = first solid slice, b = last (closed objects show solid cross-sections; open meshes streak to the end)",
         format: "4 x u32 per pixel",
         view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "sshgi_voxel_slices",
+        description: "voxel slice viewer: name@level,first,last (level 0 = the view's columns; default the start level, all slices): r = any solid slice in the range (their OR), g = the range's solid share, b = its first solid slice",
+        format: "4 x u32 per texel",
+        view: BufferView::Slices,
     },
     BufferInfo {
         name: "sshgi_voxels_start",
@@ -66,6 +77,8 @@ pub struct SshgiTechnique {
     voxel_start: usize,
     temporal: TemporalPass,
     status: TechniqueStatus,
+    /// The visibility difference is inspected: gather the first bounce unshadowed too.
+    unshadowed: bool,
 }
 
 impl SshgiTechnique {
@@ -77,6 +90,7 @@ impl SshgiTechnique {
             voxel_start: 0,
             temporal: TemporalPass::new(device)?,
             status: TechniqueStatus::default(),
+            unshadowed: false,
         })
     }
 
@@ -100,6 +114,31 @@ impl SshgiTechnique {
     }
 }
 
+impl SshgiTechnique {
+    /// The inspector's visibility difference: the unshadowed first bounce minus the shadowed one.
+    fn visibility_difference(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<HdrImage, RenderError> {
+        let (Some(open), Some(shadowed)) =
+            (self.passes.buffer("sshgi_unshadowed"), self.passes.buffer("sshgi_bounce_1"))
+        else {
+            return Err(RenderError::UnknownBuffer {
+                name: "sshgi_visibility_difference".into(),
+                known: "render a frame with visibility on while this buffer is inspected".into(),
+            });
+        };
+        let (mut open, shadowed) = (read_texture(device, queue, open)?, read_texture(device, queue, shadowed)?);
+        for (o, s) in open.pixels.iter_mut().zip(&shadowed.pixels) {
+            *o = [o[0] - s[0], o[1] - s[1], o[2] - s[2], 1.0];
+        }
+        Ok(open)
+    }
+}
+
+/// A texture read back as RGBA floats.
+fn read_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture) -> Result<HdrImage, RenderError> {
+    let pixels = readback::read_as_rgba_f32(device, queue, texture)?;
+    Ok(HdrImage { width: texture.width(), height: texture.height(), pixels })
+}
+
 impl GiTechnique for SshgiTechnique {
     fn needs(&self) -> Needs {
         Needs { pyramid: true, ..Needs::default() }
@@ -117,9 +156,10 @@ impl GiTechnique for SshgiTechnique {
             return Ok(GiOutput::Nothing);
         }
         let settings = inputs.settings.sshgi.clone();
-        let plan = Plan::new(&settings, inputs.targets.size, pyramid.len() as u32);
+        let mut plan = Plan::new(&settings, inputs.targets.size, pyramid.len() as u32);
         let axis = ViewAxis::new(inputs.frame);
         let range = Self::voxel_range(inputs, &axis);
+        plan.unshadowed = self.unshadowed && range.is_some();
         if let Some((near, far)) = range {
             let params = VoxelParams {
                 range: [near, far, 128.0 / (far - near).max(1e-6), 0.0],
@@ -168,8 +208,37 @@ impl GiTechnique for SshgiTechnique {
         queue: &wgpu::Queue,
         name: &str,
     ) -> Option<Result<HdrImage, RenderError>> {
-        if !BUFFERS.iter().any(|b| b.name == name) {
+        let (base, args) = name.split_once('@').unwrap_or((name, ""));
+        if !BUFFERS.iter().any(|b| b.name == base) {
             return None;
+        }
+        let no_voxels =
+            || RenderError::UnknownBuffer { name: name.into(), known: "render sshgi with visibility on first".into() };
+        if base == "sshgi_voxel_slices" {
+            let parsed =
+                if args.is_empty() { Some((self.voxel_start, 0, 127)) } else { super::voxels::parse_slices(args) };
+            let Some((level, first, last)) = parsed else {
+                return Some(Err(RenderError::UnknownBuffer {
+                    name: name.into(),
+                    known: "sshgi_voxel_slices@level,first,last with first <= last <= 127".into(),
+                }));
+            };
+            let levels = self.voxels.level_count();
+            if levels > 0 && level >= levels {
+                return Some(Err(RenderError::UnknownBuffer {
+                    name: name.into(),
+                    known: format!("voxel levels 0..={}", levels - 1),
+                }));
+            }
+            return Some(
+                self.voxels
+                    .read_slices(device, queue, level, (first, last))
+                    .ok_or_else(no_voxels)
+                    .and_then(|r| r.map_err(Into::into)),
+            );
+        }
+        if base == "sshgi_visibility_difference" {
+            return Some(self.visibility_difference(device, queue));
         }
         let voxel_level = match name {
             "sshgi_voxels" => Some(0),
@@ -177,12 +246,8 @@ impl GiTechnique for SshgiTechnique {
             _ => None,
         };
         if let Some(l) = voxel_level {
-            let missing = || RenderError::UnknownBuffer {
-                name: name.into(),
-                known: "render sshgi with visibility on first".into(),
-            };
             return Some(
-                self.voxels.read_level(device, queue, l).ok_or_else(missing).and_then(|r| r.map_err(Into::into)),
+                self.voxels.read_level(device, queue, l).ok_or_else(no_voxels).and_then(|r| r.map_err(Into::into)),
             );
         }
         let texture = match name {
@@ -196,11 +261,11 @@ impl GiTechnique for SshgiTechnique {
                 known: "render sshgi first (with enough levels and bounces for this buffer)".into(),
             }));
         };
-        Some(readback::read_as_rgba_f32(device, queue, texture).map_err(Into::into).map(|pixels| HdrImage {
-            width: texture.width(),
-            height: texture.height(),
-            pixels,
-        }))
+        Some(read_texture(device, queue, texture))
+    }
+
+    fn set_inspected(&mut self, name: Option<&str>) {
+        self.unshadowed = name == Some("sshgi_visibility_difference");
     }
 
     fn reset(&mut self, reason: ResetReason) {

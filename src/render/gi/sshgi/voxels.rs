@@ -312,6 +312,29 @@ impl VoxelPass {
         }))
     }
 
+    /// The voxel levels of the last frame (0 = the view's columns).
+    pub fn level_count(&self) -> usize {
+        self.sized.as_ref().map_or(0, |s| s.levels.len())
+    }
+
+    /// Slices `first..=last` of level `l`'s columns as an image for the inspector's slice viewer:
+    /// r = 1 where any of them is solid (their OR), g = the solid share of the range, b = the
+    /// first solid slice of the range as a fraction of it (1 where none).
+    pub fn read_slices(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        l: usize,
+        slices: (u32, u32),
+    ) -> Option<Result<crate::image_io::HdrImage, crate::render::readback::ReadbackError>> {
+        let (buffer, (w, h)) = (self.level(l)?, self.level_size(l)?);
+        Some(crate::render::readback::read_buffer(device, queue, buffer).map(|bytes| {
+            let words: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
+            let pixels = words.chunks_exact(4).map(|c| slice_range(c, slices)).collect();
+            crate::image_io::HdrImage { width: w, height: h, pixels }
+        }))
+    }
+
     /// Frees the buffers.
     pub fn release(&mut self) {
         self.sized = None;
@@ -332,6 +355,27 @@ fn column_summary(words: &[u32]) -> [f32; 4] {
     [solid as f32 / 128.0, first as f32 / 128.0, last as f32 / 128.0, 1.0]
 }
 
+/// One column's slice-viewer texel over slices `first..=last` (clamped to 0..=127): OR of the
+/// range, its solid share, and its first solid slice as a fraction of the range (1 where none).
+fn slice_range(words: &[u32], (first, last): (u32, u32)) -> [f32; 4] {
+    let (a, b) = (first.min(127), last.min(127));
+    let (a, b) = (a.min(b), a.max(b));
+    let bit = |i: u32| words[(i / 32) as usize] >> (i % 32) & 1 == 1;
+    let solid = (a..=b).filter(|&i| bit(i)).count() as f32;
+    let span = (b - a + 1) as f32;
+    let at = (a..=b).find(|&i| bit(i)).map_or(1.0, |i| (i - a) as f32 / span);
+    [f32::from(u8::from(solid > 0.0)), solid / span, at, 1.0]
+}
+
+/// Parses the slice viewer's `@level,first,last` suffix; `None` when it is malformed.
+pub fn parse_slices(args: &str) -> Option<(usize, u32, u32)> {
+    let mut parts = args.split(',').map(str::trim);
+    let l = parts.next()?.parse().ok()?;
+    let first = parts.next()?.parse().ok()?;
+    let last = parts.next()?.parse().ok()?;
+    (parts.next().is_none() && first <= last && last < 128).then_some((l, first, last))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -343,6 +387,20 @@ mod tests {
         (40..100).for_each(|i: u32| words[(i / 32) as usize] |= 1 << (i % 32));
         assert_eq!(column_summary(&words), [60.0 / 128.0, 40.0 / 128.0, 99.0 / 128.0, 1.0]);
         assert_eq!(column_summary(&[0; 4]), [0.0, 1.0, 1.0, 1.0]);
+    }
+
+    #[test]
+    fn a_slice_range_is_the_or_of_its_slices_with_its_share_and_first_solid_slice() {
+        let mut words = [0u32; 4];
+        (40..100).for_each(|i: u32| words[(i / 32) as usize] |= 1 << (i % 32));
+        assert_eq!(slice_range(&words, (0, 39)), [0.0, 0.0, 1.0, 1.0], "in front of the box");
+        assert_eq!(slice_range(&words, (30, 49)), [1.0, 0.5, 0.5, 1.0], "its front face");
+        assert_eq!(slice_range(&words, (64, 64)), [1.0, 1.0, 0.0, 1.0], "one slice inside");
+        assert_eq!(slice_range(&words, (100, 300)), [0.0, 0.0, 1.0, 1.0], "behind, clamped");
+        assert_eq!(parse_slices("2, 40,60"), Some((2, 40, 60)));
+        assert_eq!(parse_slices("2,60,40"), None, "reversed");
+        assert_eq!(parse_slices("2,40,128"), None, "past the last slice");
+        assert_eq!(parse_slices("2,40"), None);
     }
 
     #[test]
