@@ -2,8 +2,9 @@
 //! with a 64x36 start level (the suite's quality matrix renders 256x144 with the default quarter
 //! start, the same start level): the first bounce's units (Eq. 4's form factor and the levels'
 //! 2^(2k) energy scale applied once), bounces that add energy without creating any, and the
-//! issue's FLIP bar for the whole technique (less than 0.6x the FLIP of `direct`; its mean
-//! luminance reads 0.881, so 15% here where the issue asks 10%); a closed wall that stops the
+//! issue's bars for the whole technique (less than 0.6x the FLIP of `direct`, mean luminance
+//! within 10%: it reads 0.905); a visibility difference buffer equal to an unshadowed render's,
+//! and a voxel slice viewer that ORs its slice range; a closed wall that stops the
 //! light with visibility and leaks it without; the temporal filter on a moving camera; voting
 //! that drops a one-pixel pole from the coarse levels instead of letting it flicker.
 
@@ -69,7 +70,7 @@ fn sshgi_on_the_cornell_box_has_the_first_bounces_units_and_bounces_add_energy_w
 }
 
 #[test]
-fn sshgi_on_the_cornell_box_has_under_six_tenths_of_directs_flip_and_energy_within_fifteen_percent() {
+fn sshgi_on_the_cornell_box_has_under_six_tenths_of_directs_flip_and_energy_within_ten_percent() {
     let Some(ctx) = common::gpu() else { return };
     // As the quality matrix renders it: default settings at 256x144, box-filtered to the cached
     // reference's 128x72 pixels.
@@ -95,9 +96,10 @@ fn sshgi_on_the_cornell_box_has_under_six_tenths_of_directs_flip_and_energy_with
     let energy = metrics::luminance_ratio(&sshgi, &reference).expect("ratio");
     eprintln!("sshgi FLIP {fs:.4} vs direct {fd:.4} ({:.2}); energy {energy:.3}", fs / fd);
     assert!(fs < 0.6 * fd, "sshgi FLIP {fs:.4} is not below 0.6 x direct's {fd:.4}");
-    // The issue asks for 10%; the defaults read 0.881 (off-screen and hidden senders send
-    // nothing, and Eq. 4's bound loses 2% at 64 samples against 256).
-    assert!((0.85..=1.1).contains(&energy), "sshgi energy {energy:.3} of the reference");
+    // The issue's 10%: the defaults read 0.905 (off-screen and hidden senders send nothing, and
+    // Eq. 4's bound loses 2% at 64 samples against 256). Before the march ran between the voted
+    // points' own pixels over half-size columns it read 0.881.
+    assert!((0.9..=1.1).contains(&energy), "sshgi energy {energy:.3} of the reference");
 }
 
 /// A floor with a spot-lit patch on its left, a closed 0.3 m wall standing across it, and a

@@ -33,6 +33,13 @@ fn position_at(frame: Frame, depth: texture_depth_2d, pixel: vec2<u32>) -> vec4<
 
 // The world point a depth/normal pyramid texel `g` stands for (`render/pyramid.wgsl`): on the ray
 // of the view pixel it copied (g.a - 1, row-major), at its distance g.r. g.a must be >= 1.
+// The view pixel (its centre, in pixels) a depth/normal pyramid texel `g` copied.
+fn pyramid_pixel(frame: Frame, g: vec4<f32>) -> vec2<f32> {
+    let index = u32(g.a - 0.5);
+    let width = u32(frame.size.x);
+    return vec2<f32>(f32(index % width), f32(index / width)) + 0.5;
+}
+
 fn pyramid_point(frame: Frame, g: vec4<f32>) -> vec3<f32> {
     let index = u32(g.a - 0.5);
     let width = u32(frame.size.x);

@@ -8,7 +8,7 @@
 // coarse levels is in the texel solid angle of level k (4^k that of a view pixel), applied
 // once. Samples are stratified in area with a per-pixel (4x4 interleaved) and per-frame
 // rotation, so the temporal accumulation averages the pattern out. With visibility on, each
-// sample's segment is marched through the level's voxel columns (`sshgi_visibility.wgsl`).
+// sample's segment is marched through the view's voxel columns (`sshgi_visibility.wgsl`).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 
@@ -22,8 +22,7 @@ struct GatherParams {
     forward: vec4<f32>,
     // Voxel slices: near, far (view depth, m), slices per metre, visibility on (1) or off (0).
     vox: vec4<f32>,
-    // Voxel columns marched (the start level's): width, columns per texel of this level (2^k),
-    // height, unused.
+    // Voxel columns marched: width, view pixels per column, height, unused.
     grid: vec4<u32>,
 }
 
@@ -35,7 +34,7 @@ struct GatherParams {
 // Outgoing radiance of this level.
 @group(0) @binding(3) var illumination: texture_2d<f32>;
 @group(0) @binding(4) var dest: texture_storage_2d<rgba32float, write>;
-// The start level's voxel columns (`sshgi_voxelize.wgsl`, `sshgi_voxel_mip.wgsl`).
+// The voxel columns marched (`sshgi_voxelize.wgsl`, OR-reduced by `sshgi_voxel_mip.wgsl`).
 @group(0) @binding(5) var<storage, read> voxels: array<vec4<u32>>;
 
 #import render/gi/sshgi/sshgi_visibility.wgsl
@@ -113,7 +112,8 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
         // Eq. 2: the texel's solid angle (cos^3 alpha off the axis) times distance^2 over the
         // tilt cos(beta) (clamped at 0.05), times the sample's share dP.
         let cos_a = max(dot(dir_y, gp.forward.xyz), 0.0);
-        if gp.vox.w > 0.5 && voxel_occluded(t, y, dot(x - cam, gp.forward.xyz), gy.r * cos_a) {
+        let zt = dot(x - cam, gp.forward.xyz);
+        if gp.vox.w > 0.5 && voxel_occluded(pyramid_pixel(frame, g), pyramid_pixel(frame, gy), zt, gy.r * cos_a) {
             continue;
         }
         let cos_b = max(dot(ny, -dir_y), 0.05);

@@ -1,14 +1,21 @@
-// sshgi indirect visibility (Soler et al. 2010, digest C.2 "voxel visibility"): the segment from
-// a receiver texel to a sample texel is marched through the level's voxel columns. In screen
+// sshgi indirect visibility (Soler et al. 2010, digest C.2 "voxel visibility"): the segment
+// between a receiver's and a sender's voted points is marched through voxel columns. In screen
 // space 1/z is affine, so the segment's view depth over each column it crosses is exact; its
-// slice interval is ANDed with the column, and any common bit is an occluder. The endpoints lie
-// on solid boundaries, so two columns at each end are skipped (the start level's columns are
-// ORed from the view's, so a surface's own column can hold its neighbour's nearer depth; one
-// column read 0.894 of the one-bounce reference's indirect light on the Cornell box, two 0.923,
-// three 0.938 with FLIP 0.1005 / 0.1019 / 0.1038, before the pyramid's voting and point changes) and the interval is moved one slice towards the
-// camera (a segment leaving a visible surface runs just in front of it). The including shader binds `voxels: array<vec4<u32>>` (the start
-// level's columns, row-major), `gp.vox` = (near, far, slices per metre, on) and `gp.grid` =
-// (their width, columns per gather texel, their height, unused).
+// slice interval is ANDed with the column, and any common bit is an occluder. The segment runs
+// between the view pixels the two points were voted from (`pyramid_pixel`), not between their
+// texels' centres: on coarse levels a texel is 2^l view pixels wide and its point may lie half a
+// texel from its centre, so a march between centres crossed columns of surfaces in front of the
+// real segment (the Cornell box's first bounce found 0.883 of an exact screen-space gather with
+// ray-cast visibility, `examples/sshgi_oracle.rs`; from the points' pixels 0.980). The columns are
+// the view's OR-reduced to `gp.grid.y` view pixels (`visibility_detail` levels finer than the
+// start level): an OR column starts its solid at the nearest of its pixels' surfaces, which
+// near the endpoints lies in front of a segment leaving a surface at a grazing angle (quarter
+// columns 0.980, half 1.001, full 1.013 of the oracle; full with one column skipped 0.998). The
+// endpoints lie on solid boundaries, so two columns at each end are skipped and the interval is
+// moved one slice towards the camera (a segment leaving a visible surface runs just in front of
+// it). The including shader binds `voxels: array<vec4<u32>>` (the marched columns, row-major),
+// `gp.vox` = (near, far, slices per metre, on) and `gp.grid` = (their width, view pixels per
+// column, their height, unused).
 
 // Bits a..b (inclusive, clamped to 0..127) of a 128-bit column.
 fn slice_bits(a: i32, b: i32) -> vec4<u32> {
@@ -30,17 +37,16 @@ fn slice_bits(a: i32, b: i32) -> vec4<u32> {
     return m;
 }
 
-// Whether the segment from texel t (view depth zt) to texel y (depth zy) of the gather level
-// passes through a solid voxel. The columns marched are the start level's (`gp.grid`: their
-// width, and 2^k of them per texel of gather level k), not level k's own AND-reduced ones: the
+// Whether the segment from the point seen at view pixel pt (view depth zt) to the point seen at
+// pixel py (depth zy) passes through a solid voxel. Every level marches the same columns: the
 // paper's per-level AND erodes a wall a few pixels thick away at the coarse levels, where
 // long-range light is gathered (the walled floor of `tests/sshgi.rs` leaked 86% of its light
 // with level-k columns at three levels). Level k has 4^k fewer texels and 2^k times longer
 // marches, so the marches of all levels cost at most twice the start level's.
-fn voxel_occluded(t: vec2<i32>, y: vec2<i32>, zt: f32, zy: f32) -> bool {
-    let scale = f32(gp.grid.y);
-    let a = (vec2<f32>(t) + 0.5) * scale - 0.5;
-    let d = (vec2<f32>(y) + 0.5) * scale - 0.5 - a;
+fn voxel_occluded(pt: vec2<f32>, py: vec2<f32>, zt: f32, zy: f32) -> bool {
+    let px = f32(gp.grid.y);
+    let a = pt / px - 0.5;
+    let d = py / px - 0.5 - a;
     let steps = i32(ceil(max(abs(d.x), abs(d.y))));
     // The columns of the surfaces the segment starts and ends on.
     let skip = 2;

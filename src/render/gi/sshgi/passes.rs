@@ -54,7 +54,7 @@ pub struct GatherParams {
     pub forward: [f32; 4],
     /// Voxel slices: near, far, slices per metre, on.
     pub vox: [f32; 4],
-    /// Voxel columns: width, columns per texel, height.
+    /// Voxel columns: width, view pixels per column, height, unused.
     pub grid: [u32; 4],
 }
 
@@ -62,8 +62,10 @@ const _: () = assert!(std::mem::size_of::<GatherParams>() == 80);
 
 /// The voxel columns the gathers march, with the slices' depth range.
 pub struct Visibility<'a> {
-    /// The start level's columns (every level marches them).
+    /// The columns of voxel level `level` (every gather level marches them).
     pub columns: &'a wgpu::Buffer,
+    /// Their level: each column ORs 2^level x 2^level view pixels.
+    pub level: u32,
     /// near, far (view depth, m).
     pub range: (f32, f32),
 }
@@ -389,6 +391,8 @@ impl SshgiPasses {
         }
         let start_size = plan.level_size(0);
         let radius = settings.ring_radius(start_size, plan.levels);
+        let grid = visibility
+            .map_or([0; 4], |v| [(plan.view.0 >> v.level).max(1), 1 << v.level, (plan.view.1 >> v.level).max(1), 0]);
         let vox = visibility.map_or([0.0; 4], |v| {
             let (near, far) = v.range;
             [near, far, 128.0 / (far - near).max(1e-6), 1.0]
@@ -410,7 +414,7 @@ impl SshgiPasses {
                     forward: [forward.x, forward.y, forward.z, 0.0],
                     // The paper's saving: later bounces may skip visibility.
                     vox: if b == 0 || settings.visibility_all_bounces { vox } else { [0.0; 4] },
-                    grid: [start_size.0, 1 << k, start_size.1, 0],
+                    grid,
                 };
                 put(gather_slot(plan, b as usize, k as usize), bytemuck::bytes_of(&p));
             }

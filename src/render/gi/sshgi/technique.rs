@@ -57,7 +57,7 @@ pub const BUFFERS: &[BufferInfo] = &[
     },
     BufferInfo {
         name: "sshgi_voxels_start",
-        description: "the start level's voxel columns the gathers march (OR of the view's), as sshgi_voxels",
+        description: "the voxel columns the gathers march (OR of the view's, visibility_detail levels finer than the start level), as sshgi_voxels",
         format: "4 x u32 per texel",
         view: BufferView::Colour,
     },
@@ -73,7 +73,7 @@ pub const BUFFERS: &[BufferInfo] = &[
 pub struct SshgiTechnique {
     passes: SshgiPasses,
     voxels: VoxelPass,
-    /// The voxel level the last frame's gathers marched.
+    /// The voxel level the last frame's gathers marched (`visibility_detail` finer than the start).
     voxel_start: usize,
     temporal: TemporalPass,
     status: TechniqueStatus,
@@ -178,9 +178,10 @@ impl GiTechnique for SshgiTechnique {
                 ts,
             );
         }
-        self.voxel_start = plan.start as usize;
+        let level = plan.start.saturating_sub(settings.visibility_detail);
+        self.voxel_start = level as usize;
         let visibility =
-            range.and_then(|range| Some(Visibility { columns: self.voxels.level(plan.start as usize)?, range }));
+            range.and_then(|range| Some(Visibility { columns: self.voxels.level(level as usize)?, range, level }));
         let targets = inputs.targets;
         if settings.temporal_weight > 0.0 {
             self.temporal.ensure(inputs.device, targets.size);
