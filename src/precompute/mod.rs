@@ -1,10 +1,11 @@
 //! CPU-side heavy work that never touches the GPU: the ray-tracing BVH of the scene and the
-//! reference path tracer, the ISM sample points and which faces see anything (and, later,
-//! MRT/DRT operators). Uses rayon; never imports wgpu/egui.
+//! reference path tracer, the ISM sample points and which faces see anything, and MRT's
+//! dictionary operators. Uses rayon; never imports wgpu/egui.
 
 pub mod brdf;
 pub mod bvh;
 pub mod facing;
+pub mod mrt;
 pub mod open_edges;
 pub mod pathtracer;
 pub mod rng;
