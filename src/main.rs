@@ -59,6 +59,9 @@ enum Command {
         #[arg(long, default_value = ".")]
         root: PathBuf,
     },
+    /// Build (or load from the cache) Modular Radiance Transfer's dictionary and print its
+    /// modes, spectra and build time.
+    MrtDictionary(cli::mrt::MrtArgs),
     /// Regenerate assets/cornell_box.gltf and projects/default.ron from code.
     #[command(hide = true)]
     GenerateAssets {
@@ -87,6 +90,7 @@ fn main() -> ExitCode {
             cli::quality::suite(&root, references, &only).map(|s| println!("{s}"))
         }
         Some(Command::GenerateAssets { root }) => cli::generate::generate(&root),
+        Some(Command::MrtDictionary(args)) => cli::mrt::run(&args).map(|s| println!("{s}")),
         None => bouncelab::app::run(args.project),
     };
     match result {

@@ -149,3 +149,21 @@ fn a_write_cut_short_by_a_full_disk_keeps_the_old_image() {
     assert_eq!(names, ["image.png"], "no temp files remain");
     assert!(std::fs::read(&out).expect("read").starts_with(b"\x89PNG"));
 }
+
+#[test]
+fn mrt_dictionary_builds_then_loads_from_its_cache_and_rejects_bad_parameters() {
+    let dir = std::env::temp_dir().join(format!("bouncelab-cli-mrt-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let cache = dir.to_str().expect("utf-8");
+    let args = ["mrt-dictionary", "--res", "3", "--rays", "16", "--modes", "8", "--cache", cache];
+    let built = bouncelab(&args);
+    let text = String::from_utf8_lossy(&built.stdout);
+    assert!(built.status.success(), "{}", String::from_utf8_lossy(&built.stderr));
+    assert!(text.contains("built in") && text.contains("| closed | 54 |"), "{text}");
+    let loaded = bouncelab(&args);
+    assert!(String::from_utf8_lossy(&loaded.stdout).contains("loaded"), "the second run reads the cache");
+    let bad = bouncelab(&["mrt-dictionary", "--res", "1", "--cache", cache]);
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert!(!bad.status.success() && err.contains("res = 1"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -6,6 +6,7 @@ pub mod bench;
 pub mod bench_sshgi;
 pub mod compare;
 pub mod generate;
+pub mod mrt;
 pub mod progress;
 pub mod quality;
 pub mod render;

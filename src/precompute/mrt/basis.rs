@@ -177,7 +177,7 @@ fn balanced(blocks: &[(&[f64], usize)], n: usize) -> (Vec<f64>, usize) {
     (out, cols)
 }
 
-/// Precomputes one element. `cancel` is polled between samples.
+/// Precomputes one element. `cancel` is polled once per sample of each gather.
 pub fn build(shape: Shape, params: &ElementParams, cancel: &(dyn Fn() -> bool + Sync)) -> Result<Element, BasisError> {
     let layout = Layout::new(shape, params.res);
     let n = layout.len();
@@ -192,9 +192,6 @@ pub fn build(shape: Shape, params: &ElementParams, cancel: &(dyn Fn() -> bool + 
     let indicators: Vec<f64> =
         (0..n).flat_map(|i| (0..faces).map(move |f| if i / per_face == f { 1.0 } else { 0.0 })).collect();
     for _ in 0..params.enrichment {
-        if cancel() {
-            return Err(BasisError::Cancelled);
-        }
         let ps: Vec<f64> = (0..n).flat_map(|i| (0..k_d).map(|c| p[i * k_d + c] * s[c]).collect::<Vec<_>>()).collect();
         let (a, cols) = balanced(&[(&ps, k_d), (&indicators, faces), (&reduced.u_b, reduced.k_b)], n);
         let e = svd(&a, n, cols, "enrichment concatenation")?;

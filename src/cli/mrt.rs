@@ -1,0 +1,153 @@
+//! `bouncelab mrt-dictionary`: builds (or loads from the cache) MRT's dictionary with progress
+//! and the time left on stderr, and prints what it holds: per shape the samples, the modes kept,
+//! the singular-value energy of the direct-light prior and of the indirect operator M (the
+//! dissertation's Table 3.2), the uniform-light check, and the build time and sizes.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use crate::precompute::mrt::basis::Element;
+use crate::precompute::mrt::cache::{self, Source};
+use crate::precompute::mrt::dictionary::{DictionaryParams, Progress};
+
+/// Arguments of `bouncelab mrt-dictionary`.
+#[derive(clap::Args, Debug)]
+pub struct MrtArgs {
+    /// Texels per face side.
+    #[arg(long, default_value_t = DictionaryParams::default().res)]
+    pub res: usize,
+    /// Gather rays per texel (16384 is the dissertation's final quality).
+    #[arg(long, default_value_t = DictionaryParams::default().rays)]
+    pub rays: usize,
+    /// Indirect modes kept.
+    #[arg(long, default_value_t = DictionaryParams::default().k_b)]
+    pub modes: usize,
+    /// Enrichment passes.
+    #[arg(long, default_value_t = DictionaryParams::default().enrichment)]
+    pub enrichment: usize,
+    /// Build even when a cached file exists (and replace it).
+    #[arg(long)]
+    pub rebuild: bool,
+    /// Cache folder (default: the user's cache folder, `bouncelab/`).
+    #[arg(long)]
+    pub cache: Option<PathBuf>,
+}
+
+/// Modes needed for `share` of the energy (sum of squares) of the spectrum `s`.
+fn modes_for(s: &[f64], share: f64) -> usize {
+    let total: f64 = s.iter().map(|x| x * x).sum();
+    let mut acc = 0.0;
+    for (i, x) in s.iter().enumerate() {
+        acc += x * x;
+        if acc >= share * total {
+            return i + 1;
+        }
+    }
+    s.len()
+}
+
+/// The worst deviation from 1 of the reconstructed bounce of uniform light on every present
+/// face, on the closed shape only (where the exact bounce is 1).
+fn furnace(e: &Element) -> Option<f64> {
+    (e.shape == crate::precompute::mrt::shape::Shape::Closed).then(|| {
+        let ind = e.reconstruct(&e.project(&vec![1.0; e.n]));
+        ind.iter().map(|v| (v - 1.0).abs()).fold(0.0, f64::max)
+    })
+}
+
+/// Runs the command; returns the report.
+pub fn run(args: &MrtArgs) -> anyhow::Result<String> {
+    let params = DictionaryParams {
+        res: args.res,
+        rays: args.rays,
+        k_b: args.modes,
+        enrichment: args.enrichment,
+        ..DictionaryParams::default()
+    };
+    params.validate()?;
+    let dir = args.cache.clone().unwrap_or_else(cache::default_dir);
+    if args.rebuild {
+        let path = cache::path_for(&dir, &params);
+        if path.exists() {
+            std::fs::remove_file(&path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        }
+    }
+    let progress = Progress::default();
+    let started = Instant::now();
+    let done = std::sync::atomic::AtomicBool::new(false);
+    let (dictionary, source) = std::thread::scope(|scope| {
+        scope.spawn(|| {
+            // A line rewritten in place on a terminal, a plain line every 5 s in logs.
+            let tty = std::io::IsTerminal::is_terminal(&std::io::stderr());
+            let every = std::time::Duration::from_millis(if tty { 200 } else { 5000 });
+            let mut shown = Instant::now();
+            while !done.load(std::sync::atomic::Ordering::Relaxed) {
+                std::thread::sleep(std::time::Duration::from_millis(50));
+                let (f, left) = progress.fraction_and_left();
+                if f > 0.0 && f < 1.0 && shown.elapsed() >= every {
+                    shown = Instant::now();
+                    let left = left.map_or(String::from("?"), |s| format!("{s:.0}"));
+                    let line = format!("mrt dictionary: {:5.1}% ({left} s left)", 100.0 * f);
+                    if tty { eprint!("\r{line}   ") } else { eprintln!("{line}") }
+                }
+            }
+        });
+        let result = cache::load_or_build(&dir, &params, &progress);
+        done.store(true, std::sync::atomic::Ordering::Relaxed);
+        result
+    })?;
+    if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        eprintln!();
+    }
+    let seconds = started.elapsed().as_secs_f64();
+    let mut out = String::new();
+    match &source {
+        Source::Loaded(path) => writeln!(out, "loaded {} in {seconds:.2} s", path.display())?,
+        Source::Built { path, why } => {
+            writeln!(out, "built in {seconds:.1} s ({why}); wrote {}", path.display())?;
+        }
+    }
+    writeln!(
+        out,
+        "{} texels per face, {} rays per texel, k_d {}, k_b {}, enrichment {}; runtime operators {:.2} MB (f32)",
+        params.res,
+        params.rays,
+        params.k_d,
+        params.k_b,
+        params.enrichment,
+        dictionary.runtime_bytes() as f64 / 1e6
+    )?;
+    writeln!(
+        out,
+        "| shape | n | k_d | k_b | L_d modes for 80/90/95% | M modes for 80/90/95% | uniform light, worst error |"
+    )?;
+    writeln!(out, "|---|---|---|---|---|---|---|")?;
+    for e in &dictionary.elements {
+        let modes = |s: &[f64]| format!("{} / {} / {}", modes_for(s, 0.8), modes_for(s, 0.9), modes_for(s, 0.95));
+        writeln!(
+            out,
+            "| {} | {} | {} | {} | {} | {} | {} |",
+            e.shape.name(),
+            e.n,
+            e.k_d,
+            e.k_b,
+            modes(&e.data_sigma),
+            modes(&e.m_sigma),
+            furnace(e).map_or("-".into(), |w| format!("{w:.2e}"))
+        )?;
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn modes_for_counts_the_leading_energy() {
+        assert_eq!(modes_for(&[3.0, 1.0, 1.0], 0.8), 1, "9 of 11");
+        assert_eq!(modes_for(&[3.0, 1.0, 1.0], 0.9), 2);
+        assert_eq!(modes_for(&[1.0, 1.0], 1.0), 2);
+    }
+}

@@ -1,0 +1,189 @@
+//! MRT's dictionary: the six cube shapes' reduced operators ([`super::basis`]) built with one
+//! set of parameters, deterministic, with progress (samples gathered of the total, and the time
+//! left) and cancellation for the editor and the CLI. [`super::cache`] keeps it on disk.
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+use super::basis::{self, BasisError, Element, ElementParams};
+use super::shape::{Layout, Shape};
+
+/// What can stop a dictionary build.
+#[derive(Debug, Error)]
+pub enum DictionaryError {
+    /// A parameter is out of range.
+    #[error("mrt dictionary: {name} = {value} is outside {range}")]
+    Param { name: &'static str, value: String, range: &'static str },
+    /// An element's precompute failed.
+    #[error("mrt dictionary, element {shape}: {source}")]
+    Element {
+        shape: &'static str,
+        #[source]
+        source: BasisError,
+    },
+}
+
+/// The dictionary's parameters (digest sections 3 and 10). Cost on these two cores, release
+/// build: see `bouncelab mrt-dictionary` in docs/BENCHMARKS.md.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DictionaryParams {
+    /// Texels per face side (the dissertation's 16; below 6 its artefacts are objectionable).
+    /// Cost: the gather grows with res^2, the SVDs with up to res^4.
+    pub res: usize,
+    /// Prior columns k_d (64).
+    pub k_d: usize,
+    /// Indirect modes k_b (32 on desktop, 12 on the iPad).
+    pub k_b: usize,
+    /// Gather rays per texel (16K in the dissertation; 4K while iterating). Cost: linear.
+    pub rays: usize,
+    /// Enrichment passes (1). Each costs one more gather.
+    pub enrichment: usize,
+    /// Seed of the gather's rays.
+    pub seed: u64,
+}
+
+impl Default for DictionaryParams {
+    fn default() -> Self {
+        Self { res: 16, k_d: 64, k_b: 32, rays: 4096, enrichment: 1, seed: 1 }
+    }
+}
+
+impl DictionaryParams {
+    /// Checks ranges.
+    pub fn validate(&self) -> Result<(), DictionaryError> {
+        let checks: [(&'static str, bool, String, &'static str); 5] = [
+            ("res", (2..=32).contains(&self.res), self.res.to_string(), "2..=32"),
+            ("k_d", (1..=256).contains(&self.k_d), self.k_d.to_string(), "1..=256"),
+            ("k_b", (1..=self.k_d).contains(&self.k_b), self.k_b.to_string(), "1..=k_d"),
+            ("rays", (1..=1 << 20).contains(&self.rays), self.rays.to_string(), "1..=1048576"),
+            ("enrichment", self.enrichment <= 4, self.enrichment.to_string(), "0..=4"),
+        ];
+        match checks.into_iter().find(|c| !c.1) {
+            Some((name, _, value, range)) => Err(DictionaryError::Param { name, value, range }),
+            None => Ok(()),
+        }
+    }
+
+    fn element(&self) -> ElementParams {
+        ElementParams {
+            res: self.res,
+            k_d: self.k_d,
+            k_b: self.k_b,
+            rays: self.rays,
+            enrichment: self.enrichment,
+            seed: self.seed,
+        }
+    }
+
+    /// Texels gathered in a whole build (the progress total).
+    pub fn total_work(&self) -> usize {
+        Shape::ALL.iter().map(|s| Layout::new(*s, self.res).len()).sum::<usize>() * (1 + self.enrichment)
+    }
+}
+
+/// Progress of a build, shared with the thread that shows it.
+#[derive(Debug, Default)]
+pub struct Progress {
+    done: AtomicUsize,
+    total: AtomicUsize,
+    started: std::sync::OnceLock<Instant>,
+    cancel: AtomicBool,
+}
+
+impl Progress {
+    /// Asks the build to stop at its next texel.
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+
+    /// The share done (0..=1) and the estimated seconds left (`None` before any work).
+    pub fn fraction_and_left(&self) -> (f64, Option<f64>) {
+        let (done, total) = (self.done.load(Ordering::Relaxed), self.total.load(Ordering::Relaxed));
+        let fraction = if total == 0 { 0.0 } else { done as f64 / total as f64 };
+        let left = self.started.get().filter(|_| done > 0).map(|t| {
+            let elapsed = t.elapsed().as_secs_f64();
+            elapsed * (total - done.min(total)) as f64 / done as f64
+        });
+        (fraction, left)
+    }
+
+    /// Counts one texel and says whether to stop.
+    fn tick(&self) -> bool {
+        self.done.fetch_add(1, Ordering::Relaxed);
+        self.cancel.load(Ordering::Relaxed)
+    }
+}
+
+/// The whole dictionary.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dictionary {
+    /// What it was built with.
+    pub params: DictionaryParams,
+    /// One element per shape, in [`Shape::ALL`] order.
+    pub elements: Vec<Element>,
+}
+
+impl Dictionary {
+    /// The element of `shape`.
+    pub fn element(&self, shape: Shape) -> Option<&Element> {
+        self.elements.iter().find(|e| e.shape == shape)
+    }
+
+    /// Bytes of its operators as the runtime stores them (f32 U_b, T_{d->b}; L_imp kept for
+    /// DRT).
+    pub fn runtime_bytes(&self) -> usize {
+        self.elements.iter().map(|e| 4 * (e.u_b.len() + e.t_db.len() + e.l_imp.len())).sum()
+    }
+}
+
+/// Builds the dictionary (element after element; each element's gather runs on every core).
+pub fn build(params: &DictionaryParams, progress: &Progress) -> Result<Dictionary, DictionaryError> {
+    params.validate()?;
+    progress.total.store(params.total_work(), Ordering::Relaxed);
+    progress.done.store(0, Ordering::Relaxed);
+    let _ = progress.started.set(Instant::now());
+    let element = params.element();
+    let tick = || progress.tick();
+    let elements = Shape::ALL
+        .iter()
+        .map(|&shape| {
+            basis::build(shape, &element, &tick)
+                .map_err(|source| DictionaryError::Element { shape: shape.name(), source })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Dictionary { params: *params, elements })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tiny() -> DictionaryParams {
+        DictionaryParams { res: 3, k_d: 16, k_b: 8, rays: 64, enrichment: 1, seed: 2 }
+    }
+
+    #[test]
+    fn a_build_is_deterministic_and_reports_its_progress() {
+        let progress = Progress::default();
+        let a = build(&tiny(), &progress).expect("build");
+        assert_eq!(progress.fraction_and_left().0, 1.0);
+        let b = build(&tiny(), &Progress::default()).expect("build");
+        assert_eq!(a, b, "same parameters, same bits");
+        assert_eq!(a.elements.len(), 6);
+        assert!(a.element(Shape::Crossroads).is_some_and(|e| e.n == 2 * 9));
+    }
+
+    #[test]
+    fn a_cancelled_build_stops_with_an_error_and_bad_parameters_are_named() {
+        let progress = Progress::default();
+        progress.cancel();
+        let err = build(&tiny(), &progress).expect_err("cancelled");
+        assert!(matches!(err, DictionaryError::Element { source: BasisError::Cancelled, .. }), "{err}");
+        let bad = DictionaryParams { k_b: 99, ..tiny() };
+        assert!(matches!(build(&bad, &Progress::default()), Err(DictionaryError::Param { name: "k_b", .. })));
+    }
+}
