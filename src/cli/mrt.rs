@@ -32,6 +32,10 @@ pub struct MrtArgs {
     /// Cache folder (default: the user's cache folder, `bouncelab/`).
     #[arg(long)]
     pub cache: Option<PathBuf>,
+    /// Also build the interface operators (light-field basis, propagation, surface response)
+    /// and report their figures (not cached yet).
+    #[arg(long)]
+    pub interfaces: bool,
 }
 
 /// Modes needed for `share` of the energy (sum of squares) of the spectrum `s`.
@@ -137,7 +141,57 @@ pub fn run(args: &MrtArgs) -> anyhow::Result<String> {
             furnace(e).map_or("-".into(), |w| format!("{w:.2e}"))
         )?;
     }
+    if args.interfaces {
+        interfaces(&dictionary, &mut out)?;
+    }
     Ok(out)
+}
+
+/// Builds the interface operators at the dissertation's resolution and reports them.
+fn interfaces(dictionary: &crate::precompute::mrt::dictionary::Dictionary, out: &mut String) -> anyhow::Result<()> {
+    use crate::precompute::mrt::lightfield::LightFieldRes;
+    use crate::precompute::mrt::{interface, propagate, response};
+    let lf = LightFieldRes::default();
+    let t = Instant::now();
+    let basis = interface::build(dictionary, &lf, 128)?;
+    let basis_s = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let turns: Vec<(propagate::Turn, Vec<f64>)> =
+        propagate::Turn::ALL.iter().map(|&turn| (turn, propagate::reduced(&lf, turn, &basis.u, basis.k_rlf))).collect();
+    let turns_s = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let sigma: Vec<f64> = basis.sigma[..basis.k_rlf].to_vec();
+    let p = &dictionary.params;
+    let resp = response::build(p.res, &lf, &basis.u, &sigma, basis.k_rlf, 32, p.rays, p.seed)?;
+    let response_s = t.elapsed().as_secs_f64();
+    writeln!(
+        out,
+        "interfaces: {} light fields of {} samples ({}x{} positions, {}x{} directions, {}x{} supersampled); k_rlf {} (light-field modes for 80/90/95%: {} / {} / {}); basis {basis_s:.1} s, R ahead/left/right {turns_s:.1} s, response {response_s:.1} s (k_r {}, G modes for 80/90/95%: {} / {} / {})",
+        basis.exits.len(),
+        basis.s,
+        lf.positions,
+        lf.positions,
+        lf.directions,
+        lf.directions,
+        lf.supersample,
+        lf.supersample,
+        basis.k_rlf,
+        modes_for(&basis.sigma, 0.8),
+        modes_for(&basis.sigma, 0.9),
+        modes_for(&basis.sigma, 0.95),
+        resp.k_r,
+        modes_for(&resp.sigma, 0.8),
+        modes_for(&resp.sigma, 0.9),
+        modes_for(&resp.sigma, 0.95),
+    )?;
+    for (turn, r) in &turns {
+        // The largest singular value of R (propagation never adds light: at most about 1).
+        let k = basis.k_rlf;
+        let m = faer::Mat::<f64>::from_fn(k, k, |i, j| r[i * k + j]);
+        let top = m.singular_values().ok().and_then(|s| s.first().copied()).unwrap_or(f64::NAN);
+        writeln!(out, "R {turn:?}: largest singular value {top:.3}")?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -67,7 +67,7 @@ pub fn apply(
 
 /// A cosine-distributed direction about `n` (Malley: a uniform disc point lifted to the
 /// hemisphere) from two numbers in [0, 1).
-fn cosine_direction(n: Vec3, t: Vec3, b: Vec3, r1: f32, r2: f32) -> Vec3 {
+pub(super) fn cosine_direction(n: Vec3, t: Vec3, b: Vec3, r1: f32, r2: f32) -> Vec3 {
     let r = r1.sqrt();
     let phi = std::f32::consts::TAU * r2;
     let (x, y) = (r * phi.cos(), r * phi.sin());

@@ -2,12 +2,19 @@
 //! scene-independent dictionary of canonical block shapes ([`shape`]), each with its light prior
 //! from sphere-light training sets ([`prior`]), its one-bounce gather by exact ray-box exits
 //! ([`gather`]) and its reduced direct-to-indirect transfer ([`basis`]: U_b, T_{d->b}, L_imp,
-//! with enrichment), built for all six shapes by [`dictionary`] and kept on disk by [`cache`].
-//! The interface operators, the level assembly and the runtime build on these.
+//! with enrichment), built for all six shapes by [`dictionary`] and kept on disk by [`cache`];
+//! the light fields at openings ([`lightfield`]) and their reduced basis with each opening's
+//! R_{b->rlf} ([`interface`]), the propagation through a block ahead, left or right
+//! ([`propagate`]) and a block's surface response to entering light ([`response`]: U_r,
+//! T_{rlf->r}). The level assembly of T_{b->r} and the runtime build on these.
 
 pub mod basis;
 pub mod cache;
 pub mod dictionary;
 pub mod gather;
+pub mod interface;
+pub mod lightfield;
 pub mod prior;
+pub mod propagate;
+pub mod response;
 pub mod shape;

@@ -72,6 +72,11 @@ impl Face {
         p
     }
 
+    /// The face on the other side of the cube.
+    pub fn opposite(self) -> Face {
+        Face::from_axis(self.axis(), !self.positive())
+    }
+
     /// The face rotated a quarter turn about +y, counter-clockwise seen from above (+x -> -z).
     pub fn rotated_about_up(self) -> Face {
         match self {
