@@ -13,6 +13,7 @@ pub mod cache;
 pub mod dictionary;
 pub mod gather;
 pub mod interface;
+pub mod level;
 pub mod lightfield;
 pub mod prior;
 pub mod propagate;

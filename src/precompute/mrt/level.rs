@@ -1,0 +1,474 @@
+//! An MRT level: dictionary blocks on a grid of unit cells, each turned a number of quarter turns
+//! about up, joined where two neighbours both leave their shared side open (Loos 2015 §3.5.3,
+//! digest section 4.5). This module finds the links, assembles the sparse block-to-interface
+//! transfer T_{b->r} by depth-limited propagation (dynamic programming by depth: paths of equal
+//! length into the same directed interface are summed, never sent back out through the side
+//! they came in by), evaluates a frame's indirect light from the blocks' direct light in the
+//! reduced spaces, and, for tests and the inspector, gathers the same bounce by brute force
+//! through the level's cells.
+
+use std::collections::HashMap;
+
+use glam::{IVec3, Vec3};
+
+use super::dictionary::Dictionary;
+use super::gather::cosine_direction;
+use super::interface::InterfaceBasis;
+use super::propagate::{ENTRY, Turn};
+use super::response::{self, Response};
+use super::shape::{Face, Layout, Shape, exit};
+use crate::precompute::rng::Pcg32;
+
+/// One block: a dictionary shape in a unit grid cell, turned `turns` quarter turns about up
+/// (each maps +x to -z, as [`Face::rotated_about_up`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Block {
+    /// The dictionary shape.
+    pub shape: Shape,
+    /// The grid cell (its minimum corner in world units).
+    pub cell: IVec3,
+    /// Quarter turns about up, 0..4.
+    pub turns: u8,
+}
+
+/// A vector turned `q` quarter turns about up: (x, y, z) -> (z, y, -x) per turn.
+fn turn_vec(v: Vec3, q: u8) -> Vec3 {
+    (0..q % 4).fold(v, |v, _| Vec3::new(v.z, v.y, -v.x))
+}
+
+fn turn_face(f: Face, q: u8) -> Face {
+    (0..q % 4).fold(f, |f, _| f.rotated_about_up())
+}
+
+impl Block {
+    /// The world side of the block's canonical face `f`.
+    pub fn world_face(&self, f: Face) -> Face {
+        turn_face(f, self.turns)
+    }
+
+    /// The canonical face on world side `w`.
+    pub fn local_face(&self, w: Face) -> Face {
+        turn_face(w, (4 - self.turns % 4) % 4)
+    }
+
+    /// A canonical point in world space.
+    pub fn world_point(&self, p: Vec3) -> Vec3 {
+        let c = Vec3::new(0.5, 0.0, 0.5);
+        c + turn_vec(p - c, self.turns) + self.cell.as_vec3()
+    }
+
+    /// A world point in the block's canonical frame.
+    pub fn local_point(&self, w: Vec3) -> Vec3 {
+        let c = Vec3::new(0.5, 0.0, 0.5);
+        c + turn_vec(w - self.cell.as_vec3() - c, (4 - self.turns % 4) % 4)
+    }
+
+    /// A canonical direction in world space.
+    pub fn world_dir(&self, d: Vec3) -> Vec3 {
+        turn_vec(d, self.turns)
+    }
+
+    /// A world direction in the canonical frame.
+    pub fn local_dir(&self, d: Vec3) -> Vec3 {
+        turn_vec(d, (4 - self.turns % 4) % 4)
+    }
+}
+
+/// A level's blocks and the links between them.
+#[derive(Clone, Debug)]
+pub struct Level {
+    /// The blocks.
+    pub blocks: Vec<Block>,
+    /// (block, world side) -> the neighbour light passes into.
+    links: HashMap<(usize, Face), usize>,
+}
+
+/// The offset to the cell beyond world side `w`.
+fn beyond(w: Face) -> IVec3 {
+    let mut o = IVec3::ZERO;
+    o[w.axis()] = if w.positive() { 1 } else { -1 };
+    o
+}
+
+impl Level {
+    /// The level of `blocks`: two blocks are linked through a side when both leave it open.
+    pub fn new(blocks: Vec<Block>) -> Self {
+        let at: HashMap<IVec3, usize> = blocks.iter().enumerate().map(|(i, b)| (b.cell, i)).collect();
+        let mut links = HashMap::new();
+        for (i, b) in blocks.iter().enumerate() {
+            for &f in b.shape.open_faces() {
+                let w = b.world_face(f);
+                if let Some(&j) = at.get(&(b.cell + beyond(w))) {
+                    let other = blocks[j];
+                    if other.shape.is_open(other.local_face(w.opposite())) {
+                        links.insert((i, w), j);
+                    }
+                }
+            }
+        }
+        Self { blocks, links }
+    }
+
+    /// The neighbour beyond block `i`'s world side `w`, if linked.
+    pub fn link(&self, i: usize, w: Face) -> Option<usize> {
+        self.links.get(&(i, w)).copied()
+    }
+
+    /// Number of links (each opening counts twice, once per direction).
+    pub fn link_count(&self) -> usize {
+        self.links.len()
+    }
+
+    /// Where a ray from canonical point `p` of block `i` along canonical direction `d` first
+    /// meets a wall, crossing linked openings: (block, canonical face, s, t, distance); `None`
+    /// when it leaves the level through an unlinked opening or runs past `max_dist`.
+    pub fn trace(&self, i: usize, p: Vec3, d: Vec3, max_dist: f32) -> Option<(usize, Face, f32, f32, f32)> {
+        let (mut block, mut p, mut d, mut travelled) = (i, p, d, 0.0f32);
+        for _ in 0..4 * self.blocks.len() + 4 {
+            let b = self.blocks[block];
+            let (face, s, t, dist) = exit(p, d);
+            if travelled + dist > max_dist {
+                return None;
+            }
+            if !b.shape.is_open(face) {
+                return Some((block, face, s, t, travelled + dist));
+            }
+            let w = b.world_face(face);
+            let next = self.link(block, w)?;
+            let world = b.world_point(p + d * dist);
+            let world_dir = b.world_dir(d);
+            let nb = self.blocks[next];
+            // Step just past the shared side so the next block's exit is not the side itself.
+            p = nb.local_point(world + world_dir * 1e-5).clamp(Vec3::ZERO, Vec3::ONE);
+            d = nb.local_dir(world_dir);
+            travelled += dist;
+            block = next;
+        }
+        None
+    }
+}
+
+/// The turn from entry side `entry` to exit side `exit` (world sides of one block), or `None`
+/// where the exit is the entry itself.
+pub fn turn_between(entry: Face, exit: Face) -> Option<Turn> {
+    let q = (0..4u8).find(|&q| turn_face(entry, q) == ENTRY)?;
+    match turn_face(exit, q) {
+        f if f == Turn::Ahead.exit() => Some(Turn::Ahead),
+        f if f == Turn::Left.exit() => Some(Turn::Left),
+        f if f == Turn::Right.exit() => Some(Turn::Right),
+        _ => None,
+    }
+}
+
+/// The operators a level's transfer is assembled from.
+pub struct Operators<'a> {
+    /// The dictionary.
+    pub dictionary: &'a Dictionary,
+    /// The light-field basis and each opening's R_{b->rlf}.
+    pub basis: &'a InterfaceBasis,
+    /// R ahead, left and right (k_rlf x k_rlf each).
+    pub turns: &'a [(Turn, Vec<f64>)],
+    /// The surface response.
+    pub response: &'a Response,
+}
+
+/// T_{b->r}: for each source block and each directed interface (receiving block, its world entry
+/// side) that light from the source reaches, a k_r x k_b block.
+#[derive(Clone, Debug, Default)]
+pub struct Transfer {
+    /// ((source, receiver, entry side), k_r x k_b row-major).
+    pub blocks: HashMap<(usize, usize, Face), Vec<f64>>,
+}
+
+/// a (r x k) += m (r x c) * x (c x k).
+fn mul_add(out: &mut [f64], m: &[f64], x: &[f64], r: usize, c: usize, k: usize) {
+    for i in 0..r {
+        for j in 0..c {
+            let mij = m[i * c + j];
+            if mij != 0.0 {
+                let (row, src) = (&mut out[i * k..(i + 1) * k], &x[j * k..(j + 1) * k]);
+                row.iter_mut().zip(src).for_each(|(o, s)| *o += mij * s);
+            }
+        }
+    }
+}
+
+/// Assembles T_{b->r} by propagation up to `depth` blocks beyond each source's neighbours.
+pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
+    let k_rlf = ops.basis.k_rlf;
+    let k_r = ops.response.k_r;
+    let mut transfer = Transfer::default();
+    for (x, bx) in level.blocks.iter().enumerate() {
+        let Some(ex) = ops.dictionary.element(bx.shape) else { continue };
+        let k_b = ex.k_b;
+        // Light fields (as k_rlf x k_b maps from b_x) entering (block, world side).
+        let mut frontier: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
+        for &f in bx.shape.open_faces() {
+            let w = bx.world_face(f);
+            let (Some(y), Some(exit)) = (level.link(x, w), ops.basis.exit(bx.shape, f)) else { continue };
+            let a = frontier.entry((y, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
+            a.iter_mut().zip(&exit.r_b_rlf).for_each(|(a, r)| *a += r);
+        }
+        for step in 0..=depth {
+            let mut next: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
+            for ((y, entry), a) in &frontier {
+                let t = transfer.blocks.entry((x, *y, *entry)).or_insert_with(|| vec![0.0; k_r * k_b]);
+                mul_add(t, &ops.response.t_rlf_r, a, k_r, k_rlf, k_b);
+                if step == depth {
+                    continue;
+                }
+                let by = level.blocks[*y];
+                for &f in by.shape.open_faces() {
+                    let w = by.world_face(f);
+                    let (Some(z), Some(turn)) = (level.link(*y, w), turn_between(*entry, w)) else { continue };
+                    let Some((_, r)) = ops.turns.iter().find(|(t, _)| *t == turn) else { continue };
+                    let out = next.entry((z, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
+                    mul_add(out, r, a, k_rlf, k_rlf, k_b);
+                }
+            }
+            frontier = next;
+        }
+    }
+    transfer
+}
+
+/// For block `block` entered through world side `entry`: each of its samples' row in the
+/// surface response's layout (`None` on the entry side itself).
+pub fn response_rows(block: &Block, entry: Face, res: usize) -> Vec<Option<usize>> {
+    let layout = Layout::new(block.shape, res);
+    let target = response::layout(res);
+    let local_entry = block.local_face(entry);
+    let q = (0..4u8).find(|&q| turn_face(local_entry, q) == ENTRY).unwrap_or(0);
+    (0..layout.len())
+        .map(|i| {
+            let (face, _, p, _) = layout.sample(i);
+            if face == local_entry {
+                return None;
+            }
+            let c = Vec3::new(0.5, 0.0, 0.5);
+            let p = c + turn_vec(p - c, q);
+            let f = turn_face(face, q);
+            let (a, b) = f.plane_axes();
+            let taps = target.bilinear(f, p[a], p[b])?;
+            taps.iter().max_by(|x, y| x.1.total_cmp(&y.1)).map(|t| t.0)
+        })
+        .collect()
+}
+
+/// A frame's one-bounce indirect light per block (each in its element's layout) from the
+/// blocks' direct light `l_d` (the same layouts): the block's own U_b b plus the surface
+/// response to every directed interface's r.
+pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let b: Vec<Vec<f64>> = level
+        .blocks
+        .iter()
+        .zip(l_d)
+        .map(|(blk, l)| ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.project(l)))
+        .collect();
+    let mut out: Vec<Vec<f64>> = level
+        .blocks
+        .iter()
+        .zip(&b)
+        .map(|(blk, b)| ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.reconstruct(b)))
+        .collect();
+    let k_r = ops.response.k_r;
+    let mut r_sum: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
+    for ((x, y, entry), t) in &transfer.blocks {
+        let bx = &b[*x];
+        let k_b = bx.len();
+        let r = r_sum.entry((*y, *entry)).or_insert_with(|| vec![0.0; k_r]);
+        for (i, ri) in r.iter_mut().enumerate() {
+            *ri += (0..k_b).map(|j| t[i * k_b + j] * bx[j]).sum::<f64>();
+        }
+    }
+    for ((y, entry), r) in &r_sum {
+        let rows = response_rows(&level.blocks[*y], *entry, ops.dictionary.params.res);
+        let walls: Vec<f64> =
+            (0..ops.response.n).map(|i| (0..k_r).map(|j| ops.response.u_r[i * k_r + j] * r[j]).sum()).collect();
+        for (o, row) in out[*y].iter_mut().zip(rows) {
+            if let Some(row) = row {
+                *o += walls[row];
+            }
+        }
+    }
+    out
+}
+
+/// The same bounce by brute force: from every sample of every block, `rays` cosine rays traced
+/// through the level's linked openings to the wall they meet, which gives its direct light.
+pub fn brute_force(level: &Level, res: usize, l_d: &[Vec<f64>], rays: usize, seed: u64) -> Vec<Vec<f64>> {
+    use rayon::prelude::*;
+    let layouts: Vec<Layout> = level.blocks.iter().map(|b| Layout::new(b.shape, res)).collect();
+    let side = (rays as f64).sqrt().floor().max(1.0) as usize;
+    layouts
+        .iter()
+        .enumerate()
+        .map(|(x, layout)| {
+            (0..layout.len())
+                .into_par_iter()
+                .map(|i| {
+                    let (_, _, p, n) = layout.sample(i);
+                    let (t, b) = n.any_orthonormal_pair();
+                    let mut rng = Pcg32::new(seed, (x * 65536 + i) as u64, 2);
+                    let mut sum = 0.0;
+                    for a in 0..side {
+                        for c in 0..side {
+                            let (r1, r2) =
+                                ((a as f32 + rng.next_f32()) / side as f32, (c as f32 + rng.next_f32()) / side as f32);
+                            let d = cosine_direction(n, t, b, r1, r2);
+                            let Some((y, face, s, tt, _)) = level.trace(x, p, d, f32::INFINITY) else { continue };
+                            let Some(taps) = layouts[y].bilinear(face, s, tt) else { continue };
+                            sum += taps.iter().map(|(j, w)| f64::from(*w) * l_d[y][*j]).sum::<f64>();
+                        }
+                    }
+                    sum / (side * side) as f64
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The direct light of a point light at world position `light` on every block's samples:
+/// cos(theta) / max(d, radius)^2 where the shadow ray reaches it through linked openings.
+pub fn point_light(level: &Level, res: usize, light: Vec3, radius: f32) -> Vec<Vec<f64>> {
+    level
+        .blocks
+        .iter()
+        .enumerate()
+        .map(|(x, blk)| {
+            let layout = Layout::new(blk.shape, res);
+            (0..layout.len())
+                .map(|i| {
+                    let (_, _, p, n) = layout.sample(i);
+                    let to = blk.local_point(light) - p;
+                    let d = to.length();
+                    let cos = n.dot(to) / d.max(1e-9);
+                    if cos <= 0.0 || level.trace(x, p, to / d, d).is_some() {
+                        return 0.0;
+                    }
+                    f64::from(cos / d.max(radius).powi(2))
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::precompute::mrt::dictionary::{DictionaryParams, Progress};
+    use crate::precompute::mrt::lightfield::LightFieldRes;
+    use crate::precompute::mrt::{interface, propagate};
+
+    /// Three blocks along +z: a dead end open towards +z, a corridor, a dead end turned to open
+    /// towards -z.
+    fn corridor() -> Level {
+        Level::new(vec![
+            Block { shape: Shape::DeadEnd, cell: IVec3::ZERO, turns: 0 },
+            Block { shape: Shape::Corridor, cell: IVec3::new(0, 0, 1), turns: 0 },
+            Block { shape: Shape::DeadEnd, cell: IVec3::new(0, 0, 2), turns: 2 },
+        ])
+    }
+
+    #[test]
+    fn blocks_turn_about_up_and_link_where_both_sides_are_open() {
+        let b = Block { shape: Shape::DeadEnd, cell: IVec3::new(0, 0, 2), turns: 2 };
+        assert_eq!(b.world_face(Face::PosZ), Face::NegZ);
+        let p = Vec3::new(0.2, 0.3, 0.9);
+        assert!((b.local_point(b.world_point(p)) - p).length() < 1e-6);
+        let level = corridor();
+        assert_eq!(level.link_count(), 4, "two openings, both ways");
+        assert_eq!(level.link(0, Face::PosZ), Some(1));
+        assert_eq!(level.link(2, Face::NegZ), Some(1));
+        assert_eq!(turn_between(Face::NegZ, Face::PosZ), Some(Turn::Ahead));
+        assert_eq!(turn_between(Face::PosZ, Face::NegX), Some(Turn::Left));
+        // A ray down the middle from the first block's back wall reaches the last block's.
+        let hit = level.trace(0, Vec3::new(0.5, 0.5, 0.0), Vec3::Z, f32::INFINITY).expect("a wall");
+        assert_eq!((hit.0, hit.1), (2, Face::NegZ));
+        assert!((hit.4 - 3.0).abs() < 1e-3, "{}", hit.4);
+    }
+
+    /// The dictionary and interface operators at test sizes (4x4 texels, 6x6 x 10x10 x 2x2
+    /// light fields).
+    struct Built {
+        dictionary: Dictionary,
+        basis: InterfaceBasis,
+        turns: Vec<(Turn, Vec<f64>)>,
+        response: Response,
+    }
+
+    fn built() -> Built {
+        let params = DictionaryParams { res: 4, k_d: 48, k_b: 24, rays: 1024, enrichment: 1, seed: 9 };
+        let dictionary = crate::precompute::mrt::dictionary::build(&params, &Progress::default()).expect("dictionary");
+        let lf = LightFieldRes { positions: 6, directions: 10, supersample: 2 };
+        let basis = interface::build(&dictionary, &lf, 128).expect("basis");
+        let turns = Turn::ALL.iter().map(|&t| (t, propagate::reduced(&lf, t, &basis.u, basis.k_rlf))).collect();
+        let sigma = basis.sigma[..basis.k_rlf].to_vec();
+        let response = response::build(params.res, &lf, &basis.u, &sigma, basis.k_rlf, 32, 1024, 9).expect("response");
+        Built { dictionary, basis, turns, response }
+    }
+
+    /// MRT's and the brute-force bounce per block for a light at `light` (world).
+    fn compare(b: &Built, level: &Level, light: Vec3, depth: usize) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>) {
+        let ops = Operators { dictionary: &b.dictionary, basis: &b.basis, turns: &b.turns, response: &b.response };
+        let res = b.dictionary.params.res;
+        let l_d = point_light(level, res, light, 1.0 / 12.0);
+        let mrt = indirect(level, &ops, &assemble(level, &ops, depth), &l_d);
+        let truth = brute_force(level, res, &l_d, 4096, 3);
+        for (x, (m, t)) in mrt.iter().zip(&truth).enumerate() {
+            let (sm, st) = (m.iter().sum::<f64>(), t.iter().sum::<f64>());
+            let rms = (m.iter().zip(t).map(|(a, b)| (a - b).powi(2)).sum::<f64>() / t.len() as f64).sqrt();
+            let mean = st / t.len() as f64;
+            eprintln!("block {x}: mrt / brute force {:.3}, rms error {:.3} of the mean", sm / st, rms / mean);
+            // Texel by texel, not only in sum: the truncated bases blur, they must not misplace.
+            assert!(rms < 0.25 * mean, "block {x}: rms error {:.3} of the mean", rms / mean);
+        }
+        (mrt, truth, l_d)
+    }
+
+    #[test]
+    fn a_straight_three_block_corridor_matches_a_brute_force_bounce() {
+        let b = built();
+        let level = corridor();
+        // A light in the first block, off centre.
+        let (mrt, truth, l_d) = compare(&b, &level, Vec3::new(0.3, 0.6, 0.35), 4);
+        let ops = Operators { dictionary: &b.dictionary, basis: &b.basis, turns: &b.turns, response: &b.response };
+        let ratio = |x: usize| mrt[x].iter().sum::<f64>() / truth[x].iter().sum::<f64>();
+        // What the interfaces carry: without T_{b->r} each block sees only its own walls, and
+        // one step short of the far block its light from the first block's walls is missing.
+        let alone = indirect(&level, &ops, &Transfer::default(), &l_d);
+        let shallow = indirect(&level, &ops, &assemble(&level, &ops, 0), &l_d);
+        let share = |v: &[Vec<f64>], x: usize| v[x].iter().sum::<f64>() / truth[x].iter().sum::<f64>();
+        eprintln!(
+            "without interfaces {:.3} / {:.3} / {:.3}; depth 0 {:.3} / {:.3} / {:.3}",
+            share(&alone, 0),
+            share(&alone, 1),
+            share(&alone, 2),
+            share(&shallow, 0),
+            share(&shallow, 1),
+            share(&shallow, 2)
+        );
+        assert!(share(&alone, 1) < 0.8 && share(&shallow, 2) < 0.95, "the interfaces carry light");
+        assert!((ratio(0) - 1.0).abs() < 0.1, "the lit block {:.3}", ratio(0));
+        assert!((ratio(1) - 1.0).abs() < 0.15, "the next block {:.3}", ratio(1));
+        assert!((ratio(2) - 1.0).abs() < 0.25, "the far block {:.3}", ratio(2));
+    }
+
+    #[test]
+    fn light_turning_a_corner_matches_a_brute_force_bounce() {
+        // A dead end open to +z, a corner turned to join -z and +x, a dead end turned to open
+        // to -x: light from the first block turns left (facing +z, +x is on the left) into the
+        // third.
+        let level = Level::new(vec![
+            Block { shape: Shape::DeadEnd, cell: IVec3::ZERO, turns: 0 },
+            Block { shape: Shape::Corner, cell: IVec3::new(0, 0, 1), turns: 1 },
+            Block { shape: Shape::DeadEnd, cell: IVec3::new(1, 0, 1), turns: 3 },
+        ]);
+        assert_eq!(level.link_count(), 4);
+        assert_eq!(turn_between(Face::NegZ, Face::PosX), Some(Turn::Left));
+        let (mrt, truth, _) = compare(&built(), &level, Vec3::new(0.5, 0.5, 0.3), 4);
+        let ratio = |x: usize| mrt[x].iter().sum::<f64>() / truth[x].iter().sum::<f64>();
+        assert!((ratio(1) - 1.0).abs() < 0.15, "the corner {:.3}", ratio(1));
+        assert!((ratio(2) - 1.0).abs() < 0.25, "round the corner {:.3}", ratio(2));
+    }
+}
