@@ -408,8 +408,12 @@ mod tests {
         Built { dictionary, basis, turns, response }
     }
 
-    /// MRT's and the brute-force bounce per block for a light at `light` (world).
-    fn compare(b: &Built, level: &Level, light: Vec3, depth: usize) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<f64>>) {
+    /// Per block, one value per sample.
+    type PerBlock = Vec<Vec<f64>>;
+
+    /// MRT's and the brute-force bounce per block for a light at `light` (world), and the
+    /// direct light.
+    fn compare(b: &Built, level: &Level, light: Vec3, depth: usize) -> (PerBlock, PerBlock, PerBlock) {
         let ops = Operators { dictionary: &b.dictionary, basis: &b.basis, turns: &b.turns, response: &b.response };
         let res = b.dictionary.params.res;
         let l_d = point_light(level, res, light, 1.0 / 12.0);
