@@ -155,11 +155,29 @@ fn mrt_dictionary_builds_then_loads_from_its_cache_and_rejects_bad_parameters() 
     let dir = std::env::temp_dir().join(format!("bouncelab-cli-mrt-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let cache = dir.to_str().expect("utf-8");
-    let args = ["mrt-dictionary", "--res", "3", "--rays", "16", "--modes", "8", "--cache", cache];
+    let args = [
+        "mrt-dictionary",
+        "--res",
+        "3",
+        "--rays",
+        "16",
+        "--modes",
+        "8",
+        "--lf-positions",
+        "2",
+        "--lf-directions",
+        "4",
+        "--lf-supersample",
+        "1",
+        "--lf-enrichment",
+        "1",
+        "--cache",
+        cache,
+    ];
     let built = bouncelab(&args);
     let text = String::from_utf8_lossy(&built.stdout);
     assert!(built.status.success(), "{}", String::from_utf8_lossy(&built.stderr));
-    assert!(text.contains("built in") && text.contains("| closed | 54 |"), "{text}");
+    assert!(text.contains("built in") && text.contains("| closed | 54 |") && text.contains("interfaces:"), "{text}");
     let loaded = bouncelab(&args);
     assert!(String::from_utf8_lossy(&loaded.stdout).contains("loaded"), "the second run reads the cache");
     let bad = bouncelab(&["mrt-dictionary", "--res", "1", "--cache", cache]);

@@ -10,6 +10,7 @@ use std::time::Instant;
 use crate::precompute::mrt::basis::Element;
 use crate::precompute::mrt::cache::{self, Source};
 use crate::precompute::mrt::dictionary::{DictionaryParams, Progress};
+use crate::precompute::mrt::operators::InterfaceParams;
 
 /// Arguments of `bouncelab mrt-dictionary`.
 #[derive(clap::Args, Debug)]
@@ -26,16 +27,24 @@ pub struct MrtArgs {
     /// Enrichment passes.
     #[arg(long, default_value_t = DictionaryParams::default().enrichment)]
     pub enrichment: usize,
+    /// Light-field positions per side of an opening.
+    #[arg(long, default_value_t = InterfaceParams::default().positions)]
+    pub lf_positions: usize,
+    /// Light-field direction cells per side.
+    #[arg(long, default_value_t = InterfaceParams::default().directions)]
+    pub lf_directions: usize,
+    /// Light-field supersamples per side of a direction cell.
+    #[arg(long, default_value_t = InterfaceParams::default().supersample)]
+    pub lf_supersample: usize,
+    /// Enrichment passes of the light-field basis.
+    #[arg(long, default_value_t = InterfaceParams::default().enrichment)]
+    pub lf_enrichment: usize,
     /// Build even when a cached file exists (and replace it).
     #[arg(long)]
     pub rebuild: bool,
     /// Cache folder (default: the user's cache folder, `bouncelab/`).
     #[arg(long)]
     pub cache: Option<PathBuf>,
-    /// Also build the interface operators (light-field basis, propagation, surface response)
-    /// and report their figures (not cached yet).
-    #[arg(long)]
-    pub interfaces: bool,
 }
 
 /// Modes needed for `share` of the energy (sum of squares) of the spectrum `s`.
@@ -67,6 +76,13 @@ pub fn run(args: &MrtArgs) -> anyhow::Result<String> {
         rays: args.rays,
         k_b: args.modes,
         enrichment: args.enrichment,
+        interfaces: InterfaceParams {
+            positions: args.lf_positions,
+            directions: args.lf_directions,
+            supersample: args.lf_supersample,
+            enrichment: args.lf_enrichment,
+            ..InterfaceParams::default()
+        },
         ..DictionaryParams::default()
     };
     params.validate()?;
@@ -141,54 +157,42 @@ pub fn run(args: &MrtArgs) -> anyhow::Result<String> {
             furnace(e).map_or("-".into(), |w| format!("{w:.2e}"))
         )?;
     }
-    if args.interfaces {
-        interfaces(&dictionary, &mut out)?;
-    }
+    interfaces(&dictionary, &mut out)?;
     Ok(out)
 }
 
-/// Builds the interface operators at the dissertation's resolution and reports them.
+/// Reports the interface operators.
 fn interfaces(dictionary: &crate::precompute::mrt::dictionary::Dictionary, out: &mut String) -> anyhow::Result<()> {
-    use crate::precompute::mrt::lightfield::LightFieldRes;
-    use crate::precompute::mrt::{interface, propagate, response};
-    let lf = LightFieldRes::default();
-    let t = Instant::now();
-    let basis = interface::build(dictionary, &lf, 128)?;
-    let basis_s = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let turns: Vec<(propagate::Turn, Vec<f64>)> =
-        propagate::Turn::ALL.iter().map(|&turn| (turn, propagate::reduced(&lf, turn, &basis.u, basis.k_rlf))).collect();
-    let turns_s = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let sigma: Vec<f64> = basis.sigma[..basis.k_rlf].to_vec();
-    let p = &dictionary.params;
-    let resp = response::build(p.res, &lf, &basis.u, &sigma, basis.k_rlf, 32, p.rays, p.seed)?;
-    let response_s = t.elapsed().as_secs_f64();
+    let (ops, params) = (&dictionary.interfaces, &dictionary.params.interfaces);
+    let r = &ops.response;
     writeln!(
         out,
-        "interfaces: {} light fields of {} samples ({}x{} positions, {}x{} directions, {}x{} supersampled); k_rlf {} (light-field modes for 80/90/95%: {} / {} / {}); basis {basis_s:.1} s, R ahead/left/right {turns_s:.1} s, response {response_s:.1} s (k_r {}, G modes for 80/90/95%: {} / {} / {})",
-        basis.exits.len(),
-        basis.s,
-        lf.positions,
-        lf.positions,
-        lf.directions,
-        lf.directions,
-        lf.supersample,
-        lf.supersample,
-        basis.k_rlf,
-        modes_for(&basis.sigma, 0.8),
-        modes_for(&basis.sigma, 0.9),
-        modes_for(&basis.sigma, 0.95),
-        resp.k_r,
-        modes_for(&resp.sigma, 0.8),
-        modes_for(&resp.sigma, 0.9),
-        modes_for(&resp.sigma, 0.95),
+        "interfaces: light fields of {}x{} positions, {}x{} directions, {}x{} supersampled; k_rlf {} (light-field modes for 80/90/95%: {} / {} / {}) after {} enrichment passes; k_r {} (G modes for 80/90/95%: {} / {} / {})",
+        params.positions,
+        params.positions,
+        params.directions,
+        params.directions,
+        params.supersample,
+        params.supersample,
+        ops.k_rlf,
+        modes_for(&ops.sigma, 0.8),
+        modes_for(&ops.sigma, 0.9),
+        modes_for(&ops.sigma, 0.95),
+        params.enrichment,
+        r.k_r,
+        modes_for(&r.sigma, 0.8),
+        modes_for(&r.sigma, 0.9),
+        modes_for(&r.sigma, 0.95),
     )?;
-    for (turn, r) in &turns {
-        // The largest singular value of R (propagation never adds light: at most about 1).
-        let k = basis.k_rlf;
-        let m = faer::Mat::<f64>::from_fn(k, k, |i, j| r[i * k + j]);
-        let top = m.singular_values().ok().and_then(|s| s.first().copied()).unwrap_or(f64::NAN);
+    for (turn, m) in &ops.turns {
+        // The largest singular value of R: about 1 or below (a reprojection adds no light,
+        // though resampling may gather several samples onto one).
+        let k = ops.k_rlf;
+        let top = faer::Mat::<f64>::from_fn(k, k, |i, j| m[i * k + j])
+            .singular_values()
+            .ok()
+            .and_then(|s| s.first().copied())
+            .unwrap_or(f64::NAN);
         writeln!(out, "R {turn:?}: largest singular value {top:.3}")?;
     }
     Ok(())

@@ -5,8 +5,10 @@
 //!
 //! Layout (little endian): magic `BLMRTDIC`, u32 format version, u64 parameter key, the
 //! parameters, u32 element count; per element u8 shape, u32 res, n, k_d, k_b and seven
-//! length-prefixed f64 arrays (prior, prior_sigma, data_sigma, m_sigma, u_b, t_db, l_imp); then
-//! a u64 FNV-1a checksum of everything before it.
+//! length-prefixed f64 arrays (prior, prior_sigma, data_sigma, m_sigma, u_b, t_db, l_imp); the
+//! interface operators: u32 k_rlf, the light-field spectrum, u32 exit count and per exit u8
+//! shape, u8 face and R_{b->rlf}, u32 turn count and per turn u8 turn and R, the response's u32
+//! res, n, k_r, U_r, T_{rlf->r} and spectrum; then a u64 FNV-1a checksum of everything before.
 
 use std::path::{Path, PathBuf};
 
@@ -14,13 +16,17 @@ use thiserror::Error;
 
 use super::basis::Element;
 use super::dictionary::{self, Dictionary, DictionaryError, DictionaryParams, Progress};
-use super::shape::Shape;
+use super::interface::Exit;
+use super::operators::Interfaces;
+use super::propagate::Turn;
+use super::response::Response;
+use super::shape::{Face, Shape};
 
 const MAGIC: &[u8; 8] = b"BLMRTDIC";
 
 /// Bumped whenever the file layout or the precompute's algorithm changes (old files are then
 /// rebuilt, never read).
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Why a cache file was not used, or could not be written.
 #[derive(Debug, Error)]
@@ -55,11 +61,30 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 fn params_bytes(p: &DictionaryParams) -> Vec<u8> {
+    let i = &p.interfaces;
     let mut out = Vec::new();
-    for v in [p.res as u64, p.k_d as u64, p.k_b as u64, p.rays as u64, p.enrichment as u64, p.seed] {
+    for v in [
+        p.res as u64,
+        p.k_d as u64,
+        p.k_b as u64,
+        p.rays as u64,
+        p.enrichment as u64,
+        p.seed,
+        i.positions as u64,
+        i.directions as u64,
+        i.supersample as u64,
+        i.k_rlf as u64,
+        i.k_r as u64,
+        i.enrichment as u64,
+    ] {
         out.extend_from_slice(&v.to_le_bytes());
     }
     out
+}
+
+fn put_array(out: &mut Vec<u8>, a: &[f64]) {
+    out.extend_from_slice(&(a.len() as u64).to_le_bytes());
+    a.iter().for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
 }
 
 /// The key of a parameter set (with the format version).
@@ -98,10 +123,30 @@ pub fn encode(d: &Dictionary) -> Vec<u8> {
             out.extend_from_slice(&(v as u32).to_le_bytes());
         }
         for a in [&e.prior, &e.prior_sigma, &e.data_sigma, &e.m_sigma, &e.u_b, &e.t_db, &e.l_imp] {
-            out.extend_from_slice(&(a.len() as u64).to_le_bytes());
-            a.iter().for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
+            put_array(&mut out, a);
         }
     }
+    let i = &d.interfaces;
+    out.extend_from_slice(&(i.k_rlf as u32).to_le_bytes());
+    put_array(&mut out, &i.sigma);
+    out.extend_from_slice(&(i.exits.len() as u32).to_le_bytes());
+    for e in &i.exits {
+        out.push(Shape::ALL.iter().position(|s| *s == e.shape).unwrap_or(0) as u8);
+        out.push(e.face as u8);
+        put_array(&mut out, &e.r_b_rlf);
+    }
+    out.extend_from_slice(&(i.turns.len() as u32).to_le_bytes());
+    for (turn, r) in &i.turns {
+        out.push(Turn::ALL.iter().position(|t| t == turn).unwrap_or(0) as u8);
+        put_array(&mut out, r);
+    }
+    let r = &i.response;
+    for v in [r.res, r.n, r.k_r] {
+        out.extend_from_slice(&(v as u32).to_le_bytes());
+    }
+    put_array(&mut out, &r.u_r);
+    put_array(&mut out, &r.t_rlf_r);
+    put_array(&mut out, &r.sigma);
     let sum = fnv1a(&out);
     out.extend_from_slice(&sum.to_le_bytes());
     out
@@ -178,7 +223,8 @@ pub fn decode(bytes: &[u8], params: &DictionaryParams) -> Result<Dictionary, Str
     if version != FORMAT_VERSION {
         return Err(format!("format version {version}, this build reads {FORMAT_VERSION}"));
     }
-    if r.u64()? != key(params) || r.take(48)? != params_bytes(params).as_slice() {
+    let expected = params_bytes(params);
+    if r.u64()? != key(params) || r.take(expected.len())? != expected.as_slice() {
         return Err("built with other parameters".into());
     }
     let count = r.u32()? as usize;
@@ -208,10 +254,57 @@ pub fn decode(bytes: &[u8], params: &DictionaryParams) -> Result<Dictionary, Str
             l_imp: r.array(n * k_b)?,
         });
     }
+    let interfaces = read_interfaces(&mut r, params, &elements)?;
     if r.at != body.len() {
-        return Err("trailing bytes after the last element".into());
+        return Err("trailing bytes after the interface operators".into());
     }
-    Ok(Dictionary { params: *params, elements })
+    Ok(Dictionary { params: *params, elements, interfaces })
+}
+
+/// The interface operators' part of the file.
+fn read_interfaces(r: &mut Reader<'_>, params: &DictionaryParams, elements: &[Element]) -> Result<Interfaces, String> {
+    let k_rlf = r.u32()? as usize;
+    if k_rlf == 0 || k_rlf > params.interfaces.k_rlf {
+        return Err(format!("k_rlf {k_rlf} is outside 1..={}", params.interfaces.k_rlf));
+    }
+    let cols: usize = elements.iter().map(|e| e.k_b * e.shape.open_faces().len()).sum();
+    let sigma = r.spectrum(cols.max(4 * k_rlf))?;
+    let count = r.u32()? as usize;
+    if count != Shape::ALL.iter().map(|s| s.open_faces().len()).sum::<usize>() {
+        return Err(format!("{count} openings"));
+    }
+    let mut exits = Vec::with_capacity(count);
+    for _ in 0..count {
+        let shape = *Shape::ALL.get(usize::from(r.take(1)?[0])).ok_or("an unknown shape")?;
+        let face = *Face::ALL.get(usize::from(r.take(1)?[0])).ok_or("an unknown face")?;
+        let k_b = elements.iter().find(|e| e.shape == shape).map_or(0, |e| e.k_b);
+        if !shape.is_open(face) {
+            return Err(format!("an exit through the closed {face:?} side of the {}", shape.name()));
+        }
+        exits.push(Exit { shape, face, r_b_rlf: r.array(k_rlf * k_b)? });
+    }
+    let count = r.u32()? as usize;
+    if count != Turn::ALL.len() {
+        return Err(format!("{count} propagation operators"));
+    }
+    let mut turns = Vec::with_capacity(count);
+    for _ in 0..count {
+        let turn = *Turn::ALL.get(usize::from(r.take(1)?[0])).ok_or("an unknown turn")?;
+        turns.push((turn, r.array(k_rlf * k_rlf)?));
+    }
+    let (res, n, k_r) = (r.u32()? as usize, r.u32()? as usize, r.u32()? as usize);
+    if res != params.res || n != super::response::layout(res).len() || k_r == 0 || k_r > params.interfaces.k_r {
+        return Err("the surface response has inconsistent sizes".into());
+    }
+    let response = Response {
+        res,
+        n,
+        k_r,
+        u_r: r.array(n * k_r)?,
+        t_rlf_r: r.array(k_r * k_rlf)?,
+        sigma: r.spectrum(n.min(k_rlf))?,
+    };
+    Ok(Interfaces { k_rlf, sigma, exits, turns, response })
 }
 
 /// The dictionary for `params` from `dir`, or built (and written there) when the file is
@@ -239,9 +332,12 @@ pub fn load_or_build(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::precompute::mrt::operators::InterfaceParams;
 
     fn tiny() -> DictionaryParams {
-        DictionaryParams { res: 3, k_d: 12, k_b: 6, rays: 16, enrichment: 1, seed: 4 }
+        let interfaces =
+            InterfaceParams { positions: 2, directions: 2, supersample: 1, k_rlf: 12, k_r: 4, enrichment: 1 };
+        DictionaryParams { res: 3, k_d: 12, k_b: 6, rays: 16, enrichment: 1, seed: 4, interfaces }
     }
 
     #[test]

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use super::basis::{self, BasisError, Element, ElementParams};
+use super::operators::{self, InterfaceParams, Interfaces};
 use super::shape::{Layout, Shape};
 
 /// What can stop a dictionary build.
@@ -17,6 +18,9 @@ pub enum DictionaryError {
     /// A parameter is out of range.
     #[error("mrt dictionary: {name} = {value} is outside {range}")]
     Param { name: &'static str, value: String, range: &'static str },
+    /// The interface operators' precompute failed.
+    #[error("mrt dictionary, interface operators: {0}")]
+    Interfaces(#[source] BasisError),
     /// An element's precompute failed.
     #[error("mrt dictionary, element {shape}: {source}")]
     Element {
@@ -44,23 +48,31 @@ pub struct DictionaryParams {
     pub enrichment: usize,
     /// Seed of the gather's rays.
     pub seed: u64,
+    /// The interface operators'.
+    pub interfaces: InterfaceParams,
 }
 
 impl Default for DictionaryParams {
     fn default() -> Self {
-        Self { res: 16, k_d: 64, k_b: 32, rays: 4096, enrichment: 1, seed: 1 }
+        Self { res: 16, k_d: 64, k_b: 32, rays: 4096, enrichment: 1, seed: 1, interfaces: InterfaceParams::default() }
     }
 }
 
 impl DictionaryParams {
     /// Checks ranges.
     pub fn validate(&self) -> Result<(), DictionaryError> {
-        let checks: [(&'static str, bool, String, &'static str); 5] = [
+        let i = &self.interfaces;
+        let checks: [(&'static str, bool, String, &'static str); 10] = [
             ("res", (2..=32).contains(&self.res), self.res.to_string(), "2..=32"),
             ("k_d", (1..=256).contains(&self.k_d), self.k_d.to_string(), "1..=256"),
             ("k_b", (1..=self.k_d).contains(&self.k_b), self.k_b.to_string(), "1..=k_d"),
             ("rays", (1..=1 << 20).contains(&self.rays), self.rays.to_string(), "1..=1048576"),
             ("enrichment", self.enrichment <= 4, self.enrichment.to_string(), "0..=4"),
+            ("interfaces.positions", (2..=32).contains(&i.positions), i.positions.to_string(), "2..=32"),
+            ("interfaces.directions", (2..=64).contains(&i.directions), i.directions.to_string(), "2..=64"),
+            ("interfaces.supersample", (1..=8).contains(&i.supersample), i.supersample.to_string(), "1..=8"),
+            ("interfaces.k_r", (1..=i.k_rlf).contains(&i.k_r), i.k_r.to_string(), "1..=k_rlf"),
+            ("interfaces.k_rlf", (1..=512).contains(&i.k_rlf), i.k_rlf.to_string(), "1..=512"),
         ];
         match checks.into_iter().find(|c| !c.1) {
             Some((name, _, value, range)) => Err(DictionaryError::Param { name, value, range }),
@@ -79,9 +91,14 @@ impl DictionaryParams {
         }
     }
 
-    /// Texels gathered in a whole build (the progress total).
-    pub fn total_work(&self) -> usize {
+    /// Texels gathered by the elements' precompute (the interfaces count as a third more).
+    fn element_work(&self) -> usize {
         Shape::ALL.iter().map(|s| Layout::new(*s, self.res).len()).sum::<usize>() * (1 + self.enrichment)
+    }
+
+    /// The progress total: the elements' texels, and the interface operators as a third more.
+    pub fn total_work(&self) -> usize {
+        self.element_work() + self.element_work() / 3
     }
 }
 
@@ -125,6 +142,8 @@ pub struct Dictionary {
     pub params: DictionaryParams,
     /// One element per shape, in [`Shape::ALL`] order.
     pub elements: Vec<Element>,
+    /// The interface operators.
+    pub interfaces: Interfaces,
 }
 
 impl Dictionary {
@@ -134,9 +153,14 @@ impl Dictionary {
     }
 
     /// Bytes of its operators as the runtime stores them (f32 U_b, T_{d->b}; L_imp kept for
-    /// DRT).
+    /// DRT; the interface operators).
     pub fn runtime_bytes(&self) -> usize {
-        self.elements.iter().map(|e| 4 * (e.u_b.len() + e.t_db.len() + e.l_imp.len())).sum()
+        let i = &self.interfaces;
+        let interfaces = i.exits.iter().map(|e| e.r_b_rlf.len()).sum::<usize>()
+            + i.turns.iter().map(|t| t.1.len()).sum::<usize>()
+            + i.response.u_r.len()
+            + i.response.t_rlf_r.len();
+        self.elements.iter().map(|e| 4 * (e.u_b.len() + e.t_db.len() + e.l_imp.len())).sum::<usize>() + 4 * interfaces
     }
 }
 
@@ -155,7 +179,12 @@ pub fn build(params: &DictionaryParams, progress: &Progress) -> Result<Dictionar
                 .map_err(|source| DictionaryError::Element { shape: shape.name(), source })
         })
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(Dictionary { params: *params, elements })
+    if progress.cancel.load(Ordering::Relaxed) {
+        return Err(DictionaryError::Interfaces(BasisError::Cancelled));
+    }
+    let interfaces = operators::build(&elements, params, &params.interfaces).map_err(DictionaryError::Interfaces)?;
+    progress.done.store(params.total_work(), Ordering::Relaxed);
+    Ok(Dictionary { params: *params, elements, interfaces })
 }
 
 #[cfg(test)]
@@ -163,7 +192,9 @@ mod tests {
     use super::*;
 
     fn tiny() -> DictionaryParams {
-        DictionaryParams { res: 3, k_d: 16, k_b: 8, rays: 64, enrichment: 1, seed: 2 }
+        let interfaces =
+            InterfaceParams { positions: 2, directions: 4, supersample: 1, k_rlf: 24, k_r: 8, enrichment: 1 };
+        DictionaryParams { res: 3, k_d: 16, k_b: 8, rays: 64, enrichment: 1, seed: 2, interfaces }
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! implicit lights (the columns of L_imp) send out through the opening; all of them, each
 //! element's columns balanced to equal energy (eq. 4.1), reduced by an SVD to k_rlf modes. The
 //! SVD goes through the Gram matrix (c x c, c = 12 openings x k_b columns) in f64, then
-//! U~ = H V S^-1. Coefficients are orthonormal (light field ~ U~ q): R_{b->rlf} = U~^T H_lf of the
+//! U~ = H V S^-1; enrichment through the propagation operators follows (App. A). Coefficients are orthonormal (light field ~ U~ q): R_{b->rlf} = U~^T H_lf of the
 //! *unscaled* light fields, so that b maps to physical radiance.
 //!
 //! The propagation (R ahead / left / right) and surface-response (G, U_r, T_{rlf->r}) operators
@@ -12,8 +12,9 @@
 use faer::Mat;
 
 use super::basis::BasisError;
-use super::dictionary::Dictionary;
+use super::basis::Element;
 use super::lightfield::{self, LightFieldRes};
+use super::propagate;
 use super::shape::{Face, Layout, Shape};
 
 /// One element's operator from b to the light field leaving one of its openings.
@@ -56,20 +57,59 @@ impl InterfaceBasis {
     }
 }
 
+/// An orthonormal basis of the column space of `h` (s x c) through its Gram matrix: U~ (s x k,
+/// row-major) and all singular values. Modes below 1e-4 of the first are dropped: through the
+/// Gram matrix an eigenvector of relative singular value x carries an error of about
+/// 1e-16 / x^2 (those modes hold under 1e-8 of the energy).
+fn reduce(h: &Mat<f64>, k_max: usize) -> Result<(Vec<f64>, Vec<f64>, usize), BasisError> {
+    let (s, cols) = (h.nrows(), h.ncols());
+    let gram = h.transpose() * h;
+    let d = gram.thin_svd().map_err(|_| BasisError::Svd { what: "light-field Gram matrix", rows: cols, cols })?;
+    let sigma: Vec<f64> = (0..cols).map(|j| d.S()[j].max(0.0).sqrt()).collect();
+    let top = sigma.first().copied().unwrap_or(0.0);
+    let k = sigma.iter().take(k_max).take_while(|x| **x > 1e-4 * top && **x > 0.0).count();
+    let hv = h * d.V().subcols(0, k);
+    let u = (0..s).flat_map(|i| (0..k).map(move |j| (i, j))).map(|(i, j)| hv[(i, j)] / sigma[j]).collect();
+    Ok((u, sigma, k))
+}
+
+/// Side by side, each block scaled to unit Frobenius norm (App. A's balancing).
+fn balanced(blocks: &[(&[f64], usize)], s: usize) -> Mat<f64> {
+    let norms: Vec<f64> = blocks.iter().map(|(a, _)| a.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-300)).collect();
+    let cols: usize = blocks.iter().map(|b| b.1).sum();
+    Mat::<f64>::from_fn(s, cols, |i, c| {
+        let mut c = c;
+        for ((a, k), norm) in blocks.iter().zip(&norms) {
+            if c < *k {
+                return a[i * k + c] / norm;
+            }
+            c -= k;
+        }
+        0.0
+    })
+}
+
 /// Builds the basis from `dictionary`'s implicit lights, keeping `k_rlf` modes (128 in the
-/// dissertation).
-pub fn build(dictionary: &Dictionary, res: &LightFieldRes, k_rlf: usize) -> Result<InterfaceBasis, BasisError> {
+/// dissertation), then enriches it `enrichment` times (digest section 4.4, the dissertation's 3):
+/// the basis light fields H_rlf = U~ S pushed through the propagation operators (ahead, left,
+/// right) join H_rlf, balanced, and a new basis of k_rlf modes is taken, so that light carried
+/// one more block stays in span.
+pub fn build(
+    elements: &[Element],
+    res: &LightFieldRes,
+    k_rlf: usize,
+    enrichment: usize,
+) -> Result<InterfaceBasis, BasisError> {
     let s = res.len();
     // Each opening's light fields, s x k_b, and the element balancing of eq. 4.1.
     let mut fields: Vec<(Shape, Face, usize, Vec<f64>)> = Vec::new();
-    for e in dictionary.elements.iter().filter(|e| !e.shape.open_faces().is_empty()) {
+    for e in elements.iter().filter(|e| !e.shape.open_faces().is_empty()) {
         let layout = Layout::new(e.shape, e.res);
         for &face in e.shape.open_faces() {
             fields.push((e.shape, face, e.k_b, lightfield::trace(&layout, face, &e.l_imp, e.k_b, res)));
         }
     }
-    let sums: Vec<(Shape, f64)> = dictionary
-        .elements
+    let sums: Vec<(Shape, f64)> = elements
         .iter()
         .filter(|e| !e.shape.open_faces().is_empty())
         .map(|e| (e.shape, e.m_sigma.iter().map(|x| x * x).sum::<f64>()))
@@ -90,18 +130,17 @@ pub fn build(dictionary: &Dictionary, res: &LightFieldRes, k_rlf: usize) -> Resu
         }
         0.0
     });
-    let gram = h.transpose() * &h;
-    let d = gram.thin_svd().map_err(|_| BasisError::Svd { what: "light-field Gram matrix", rows: cols, cols })?;
-    let sigma: Vec<f64> = (0..cols).map(|j| d.S()[j].max(0.0).sqrt()).collect();
-    let top = sigma.first().copied().unwrap_or(0.0);
-    // Through the Gram matrix an eigenvector of relative singular value x carries an error of
-    // about 1e-16 / x^2: modes below 1e-4 of the first (1e-8 of its energy) are dropped.
-    let k_rlf = sigma.iter().take(k_rlf).take_while(|x| **x > 1e-4 * top && **x > 0.0).count();
-    // U~ = H V S^-1 for the kept modes.
-    let v = d.V();
-    let hv = &h * v.subcols(0, k_rlf);
-    let u: Vec<f64> =
-        (0..s).flat_map(|i| (0..k_rlf).map(move |j| (i, j))).map(|(i, j)| hv[(i, j)] / sigma[j]).collect();
+    let (mut u, mut sigma, mut k) = reduce(&h, k_rlf)?;
+    for _ in 0..enrichment {
+        let scaled: Vec<f64> =
+            u.chunks_exact(k.max(1)).flat_map(|row| row.iter().zip(&sigma).map(|(x, sg)| x * sg)).collect();
+        let pushed: Vec<Vec<f64>> =
+            propagate::Turn::ALL.iter().map(|&turn| propagate::resample(res, turn, &scaled, k)).collect();
+        let mut blocks: Vec<(&[f64], usize)> = vec![(&scaled, k)];
+        blocks.extend(pushed.iter().map(|p| (p.as_slice(), k)));
+        (u, sigma, k) = reduce(&balanced(&blocks, s), k_rlf)?;
+    }
+    let k_rlf = k;
     // R_{b->rlf} = U~^T H (unscaled).
     let exits = fields
         .iter()
@@ -127,13 +166,16 @@ pub fn build(dictionary: &Dictionary, res: &LightFieldRes, k_rlf: usize) -> Resu
 mod tests {
     use super::*;
     use crate::precompute::mrt::dictionary::{DictionaryParams, Progress};
+    use crate::precompute::mrt::operators::InterfaceParams;
 
     #[test]
     fn the_basis_is_orthonormal_and_carries_each_openings_light_fields() {
-        let params = DictionaryParams { res: 3, k_d: 16, k_b: 6, rays: 64, enrichment: 1, seed: 3 };
+        let interfaces =
+            InterfaceParams { positions: 2, directions: 2, supersample: 1, k_rlf: 8, k_r: 4, enrichment: 0 };
+        let params = DictionaryParams { res: 3, k_d: 16, k_b: 6, rays: 64, enrichment: 1, seed: 3, interfaces };
         let dictionary = crate::precompute::mrt::dictionary::build(&params, &Progress::default()).expect("dictionary");
         let res = LightFieldRes { positions: 3, directions: 4, supersample: 2 };
-        let basis = build(&dictionary, &res, 128).expect("basis");
+        let basis = build(&dictionary.elements, &res, 128, 0).expect("basis");
         assert_eq!(basis.exits.len(), 12, "every open side of the dictionary");
         // Orthonormal columns.
         for a in 0..basis.k_rlf {

@@ -13,9 +13,9 @@ use glam::{IVec3, Vec3};
 
 use super::dictionary::Dictionary;
 use super::gather::cosine_direction;
-use super::interface::InterfaceBasis;
+use super::operators::Interfaces;
 use super::propagate::{ENTRY, Turn};
-use super::response::{self, Response};
+use super::response;
 use super::shape::{Face, Layout, Shape, exit};
 use crate::precompute::rng::Pcg32;
 
@@ -164,12 +164,8 @@ pub fn turn_between(entry: Face, exit: Face) -> Option<Turn> {
 pub struct Operators<'a> {
     /// The dictionary.
     pub dictionary: &'a Dictionary,
-    /// The light-field basis and each opening's R_{b->rlf}.
-    pub basis: &'a InterfaceBasis,
-    /// R ahead, left and right (k_rlf x k_rlf each).
-    pub turns: &'a [(Turn, Vec<f64>)],
-    /// The surface response.
-    pub response: &'a Response,
+    /// The interface operators.
+    pub interfaces: &'a Interfaces,
 }
 
 /// T_{b->r}: for each source block and each directed interface (receiving block, its world entry
@@ -195,8 +191,8 @@ fn mul_add(out: &mut [f64], m: &[f64], x: &[f64], r: usize, c: usize, k: usize) 
 
 /// Assembles T_{b->r} by propagation up to `depth` blocks beyond each source's neighbours.
 pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
-    let k_rlf = ops.basis.k_rlf;
-    let k_r = ops.response.k_r;
+    let k_rlf = ops.interfaces.k_rlf;
+    let k_r = ops.interfaces.response.k_r;
     let mut transfer = Transfer::default();
     for (x, bx) in level.blocks.iter().enumerate() {
         let Some(ex) = ops.dictionary.element(bx.shape) else { continue };
@@ -205,7 +201,7 @@ pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
         let mut frontier: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
         for &f in bx.shape.open_faces() {
             let w = bx.world_face(f);
-            let (Some(y), Some(exit)) = (level.link(x, w), ops.basis.exit(bx.shape, f)) else { continue };
+            let (Some(y), Some(exit)) = (level.link(x, w), ops.interfaces.exit(bx.shape, f)) else { continue };
             let a = frontier.entry((y, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
             a.iter_mut().zip(&exit.r_b_rlf).for_each(|(a, r)| *a += r);
         }
@@ -213,7 +209,7 @@ pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
             let mut next: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
             for ((y, entry), a) in &frontier {
                 let t = transfer.blocks.entry((x, *y, *entry)).or_insert_with(|| vec![0.0; k_r * k_b]);
-                mul_add(t, &ops.response.t_rlf_r, a, k_r, k_rlf, k_b);
+                mul_add(t, &ops.interfaces.response.t_rlf_r, a, k_r, k_rlf, k_b);
                 if step == depth {
                     continue;
                 }
@@ -221,7 +217,7 @@ pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
                 for &f in by.shape.open_faces() {
                     let w = by.world_face(f);
                     let (Some(z), Some(turn)) = (level.link(*y, w), turn_between(*entry, w)) else { continue };
-                    let Some((_, r)) = ops.turns.iter().find(|(t, _)| *t == turn) else { continue };
+                    let Some(r) = ops.interfaces.turn(turn) else { continue };
                     let out = next.entry((z, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
                     mul_add(out, r, a, k_rlf, k_rlf, k_b);
                 }
@@ -271,7 +267,8 @@ pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[
         .zip(&b)
         .map(|(blk, b)| ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.reconstruct(b)))
         .collect();
-    let k_r = ops.response.k_r;
+    let response = &ops.interfaces.response;
+    let k_r = response.k_r;
     let mut r_sum: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
     for ((x, y, entry), t) in &transfer.blocks {
         let bx = &b[*x];
@@ -284,7 +281,7 @@ pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[
     for ((y, entry), r) in &r_sum {
         let rows = response_rows(&level.blocks[*y], *entry, ops.dictionary.params.res);
         let walls: Vec<f64> =
-            (0..ops.response.n).map(|i| (0..k_r).map(|j| ops.response.u_r[i * k_r + j] * r[j]).sum()).collect();
+            (0..response.n).map(|i| (0..k_r).map(|j| response.u_r[i * k_r + j] * r[j]).sum()).collect();
         for (o, row) in out[*y].iter_mut().zip(rows) {
             if let Some(row) = row {
                 *o += walls[row];
@@ -357,8 +354,7 @@ pub fn point_light(level: &Level, res: usize, light: Vec3, radius: f32) -> Vec<V
 mod tests {
     use super::*;
     use crate::precompute::mrt::dictionary::{DictionaryParams, Progress};
-    use crate::precompute::mrt::lightfield::LightFieldRes;
-    use crate::precompute::mrt::{interface, propagate};
+    use crate::precompute::mrt::operators::InterfaceParams;
 
     /// Three blocks along +z: a dead end open towards +z, a corridor, a dead end turned to open
     /// towards -z.
@@ -388,24 +384,13 @@ mod tests {
         assert!((hit.4 - 3.0).abs() < 1e-3, "{}", hit.4);
     }
 
-    /// The dictionary and interface operators at test sizes (4x4 texels, 6x6 x 10x10 x 2x2
-    /// light fields).
-    struct Built {
-        dictionary: Dictionary,
-        basis: InterfaceBasis,
-        turns: Vec<(Turn, Vec<f64>)>,
-        response: Response,
-    }
-
-    fn built() -> Built {
-        let params = DictionaryParams { res: 4, k_d: 48, k_b: 24, rays: 1024, enrichment: 1, seed: 9 };
-        let dictionary = crate::precompute::mrt::dictionary::build(&params, &Progress::default()).expect("dictionary");
-        let lf = LightFieldRes { positions: 6, directions: 10, supersample: 2 };
-        let basis = interface::build(&dictionary, &lf, 128).expect("basis");
-        let turns = Turn::ALL.iter().map(|&t| (t, propagate::reduced(&lf, t, &basis.u, basis.k_rlf))).collect();
-        let sigma = basis.sigma[..basis.k_rlf].to_vec();
-        let response = response::build(params.res, &lf, &basis.u, &sigma, basis.k_rlf, 32, 1024, 9).expect("response");
-        Built { dictionary, basis, turns, response }
+    /// The dictionary with its interface operators at test sizes (4x4 texels, 6x6 x 10x10 x
+    /// 2x2 light fields, one enrichment pass).
+    fn built() -> Dictionary {
+        let interfaces =
+            InterfaceParams { positions: 6, directions: 10, supersample: 2, k_rlf: 128, k_r: 32, enrichment: 1 };
+        let params = DictionaryParams { res: 4, k_d: 48, k_b: 24, rays: 1024, enrichment: 1, seed: 9, interfaces };
+        crate::precompute::mrt::dictionary::build(&params, &Progress::default()).expect("dictionary")
     }
 
     /// Per block, one value per sample.
@@ -413,9 +398,9 @@ mod tests {
 
     /// MRT's and the brute-force bounce per block for a light at `light` (world), and the
     /// direct light.
-    fn compare(b: &Built, level: &Level, light: Vec3, depth: usize) -> (PerBlock, PerBlock, PerBlock) {
-        let ops = Operators { dictionary: &b.dictionary, basis: &b.basis, turns: &b.turns, response: &b.response };
-        let res = b.dictionary.params.res;
+    fn compare(d: &Dictionary, level: &Level, light: Vec3, depth: usize) -> (PerBlock, PerBlock, PerBlock) {
+        let ops = Operators { dictionary: d, interfaces: &d.interfaces };
+        let res = d.params.res;
         let l_d = point_light(level, res, light, 1.0 / 12.0);
         let mrt = indirect(level, &ops, &assemble(level, &ops, depth), &l_d);
         let truth = brute_force(level, res, &l_d, 4096, 3);
@@ -436,7 +421,7 @@ mod tests {
         let level = corridor();
         // A light in the first block, off centre.
         let (mrt, truth, l_d) = compare(&b, &level, Vec3::new(0.3, 0.6, 0.35), 4);
-        let ops = Operators { dictionary: &b.dictionary, basis: &b.basis, turns: &b.turns, response: &b.response };
+        let ops = Operators { dictionary: &b, interfaces: &b.interfaces };
         let ratio = |x: usize| mrt[x].iter().sum::<f64>() / truth[x].iter().sum::<f64>();
         // What the interfaces carry: without T_{b->r} each block sees only its own walls, and
         // one step short of the far block its light from the first block's walls is missing.

@@ -15,6 +15,7 @@ pub mod gather;
 pub mod interface;
 pub mod level;
 pub mod lightfield;
+pub mod operators;
 pub mod prior;
 pub mod propagate;
 pub mod response;
