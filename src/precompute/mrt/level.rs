@@ -1,15 +1,15 @@
-//! An MRT level: dictionary blocks on a grid of unit cells, each turned a number of quarter turns
-//! about up, joined where two neighbours both leave their shared side open (Loos 2015 §3.5.3,
-//! digest section 4.5). This module finds the links, assembles the sparse block-to-interface
+//! An MRT level: dictionary blocks, each a box (the unit cube warped to its size, Loos 2015
+//! §3.5.2) turned a number of quarter turns about up, joined where two neighbours' open sides
+//! lie on one plane and overlap (§3.5.3, digest section 4.5). This module finds the links, assembles the sparse block-to-interface
 //! transfer T_{b->r} by depth-limited propagation (dynamic programming by depth: paths of equal
 //! length into the same directed interface are summed, never sent back out through the side
 //! they came in by), evaluates a frame's indirect light from the blocks' direct light in the
 //! reduced spaces, and, for tests and the inspector, gathers the same bounce by brute force
-//! through the level's cells.
+//! through the level's blocks.
 
 use std::collections::HashMap;
 
-use glam::{IVec3, Vec3};
+use glam::Vec3;
 
 use super::dictionary::Dictionary;
 use super::gather::cosine_direction;
@@ -19,14 +19,16 @@ use super::response;
 use super::shape::{Face, Layout, Shape, exit};
 use crate::precompute::rng::Pcg32;
 
-/// One block: a dictionary shape in a unit grid cell, turned `turns` quarter turns about up
-/// (each maps +x to -z, as [`Face::rotated_about_up`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// One block: a dictionary shape turned `turns` quarter turns about up (each maps +x to -z, as
+/// [`Face::rotated_about_up`]) and stretched to the world box `origin .. origin + size`.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Block {
     /// The dictionary shape.
     pub shape: Shape,
-    /// The grid cell (its minimum corner in world units).
-    pub cell: IVec3,
+    /// The box's minimum corner (world).
+    pub origin: Vec3,
+    /// The box's size along world x, y, z.
+    pub size: Vec3,
     /// Quarter turns about up, 0..4.
     pub turns: u8,
 }
@@ -51,26 +53,40 @@ impl Block {
         turn_face(w, (4 - self.turns % 4) % 4)
     }
 
+    /// A unit block at the grid cell `cell`.
+    pub fn unit(shape: Shape, cell: [i32; 3], turns: u8) -> Self {
+        let origin = Vec3::new(cell[0] as f32, cell[1] as f32, cell[2] as f32);
+        Self { shape, origin, size: Vec3::ONE, turns }
+    }
+
     /// A canonical point in world space.
     pub fn world_point(&self, p: Vec3) -> Vec3 {
         let c = Vec3::new(0.5, 0.0, 0.5);
-        c + turn_vec(p - c, self.turns) + self.cell.as_vec3()
+        self.origin + (c + turn_vec(p - c, self.turns)) * self.size
     }
 
     /// A world point in the block's canonical frame.
     pub fn local_point(&self, w: Vec3) -> Vec3 {
         let c = Vec3::new(0.5, 0.0, 0.5);
-        c + turn_vec(w - self.cell.as_vec3() - c, (4 - self.turns % 4) % 4)
+        c + turn_vec((w - self.origin) / self.size - c, (4 - self.turns % 4) % 4)
     }
 
-    /// A canonical direction in world space.
+    /// A canonical direction in world space (unit length).
     pub fn world_dir(&self, d: Vec3) -> Vec3 {
-        turn_vec(d, self.turns)
+        (turn_vec(d, self.turns) * self.size).normalize_or_zero()
     }
 
-    /// A world direction in the canonical frame.
+    /// A world direction in the canonical frame (unit length).
     pub fn local_dir(&self, d: Vec3) -> Vec3 {
-        turn_vec(d, (4 - self.turns % 4) % 4)
+        turn_vec(d / self.size, (4 - self.turns % 4) % 4).normalize_or_zero()
+    }
+
+    /// The world rectangle of world side `w`: its plane coordinate and its extent over the two
+    /// other axes (min, max).
+    fn side(&self, w: Face) -> (f32, Vec3, Vec3) {
+        let a = w.axis();
+        let plane = if w.positive() { self.origin[a] + self.size[a] } else { self.origin[a] };
+        (plane, self.origin, self.origin + self.size)
     }
 }
 
@@ -83,30 +99,50 @@ pub struct Level {
     links: HashMap<(usize, Face), usize>,
 }
 
-/// The offset to the cell beyond world side `w`.
-fn beyond(w: Face) -> IVec3 {
-    let mut o = IVec3::ZERO;
-    o[w.axis()] = if w.positive() { 1 } else { -1 };
-    o
+/// Whether block `a`'s world side `w` and block `b`'s opposite side lie on one plane (within
+/// `tol`) and overlap over an area.
+fn facing(a: &Block, b: &Block, w: Face, tol: f32) -> bool {
+    let (pa, lo_a, hi_a) = a.side(w);
+    let (pb, lo_b, hi_b) = b.side(w.opposite());
+    if (pa - pb).abs() > tol {
+        return false;
+    }
+    (0..3).filter(|&k| k != w.axis()).all(|k| hi_a[k].min(hi_b[k]) - lo_a[k].max(lo_b[k]) > tol)
 }
 
 impl Level {
-    /// The level of `blocks`: two blocks are linked through a side when both leave it open.
+    /// The level of `blocks`: two blocks are linked through a side when both leave it open and
+    /// the two sides face each other (same plane within 1 cm or 1% of the smaller block,
+    /// overlapping).
     pub fn new(blocks: Vec<Block>) -> Self {
-        let at: HashMap<IVec3, usize> = blocks.iter().enumerate().map(|(i, b)| (b.cell, i)).collect();
         let mut links = HashMap::new();
         for (i, b) in blocks.iter().enumerate() {
             for &f in b.shape.open_faces() {
                 let w = b.world_face(f);
-                if let Some(&j) = at.get(&(b.cell + beyond(w))) {
-                    let other = blocks[j];
-                    if other.shape.is_open(other.local_face(w.opposite())) {
-                        links.insert((i, w), j);
-                    }
+                let found = blocks.iter().enumerate().find(|(j, o)| {
+                    let tol = (0.01 * b.size.min_element().min(o.size.min_element())).max(0.01);
+                    *j != i && o.shape.is_open(o.local_face(w.opposite())) && facing(b, o, w, tol)
+                });
+                if let Some((j, _)) = found {
+                    links.insert((i, w), j);
                 }
             }
         }
         Self { blocks, links }
+    }
+
+    /// Open sides that lead nowhere (block, world side): light leaves the level there.
+    pub fn unlinked(&self) -> Vec<(usize, Face)> {
+        let mut out = Vec::new();
+        for (i, b) in self.blocks.iter().enumerate() {
+            for &f in b.shape.open_faces() {
+                let w = b.world_face(f);
+                if self.link(i, w).is_none() {
+                    out.push((i, w));
+                }
+            }
+        }
+        out
     }
 
     /// The neighbour beyond block `i`'s world side `w`, if linked.
@@ -120,28 +156,30 @@ impl Level {
     }
 
     /// Where a ray from canonical point `p` of block `i` along canonical direction `d` first
-    /// meets a wall, crossing linked openings: (block, canonical face, s, t, distance); `None`
-    /// when it leaves the level through an unlinked opening or runs past `max_dist`.
+    /// meets a wall, crossing linked openings: (block, canonical face, s, t, world distance);
+    /// `None` when it leaves the level through an unlinked opening or runs past `max_dist`
+    /// (world units).
     pub fn trace(&self, i: usize, p: Vec3, d: Vec3, max_dist: f32) -> Option<(usize, Face, f32, f32, f32)> {
         let (mut block, mut p, mut d, mut travelled) = (i, p, d, 0.0f32);
         for _ in 0..4 * self.blocks.len() + 4 {
             let b = self.blocks[block];
             let (face, s, t, dist) = exit(p, d);
-            if travelled + dist > max_dist {
+            let world = b.world_point(p + d * dist);
+            let step = (world - b.world_point(p)).length();
+            if travelled + step > max_dist {
                 return None;
             }
             if !b.shape.is_open(face) {
-                return Some((block, face, s, t, travelled + dist));
+                return Some((block, face, s, t, travelled + step));
             }
             let w = b.world_face(face);
             let next = self.link(block, w)?;
-            let world = b.world_point(p + d * dist);
             let world_dir = b.world_dir(d);
             let nb = self.blocks[next];
             // Step just past the shared side so the next block's exit is not the side itself.
             p = nb.local_point(world + world_dir * 1e-5).clamp(Vec3::ZERO, Vec3::ONE);
             d = nb.local_dir(world_dir);
-            travelled += dist;
+            travelled += step;
             block = next;
         }
         None
@@ -293,6 +331,8 @@ pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[
 
 /// The same bounce by brute force: from every sample of every block, `rays` cosine rays traced
 /// through the level's linked openings to the wall they meet, which gives its direct light.
+/// Rays are cosine-distributed in each block's canonical (unit-cube) frame: exact for unit
+/// blocks, the warped approximation MRT itself makes for stretched ones.
 pub fn brute_force(level: &Level, res: usize, l_d: &[Vec<f64>], rays: usize, seed: u64) -> Vec<Vec<f64>> {
     use rayon::prelude::*;
     let layouts: Vec<Layout> = level.blocks.iter().map(|b| Layout::new(b.shape, res)).collect();
@@ -337,10 +377,10 @@ pub fn point_light(level: &Level, res: usize, light: Vec3, radius: f32) -> Vec<V
             (0..layout.len())
                 .map(|i| {
                     let (_, _, p, n) = layout.sample(i);
-                    let to = blk.local_point(light) - p;
+                    let to = light - blk.world_point(p);
                     let d = to.length();
-                    let cos = n.dot(to) / d.max(1e-9);
-                    if cos <= 0.0 || level.trace(x, p, to / d, d).is_some() {
+                    let cos = turn_vec(n, blk.turns).dot(to) / d.max(1e-9);
+                    if cos <= 0.0 || level.trace(x, p, blk.local_dir(to / d.max(1e-9)), d).is_some() {
                         return 0.0;
                     }
                     f64::from(cos / d.max(radius).powi(2))
@@ -360,15 +400,15 @@ mod tests {
     /// towards -z.
     fn corridor() -> Level {
         Level::new(vec![
-            Block { shape: Shape::DeadEnd, cell: IVec3::ZERO, turns: 0 },
-            Block { shape: Shape::Corridor, cell: IVec3::new(0, 0, 1), turns: 0 },
-            Block { shape: Shape::DeadEnd, cell: IVec3::new(0, 0, 2), turns: 2 },
+            Block::unit(Shape::DeadEnd, [0, 0, 0], 0),
+            Block::unit(Shape::Corridor, [0, 0, 1], 0),
+            Block::unit(Shape::DeadEnd, [0, 0, 2], 2),
         ])
     }
 
     #[test]
     fn blocks_turn_about_up_and_link_where_both_sides_are_open() {
-        let b = Block { shape: Shape::DeadEnd, cell: IVec3::new(0, 0, 2), turns: 2 };
+        let b = Block::unit(Shape::DeadEnd, [0, 0, 2], 2);
         assert_eq!(b.world_face(Face::PosZ), Face::NegZ);
         let p = Vec3::new(0.2, 0.3, 0.9);
         assert!((b.local_point(b.world_point(p)) - p).length() < 1e-6);
@@ -376,6 +416,23 @@ mod tests {
         assert_eq!(level.link_count(), 4, "two openings, both ways");
         assert_eq!(level.link(0, Face::PosZ), Some(1));
         assert_eq!(level.link(2, Face::NegZ), Some(1));
+        assert!(level.unlinked().is_empty());
+        // A stretched block keeps its links: the same corridor, twice as long and 3 m high.
+        let stretched = Level::new(
+            level
+                .blocks
+                .iter()
+                .map(|b| Block { origin: b.origin * Vec3::new(1.0, 1.0, 2.0), size: Vec3::new(1.0, 3.0, 2.0), ..*b })
+                .collect(),
+        );
+        assert_eq!(stretched.link_count(), 4);
+        let sb = stretched.blocks[2];
+        let q = Vec3::new(0.25, 0.5, 0.75);
+        assert!((sb.local_point(sb.world_point(q)) - q).length() < 1e-5);
+        assert!((sb.local_dir(sb.world_dir(Vec3::new(0.0, 0.6, 0.8))) - Vec3::new(0.0, 0.6, 0.8)).length() < 1e-5);
+        // Without the last block its neighbour's far side opens onto nothing.
+        let open_end = Level::new(level.blocks[..2].to_vec());
+        assert_eq!(open_end.unlinked(), vec![(1, Face::PosZ)]);
         assert_eq!(turn_between(Face::NegZ, Face::PosZ), Some(Turn::Ahead));
         assert_eq!(turn_between(Face::PosZ, Face::NegX), Some(Turn::Left));
         // A ray down the middle from the first block's back wall reaches the last block's.
@@ -449,9 +506,9 @@ mod tests {
         // to -x: light from the first block turns left (facing +z, +x is on the left) into the
         // third.
         let level = Level::new(vec![
-            Block { shape: Shape::DeadEnd, cell: IVec3::ZERO, turns: 0 },
-            Block { shape: Shape::Corner, cell: IVec3::new(0, 0, 1), turns: 1 },
-            Block { shape: Shape::DeadEnd, cell: IVec3::new(1, 0, 1), turns: 3 },
+            Block::unit(Shape::DeadEnd, [0, 0, 0], 0),
+            Block::unit(Shape::Corner, [0, 0, 1], 1),
+            Block::unit(Shape::DeadEnd, [1, 0, 1], 3),
         ]);
         assert_eq!(level.link_count(), 4);
         assert_eq!(turn_between(Face::NegZ, Face::PosX), Some(Turn::Left));

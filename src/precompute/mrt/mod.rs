@@ -6,7 +6,9 @@
 //! the light fields at openings ([`lightfield`]) and their reduced basis with each opening's
 //! R_{b->rlf} ([`interface`]), the propagation through a block ahead, left or right
 //! ([`propagate`]) and a block's surface response to entering light ([`response`]: U_r,
-//! T_{rlf->r}). The level assembly of T_{b->r} and the runtime build on these.
+//! T_{rlf->r}); a level of blocks from the scene's proxy boxes ([`proxy`]) with its links,
+//! T_{b->r} and a frame's indirect light in the reduced spaces ([`level`]). The GPU runtime
+//! builds on these.
 
 pub mod basis;
 pub mod cache;
@@ -18,5 +20,6 @@ pub mod lightfield;
 pub mod operators;
 pub mod prior;
 pub mod propagate;
+pub mod proxy;
 pub mod response;
 pub mod shape;
