@@ -108,6 +108,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
     reference_rows(&mut md, &project, quick);
     ism_rows(&mut md, &ctx, &project, quick)?;
     super::bench_sshgi::sshgi_rows(&mut md, &ctx, &project, quick)?;
+    super::bench_mrt::mrt_rows(&mut md, quick)?;
     // Anything after the manual marker (hand-run external comparisons) survives a rerun.
     if let Ok(old) = std::fs::read_to_string(out)
         && let Some(i) = old.find(MANUAL_MARKER)

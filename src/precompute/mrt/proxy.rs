@@ -40,7 +40,7 @@ fn quarter_turns(q: Quat) -> Option<u8> {
 }
 
 /// The dictionary shape and its quarter turns whose open sides are `open` (world side walls).
-fn shape_for(open: &[Face]) -> Option<(Shape, u8)> {
+pub fn shape_for(open: &[Face]) -> Option<(Shape, u8)> {
     Shape::ALL.iter().find_map(|&shape| {
         if shape.open_faces().len() != open.len() {
             return None;
