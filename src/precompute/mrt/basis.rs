@@ -11,6 +11,7 @@
 use faer::Mat;
 use thiserror::Error;
 
+use super::dictionary::DictionaryParams;
 use super::gather;
 use super::prior;
 use super::shape::{Layout, Shape};
@@ -24,23 +25,6 @@ pub enum BasisError {
     /// The user cancelled.
     #[error("cancelled")]
     Cancelled,
-}
-
-/// The precompute's parameters for one element (the dictionary's, see `DictionaryParams`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct ElementParams {
-    /// Texels per face side (16 in the dissertation).
-    pub res: usize,
-    /// Prior columns k_d (64).
-    pub k_d: usize,
-    /// Indirect modes k_b (32 on desktop).
-    pub k_b: usize,
-    /// Gather rays per sample (16K in the dissertation; 4K while iterating).
-    pub rays: usize,
-    /// Enrichment passes (1: [P S | face constants | U_b] once).
-    pub enrichment: usize,
-    /// Seed of the gather's rays.
-    pub seed: u64,
 }
 
 /// One dictionary element's operators.
@@ -133,7 +117,7 @@ fn reduce(
     layout: &Layout,
     p: &[f64],
     s: &[f64],
-    params: &ElementParams,
+    params: &DictionaryParams,
     cancel: &(dyn Fn() -> bool + Sync),
 ) -> Result<Reduced, BasisError> {
     let n = layout.len();
@@ -178,7 +162,11 @@ fn balanced(blocks: &[(&[f64], usize)], n: usize) -> (Vec<f64>, usize) {
 }
 
 /// Precomputes one element. `cancel` is polled once per sample of each gather.
-pub fn build(shape: Shape, params: &ElementParams, cancel: &(dyn Fn() -> bool + Sync)) -> Result<Element, BasisError> {
+pub fn build(
+    shape: Shape,
+    params: &DictionaryParams,
+    cancel: &(dyn Fn() -> bool + Sync),
+) -> Result<Element, BasisError> {
     let layout = Layout::new(shape, params.res);
     let n = layout.len();
     let (l_d, m) = training_matrix(&layout);
@@ -240,8 +228,8 @@ mod tests {
     use super::*;
 
     /// Small enough for a debug-build test: 4x4 texels per face.
-    fn small() -> ElementParams {
-        ElementParams { res: 4, k_d: 32, k_b: 16, rays: 256, enrichment: 1, seed: 11 }
+    fn small() -> DictionaryParams {
+        DictionaryParams { res: 4, k_d: 32, k_b: 16, rays: 256, enrichment: 1, seed: 11, ..Default::default() }
     }
 
     #[test]

@@ -332,12 +332,9 @@ pub fn load_or_build(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::precompute::mrt::operators::InterfaceParams;
 
     fn tiny() -> DictionaryParams {
-        let interfaces =
-            InterfaceParams { positions: 2, directions: 2, supersample: 1, k_rlf: 12, k_r: 4, enrichment: 1 };
-        DictionaryParams { res: 3, k_d: 12, k_b: 6, rays: 16, enrichment: 1, seed: 4, interfaces }
+        DictionaryParams { rays: 16, seed: 4, ..dictionary::test_params() }
     }
 
     #[test]

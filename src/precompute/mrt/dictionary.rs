@@ -8,7 +8,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::basis::{self, BasisError, Element, ElementParams};
+use super::basis::{self, BasisError, Element};
 use super::operators::{self, InterfaceParams, Interfaces};
 use super::shape::{Layout, Shape};
 
@@ -77,17 +77,6 @@ impl DictionaryParams {
         match checks.into_iter().find(|c| !c.1) {
             Some((name, _, value, range)) => Err(DictionaryError::Param { name, value, range }),
             None => Ok(()),
-        }
-    }
-
-    fn element(&self) -> ElementParams {
-        ElementParams {
-            res: self.res,
-            k_d: self.k_d,
-            k_b: self.k_b,
-            rays: self.rays,
-            enrichment: self.enrichment,
-            seed: self.seed,
         }
     }
 
@@ -164,18 +153,24 @@ impl Dictionary {
     }
 }
 
+/// Parameters small enough for debug-build tests (3x3 texels, 2x2 x 4x4 light fields).
+#[cfg(test)]
+pub(crate) fn test_params() -> DictionaryParams {
+    let interfaces = InterfaceParams { positions: 2, directions: 4, supersample: 1, k_rlf: 24, k_r: 8, enrichment: 1 };
+    DictionaryParams { res: 3, k_d: 16, k_b: 8, rays: 64, enrichment: 1, seed: 2, interfaces }
+}
+
 /// Builds the dictionary (element after element; each element's gather runs on every core).
 pub fn build(params: &DictionaryParams, progress: &Progress) -> Result<Dictionary, DictionaryError> {
     params.validate()?;
     progress.total.store(params.total_work(), Ordering::Relaxed);
     progress.done.store(0, Ordering::Relaxed);
     let _ = progress.started.set(Instant::now());
-    let element = params.element();
     let tick = || progress.tick();
     let elements = Shape::ALL
         .iter()
         .map(|&shape| {
-            basis::build(shape, &element, &tick)
+            basis::build(shape, params, &tick)
                 .map_err(|source| DictionaryError::Element { shape: shape.name(), source })
         })
         .collect::<Result<Vec<_>, _>>()?;

@@ -27,8 +27,7 @@ pub fn apply(
 ) -> Option<Vec<f64>> {
     let n = layout.len();
     debug_assert_eq!(a.len(), n * k);
-    let side = (rays as f64).sqrt().floor().max(1.0) as usize;
-    let count = (side * side) as f64;
+    let count = ray_count(rays);
     let rows: Vec<Option<Vec<f64>>> = (0..n)
         .into_par_iter()
         .map(|i| {
@@ -36,21 +35,15 @@ pub fn apply(
                 return None;
             }
             let (_, _, p, normal) = layout.sample(i);
-            let (t, b) = normal.any_orthonormal_pair();
             let mut rng = Pcg32::new(seed, i as u64, 0);
             let mut row = vec![0.0f64; k];
-            for u in 0..side {
-                for v in 0..side {
-                    let (r1, r2) =
-                        ((u as f32 + rng.next_f32()) / side as f32, (v as f32 + rng.next_f32()) / side as f32);
-                    let dir = cosine_direction(normal, t, b, r1, r2);
-                    let (face, s, tt, _) = exit(p, dir);
-                    let Some(taps) = layout.bilinear(face, s, tt) else { continue };
-                    for (j, w) in taps {
-                        if w > 0.0 {
-                            let src = &a[j * k..(j + 1) * k];
-                            row.iter_mut().zip(src).for_each(|(r, x)| *r += f64::from(w) * x);
-                        }
+            for dir in cosine_rays(normal, rays, &mut rng) {
+                let (face, s, tt, _) = exit(p, dir);
+                let Some(taps) = layout.bilinear(face, s, tt) else { continue };
+                for (j, w) in taps {
+                    if w > 0.0 {
+                        let src = &a[j * k..(j + 1) * k];
+                        row.iter_mut().zip(src).for_each(|(r, x)| *r += f64::from(w) * x);
                     }
                 }
             }
@@ -65,9 +58,27 @@ pub fn apply(
     Some(out)
 }
 
+/// About `rays` cosine-distributed directions about `normal` (rounded down to a square),
+/// stratified on a sqrt(N) x sqrt(N) grid and jittered by `rng`.
+pub(super) fn cosine_rays(normal: Vec3, rays: usize, rng: &mut Pcg32) -> impl Iterator<Item = Vec3> + '_ {
+    let side = (rays as f64).sqrt().floor().max(1.0) as usize;
+    let (t, b) = normal.any_orthonormal_pair();
+    (0..side * side).map(move |q| {
+        let (u, v) = (q / side, q % side);
+        let (r1, r2) = ((u as f32 + rng.next_f32()) / side as f32, (v as f32 + rng.next_f32()) / side as f32);
+        cosine_direction(normal, t, b, r1, r2)
+    })
+}
+
+/// The number of directions [`cosine_rays`] makes for `rays`.
+pub(super) fn ray_count(rays: usize) -> f64 {
+    let side = (rays as f64).sqrt().floor().max(1.0);
+    side * side
+}
+
 /// A cosine-distributed direction about `n` (Malley: a uniform disc point lifted to the
 /// hemisphere) from two numbers in [0, 1).
-pub(super) fn cosine_direction(n: Vec3, t: Vec3, b: Vec3, r1: f32, r2: f32) -> Vec3 {
+fn cosine_direction(n: Vec3, t: Vec3, b: Vec3, r1: f32, r2: f32) -> Vec3 {
     let r = r1.sqrt();
     let phi = std::f32::consts::TAU * r2;
     let (x, y) = (r * phi.cos(), r * phi.sin());

@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use glam::Vec3;
 
 use super::dictionary::Dictionary;
-use super::gather::cosine_direction;
+use super::gather::{cosine_rays, ray_count};
 use super::operators::Interfaces;
 use super::propagate::{ENTRY, Turn};
 use super::response;
@@ -336,7 +336,7 @@ pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[
 pub fn brute_force(level: &Level, res: usize, l_d: &[Vec<f64>], rays: usize, seed: u64) -> Vec<Vec<f64>> {
     use rayon::prelude::*;
     let layouts: Vec<Layout> = level.blocks.iter().map(|b| Layout::new(b.shape, res)).collect();
-    let side = (rays as f64).sqrt().floor().max(1.0) as usize;
+    let count = ray_count(rays);
     layouts
         .iter()
         .enumerate()
@@ -345,20 +345,14 @@ pub fn brute_force(level: &Level, res: usize, l_d: &[Vec<f64>], rays: usize, see
                 .into_par_iter()
                 .map(|i| {
                     let (_, _, p, n) = layout.sample(i);
-                    let (t, b) = n.any_orthonormal_pair();
                     let mut rng = Pcg32::new(seed, (x * 65536 + i) as u64, 2);
                     let mut sum = 0.0;
-                    for a in 0..side {
-                        for c in 0..side {
-                            let (r1, r2) =
-                                ((a as f32 + rng.next_f32()) / side as f32, (c as f32 + rng.next_f32()) / side as f32);
-                            let d = cosine_direction(n, t, b, r1, r2);
-                            let Some((y, face, s, tt, _)) = level.trace(x, p, d, f32::INFINITY) else { continue };
-                            let Some(taps) = layouts[y].bilinear(face, s, tt) else { continue };
-                            sum += taps.iter().map(|(j, w)| f64::from(*w) * l_d[y][*j]).sum::<f64>();
-                        }
+                    for d in cosine_rays(n, rays, &mut rng) {
+                        let Some((y, face, s, tt, _)) = level.trace(x, p, d, f32::INFINITY) else { continue };
+                        let Some(taps) = layouts[y].bilinear(face, s, tt) else { continue };
+                        sum += taps.iter().map(|(j, w)| f64::from(*w) * l_d[y][*j]).sum::<f64>();
                     }
-                    sum / (side * side) as f64
+                    sum / count
                 })
                 .collect()
         })

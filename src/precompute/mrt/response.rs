@@ -14,7 +14,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use super::basis::BasisError;
-use super::gather::cosine_direction;
+use super::gather::{cosine_rays, ray_count};
 use super::lightfield::{self, LightFieldRes};
 use super::propagate::ENTRY;
 use super::shape::{Layout, Shape, exit};
@@ -49,34 +49,27 @@ pub fn gather_field(res: usize, lf: &LightFieldRes, field: &[f64], k: usize, ray
     let layout = layout(res);
     let (eu, ev, en) = lightfield::frame(ENTRY.opposite());
     let centre = ENTRY.point(0.5, 0.5);
-    let side = (rays as f64).sqrt().floor().max(1.0) as usize;
-    let count = (side * side) as f64;
+    let count = ray_count(rays);
     (0..layout.len())
         .into_par_iter()
         .flat_map_iter(|i| {
             let (_, _, p, normal) = layout.sample(i);
-            let (t, b) = normal.any_orthonormal_pair();
             let mut rng = Pcg32::new(seed, i as u64, 1);
             let mut row = vec![0.0f64; k];
-            for a in 0..side {
-                for c in 0..side {
-                    let (r1, r2) =
-                        ((a as f32 + rng.next_f32()) / side as f32, (c as f32 + rng.next_f32()) / side as f32);
-                    let dir = cosine_direction(normal, t, b, r1, r2);
-                    let (face, _, _, dist) = exit(p, dir);
-                    if face != ENTRY {
-                        continue;
-                    }
-                    // The light arriving along -dir entered through the opening there.
-                    let at = p + dir * dist - centre;
-                    let incoming = -dir;
-                    let local = Vec3::new(incoming.dot(eu), incoming.dot(ev), incoming.dot(en));
-                    let q = lightfield::hemisphere_to_square(local);
-                    for (src, w) in lightfield::taps(lf, (at.dot(eu) + 0.5, at.dot(ev) + 0.5), q) {
-                        if w > 0.0 {
-                            let from = &field[src * k..(src + 1) * k];
-                            row.iter_mut().zip(from).for_each(|(r, f)| *r += f64::from(w) * f);
-                        }
+            for dir in cosine_rays(normal, rays, &mut rng) {
+                let (face, _, _, dist) = exit(p, dir);
+                if face != ENTRY {
+                    continue;
+                }
+                // The light arriving along -dir entered through the opening there.
+                let at = p + dir * dist - centre;
+                let incoming = -dir;
+                let local = Vec3::new(incoming.dot(eu), incoming.dot(ev), incoming.dot(en));
+                let q = lightfield::hemisphere_to_square(local);
+                for (src, w) in lightfield::taps(lf, (at.dot(eu) + 0.5, at.dot(ev) + 0.5), q) {
+                    if w > 0.0 {
+                        let from = &field[src * k..(src + 1) * k];
+                        row.iter_mut().zip(from).for_each(|(r, f)| *r += f64::from(w) * f);
                     }
                 }
             }
