@@ -62,6 +62,9 @@ enum Command {
     /// Build (or load from the cache) Modular Radiance Transfer's dictionary and print its
     /// modes, spectra and build time.
     MrtDictionary(cli::mrt::MrtArgs),
+    /// Fit MRT proxy blocks to a level's geometry (rooms, and openings where they meet) and
+    /// write the project with them.
+    FitBlocks(cli::mrt::FitArgs),
     /// Regenerate assets/cornell_box.gltf and projects/default.ron from code.
     #[command(hide = true)]
     GenerateAssets {
@@ -91,6 +94,7 @@ fn main() -> ExitCode {
         }
         Some(Command::GenerateAssets { root }) => cli::generate::generate(&root),
         Some(Command::MrtDictionary(args)) => cli::mrt::run(&args).map(|s| println!("{s}")),
+        Some(Command::FitBlocks(args)) => cli::mrt::fit(&args).map(|s| print!("{s}")),
         None => bouncelab::app::run(args.project),
     };
     match result {

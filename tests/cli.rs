@@ -185,3 +185,25 @@ fn mrt_dictionary_builds_then_loads_from_its_cache_and_rejects_bad_parameters() 
     assert!(!bad.status.success() && err.contains("res = 1"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn fit_blocks_finds_the_suite_levels_rooms_and_doorways_and_names_what_it_cannot_fit() {
+    let dir = std::env::temp_dir().join(format!("bouncelab-cli-fit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let out = dir.join("rooms.ron");
+    let run = bouncelab(&["fit-blocks", "assets/suite/rooms.gltf", "--out", out.to_str().expect("utf-8")]);
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(text.contains("3 proxy blocks"), "{text}");
+    // The written project reopens with its blocks, and they make a level of two linked doorways.
+    let project = bouncelab::project_file::Project::load(&out).expect("the written project");
+    let (level, objects) = bouncelab::precompute::mrt::proxy::level(&project.scene).expect("a level");
+    assert_eq!((objects.len(), level.link_count()), (3, 4));
+    // An open box (the Cornell box has no front) encloses nothing: a clear error, no file.
+    let open = dir.join("cornell.ron");
+    let run = bouncelab(&["fit-blocks", "assets/cornell_box.gltf", "--out", open.to_str().expect("utf-8")]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(!run.status.success() && err.contains("no enclosed space") && err.contains("cornell_box.gltf"), "{err}");
+    assert!(!open.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -47,6 +47,53 @@ pub struct MrtArgs {
     pub cache: Option<PathBuf>,
 }
 
+/// Arguments of `bouncelab fit-blocks`.
+#[derive(clap::Args, Debug)]
+pub struct FitArgs {
+    /// The level: a glTF file or a project file.
+    pub input: PathBuf,
+    /// The project file to write (the level with the fitted proxy blocks added).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// Fits proxy blocks to a level and writes the project with them; returns the report.
+pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
+    use crate::project_file::Project;
+    let is_gltf = args
+        .input
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"));
+    let mut project = if is_gltf { Project::from_gltf(&args.input)? } else { Project::load(&args.input)? };
+    let fitted = crate::precompute::mrt::proxy::fitted_objects(&project.scene)
+        .map_err(|e| anyhow::anyhow!("{}: cannot fit proxy blocks: {e}", args.input.display()))?;
+    let mut out = format!("{}: {} proxy blocks\n", args.input.display(), fitted.len());
+    let sides = ["+X", "-X", "+Y", "-Y", "+Z", "-Z"];
+    for o in &fitted {
+        if let crate::scene::MeshSource::Cuboid { size, openings } = &o.source {
+            let open: Vec<&str> = sides.iter().zip(openings).filter(|(_, o)| **o).map(|(s, _)| *s).collect();
+            let t = o.transform.translation;
+            let _ = writeln!(
+                out,
+                "  {}: centre ({:.2}, {:.2}, {:.2}), size {:.2} x {:.2} x {:.2} m, open {}",
+                o.name,
+                t.x,
+                t.y,
+                t.z,
+                size.x,
+                size.y,
+                size.z,
+                if open.is_empty() { "none".to_owned() } else { open.join(" ") }
+            );
+        }
+    }
+    project.scene.desc_mut().objects.extend(fitted);
+    project.save(&args.out)?;
+    let _ = writeln!(out, "wrote {}", args.out.display());
+    Ok(out)
+}
+
 /// Modes needed for `share` of the energy (sum of squares) of the spectrum `s`.
 fn modes_for(s: &[f64], share: f64) -> usize {
     let total: f64 = s.iter().map(|x| x * x).sum();

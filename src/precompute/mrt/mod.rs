@@ -13,6 +13,7 @@
 pub mod basis;
 pub mod cache;
 pub mod dictionary;
+pub mod fit;
 pub mod gather;
 pub mod interface;
 pub mod level;

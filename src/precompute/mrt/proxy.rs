@@ -82,6 +82,34 @@ pub fn level(scene: &Scene) -> Result<(Level, Vec<usize>), ProxyError> {
     Ok((Level::new(blocks), objects))
 }
 
+/// Proxy boxes fitted to `scene`'s static geometry ([`super::fit`]), as scene objects of role
+/// `ProxyBlock` named "proxy 1", "proxy 2", ... (the scene's first material).
+pub fn fitted_objects(scene: &Scene) -> Result<Vec<crate::scene::Object>, super::fit::FitError> {
+    let bvh = crate::precompute::bvh::SceneBvh::build(scene);
+    let objects = scene.objects();
+    let tris: Vec<[Vec3; 3]> = bvh
+        .tris
+        .iter()
+        .filter(|t| objects.get(t.object as usize).is_some_and(|o| o.role == ObjectRole::Static))
+        .map(|t| t.p)
+        .collect();
+    let blocks = super::fit::fit(&tris)?;
+    Ok(blocks
+        .iter()
+        .enumerate()
+        .map(|(i, b)| crate::scene::Object {
+            name: format!("proxy {}", i + 1),
+            source: MeshSource::Cuboid { size: b.max - b.min, openings: b.openings },
+            mesh: 0,
+            material: 0,
+            transform: crate::scene::Transform { translation: 0.5 * (b.min + b.max), ..Default::default() },
+            sampling_weight: 1.0,
+            role: ObjectRole::ProxyBlock,
+            visible: true,
+        })
+        .collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,522 @@
+//! Fitting MRT proxy blocks to a level's geometry (the "fit proxy blocks" command; research note
+//! `mrt-autofit.md`, whose section 4 this follows in a reduced form for rectilinear, one-storey
+//! levels): voxelise the triangles, flood the outside from the grid's border, keep the enclosed
+//! air; in plan, erode the air by half a doorway so rooms part at their doorways, label the cores,
+//! grow the labels back over the air; each room's box is its core's bounds grown back, its height
+//! the air's; rooms that touch become blocks whose facing sides are opened and snapped to the
+//! wall's mid-plane so the two blocks meet. What it cannot fit is a named error: no enclosed air
+//! (an open field, a lone triangle), a level far from axis-aligned (a sphere).
+//!
+//! Loos leaves fitting to the artist (§4.3.1) and names it open research (§7.1); thresholds here
+//! are starting values, each a constant below.
+
+use std::collections::{HashMap, VecDeque};
+
+use glam::{IVec3, Vec3};
+use thiserror::Error;
+
+/// Voxels along the level's longest side (the voxel is at most 0.25 m and at least 2 cm).
+const VOXELS_ALONG: f32 = 160.0;
+/// Half the widest doorway that still parts two rooms (m).
+const HALF_DOORWAY: f32 = 0.6;
+/// The smallest room kept (m², plan).
+const MIN_ROOM_AREA: f32 = 1.0;
+/// The thickest wall between two rooms whose sides are joined (m).
+const MAX_WALL: f32 = 0.8;
+/// Enclosed air thinner than this along an axis is a wall's or slab's inside (m).
+const THIN: f32 = 0.5;
+/// Below this share of vertical area on the two grid axes the level is not rectilinear.
+const MIN_RECTILINEAR: f32 = 0.6;
+
+/// Why a level cannot be fitted.
+#[derive(Debug, Error, PartialEq)]
+pub enum FitError {
+    /// No triangles.
+    #[error("nothing to fit: the level has no triangles")]
+    Empty,
+    /// No air is enclosed: the flood from outside reaches everywhere.
+    #[error(
+        "no enclosed space: the outside reaches everywhere (an open field, a lone surface, or walls with gaps wider than a voxel of {voxel:.2} m)"
+    )]
+    NoEnclosure {
+        /// The voxel size used.
+        voxel: f32,
+    },
+    /// The walls are far from the grid's axes.
+    #[error(
+        "the level is not rectilinear: only {share:.0}% of its vertical area faces the x or z axis (the cube dictionary's blocks stand on the grid's axes)"
+    )]
+    NonRectilinear {
+        /// Percentage of vertical area on the axes.
+        share: f32,
+    },
+    /// Air is enclosed but no room is large enough.
+    #[error("the enclosed space holds no room of at least {MIN_ROOM_AREA} m²")]
+    NoRoom,
+}
+
+/// One fitted block: a world box and its open sides (+X, -X, +Y, -Y, +Z, -Z, as the scene's
+/// cuboid openings).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FittedBlock {
+    /// Minimum corner.
+    pub min: Vec3,
+    /// Maximum corner.
+    pub max: Vec3,
+    /// Open sides (+X, -X, +Y, -Y, +Z, -Z).
+    pub openings: [bool; 6],
+}
+
+/// Area-weighted agreement of the vertical triangles' normals with the x and z axes (1: all of
+/// them face an axis; `None` without vertical triangles).
+fn rectilinearity(tris: &[[Vec3; 3]]) -> Option<f32> {
+    let (mut re, mut im, mut total) = (0.0f32, 0.0f32, 0.0f32);
+    for t in tris {
+        let c = (t[1] - t[0]).cross(t[2] - t[0]);
+        let area = 0.5 * c.length();
+        let n = c.normalize_or_zero();
+        if area <= 0.0 || n.y.abs() >= 0.2 {
+            continue;
+        }
+        let theta = n.z.atan2(n.x);
+        re += area * (4.0 * theta).cos();
+        im += area * (4.0 * theta).sin();
+        total += area;
+    }
+    (total > 0.0).then(|| re.hypot(im) / total)
+}
+
+/// Whether `p` lies inside a closed solid: of the six axis rays from it, more meet a triangle's
+/// back (its counter-clockwise side faces away) than its front. Level geometry faces the air
+/// (the research note's validity test, with axis rays).
+fn inside_solid(tris: &[[Vec3; 3]], p: Vec3) -> bool {
+    let (mut front, mut back) = (0, 0);
+    for d in [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z] {
+        let mut best: Option<(f32, bool)> = None;
+        for t in tris {
+            let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+            let q = d.cross(e2);
+            let det = e1.dot(q);
+            if det.abs() < 1e-12 {
+                continue;
+            }
+            let s = p - t[0];
+            let u = s.dot(q) / det;
+            let r = s.cross(e1);
+            let v = d.dot(r) / det;
+            let dist = e2.dot(r) / det;
+            if u < 0.0 || v < 0.0 || u + v > 1.0 || dist <= 0.0 || best.is_some_and(|b| b.0 <= dist) {
+                continue;
+            }
+            best = Some((dist, e1.cross(e2).dot(d) < 0.0));
+        }
+        match best {
+            Some((_, true)) => front += 1,
+            Some((_, false)) => back += 1,
+            None => {}
+        }
+    }
+    back > front
+}
+
+/// The voxel grid of a level.
+struct Grid {
+    origin: Vec3,
+    h: f32,
+    dims: IVec3,
+}
+
+impl Grid {
+    fn index(&self, c: IVec3) -> usize {
+        ((c.y * self.dims.z + c.z) * self.dims.x + c.x) as usize
+    }
+    fn cell(&self, p: Vec3) -> IVec3 {
+        ((p - self.origin) / self.h).floor().as_ivec3().clamp(IVec3::ZERO, self.dims - 1)
+    }
+    fn len(&self) -> usize {
+        (self.dims.x * self.dims.y * self.dims.z) as usize
+    }
+}
+
+/// Marks the voxels the triangles pass through (sampled at a third of a voxel).
+fn solid(grid: &Grid, tris: &[[Vec3; 3]]) -> Vec<bool> {
+    let mut s = vec![false; grid.len()];
+    for t in tris {
+        let longest = (t[1] - t[0]).length().max((t[2] - t[0]).length()).max((t[2] - t[1]).length());
+        let steps = ((longest / (grid.h / 3.0)).ceil() as usize).max(1);
+        for i in 0..=steps {
+            for j in 0..=steps - i {
+                let (a, b) = (i as f32 / steps as f32, j as f32 / steps as f32);
+                let p = t[0] + (t[1] - t[0]) * a + (t[2] - t[0]) * b;
+                s[grid.index(grid.cell(p))] = true;
+            }
+        }
+    }
+    s
+}
+
+/// Fits blocks to the level `tris` (world triangles, y up).
+pub fn fit(tris: &[[Vec3; 3]]) -> Result<Vec<FittedBlock>, FitError> {
+    if tris.is_empty() {
+        return Err(FitError::Empty);
+    }
+    if let Some(r) = rectilinearity(tris)
+        && r < MIN_RECTILINEAR
+    {
+        return Err(FitError::NonRectilinear { share: 100.0 * r });
+    }
+    let (lo, hi) =
+        tris.iter().flatten().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(a, b), p| (a.min(*p), b.max(*p)));
+    let h = ((hi - lo).max_element() / VOXELS_ALONG).clamp(0.02, 0.25);
+    let origin = lo - Vec3::splat(2.0 * h);
+    let dims = (((hi - lo) / h).ceil().as_ivec3() + IVec3::splat(5)).max(IVec3::ONE);
+    let grid = Grid { origin, h, dims };
+    let wall = solid(&grid, tris);
+    // Flood the outside from the border.
+    let mut outside = vec![false; grid.len()];
+    let mut queue = VecDeque::new();
+    for y in 0..dims.y {
+        for z in 0..dims.z {
+            for x in 0..dims.x {
+                let c = IVec3::new(x, y, z);
+                let border = c.cmpeq(IVec3::ZERO).any() || c.cmpeq(dims - 1).any();
+                if border && !wall[grid.index(c)] {
+                    outside[grid.index(c)] = true;
+                    queue.push_back(c);
+                }
+            }
+        }
+    }
+    let steps = [IVec3::X, IVec3::NEG_X, IVec3::Y, IVec3::NEG_Y, IVec3::Z, IVec3::NEG_Z];
+    while let Some(c) = queue.pop_front() {
+        for s in steps {
+            let n = c + s;
+            if n.cmplt(IVec3::ZERO).any() || n.cmpge(dims).any() {
+                continue;
+            }
+            let i = grid.index(n);
+            if !wall[i] && !outside[i] {
+                outside[i] = true;
+                queue.push_back(n);
+            }
+        }
+    }
+    // Enclosed air in pieces thinner than THIN along some axis is the inside of a wall or slab
+    // (its two faces marked, the voxels between them unreached): it is not space to light.
+    let mut enclosed: Vec<bool> = (0..grid.len()).map(|i| !wall[i] && !outside[i]).collect();
+    let mut seen = vec![false; grid.len()];
+    let thin = (THIN / h).ceil() as i32;
+    for y in 0..dims.y {
+        for z in 0..dims.z {
+            for x in 0..dims.x {
+                let c = IVec3::new(x, y, z);
+                if !enclosed[grid.index(c)] || seen[grid.index(c)] {
+                    continue;
+                }
+                let mut piece = vec![c];
+                seen[grid.index(c)] = true;
+                let (mut lo, mut hi) = (c, c);
+                let mut k = 0;
+                while k < piece.len() {
+                    let at = piece[k];
+                    for st in steps {
+                        let n = at + st;
+                        if n.cmplt(IVec3::ZERO).any() || n.cmpge(dims).any() {
+                            continue;
+                        }
+                        let i = grid.index(n);
+                        if enclosed[i] && !seen[i] {
+                            seen[i] = true;
+                            (lo, hi) = (lo.min(n), hi.max(n));
+                            piece.push(n);
+                        }
+                    }
+                    k += 1;
+                }
+                let centre = origin + (c.as_vec3() + 0.5) * h;
+                if (hi - lo + 1).min_element() < thin || inside_solid(tris, centre) {
+                    piece.iter().for_each(|p| enclosed[grid.index(*p)] = false);
+                }
+            }
+        }
+    }
+    let air = |c: IVec3| enclosed[grid.index(c)];
+    // The plan: columns holding enclosed air, with the air's vertical range.
+    let (nx, nz) = (dims.x as usize, dims.z as usize);
+    let mut plan: Vec<Option<(i32, i32)>> = vec![None; nx * nz];
+    for z in 0..dims.z {
+        for x in 0..dims.x {
+            let ys: Vec<i32> = (0..dims.y).filter(|&y| air(IVec3::new(x, y, z))).collect();
+            if let (Some(a), Some(b)) = (ys.first(), ys.last()) {
+                plan[z as usize * nx + x as usize] = Some((*a, *b));
+            }
+        }
+    }
+    if plan.iter().all(Option::is_none) {
+        return Err(FitError::NoEnclosure { voxel: h });
+    }
+    // Distance (in cells, 4-connected) from each air cell to the nearest non-air cell.
+    let mut dist = vec![u32::MAX; nx * nz];
+    let mut queue = VecDeque::new();
+    for (i, p) in plan.iter().enumerate() {
+        if p.is_none() {
+            dist[i] = 0;
+            queue.push_back(i);
+        }
+    }
+    let neighbours = |i: usize| {
+        let (x, z) = (i % nx, i / nx);
+        let mut out = Vec::with_capacity(4);
+        if x > 0 {
+            out.push(i - 1);
+        }
+        if x + 1 < nx {
+            out.push(i + 1);
+        }
+        if z > 0 {
+            out.push(i - nx);
+        }
+        if z + 1 < nz {
+            out.push(i + nx);
+        }
+        out
+    };
+    while let Some(i) = queue.pop_front() {
+        for n in neighbours(i) {
+            if dist[n] == u32::MAX {
+                dist[n] = dist[i] + 1;
+                queue.push_back(n);
+            }
+        }
+    }
+    // Room cores: air deeper than half a doorway, in connected components of at least a room.
+    let r = (HALF_DOORWAY / h).ceil() as u32;
+    let mut label = vec![usize::MAX; nx * nz];
+    let mut cores: Vec<Vec<usize>> = Vec::new();
+    for start in 0..nx * nz {
+        if dist[start] <= r || label[start] != usize::MAX {
+            continue;
+        }
+        let id = cores.len();
+        let mut members = vec![start];
+        label[start] = id;
+        let mut k = 0;
+        while k < members.len() {
+            for n in neighbours(members[k]) {
+                if dist[n] > r && label[n] == usize::MAX {
+                    label[n] = id;
+                    members.push(n);
+                }
+            }
+            k += 1;
+        }
+        cores.push(members);
+    }
+    let min_cells = (MIN_ROOM_AREA / (h * h)) as usize;
+    // Each room: its core grown back by r cells (the erosion), its air's height.
+    let mut rooms: Vec<(usize, FittedBlock)> = Vec::new();
+    for (id, members) in cores.iter().enumerate() {
+        if members.len() < min_cells / 4 {
+            continue;
+        }
+        let (mut x0, mut x1, mut z0, mut z1) = (usize::MAX, 0, usize::MAX, 0);
+        let (mut y0, mut y1) = (i32::MAX, i32::MIN);
+        for &i in members {
+            let (x, z) = (i % nx, i / nx);
+            (x0, x1, z0, z1) = (x0.min(x), x1.max(x), z0.min(z), z1.max(z));
+            if let Some((a, b)) = plan[i] {
+                (y0, y1) = (y0.min(a), y1.max(b));
+            }
+        }
+        let grow = r as f32 * h;
+        let min = Vec3::new(origin.x + x0 as f32 * h - grow, origin.y + y0 as f32 * h, origin.z + z0 as f32 * h - grow);
+        let max = Vec3::new(
+            origin.x + (x1 + 1) as f32 * h + grow,
+            origin.y + (y1 + 1) as f32 * h,
+            origin.z + (z1 + 1) as f32 * h + grow,
+        );
+        if (max.x - min.x) * (max.z - min.z) >= MIN_ROOM_AREA {
+            rooms.push((id, FittedBlock { min, max, openings: [false; 6] }));
+        }
+    }
+    if rooms.is_empty() {
+        return Err(FitError::NoRoom);
+    }
+    // Grow the labels back over all the air (nearest core first) to find which rooms touch.
+    let mut queue: VecDeque<usize> = (0..nx * nz).filter(|&i| label[i] != usize::MAX).collect();
+    while let Some(i) = queue.pop_front() {
+        for n in neighbours(i) {
+            if plan[n].is_some() && label[n] == usize::MAX {
+                label[n] = label[i];
+                queue.push_back(n);
+            }
+        }
+    }
+    let mut touching: HashMap<(usize, usize), ()> = HashMap::new();
+    for i in 0..nx * nz {
+        for n in neighbours(i) {
+            let (a, b) = (label[i], label[n]);
+            if a != usize::MAX && b != usize::MAX && a < b {
+                touching.insert((a, b), ());
+            }
+        }
+    }
+    let slot = |id: usize| rooms.iter().position(|r| r.0 == id);
+    let mut pairs: Vec<(usize, usize)> = touching.keys().filter_map(|&(a, b)| Some((slot(a)?, slot(b)?))).collect();
+    pairs.sort_unstable();
+    for (a, b) in pairs {
+        join(&mut rooms, a, b);
+    }
+    Ok(rooms.into_iter().map(|r| r.1).collect())
+}
+
+/// Opens the facing sides of rooms `a` and `b` and moves both to the mid-plane of the wall
+/// between them, where one lies beside the other along x or z with at most [`MAX_WALL`] between.
+fn join(rooms: &mut [(usize, FittedBlock)], a: usize, b: usize) {
+    // (axis, openings index of a's side facing b, of b's side facing a).
+    for (axis, pos, neg) in [(0usize, 0usize, 1usize), (2, 4, 5)] {
+        for (first, second, first_side, second_side) in [(a, b, pos, neg), (b, a, pos, neg)] {
+            let (f, s) = (&rooms[first].1, &rooms[second].1);
+            let gap = s.min[axis] - f.max[axis];
+            let other = 2 - axis;
+            let overlap = f.max[other].min(s.max[other]) - f.min[other].max(s.min[other]);
+            if (-MAX_WALL..=MAX_WALL).contains(&gap) && overlap > 0.0 {
+                let mid = 0.5 * (f.max[axis] + s.min[axis]);
+                rooms[first].1.max[axis] = mid;
+                rooms[first].1.openings[first_side] = true;
+                rooms[second].1.min[axis] = mid;
+                rooms[second].1.openings[second_side] = true;
+                return;
+            }
+        }
+    }
+    // Not side by side: left closed (a doorway the 2D dictionary cannot express).
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::precompute::mrt::level::{Block, Level};
+    use crate::precompute::mrt::proxy::shape_for;
+    use crate::precompute::mrt::shape::Face;
+
+    /// The 12 triangles of a box, facing out.
+    fn cuboid(lo: Vec3, hi: Vec3) -> Vec<[Vec3; 3]> {
+        let c = |i: usize| {
+            Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        };
+        let quads = [[0, 2, 6, 4], [1, 5, 7, 3], [0, 4, 5, 1], [2, 3, 7, 6], [0, 1, 3, 2], [4, 6, 7, 5]];
+        // Counter-clockwise seen from outside: the normals face out, as level geometry's do.
+        quads.iter().flat_map(|q| [[c(q[0]), c(q[2]), c(q[1])], [c(q[0]), c(q[3]), c(q[2])]]).collect()
+    }
+
+    /// Three 5 x 3 x 4 m rooms along +x, 0.2 m slabs, a 1 x 2.1 m doorway in each partition
+    /// (the offset doorways of the suite's multi-room level).
+    fn three_rooms() -> Vec<[Vec3; 3]> {
+        let (w, h, d, t) = (5.0, 3.0, 4.0, 0.2);
+        let length = 3.0 * w + 2.0 * t;
+        let mut tris = Vec::new();
+        tris.extend(cuboid(Vec3::new(-t, -t, -t), Vec3::new(length + t, 0.0, d + t)));
+        tris.extend(cuboid(Vec3::new(-t, h, -t), Vec3::new(length + t, h + t, d + t)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, -t), Vec3::new(length + t, h, 0.0)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, d), Vec3::new(length + t, h, d + t)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, 0.0), Vec3::new(0.0, h, d)));
+        tris.extend(cuboid(Vec3::new(length, 0.0, 0.0), Vec3::new(length + t, h, d)));
+        for (k, door_z) in [(1.0, 0.5), (2.0, 2.5)] {
+            let x = k * w + (k - 1.0) * t;
+            // The partition with a doorway from door_z to door_z + 1, 2.1 m high.
+            tris.extend(cuboid(Vec3::new(x, 0.0, 0.0), Vec3::new(x + t, h, door_z)));
+            tris.extend(cuboid(Vec3::new(x, 0.0, door_z + 1.0), Vec3::new(x + t, h, d)));
+            tris.extend(cuboid(Vec3::new(x, 2.1, door_z), Vec3::new(x + t, h, door_z + 1.0)));
+        }
+        tris
+    }
+
+    #[test]
+    fn three_rooms_joined_by_doorways_become_three_linked_blocks() {
+        let mut blocks = fit(&three_rooms()).expect("fits");
+        blocks.sort_by(|a, b| a.min.x.total_cmp(&b.min.x));
+        assert_eq!(blocks.len(), 3, "{blocks:?}");
+        // +X, -X, +Y, -Y, +Z, -Z: the first opens east, the middle both ways, the last west.
+        assert_eq!(blocks[0].openings, [true, false, false, false, false, false]);
+        assert_eq!(blocks[1].openings, [true, true, false, false, false, false]);
+        assert_eq!(blocks[2].openings, [false, true, false, false, false, false]);
+        // The blocks meet at the partitions' mid-planes and span the rooms.
+        assert!((blocks[0].max.x - 5.1).abs() < 0.15 && (blocks[1].min.x - blocks[0].max.x).abs() < 1e-5);
+        for b in &blocks {
+            let size = b.max - b.min;
+            assert!((size.y - 3.0).abs() < 0.25 && (size.z - 4.0).abs() < 0.3, "{size}");
+        }
+        // As proxy boxes they make a level of two openings, linked both ways.
+        let sides = [Face::PosX, Face::NegX, Face::PosY, Face::NegY, Face::PosZ, Face::NegZ];
+        let level = Level::new(
+            blocks
+                .iter()
+                .map(|b| {
+                    let open: Vec<Face> = sides.iter().zip(b.openings).filter(|(_, o)| *o).map(|(f, _)| *f).collect();
+                    let (shape, turns) = shape_for(&open).expect("a dictionary shape");
+                    Block { shape, origin: b.min, size: b.max - b.min, turns }
+                })
+                .collect(),
+        );
+        assert_eq!(level.link_count(), 4);
+    }
+
+    #[test]
+    fn solids_are_not_rooms_and_a_closed_room_is_one_closed_block() {
+        // One closed 4 x 3 x 4 m room of 0.2 m slabs with a 1.5 m solid cube standing in it.
+        let (w, h, t) = (4.0, 3.0, 0.2);
+        let mut tris = Vec::new();
+        tris.extend(cuboid(Vec3::new(-t, -t, -t), Vec3::new(w + t, 0.0, w + t)));
+        tris.extend(cuboid(Vec3::new(-t, h, -t), Vec3::new(w + t, h + t, w + t)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, -t), Vec3::new(w + t, h, 0.0)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, w), Vec3::new(w + t, h, w + t)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, 0.0), Vec3::new(0.0, h, w)));
+        tris.extend(cuboid(Vec3::new(w, 0.0, 0.0), Vec3::new(w + t, h, w)));
+        tris.extend(cuboid(Vec3::new(1.0, 0.0, 1.0), Vec3::new(2.5, 1.5, 2.5)));
+        let blocks = fit(&tris).expect("fits");
+        assert_eq!(blocks.len(), 1, "{blocks:?}");
+        assert_eq!(blocks[0].openings, [false; 6]);
+        assert!((blocks[0].max - blocks[0].min - Vec3::new(w, h, w)).abs().max_element() < 0.25);
+        // A lone solid crate encloses nothing to light: its inside faces away from it.
+        let crate_only = cuboid(Vec3::ZERO, Vec3::splat(3.0));
+        assert!(matches!(fit(&crate_only), Err(FitError::NoEnclosure { .. })), "{:?}", fit(&crate_only));
+        // The validity test itself: inside a closed box its backs face the point.
+        assert!(inside_solid(&cuboid(Vec3::ZERO, Vec3::ONE), Vec3::splat(0.5)));
+        assert!(!inside_solid(&cuboid(Vec3::ZERO, Vec3::ONE), Vec3::splat(1.5)));
+    }
+
+    #[test]
+    fn levels_it_cannot_fit_get_a_clear_error() {
+        // An open field: one big plane.
+        let field = vec![
+            [Vec3::new(-50.0, 0.0, -50.0), Vec3::new(50.0, 0.0, -50.0), Vec3::new(50.0, 0.0, 50.0)],
+            [Vec3::new(-50.0, 0.0, -50.0), Vec3::new(50.0, 0.0, 50.0), Vec3::new(-50.0, 0.0, 50.0)],
+        ];
+        assert!(matches!(fit(&field), Err(FitError::NoEnclosure { .. })));
+        let lone = vec![[Vec3::ZERO, Vec3::X, Vec3::Z]];
+        assert!(matches!(fit(&lone), Err(FitError::NoEnclosure { .. })));
+        assert_eq!(fit(&[]), Err(FitError::Empty));
+        // A sphere: closed, but its walls face every direction.
+        let (rings, segments) = (12, 24);
+        let p = |i: usize, j: usize| {
+            let (th, ph) =
+                (std::f32::consts::PI * i as f32 / rings as f32, std::f32::consts::TAU * j as f32 / segments as f32);
+            Vec3::new(th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin()) * 3.0
+        };
+        let mut sphere = Vec::new();
+        for i in 0..rings {
+            for j in 0..segments {
+                sphere.push([p(i, j), p(i + 1, j), p(i + 1, j + 1)]);
+                sphere.push([p(i, j), p(i + 1, j + 1), p(i, j + 1)]);
+            }
+        }
+        let err = fit(&sphere).expect_err("a sphere");
+        assert!(matches!(err, FitError::NonRectilinear { .. }), "{err}");
+        assert!(err.to_string().contains("not rectilinear"));
+    }
+}
