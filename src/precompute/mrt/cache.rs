@@ -26,7 +26,7 @@ const MAGIC: &[u8; 8] = b"BLMRTDIC";
 
 /// Bumped whenever the file layout or the precompute's algorithm changes (old files are then
 /// rebuilt, never read).
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 
 /// Why a cache file was not used, or could not be written.
 #[derive(Debug, Error)]
