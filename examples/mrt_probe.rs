@@ -152,6 +152,37 @@ fn main() -> anyhow::Result<()> {
                 .collect()
         })
         .collect();
+    // Area-weighted light per room (a texel stands for its face's area / res^2), the blocks
+    // grouped by their centres along x at `MRT_ROOMS_X` (e.g. "5.1,10.3").
+    let cuts: Vec<f32> = std::env::var("MRT_ROOMS_X")
+        .ok()
+        .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect())
+        .unwrap_or_default();
+    let mut rooms: Vec<(f64, f64, f64)> = vec![(0.0, 0.0, 0.0); cuts.len() + 1];
+    for (x, b) in lvl.blocks.iter().enumerate() {
+        let layout = Layout::new(b.shape, params.res);
+        let per = (params.res * params.res) as f64;
+        let centre = b.origin.x + 0.5 * b.size.x;
+        let room = cuts.iter().filter(|c| centre > **c).count();
+        for i in 0..layout.len() {
+            let (face, _, _, _) = layout.sample(i);
+            let s = b.size;
+            let area = match b.world_face(face).axis() {
+                0 => s.y * s.z,
+                1 => s.x * s.z,
+                _ => s.x * s.y,
+            };
+            let area = f64::from(area) / per;
+            let r = &mut rooms[room];
+            r.0 += area * truth[x][i];
+            r.1 += area * mrt[x][i];
+            r.2 += area * l_d[x][i];
+        }
+    }
+    for (k, (t, m, d)) in rooms.iter().enumerate() {
+        let ratio = m / t.max(1e-12);
+        println!("room {k}: direct {d:.4}, brute-force bounce {t:.4}, MRT bounce {m:.4}: MRT / brute force {ratio:.3}");
+    }
     println!(
         "| block | shape | size (m) | direct | brute-force bounce | MRT bounce | MRT / brute force | texel rms / mean |"
     );

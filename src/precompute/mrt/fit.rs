@@ -319,15 +319,30 @@ pub fn fit(tris: &[[Vec3; 3]]) -> Result<Vec<FittedBlock>, FitError> {
         if members.len() < min_cells / 4 {
             continue;
         }
-        let (mut x0, mut x1, mut z0, mut z1) = (usize::MAX, 0, usize::MAX, 0);
+        // The core's extent as most of its rows and columns reach it: the core bulges a few
+        // cells towards each doorway (the air beyond it keeps the cells in front deep).
+        // Per row (z) the x range of the core's cells, per column (x) the z range.
+        let mut rows: HashMap<usize, (usize, usize)> = HashMap::new();
+        let mut cols: HashMap<usize, (usize, usize)> = HashMap::new();
         let (mut y0, mut y1) = (i32::MAX, i32::MIN);
         for &i in members {
             let (x, z) = (i % nx, i / nx);
-            (x0, x1, z0, z1) = (x0.min(x), x1.max(x), z0.min(z), z1.max(z));
+            let row = rows.entry(z).or_insert((x, x));
+            *row = (row.0.min(x), row.1.max(x));
+            let col = cols.entry(x).or_insert((z, z));
+            *col = (col.0.min(z), col.1.max(z));
             if let Some((a, b)) = plan[i] {
                 (y0, y1) = (y0.min(a), y1.max(b));
             }
         }
+        let median = |mut v: Vec<usize>| {
+            v.sort_unstable();
+            v[v.len() / 2]
+        };
+        let x0 = median(rows.values().map(|r| r.0).collect());
+        let x1 = median(rows.values().map(|r| r.1).collect());
+        let z0 = median(cols.values().map(|c| c.0).collect());
+        let z1 = median(cols.values().map(|c| c.1).collect());
         let grow = r as f32 * h;
         let min = Vec3::new(origin.x + x0 as f32 * h - grow, origin.y + y0 as f32 * h, origin.z + z0 as f32 * h - grow);
         let max = Vec3::new(
@@ -352,45 +367,130 @@ pub fn fit(tris: &[[Vec3; 3]]) -> Result<Vec<FittedBlock>, FitError> {
             }
         }
     }
-    let mut touching: HashMap<(usize, usize), ()> = HashMap::new();
+    // Where two rooms' labels meet: the cells of the doorway, as (min, max) world coordinates.
+    let mut touching: HashMap<(usize, usize), (Vec3, Vec3)> = HashMap::new();
+    let at = |i: usize| Vec3::new(origin.x + (i % nx) as f32 * h, 0.0, origin.z + (i / nx) as f32 * h);
     for i in 0..nx * nz {
         for n in neighbours(i) {
             let (a, b) = (label[i], label[n]);
             if a != usize::MAX && b != usize::MAX && a < b {
-                touching.insert((a, b), ());
+                let e = touching.entry((a, b)).or_insert((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)));
+                for c in [at(i), at(n)] {
+                    e.0 = e.0.min(c);
+                    e.1 = e.1.max(c + Vec3::new(h, 0.0, h));
+                }
             }
         }
     }
     let slot = |id: usize| rooms.iter().position(|r| r.0 == id);
-    let mut pairs: Vec<(usize, usize)> = touching.keys().filter_map(|&(a, b)| Some((slot(a)?, slot(b)?))).collect();
-    pairs.sort_unstable();
-    for (a, b) in pairs {
-        join(&mut rooms, a, b);
-    }
-    Ok(rooms.into_iter().map(|r| r.1).collect())
+    let mut doors: Vec<(usize, usize, (Vec3, Vec3))> =
+        touching.iter().filter_map(|(&(a, b), span)| Some((slot(a)?, slot(b)?, *span))).collect();
+    doors.sort_by_key(|d| (d.0, d.1));
+    Ok(split_at_doors(rooms.into_iter().map(|r| r.1).collect(), &doors))
 }
 
-/// Opens the facing sides of rooms `a` and `b` and moves both to the mid-plane of the wall
-/// between them, where one lies beside the other along x or z with at most [`MAX_WALL`] between.
-fn join(rooms: &mut [(usize, FittedBlock)], a: usize, b: usize) {
-    // (axis, openings index of a's side facing b, of b's side facing a).
-    for (axis, pos, neg) in [(0usize, 0usize, 1usize), (2, 4, 5)] {
-        for (first, second, first_side, second_side) in [(a, b, pos, neg), (b, a, pos, neg)] {
-            let (f, s) = (&rooms[first].1, &rooms[second].1);
-            let gap = s.min[axis] - f.max[axis];
-            let other = 2 - axis;
-            let overlap = f.max[other].min(s.max[other]) - f.min[other].max(s.min[other]);
-            if (-MAX_WALL..=MAX_WALL).contains(&gap) && overlap > 0.0 {
-                let mid = 0.5 * (f.max[axis] + s.min[axis]);
-                rooms[first].1.max[axis] = mid;
-                rooms[first].1.openings[first_side] = true;
-                rooms[second].1.min[axis] = mid;
-                rooms[second].1.openings[second_side] = true;
-                return;
+/// The thinnest strip a room is split into at a door jamb (m); jambs nearer a room's corner move
+/// to the corner.
+const MIN_STRIP: f32 = 0.3;
+
+/// Splits each room into strips at its doorways' jambs, so that each doorway is a whole side of
+/// one strip (the 2D dictionary opens whole sides only), opens the sides between a room's strips,
+/// and joins the strips that face each other through a doorway.
+fn split_at_doors(rooms: Vec<FittedBlock>, doors: &[(usize, usize, (Vec3, Vec3))]) -> Vec<FittedBlock> {
+    // Which axis each door crosses (0 x, 2 z), from the rooms' boxes.
+    let crossing = |a: &FittedBlock, b: &FittedBlock| {
+        [0usize, 2].into_iter().find(|&axis| {
+            let gap = (b.min[axis] - a.max[axis]).max(a.min[axis] - b.max[axis]);
+            (-MAX_WALL..=MAX_WALL).contains(&gap)
+        })
+    };
+    let mut cuts: Vec<[Vec<f32>; 2]> = vec![[Vec::new(), Vec::new()]; rooms.len()];
+    let mut crossings = Vec::new();
+    for &(a, b, (lo, hi)) in doors {
+        let Some(axis) = crossing(&rooms[a], &rooms[b]) else { continue };
+        let along = 2 - axis;
+        for r in [a, b] {
+            cuts[r][usize::from(along == 2)].extend([lo[along], hi[along]]);
+        }
+        crossings.push((a, b, axis, lo[along], hi[along]));
+    }
+    // Each room's strips: a grid of x intervals by z intervals, open to each other.
+    let intervals = |lo: f32, hi: f32, cuts: &[f32]| {
+        let mut edges = vec![lo];
+        let mut inner: Vec<f32> = cuts.iter().copied().filter(|c| *c > lo + MIN_STRIP && *c < hi - MIN_STRIP).collect();
+        inner.sort_by(f32::total_cmp);
+        for c in inner {
+            if c - edges.last().copied().unwrap_or(lo) >= MIN_STRIP {
+                edges.push(c);
+            }
+        }
+        if hi - edges.last().copied().unwrap_or(lo) < MIN_STRIP && edges.len() > 1 {
+            edges.pop();
+        }
+        edges.push(hi);
+        edges.windows(2).map(|w| (w[0], w[1])).collect::<Vec<_>>()
+    };
+    let mut out: Vec<FittedBlock> = Vec::new();
+    let mut of_room: Vec<Vec<usize>> = Vec::new();
+    for (r, room) in rooms.iter().enumerate() {
+        let xs = intervals(room.min.x, room.max.x, &cuts[r][0]);
+        let zs = intervals(room.min.z, room.max.z, &cuts[r][1]);
+        let mut mine = Vec::new();
+        for (ix, x) in xs.iter().enumerate() {
+            for (iz, z) in zs.iter().enumerate() {
+                let mut openings = room.openings;
+                openings[0] |= ix + 1 < xs.len();
+                openings[1] |= ix > 0;
+                openings[4] |= iz + 1 < zs.len();
+                openings[5] |= iz > 0;
+                mine.push(out.len());
+                out.push(FittedBlock {
+                    min: Vec3::new(x.0, room.min.y, z.0),
+                    max: Vec3::new(x.1, room.max.y, z.1),
+                    openings,
+                });
+            }
+        }
+        of_room.push(mine);
+    }
+    // Through each doorway: the strips of either room inside the doorway's span and on the side
+    // facing the other room.
+    for &(a, b, axis, t0, t1) in &crossings {
+        let along = 2 - axis;
+        let inside = |blk: &FittedBlock| {
+            let overlap = blk.max[along].min(t1) - blk.min[along].max(t0);
+            overlap > 0.5 * (blk.max[along] - blk.min[along])
+        };
+        for &sa in &of_room[a] {
+            for &sb in &of_room[b] {
+                if inside(&out[sa]) && inside(&out[sb]) {
+                    join(&mut out, sa, sb, axis);
+                }
             }
         }
     }
-    // Not side by side: left closed (a doorway the 2D dictionary cannot express).
+    out
+}
+
+/// Opens the facing sides of blocks `a` and `b` across `axis` and moves both to the mid-plane of
+/// the wall between them, where one lies beside the other with at most [`MAX_WALL`] between and
+/// they overlap along the other axis.
+fn join(blocks: &mut [FittedBlock], a: usize, b: usize, axis: usize) {
+    let (pos, neg) = if axis == 0 { (0, 1) } else { (4, 5) };
+    for (first, second) in [(a, b), (b, a)] {
+        let (f, s) = (&blocks[first], &blocks[second]);
+        let gap = s.min[axis] - f.max[axis];
+        let other = 2 - axis;
+        let overlap = f.max[other].min(s.max[other]) - f.min[other].max(s.min[other]);
+        if (-MAX_WALL..=MAX_WALL).contains(&gap) && overlap > 0.0 {
+            let mid = 0.5 * (f.max[axis] + s.min[axis]);
+            blocks[first].max[axis] = mid;
+            blocks[first].openings[pos] = true;
+            blocks[second].min[axis] = mid;
+            blocks[second].openings[neg] = true;
+            return;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -437,19 +537,23 @@ mod tests {
     }
 
     #[test]
-    fn three_rooms_joined_by_doorways_become_three_linked_blocks() {
-        let mut blocks = fit(&three_rooms()).expect("fits");
-        blocks.sort_by(|a, b| a.min.x.total_cmp(&b.min.x));
-        assert_eq!(blocks.len(), 3, "{blocks:?}");
-        // +X, -X, +Y, -Y, +Z, -Z: the first opens east, the middle both ways, the last west.
-        assert_eq!(blocks[0].openings, [true, false, false, false, false, false]);
-        assert_eq!(blocks[1].openings, [true, true, false, false, false, false]);
-        assert_eq!(blocks[2].openings, [false, true, false, false, false, false]);
-        // The blocks meet at the partitions' mid-planes and span the rooms.
-        assert!((blocks[0].max.x - 5.1).abs() < 0.15 && (blocks[1].min.x - blocks[0].max.x).abs() < 1e-5);
-        for b in &blocks {
-            let size = b.max - b.min;
-            assert!((size.y - 3.0).abs() < 0.25 && (size.z - 4.0).abs() < 0.3, "{size}");
+    fn three_rooms_joined_by_doorways_become_strips_linked_through_the_doorways() {
+        let blocks = fit(&three_rooms()).expect("fits");
+        // Each room is split at its doorways' jambs: 3, 5 and 3 strips along z.
+        let room = |x0: f32, x1: f32| -> Vec<&FittedBlock> {
+            blocks.iter().filter(|b| 0.5 * (b.min.x + b.max.x) > x0 && 0.5 * (b.min.x + b.max.x) < x1).collect()
+        };
+        let (a, b, c) = (room(0.0, 5.1), room(5.1, 10.3), room(10.3, 15.4));
+        assert_eq!((a.len(), b.len(), c.len()), (3, 5, 3), "{blocks:?}");
+        // The first room's doorway strip spans the doorway (z 0.5 .. 1.5) and opens east, to the
+        // partition's mid-plane; its other strips stay at the wall.
+        let door = a.iter().find(|s| s.openings[0]).expect("a strip opens east");
+        assert!((door.min.z - 0.5).abs() < 0.15 && (door.max.z - 1.5).abs() < 0.15, "{door:?}");
+        assert!((door.max.x - 5.1).abs() < 0.1, "{door:?}");
+        assert_eq!(a.iter().filter(|s| s.openings[0]).count(), 1);
+        for strip in blocks.iter() {
+            let size = strip.max - strip.min;
+            assert!((size.y - 3.0).abs() < 0.25, "{size}");
         }
         // As proxy boxes they make a level of two openings, linked both ways.
         let sides = [Face::PosX, Face::NegX, Face::PosY, Face::NegY, Face::PosZ, Face::NegZ];
@@ -463,7 +567,10 @@ mod tests {
                 })
                 .collect(),
         );
-        assert_eq!(level.link_count(), 4);
+        // Strips of a room open to each other (2 + 4 + 2 sides) and the two doorways: 10 sides,
+        // linked both ways, none to nothing.
+        assert_eq!(level.link_count(), 20);
+        assert!(level.unlinked().is_empty(), "{:?}", level.unlinked());
     }
 
     #[test]
