@@ -202,11 +202,20 @@ fn fit_blocks_finds_the_suite_levels_rooms_and_doorways_and_names_what_it_cannot
     let (level, objects) = bouncelab::precompute::mrt::proxy::level(&project.scene).expect("a level");
     assert_eq!((objects.len(), level.link_count()), (11, 20));
     assert!(level.unlinked().is_empty());
-    // An open box (the Cornell box has no front) encloses nothing: a clear error, no file.
+    // An open box (the Cornell box has no front) holds no room: a clear error, no file.
     let open = dir.join("cornell.ron");
     let run = bouncelab(&["fit-blocks", "assets/cornell_box.gltf", "--out", open.to_str().expect("utf-8")]);
     let err = String::from_utf8_lossy(&run.stderr);
-    assert!(!run.status.success() && err.contains("no enclosed space") && err.contains("cornell_box.gltf"), "{err}");
+    let named = err.contains("cannot fit proxy blocks") && err.contains("cornell_box.gltf");
+    assert!(!run.status.success() && named && (err.contains("no enclosed space") || err.contains("no room")), "{err}");
+    // A room with a 2 x 1.2 m window is still a room: the flood does not pass a window.
+    let window = dir.join("window.ron");
+    let run = bouncelab(&["fit-blocks", "assets/suite/window.gltf", "--out", window.to_str().expect("utf-8")]);
+    assert!(
+        String::from_utf8_lossy(&run.stdout).contains("1 proxy blocks"),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     assert!(!open.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,7 +1,8 @@
 //! Fitting MRT proxy blocks to a level's geometry (the "fit proxy blocks" command; research note
 //! `mrt-autofit.md`, whose section 4 this follows in a reduced form for rectilinear, one-storey
-//! levels): voxelise the triangles, flood the outside from the grid's border, keep the enclosed
-//! air; in plan, erode the air by half a doorway so rooms part at their doorways, label the cores,
+//! levels): voxelise the triangles, flood the outside from the grid's border (through voxels
+//! farther than a closing radius from any surface, so a window does not open a room, then spread
+//! back by it), keep the enclosed air; in plan, erode the air by half a doorway so rooms part at their doorways, label the cores,
 //! grow the labels back over the air; each room's box is its core's bounds grown back, its height
 //! the air's; rooms that touch become blocks whose facing sides are opened and snapped to the
 //! wall's mid-plane so the two blocks meet. What it cannot fit is a named error: no enclosed air
@@ -23,6 +24,9 @@ const HALF_DOORWAY: f32 = 0.6;
 const MIN_ROOM_AREA: f32 = 1.0;
 /// The thickest wall between two rooms whose sides are joined (m).
 const MAX_WALL: f32 = 0.8;
+/// The closing radius of the outside flood (m): windows and exterior doors up to twice it do not
+/// open a room to the outside.
+const CLOSE: f32 = 0.65;
 /// Enclosed air thinner than this along an axis is a wall's or slab's inside (m).
 const THIN: f32 = 0.5;
 /// Below this share of vertical area on the two grid axes the level is not rectilinear.
@@ -168,39 +172,58 @@ pub fn fit(tris: &[[Vec3; 3]]) -> Result<Vec<FittedBlock>, FitError> {
     let (lo, hi) =
         tris.iter().flatten().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(a, b), p| (a.min(*p), b.max(*p)));
     let h = ((hi - lo).max_element() / VOXELS_ALONG).clamp(0.02, 0.25);
-    let origin = lo - Vec3::splat(2.0 * h);
-    let dims = (((hi - lo) / h).ceil().as_ivec3() + IVec3::splat(5)).max(IVec3::ONE);
+    // Gaps narrower than twice the closing radius (windows, an exterior door) do not let the
+    // outside in: the flood runs through voxels farther than it from any surface, then spreads
+    // back by it. At most an eighth of the level, so an open side of a small box stays open.
+    let close = (CLOSE.min((hi - lo).max_element() / 8.0) / h).floor() as u32;
+    let pad = 2 + close as i32;
+    let origin = lo - Vec3::splat(pad as f32 * h);
+    let dims = (((hi - lo) / h).ceil().as_ivec3() + IVec3::splat(2 * pad + 1)).max(IVec3::ONE);
     let grid = Grid { origin, h, dims };
     let wall = solid(&grid, tris);
-    // Flood the outside from the border.
-    let mut outside = vec![false; grid.len()];
-    let mut queue = VecDeque::new();
-    for y in 0..dims.y {
-        for z in 0..dims.z {
-            for x in 0..dims.x {
-                let c = IVec3::new(x, y, z);
-                let border = c.cmpeq(IVec3::ZERO).any() || c.cmpeq(dims - 1).any();
-                if border && !wall[grid.index(c)] {
-                    outside[grid.index(c)] = true;
-                    queue.push_back(c);
+    let steps = [IVec3::X, IVec3::NEG_X, IVec3::Y, IVec3::NEG_Y, IVec3::Z, IVec3::NEG_Z];
+    // Breadth-first steps from `seeds` through voxels `pass` allows, up to `limit` steps.
+    let spread = |seeds: &[IVec3], pass: &dyn Fn(usize) -> bool, limit: u32| -> Vec<u32> {
+        let mut d = vec![u32::MAX; grid.len()];
+        let mut queue: VecDeque<IVec3> = VecDeque::new();
+        for c in seeds {
+            d[grid.index(*c)] = 0;
+            queue.push_back(*c);
+        }
+        while let Some(c) = queue.pop_front() {
+            let next = d[grid.index(c)] + 1;
+            if next > limit {
+                continue;
+            }
+            for st in steps {
+                let n = c + st;
+                if n.cmplt(IVec3::ZERO).any() || n.cmpge(dims).any() {
+                    continue;
+                }
+                let i = grid.index(n);
+                if d[i] == u32::MAX && pass(i) {
+                    d[i] = next;
+                    queue.push_back(n);
                 }
             }
         }
-    }
-    let steps = [IVec3::X, IVec3::NEG_X, IVec3::Y, IVec3::NEG_Y, IVec3::Z, IVec3::NEG_Z];
-    while let Some(c) = queue.pop_front() {
-        for s in steps {
-            let n = c + s;
-            if n.cmplt(IVec3::ZERO).any() || n.cmpge(dims).any() {
-                continue;
-            }
-            let i = grid.index(n);
-            if !wall[i] && !outside[i] {
-                outside[i] = true;
-                queue.push_back(n);
-            }
-        }
-    }
+        d
+    };
+    let all: Vec<IVec3> = (0..dims.y)
+        .flat_map(|y| (0..dims.z).flat_map(move |z| (0..dims.x).map(move |x| IVec3::new(x, y, z))))
+        .collect();
+    let surfaces: Vec<IVec3> = all.iter().copied().filter(|c| wall[grid.index(*c)]).collect();
+    let near = spread(&surfaces, &|i| !wall[i], close);
+    let open = |i: usize| !wall[i] && near[i] == u32::MAX;
+    let border: Vec<IVec3> = all
+        .iter()
+        .copied()
+        .filter(|c| (c.cmpeq(IVec3::ZERO).any() || c.cmpeq(dims - 1).any()) && open(grid.index(*c)))
+        .collect();
+    let flooded = spread(&border, &open, u32::MAX - 1);
+    let reached: Vec<IVec3> = all.iter().copied().filter(|c| flooded[grid.index(*c)] != u32::MAX).collect();
+    let back = spread(&reached, &|i| !wall[i], close);
+    let outside: Vec<bool> = back.iter().map(|d| *d != u32::MAX).collect();
     // Enclosed air in pieces thinner than THIN along some axis is the inside of a wall or slab
     // (its two faces marked, the voxels between them unreached): it is not space to light.
     let mut enclosed: Vec<bool> = (0..grid.len()).map(|i| !wall[i] && !outside[i]).collect();
