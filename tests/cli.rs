@@ -190,7 +190,8 @@ fn mrt_dictionary_builds_then_loads_from_its_cache_and_rejects_bad_parameters() 
 fn fit_blocks_finds_the_suite_levels_rooms_and_doorways_and_names_what_it_cannot_fit() {
     let dir = std::env::temp_dir().join(format!("bouncelab-cli-fit-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("dir");
-    let out = dir.join("rooms.ron");
+    // Into a folder that does not exist yet (made for it).
+    let out = dir.join("fitted").join("rooms.ron");
     let run = bouncelab(&["fit-blocks", "assets/suite/rooms.gltf", "--out", out.to_str().expect("utf-8")]);
     let text = String::from_utf8_lossy(&run.stdout);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));

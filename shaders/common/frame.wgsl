@@ -31,20 +31,23 @@ fn position_at(frame: Frame, depth: texture_depth_2d, pixel: vec2<u32>) -> vec4<
     return vec4<f32>(world_from_pixel(frame, pixel, d), 1.0);
 }
 
-// The world point a depth/normal pyramid texel `g` stands for (`render/pyramid.wgsl`): on the ray
-// of the view pixel it copied (g.a - 1, row-major), at its distance g.r. g.a must be >= 1.
-// The view pixel (its centre, in pixels) a depth/normal pyramid texel `g` copied.
+// The view pixel (its centre, in pixels) a depth/normal pyramid texel `g` copied
+// (`render/pyramid.wgsl`: g.a - 1, row-major). g.a must be >= 1.
 fn pyramid_pixel(frame: Frame, g: vec4<f32>) -> vec2<f32> {
     let index = u32(g.a - 0.5);
     let width = u32(frame.size.x);
     return vec2<f32>(f32(index % width), f32(index / width)) + 0.5;
 }
 
-fn pyramid_point(frame: Frame, g: vec4<f32>) -> vec3<f32> {
-    let index = u32(g.a - 0.5);
-    let width = u32(frame.size.x);
-    let pixel = vec2<f32>(f32(index % width), f32(index / width)) + 0.5;
+// The world point at distance `r` from the camera on the ray through `pixel` (pixels).
+fn point_on_pixel_ray(frame: Frame, pixel: vec2<f32>, r: f32) -> vec3<f32> {
     let uv = pixel * frame.size.zw;
     let h = frame.world_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, 1.0, 1.0);
-    return frame.camera_position.xyz + normalize(h.xyz / h.w - frame.camera_position.xyz) * g.r;
+    return frame.camera_position.xyz + normalize(h.xyz / h.w - frame.camera_position.xyz) * r;
+}
+
+// The world point a depth/normal pyramid texel `g` stands for: on the ray of the view pixel it
+// copied, at its distance g.r.
+fn pyramid_point(frame: Frame, g: vec4<f32>) -> vec3<f32> {
+    return point_on_pixel_ray(frame, pyramid_pixel(frame, g), g.r);
 }

@@ -60,12 +60,7 @@ pub struct FitArgs {
 /// Fits proxy blocks to a level and writes the project with them; returns the report.
 pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
     use crate::project_file::Project;
-    let is_gltf = args
-        .input
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"));
-    let mut project = if is_gltf { Project::from_gltf(&args.input)? } else { Project::load(&args.input)? };
+    let mut project = Project::open(&args.input)?;
     let fitted = crate::precompute::mrt::proxy::fitted_objects(&project.scene)
         .map_err(|e| anyhow::anyhow!("{}: cannot fit proxy blocks: {e}", args.input.display()))?;
     let mut out = format!("{}: {} proxy blocks\n", args.input.display(), fitted.len());
@@ -89,6 +84,9 @@ pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
         }
     }
     project.scene.desc_mut().objects.extend(fitted);
+    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?;
+    }
     project.save(&args.out)?;
     let _ = writeln!(out, "wrote {}", args.out.display());
     Ok(out)

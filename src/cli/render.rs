@@ -92,7 +92,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     }
     if let Some(name) = &args.buffer {
         let names: Vec<&str> = Renderer::buffers_for(project.render.mode).iter().map(|b| b.name).collect();
-        if !names.contains(&crate::render::gi::technique::buffer_base(name)) {
+        if !names.contains(&crate::render::gi::technique::split_buffer_name(name).0) {
             anyhow::bail!(
                 "unknown buffer {name:?} for mode {}; available: {}",
                 project.render.mode.name(),

@@ -122,7 +122,7 @@ fn reduce(
 ) -> Result<Reduced, BasisError> {
     let n = layout.len();
     let k_d = s.len();
-    let ps: Vec<f64> = (0..n).flat_map(|i| (0..k_d).map(move |c| p[i * k_d + c] * s[c])).collect();
+    let ps = columns(p, n, k_d, k_d, s);
     let m = gather::apply(layout, &ps, k_d, params.rays, params.seed, cancel).ok_or(BasisError::Cancelled)?;
     let d = svd(&m, n, k_d, "light-space indirect operator M = F P S")?;
     let k_b = rank(&d.s, params.k_b.min(k_d));
@@ -180,7 +180,7 @@ pub fn build(
     let indicators: Vec<f64> =
         (0..n).flat_map(|i| (0..faces).map(move |f| if i / per_face == f { 1.0 } else { 0.0 })).collect();
     for _ in 0..params.enrichment {
-        let ps: Vec<f64> = (0..n).flat_map(|i| (0..k_d).map(|c| p[i * k_d + c] * s[c]).collect::<Vec<_>>()).collect();
+        let ps = columns(&p, n, k_d, k_d, &s);
         let (a, cols) = balanced(&[(&ps, k_d), (&indicators, faces), (&reduced.u_b, reduced.k_b)], n);
         let e = svd(&a, n, cols, "enrichment concatenation")?;
         k_d = rank(&e.s, params.k_d);
@@ -188,7 +188,7 @@ pub fn build(
         s = e.s[..k_d].to_vec();
         reduced = reduce(&layout, &p, &s, params, cancel)?;
     }
-    let prior: Vec<f64> = (0..n).flat_map(|i| (0..k_d).map(|c| p[i * k_d + c] * s[c]).collect::<Vec<_>>()).collect();
+    let prior = columns(&p, n, k_d, k_d, &s);
     Ok(Element {
         shape,
         res: params.res,

@@ -71,10 +71,11 @@ pub struct FittedBlock {
     pub openings: [bool; 6],
 }
 
-/// Area-weighted agreement of the vertical triangles' normals with the x and z axes (1: all of
-/// them face an axis; `None` without vertical triangles).
+/// Area-weighted agreement of the vertical triangles' normals with the x and z axes: the mean of
+/// cos(4 theta), 1 where every wall faces an axis, 0 for walls facing every way (a sphere), -1
+/// for walls at 45 degrees; `None` without vertical triangles.
 fn rectilinearity(tris: &[[Vec3; 3]]) -> Option<f32> {
-    let (mut re, mut im, mut total) = (0.0f32, 0.0f32, 0.0f32);
+    let (mut re, mut total) = (0.0f32, 0.0f32);
     for t in tris {
         let c = (t[1] - t[0]).cross(t[2] - t[0]);
         let area = 0.5 * c.length();
@@ -84,10 +85,9 @@ fn rectilinearity(tris: &[[Vec3; 3]]) -> Option<f32> {
         }
         let theta = n.z.atan2(n.x);
         re += area * (4.0 * theta).cos();
-        im += area * (4.0 * theta).sin();
         total += area;
     }
-    (total > 0.0).then(|| re.hypot(im) / total)
+    (total > 0.0).then(|| re / total)
 }
 
 /// Whether `p` lies inside a closed solid: of the six axis rays from it, more meet a triangle's
@@ -167,7 +167,7 @@ pub fn fit(tris: &[[Vec3; 3]]) -> Result<Vec<FittedBlock>, FitError> {
     if let Some(r) = rectilinearity(tris)
         && r < MIN_RECTILINEAR
     {
-        return Err(FitError::NonRectilinear { share: 100.0 * r });
+        return Err(FitError::NonRectilinear { share: 100.0 * r.max(0.0) });
     }
     let (lo, hi) =
         tris.iter().flatten().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(a, b), p| (a.min(*p), b.max(*p)));
@@ -520,8 +520,7 @@ fn join(blocks: &mut [FittedBlock], a: usize, b: usize, axis: usize) {
 mod tests {
     use super::*;
     use crate::precompute::mrt::level::{Block, Level};
-    use crate::precompute::mrt::proxy::shape_for;
-    use crate::precompute::mrt::shape::Face;
+    use crate::precompute::mrt::proxy::{open_faces, shape_for};
 
     /// The 12 triangles of a box, facing out.
     fn cuboid(lo: Vec3, hi: Vec3) -> Vec<[Vec3; 3]> {
@@ -579,13 +578,11 @@ mod tests {
             assert!((size.y - 3.0).abs() < 0.25, "{size}");
         }
         // As proxy boxes they make a level of two openings, linked both ways.
-        let sides = [Face::PosX, Face::NegX, Face::PosY, Face::NegY, Face::PosZ, Face::NegZ];
         let level = Level::new(
             blocks
                 .iter()
                 .map(|b| {
-                    let open: Vec<Face> = sides.iter().zip(b.openings).filter(|(_, o)| *o).map(|(f, _)| *f).collect();
-                    let (shape, turns) = shape_for(&open).expect("a dictionary shape");
+                    let (shape, turns) = shape_for(&open_faces(&b.openings, 0)).expect("a dictionary shape");
                     Block { shape, origin: b.min, size: b.max - b.min, turns }
                 })
                 .collect(),
@@ -648,5 +645,10 @@ mod tests {
         let err = fit(&sphere).expect_err("a sphere");
         assert!(matches!(err, FitError::NonRectilinear { .. }), "{err}");
         assert!(err.to_string().contains("not rectilinear"));
+        // A closed box turned 45 degrees about up: rectilinear in itself, but off the grid.
+        let turn = glam::Quat::from_rotation_y(std::f32::consts::FRAC_PI_4);
+        let turned: Vec<[Vec3; 3]> =
+            cuboid(Vec3::splat(-2.0), Vec3::splat(2.0)).iter().map(|t| t.map(|p| turn * p)).collect();
+        assert!(matches!(fit(&turned), Err(FitError::NonRectilinear { .. })), "{:?}", fit(&turned));
     }
 }

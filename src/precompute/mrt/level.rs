@@ -38,19 +38,15 @@ fn turn_vec(v: Vec3, q: u8) -> Vec3 {
     (0..q % 4).fold(v, |v, _| Vec3::new(v.z, v.y, -v.x))
 }
 
-fn turn_face(f: Face, q: u8) -> Face {
-    (0..q % 4).fold(f, |f, _| f.rotated_about_up())
-}
-
 impl Block {
     /// The world side of the block's canonical face `f`.
     pub fn world_face(&self, f: Face) -> Face {
-        turn_face(f, self.turns)
+        f.turned(self.turns)
     }
 
     /// The canonical face on world side `w`.
     pub fn local_face(&self, w: Face) -> Face {
-        turn_face(w, (4 - self.turns % 4) % 4)
+        w.turned((4 - self.turns % 4) % 4)
     }
 
     /// A unit block at the grid cell `cell`.
@@ -189,8 +185,8 @@ impl Level {
 /// The turn from entry side `entry` to exit side `exit` (world sides of one block), or `None`
 /// where the exit is the entry itself.
 pub fn turn_between(entry: Face, exit: Face) -> Option<Turn> {
-    let q = (0..4u8).find(|&q| turn_face(entry, q) == ENTRY)?;
-    match turn_face(exit, q) {
+    let q = (0..4u8).find(|&q| entry.turned(q) == ENTRY)?;
+    match exit.turned(q) {
         f if f == Turn::Ahead.exit() => Some(Turn::Ahead),
         f if f == Turn::Left.exit() => Some(Turn::Left),
         f if f == Turn::Right.exit() => Some(Turn::Right),
@@ -272,7 +268,7 @@ pub fn response_rows(block: &Block, entry: Face, res: usize) -> Vec<Option<usize
     let layout = Layout::new(block.shape, res);
     let target = response::layout(res);
     let local_entry = block.local_face(entry);
-    let q = (0..4u8).find(|&q| turn_face(local_entry, q) == ENTRY).unwrap_or(0);
+    let q = (0..4u8).find(|&q| local_entry.turned(q) == ENTRY).unwrap_or(0);
     (0..layout.len())
         .map(|i| {
             let (face, _, p, _) = layout.sample(i);
@@ -281,7 +277,7 @@ pub fn response_rows(block: &Block, entry: Face, res: usize) -> Vec<Option<usize
             }
             let c = Vec3::new(0.5, 0.0, 0.5);
             let p = c + turn_vec(p - c, q);
-            let f = turn_face(face, q);
+            let f = face.turned(q);
             let (a, b) = f.plane_axes();
             let taps = target.bilinear(f, p[a], p[b])?;
             taps.iter().max_by(|x, y| x.1.total_cmp(&y.1)).map(|t| t.0)

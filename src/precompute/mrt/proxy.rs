@@ -45,27 +45,29 @@ pub fn shape_for(open: &[Face]) -> Option<(Shape, u8)> {
         if shape.open_faces().len() != open.len() {
             return None;
         }
-        (0..4u8).find_map(|t| {
-            let turned = |f: Face| (0..t).fold(f, |f, _| f.rotated_about_up());
-            shape.open_faces().iter().all(|f| open.contains(&turned(*f))).then_some((shape, t))
-        })
+        (0..4u8).find_map(|t| shape.open_faces().iter().all(|f| open.contains(&f.turned(t))).then_some((shape, t)))
     })
+}
+
+/// The faces in the order of a cuboid's `openings` (+X, -X, +Y, -Y, +Z, -Z).
+pub const OPENING_ORDER: [Face; 6] = [Face::PosX, Face::NegX, Face::PosY, Face::NegY, Face::PosZ, Face::NegZ];
+
+/// The open faces of a cuboid's `openings`, turned `turns` quarter turns about up.
+pub fn open_faces(openings: &[bool; 6], turns: u8) -> Vec<Face> {
+    OPENING_ORDER.iter().zip(openings).filter(|(_, o)| **o).map(|(f, _)| f.turned(turns)).collect()
 }
 
 /// The level of `scene`'s proxy blocks, and each block's object index.
 pub fn level(scene: &Scene) -> Result<(Level, Vec<usize>), ProxyError> {
     let mut blocks = Vec::new();
     let mut objects = Vec::new();
-    // Cuboid openings are listed +X, -X, +Y, -Y, +Z, -Z.
-    let order = [Face::PosX, Face::NegX, Face::PosY, Face::NegY, Face::PosZ, Face::NegZ];
     for (index, object) in scene.objects().iter().enumerate().filter(|(_, o)| o.role == ObjectRole::ProxyBlock) {
         let MeshSource::Cuboid { size, openings } = &object.source else {
             return Err(ProxyError::NotABox(object.name.clone()));
         };
         let t = &object.transform;
         let turns = quarter_turns(t.rotation).ok_or_else(|| ProxyError::Rotated(object.name.clone()))?;
-        let turn = |f: Face| (0..turns).fold(f, |f, _| f.rotated_about_up());
-        let open: Vec<Face> = order.iter().zip(openings).filter(|(_, o)| **o).map(|(f, _)| turn(*f)).collect();
+        let open = open_faces(openings, turns);
         if open.iter().any(|f| f.axis() == 1) {
             return Err(ProxyError::VerticalOpening(object.name.clone()));
         }

@@ -87,6 +87,11 @@ impl Face {
             other => other,
         }
     }
+
+    /// The face after `q` quarter turns about +y (each as [`Self::rotated_about_up`]).
+    pub fn turned(self, q: u8) -> Face {
+        (0..q % 4).fold(self, |f, _| f.rotated_about_up())
+    }
 }
 
 /// The six dictionary entries (digest section 3.1), each with its canonical open side walls.

@@ -90,9 +90,9 @@ pub enum BufferView {
     Slices,
 }
 
-/// A buffer name without its `@arguments` (the slice viewer's level and slice range).
-pub fn buffer_base(name: &str) -> &str {
-    name.split_once('@').map_or(name, |(base, _)| base)
+/// A buffer name and its `@arguments` (the slice viewer's level and slice range; "" when none).
+pub fn split_buffer_name(name: &str) -> (&str, &str) {
+    name.split_once('@').unwrap_or((name, ""))
 }
 
 /// One buffer the inspector can show.

@@ -63,7 +63,9 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let cam = frame.camera_position.xyz;
-    let x = pyramid_point(frame, g);
+    let pixel_x = pyramid_pixel(frame, g);
+    let x = point_on_pixel_ray(frame, pixel_x, g.r);
+    let zx = dot(x - cam, gp.forward.xyz);
     let nx = oct_decode(g.gb);
     let n = gp.level.z;
     let r = gp.geo.x;
@@ -95,7 +97,8 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
         if gy.a < 0.5 {
             continue;
         }
-        let py = pyramid_point(frame, gy);
+        let pixel_y = pyramid_pixel(frame, gy);
+        let py = point_on_pixel_ray(frame, pixel_y, gy.r);
         let dir_y = (py - cam) / max(gy.r, 1.0e-20);
         let ny = oct_decode(gy.gb);
         let v = py - x;
@@ -112,8 +115,7 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
         // Eq. 2: the texel's solid angle (cos^3 alpha off the axis) times distance^2 over the
         // tilt cos(beta) (clamped at 0.05), times the sample's share dP.
         let cos_a = max(dot(dir_y, gp.forward.xyz), 0.0);
-        let zt = dot(x - cam, gp.forward.xyz);
-        if gp.vox.w > 0.5 && voxel_occluded(pyramid_pixel(frame, g), pyramid_pixel(frame, gy), zt, gy.r * cos_a) {
+        if gp.vox.w > 0.5 && voxel_occluded(pixel_x, pixel_y, zx, gy.r * cos_a) {
             continue;
         }
         let cos_b = max(dot(ny, -dir_y), 0.05);

@@ -494,11 +494,14 @@ impl SshgiPasses {
             if first {
                 let g = mip_group(&key.direct, &key.albedo, &illumination.view);
                 step(pass("sshgi illumination"), Pipe::BoxSeed, g, 0, illumination);
-                let g = mip_group(&key.albedo, &key.albedo, &s.albedo.view);
-                step(pass("sshgi illumination"), Pipe::BoxSeed, g, 0, &s.albedo);
             } else {
                 let g = mip_group(&s.albedo.view, &s.bounce[b - 1].view, &illumination.view);
                 step(pass("sshgi illumination"), Pipe::Product, g, 1, illumination);
+            }
+            if b == 0 {
+                // The start level's albedo, for the later bounces (once, whatever the chains).
+                let g = mip_group(&key.albedo, &key.albedo, &s.albedo.view);
+                step(pass("sshgi illumination"), Pipe::BoxSeed, g, 0, &s.albedo);
             }
             for k in 1..levels {
                 let (fine, coarse) = (&s.illumination[k - 1], &s.illumination[k]);

@@ -8,7 +8,7 @@ use crate::image_io::HdrImage;
 use crate::render::gi::inputs::GiInputs;
 use crate::render::gi::technique::{
     BufferInfo, BufferView, GiOutput, GiTechnique, Needs, Readiness, ResetReason, SupportQuery, TechniqueStatus,
-    note_reset,
+    note_reset, split_buffer_name,
 };
 use crate::render::{RenderError, readback};
 use crate::scene::Scene;
@@ -73,8 +73,9 @@ pub const BUFFERS: &[BufferInfo] = &[
 pub struct SshgiTechnique {
     passes: SshgiPasses,
     voxels: VoxelPass,
-    /// The voxel level the last frame's gathers marched (`visibility_detail` finer than the start).
-    voxel_start: usize,
+    /// The voxel level the last frame's gathers marched (`visibility_detail` finer than the start;
+    /// only levels up to it are reduced).
+    voxel_marched: usize,
     temporal: TemporalPass,
     status: TechniqueStatus,
     /// The visibility difference is inspected: gather the first bounce unshadowed too.
@@ -87,7 +88,7 @@ impl SshgiTechnique {
         Ok(Self {
             passes: SshgiPasses::new(device)?,
             voxels: VoxelPass::new(device, layouts)?,
-            voxel_start: 0,
+            voxel_marched: 0,
             temporal: TemporalPass::new(device)?,
             status: TechniqueStatus::default(),
             unshadowed: false,
@@ -112,9 +113,7 @@ impl SshgiTechnique {
     pub fn support(_query: &SupportQuery<'_>) -> Result<(), String> {
         Ok(())
     }
-}
 
-impl SshgiTechnique {
     /// The inspector's visibility difference: the unshadowed first bounce minus the shadowed one.
     fn visibility_difference(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<HdrImage, RenderError> {
         let (Some(open), Some(shadowed)) =
@@ -160,6 +159,9 @@ impl GiTechnique for SshgiTechnique {
         let axis = ViewAxis::new(inputs.frame);
         let range = Self::voxel_range(inputs, &axis);
         plan.unshadowed = self.unshadowed && range.is_some();
+        // The voxel level the gathers march: `visibility_detail` levels finer than the start.
+        let level = plan.start.saturating_sub(settings.visibility_detail);
+        self.voxel_marched = level as usize;
         if let Some((near, far)) = range {
             let params = VoxelParams {
                 range: [near, far, 128.0 / (far - near).max(1e-6), 0.0],
@@ -173,13 +175,11 @@ impl GiTechnique for SshgiTechnique {
                 inputs.frame_buffer,
                 inputs.scene_gpu,
                 inputs.targets.size,
-                plan.start + 1,
+                level + 1,
                 params,
                 ts,
             );
         }
-        let level = plan.start.saturating_sub(settings.visibility_detail);
-        self.voxel_start = level as usize;
         let visibility =
             range.and_then(|range| Some(Visibility { columns: self.voxels.level(level as usize)?, range, level }));
         let targets = inputs.targets;
@@ -209,7 +209,7 @@ impl GiTechnique for SshgiTechnique {
         queue: &wgpu::Queue,
         name: &str,
     ) -> Option<Result<HdrImage, RenderError>> {
-        let (base, args) = name.split_once('@').unwrap_or((name, ""));
+        let (base, args) = split_buffer_name(name);
         if !BUFFERS.iter().any(|b| b.name == base) {
             return None;
         }
@@ -217,7 +217,7 @@ impl GiTechnique for SshgiTechnique {
             || RenderError::UnknownBuffer { name: name.into(), known: "render sshgi with visibility on first".into() };
         if base == "sshgi_voxel_slices" {
             let parsed =
-                if args.is_empty() { Some((self.voxel_start, 0, 127)) } else { super::voxels::parse_slices(args) };
+                if args.is_empty() { Some((self.voxel_marched, 0, 127)) } else { super::voxels::parse_slices(args) };
             let Some((level, first, last)) = parsed else {
                 return Some(Err(RenderError::UnknownBuffer {
                     name: name.into(),
@@ -243,7 +243,7 @@ impl GiTechnique for SshgiTechnique {
         }
         let voxel_level = match name {
             "sshgi_voxels" => Some(0),
-            "sshgi_voxels_start" => Some(self.voxel_start),
+            "sshgi_voxels_start" => Some(self.voxel_marched),
             _ => None,
         };
         if let Some(l) = voxel_level {
