@@ -7,7 +7,7 @@
 //! `cargo run --release --example ism_probe -- rooms,clutter "(total_points: 524288)"`
 //!
 //! `PROBE_SSHGI="()"` renders `sshgi` with those settings in place of `ism` (the ISM settings
-//! argument is then ignored).
+//! argument is then ignored); `PROBE_MRT="()"` renders `mrt` likewise.
 //!
 //! A name ending in `.gltf` is a scene outside the suite, compared with the `.exr` next to it
 //! (`tools/unseen_levels.py` writes the held-out levels; `bouncelab render --mode reference
@@ -33,7 +33,9 @@ fn render(
     // PROBE_AVG: the mean of every frame instead of the last (the estimator's expectation).
     let average = std::env::var_os("PROBE_AVG").is_some();
     let mut sum = vec![[0.0f32; 4]; (size.0 * size.1) as usize];
-    for _ in 0..frames {
+    // A technique preparing on the CPU (MRT's dictionary and level) first.
+    let ready = bouncelab::cli::render::until_ready(ctx, &mut r, project, size)? as usize;
+    for _ in ready..frames {
         r.render(&project.scene, &project.render, size)?;
         if average {
             for (s, p) in sum.iter_mut().zip(r.read_hdr()?) {
@@ -84,6 +86,11 @@ fn main() -> anyhow::Result<()> {
         if let Ok(ron_text) = std::env::var("PROBE_SSHGI") {
             project.render.sshgi = ron::from_str(&ron_text)?;
             project.render.mode = GiMode::Sshgi;
+        }
+        // PROBE_MRT: render `mrt` with these settings (RON) instead of `ism`.
+        if let Ok(ron_text) = std::env::var("PROBE_MRT") {
+            project.render.mrt = ron::from_str(&ron_text)?;
+            project.render.mode = GiMode::Mrt;
         }
         let (img, r) = render(&ctx, &project, frames)?;
         let c = metrics::compare(&img, &reference, ev)?;

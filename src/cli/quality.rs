@@ -16,7 +16,7 @@ use crate::settings::{GiMode, ViewSettings};
 use crate::suite::{REFERENCE_SIZE, SCENES, SuiteScene};
 
 /// Modes in the matrix (the reference is the yardstick, not a row).
-const MODES: [GiMode; 4] = [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel, GiMode::Sshgi];
+const MODES: [GiMode; 5] = [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel, GiMode::Sshgi, GiMode::Mrt];
 /// Frames rendered per mode (temporal techniques converge; the last one is compared).
 const FRAMES: usize = 32;
 /// Supersampling per axis, as the reference's box-filtered pixels.
@@ -41,7 +41,8 @@ fn render(ctx: &GpuContext, scene: &SuiteScene, root: &Path, mode: GiMode) -> an
     let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
     let frames = if mode == GiMode::Direct || mode == GiMode::IsmRitschel { 9 } else { FRAMES };
     let mut times = Vec::new();
-    for f in 0..frames {
+    let first = super::render::until_ready(ctx, &mut r, &project, size)?;
+    for f in first as usize..frames {
         let t = Instant::now();
         r.render(&project.scene, &project.render, size)?;
         let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());

@@ -9,6 +9,7 @@ use anyhow::Context as _;
 use crate::image_io::{self, HdrImage, OutputKind};
 use crate::precompute::pathtracer::PathTracer;
 use crate::project_file::Project;
+use crate::render::gi::Readiness;
 use crate::render::{GpuContext, Renderer};
 use crate::settings::{GiMode, Tonemap, ViewSettings};
 
@@ -128,7 +129,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     // buffers and uploads until the driver ran out of memory (a segfault after ~600 frames).
     let frames = args.frames;
     let mut progress = super::progress::Progress::new(u64::from(frames));
-    for done in 1..=frames {
+    let first = until_ready(&ctx, &mut renderer, &project, render_size)?;
+    for done in first + 1..=frames {
         renderer.render(&project.scene, &project.render, render_size)?;
         ctx.device
             .poll(wgpu::PollType::wait_indefinitely())
@@ -175,6 +177,32 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
         project.render.mode.name(),
         ctx.describe()
     ))
+}
+
+/// Renders frames of `project` at `size` until its technique is no longer preparing on the CPU
+/// (MRT's dictionary and level: the frame meanwhile shows direct light), saying what it waits
+/// for. Returns how many of the frames rendered were the technique's own (0 or 1), so callers
+/// count those toward their frames.
+pub fn until_ready(
+    ctx: &GpuContext,
+    renderer: &mut Renderer,
+    project: &Project,
+    size: (u32, u32),
+) -> anyhow::Result<u32> {
+    let mut said = String::new();
+    loop {
+        renderer.render(&project.scene, &project.render, size)?;
+        ctx.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| anyhow::anyhow!("waiting for the GPU: {e}"))?;
+        let Readiness::Pending { what, .. } = renderer.readiness() else { return Ok(1) };
+        let head = what.split(" (").next().unwrap_or_default().to_owned();
+        if head != said {
+            eprintln!("{what}");
+            said = head;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
 }
 
 /// Fails now, not after the render, when `out` cannot be written: its folder cannot be

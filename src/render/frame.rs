@@ -390,6 +390,12 @@ impl Renderer {
         self.queue.write_buffer(&self.shadow_views_buffer, 0, &view_bytes);
     }
 
+    /// Whether the last frame's technique was ready, or still preparing on the CPU (a bake, a
+    /// precompute): the frame then showed direct light.
+    pub fn readiness(&self) -> &Readiness {
+        &self.readiness
+    }
+
     /// The current view targets (after the first render).
     pub fn targets(&self) -> Option<&ViewTargets> {
         self.sized.as_ref().map(|s| &s.targets)

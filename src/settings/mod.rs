@@ -7,10 +7,12 @@
 use serde::{Deserialize, Serialize};
 
 mod ism;
+mod mrt;
 mod preview;
 mod sshgi;
 
 pub use ism::{BouncePick, IsmSettings, MAX_ATLAS_SIDE};
+pub use mrt::MrtSettings;
 pub use sshgi::SshgiSettings;
 
 /// The GI technique that produces indirect light.
@@ -143,6 +145,8 @@ pub struct RenderSettings {
     pub ism: IsmSettings,
     /// Screen-space hierarchical GI.
     pub sshgi: SshgiSettings,
+    /// Modular radiance transfer over proxy blocks.
+    pub mrt: MrtSettings,
 }
 
 /// A settings value outside its valid range.
@@ -194,6 +198,7 @@ impl RenderSettings {
         }
         self.ism.validate()?;
         self.sshgi.validate()?;
+        self.mrt.validate()?;
         if !(-32.0..=32.0).contains(&self.view.exposure_ev) {
             return Err(SettingsError {
                 name: "view.exposure_ev",

@@ -7,14 +7,16 @@
 //! R_{b->rlf} ([`interface`]), the propagation through a block ahead, left or right
 //! ([`propagate`]) and a block's surface response to entering light ([`response`]: U_r,
 //! T_{rlf->r}); a level of blocks from the scene's proxy boxes ([`proxy`]) with its links,
-//! T_{b->r} and a frame's indirect light in the reduced spaces ([`level`]). The GPU runtime
-//! builds on these.
+//! T_{b->r} and a frame's indirect light in the reduced spaces ([`level`]); the real surface
+//! behind each block texel ([`geometry_image`]). The GPU runtime (`render::gi::mrt`) builds on
+//! these.
 
 pub mod basis;
 pub mod cache;
 pub mod dictionary;
 pub mod fit;
 pub mod gather;
+pub mod geometry_image;
 pub mod interface;
 pub mod level;
 pub mod lightfield;

@@ -60,3 +60,17 @@ pub struct GiInputs<'a> {
     pub frame_index: u32,
     pub timer: &'a mut GpuTimer,
 }
+
+impl GiInputs<'_> {
+    /// A compute pass named and timed `name`, detached from the encoder's borrow (it must end
+    /// before the encoder records anything else).
+    pub fn compute_pass(&mut self, name: &str) -> wgpu::ComputePass<'static> {
+        let ts = self.timer.scope(name);
+        self.encoder
+            .begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(name),
+                timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
+            })
+            .forget_lifetime()
+    }
+}

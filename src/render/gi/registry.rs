@@ -6,6 +6,7 @@
 
 use super::direct::DirectTechnique;
 use super::ism::technique::IsmTechnique;
+use super::mrt::technique::MrtTechnique;
 use super::reference::ReferenceTechnique;
 use super::sshgi::technique::SshgiTechnique;
 use super::technique::{BufferInfo, GiTechnique, ResetReason, SupportQuery};
@@ -42,6 +43,12 @@ pub const TECHNIQUES: &[TechniqueEntry] = &[
         support: IsmTechnique::support,
         buffers: super::ism::technique::BUFFERS,
         create: |device, layouts| Ok(Box::new(IsmTechnique::new(device, layouts)?)),
+    },
+    TechniqueEntry {
+        modes: &[GiMode::Mrt],
+        support: MrtTechnique::support,
+        buffers: super::mrt::technique::BUFFERS,
+        create: |device, layouts| Ok(Box::new(MrtTechnique::new(device, layouts)?)),
     },
     TechniqueEntry {
         modes: &[GiMode::Sshgi],

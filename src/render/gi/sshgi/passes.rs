@@ -344,7 +344,7 @@ impl SshgiPasses {
             if open.as_ref().is_none_or(|(name, _)| *name != step.pass) {
                 // The previous pass ends before the next begins (the encoder is locked meanwhile).
                 drop(open.take());
-                open = Some((step.pass.as_str(), open_pass(inputs, &step.pass)));
+                open = Some((step.pass.as_str(), inputs.compute_pass(&step.pass)));
             }
             let Some((_, pass)) = open.as_mut() else { return };
             pass.set_pipeline(match step.pipeline {
@@ -599,17 +599,4 @@ impl SshgiPasses {
         let all = all.chain(&s.unshadowed);
         all.chain(std::iter::once(&s.albedo)).map(|t| crate::render::gi::technique::texture_bytes(&t.texture)).sum()
     }
-}
-
-/// A compute pass named and timed `name`, detached from the encoder's borrow (it must end before
-/// the encoder records anything else).
-fn open_pass(inputs: &mut GiInputs<'_>, name: &str) -> wgpu::ComputePass<'static> {
-    let ts = inputs.timer.scope(name);
-    inputs
-        .encoder
-        .begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some(name),
-            timestamp_writes: ts.as_ref().map(|t| t.compute_writes()),
-        })
-        .forget_lifetime()
 }

@@ -1,0 +1,90 @@
+// MRT pass F (digest sections 6.3 and 6.5): the lightmap applied to the real scene. Each pixel
+// belongs to the block its surface faces into (the box nearest to the point lifted 5 cm along its
+// normal) and to that block's present face whose inward normal is closest to the pixel's normal
+// (a floor to the floor, a wall to the wall behind it); its lightmap coordinate is the
+// orthographic projection of the point onto that face in the block's canonical frame, read
+// bilinearly between texel centres, clamped at the face's border. Writes E / pi (the composite
+// multiplies by the albedo); `assignment` holds the block and face for the inspector.
+#import common/frame.wgsl
+#import common/octahedral.wgsl
+#import render/gi/mrt/mrt_common.wgsl
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> mp: MrtParams;
+@group(0) @binding(2) var<storage, read> blocks: array<Block>;
+@group(0) @binding(3) var<storage, read> indirect: array<vec4<f32>>;
+@group(0) @binding(4) var depth_tex: texture_depth_2d;
+@group(0) @binding(5) var normal_tex: texture_2d<f32>;
+@group(0) @binding(6) var out_indirect: texture_storage_2d<rgba32float, write>;
+@group(0) @binding(7) var assignment: texture_storage_2d<rgba32float, write>;
+
+fn box_distance(b: Block, q: vec3<f32>) -> f32 {
+    let lo = b.origin.xyz;
+    let hi = lo + b.size.xyz;
+    let d = max(max(lo - q, q - hi), vec3<f32>(0.0));
+    return length(d);
+}
+
+fn texel_at(start: u32, s: u32, t: u32) -> vec3<f32> {
+    return max(indirect[start + t * mp.sizes.y + s].rgb, vec3<f32>(0.0));
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = vec2<u32>(frame.size.xy);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let pixel = id.xy;
+    let depth = textureLoad(depth_tex, pixel, 0);
+    if depth <= 0.0 || mp.counts.x == 0u {
+        textureStore(out_indirect, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
+        textureStore(assignment, pixel, vec4<f32>(-1.0, -1.0, 0.0, 1.0));
+        return;
+    }
+    let p = world_from_pixel(frame, pixel, depth);
+    let n = oct_decode(textureLoad(normal_tex, pixel, 0).zw);
+    let q = p + n * 0.05;
+    var best = 0u;
+    var best_d = 1.0e30;
+    for (var x = 0u; x < mp.counts.x; x = x + 1u) {
+        let d = box_distance(blocks[x], q);
+        if d < best_d {
+            best_d = d;
+            best = x;
+        }
+    }
+    let blk = blocks[best];
+    var side = MRT_NONE;
+    var best_c = -2.0;
+    for (var w = 0u; w < 6u; w = w + 1u) {
+        let c = dot(n, side_inward(w));
+        if block_start(blk, w) != MRT_NONE && c > best_c {
+            best_c = c;
+            side = w;
+        }
+    }
+    let start = block_start(blk, side);
+    let face = block_local(blk, side);
+    let lp = block_local_point(blk, p);
+    // The canonical face's in-plane axes (shape::Face::plane_axes).
+    var st = vec2<f32>(lp.x, lp.y);
+    let axis = face / 2u;
+    if axis == 0u {
+        st = vec2<f32>(lp.z, lp.y);
+    } else if axis == 1u {
+        st = vec2<f32>(lp.x, lp.z);
+    }
+    let res = f32(mp.sizes.y);
+    let c = clamp(st * res - 0.5, vec2<f32>(0.0), vec2<f32>(res - 1.0));
+    let i0 = vec2<u32>(floor(c));
+    let i1 = min(i0 + 1u, vec2<u32>(mp.sizes.y - 1u));
+    let f = c - floor(c);
+    let e = mix(
+        mix(texel_at(start, i0.x, i0.y), texel_at(start, i1.x, i0.y), f.x),
+        mix(texel_at(start, i0.x, i1.y), texel_at(start, i1.x, i1.y), f.x),
+        f.y,
+    );
+    textureStore(out_indirect, pixel, vec4<f32>(e, 1.0));
+    textureStore(assignment, pixel, vec4<f32>(f32(best), f32(face), best_d, 1.0));
+}

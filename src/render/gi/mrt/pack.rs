@@ -1,0 +1,223 @@
+//! A level and its dictionary laid out for MRT's GPU runtime (digest section 7.3's records as
+//! storage buffers): every block texel's geometry-image surface, one record per block (its box,
+//! its faces' texel ranges, the interfaces entering it), the dictionary elements' T_{d->b} and
+//! U_b, the surface response U_r, the level's sparse T_{b->r} as k_r x k_b matrices grouped by
+//! the directed interface they feed, and, per entering interface, the response row of each of
+//! the receiving block's texels. Built on the CPU whenever the blocks or the geometry change
+//! (the suite's 11-block rooms: tens of milliseconds), uploaded once, read every frame.
+
+use bytemuck::{Pod, Zeroable};
+
+use crate::precompute::bvh::SceneBvh;
+use crate::precompute::mrt::dictionary::Dictionary;
+use crate::precompute::mrt::geometry_image::{TexelSurface, geometry_image};
+use crate::precompute::mrt::level::{self, Level, Operators};
+use crate::precompute::mrt::shape::{Face, Layout};
+use crate::scene::Scene;
+
+/// "None" in the index tables.
+pub const NONE: u32 = u32::MAX;
+
+/// One texel's real surface (`Texel` in `mrt_common.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct GpuTexel {
+    /// World position, w = 1 where a real surface was found.
+    pub position: [f32; 4],
+    /// Unit normal facing into the block, w = the block's index.
+    pub normal: [f32; 4],
+    /// Albedo, w unused.
+    pub albedo: [f32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<GpuTexel>() == 48);
+
+/// One block (`Block` in `mrt_common.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct GpuBlock {
+    /// Minimum corner, w = quarter turns about up.
+    pub origin: [f32; 4],
+    /// Size along world x, y, z; w unused.
+    pub size: [f32; 4],
+    /// First texel, texel count n, offset of its element's T_{d->b} (k_b x n) and of its U_b
+    /// (n x k_b) in the matrix buffers.
+    pub texels: [u32; 4],
+    /// Per world side (-x, +x, -y, +y, -z, +z, -, -): the first texel of the canonical face on
+    /// that side, or [`NONE`] where it is open.
+    pub starts: [u32; 8],
+    /// Per world side: the canonical face on that side (`Face` as u32).
+    pub local: [u32; 8],
+    /// The directed interfaces entering this block (slot indices, [`NONE`] for none).
+    pub slots: [u32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<GpuBlock>() == 128);
+
+/// One directed interface's record (`Slot`): its first entry, entry count, receiving block, and
+/// where its response rows start in `rows`.
+pub type GpuSlot = [u32; 4];
+
+/// One T_{b->r} matrix (`Entry`): source block, offset of its k_r x k_b matrix, unused x2.
+pub type GpuEntry = [u32; 4];
+
+/// Everything the runtime uploads.
+#[derive(Clone, Debug, Default)]
+pub struct Packed {
+    /// Per texel, block after block.
+    pub texels: Vec<GpuTexel>,
+    /// Per block.
+    pub blocks: Vec<GpuBlock>,
+    /// The elements' T_{d->b}, then their U_b (row-major, f32).
+    pub matrices: Vec<f32>,
+    /// U_r (n_r x k_r).
+    pub u_r: Vec<f32>,
+    /// The T_{b->r} matrices (k_r x k_b each).
+    pub transfer: Vec<f32>,
+    /// Per T_{b->r} matrix, grouped by slot.
+    pub entries: Vec<GpuEntry>,
+    /// Per directed interface.
+    pub slots: Vec<GpuSlot>,
+    /// Response row per texel of each slot's receiving block ([`NONE`] on the entry side).
+    pub rows: Vec<u32>,
+    /// Modes per block k_b, response modes k_r, texels per face side, texels with a surface.
+    pub k_b: u32,
+    pub k_r: u32,
+    pub res: u32,
+    pub surfaces_found: u32,
+}
+
+impl Packed {
+    /// Bytes uploaded.
+    pub fn bytes(&self) -> u64 {
+        let words = self.matrices.len() + self.u_r.len() + self.transfer.len() + self.rows.len();
+        (std::mem::size_of_val(self.texels.as_slice())
+            + std::mem::size_of_val(self.blocks.as_slice())
+            + 16 * (self.entries.len() + self.slots.len())
+            + 4 * words) as u64
+    }
+}
+
+/// The world sides in `GpuBlock::starts` order.
+pub const SIDES: [Face; 6] = Face::ALL;
+
+/// Lays out `level` with `dictionary`'s operators, propagated `depth` blocks, its texels' real
+/// surfaces from `scene` (traced in `bvh`).
+pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionary, depth: usize) -> Packed {
+    let res = dictionary.params.res;
+    let ops = Operators { dictionary, interfaces: &dictionary.interfaces };
+    let transfer = level::assemble(level, &ops, depth);
+    let mut p = Packed {
+        k_b: dictionary.params.k_b as u32,
+        k_r: dictionary.interfaces.response.k_r as u32,
+        res: res as u32,
+        ..Packed::default()
+    };
+    // Elements' matrices: T_{d->b} then U_b, each element once.
+    let mut offsets = Vec::new();
+    for e in &dictionary.elements {
+        let t = p.matrices.len() as u32;
+        p.matrices.extend(e.t_db.iter().map(|v| *v as f32));
+        let u = p.matrices.len() as u32;
+        p.matrices.extend(e.u_b.iter().map(|v| *v as f32));
+        offsets.push((e.shape, t, u, e.k_b as u32));
+    }
+    p.k_b = offsets.iter().map(|o| o.3).min().unwrap_or(0);
+    p.u_r = dictionary.interfaces.response.u_r.iter().map(|v| *v as f32).collect();
+    // Directed interfaces (receiver, entry side) in a fixed order, and their entries.
+    let mut keys: Vec<(usize, usize, Face)> = transfer.blocks.keys().copied().collect();
+    keys.sort_by_key(|(x, y, f)| (*y, *f as usize, *x));
+    let mut slot_of: Vec<((usize, Face), u32)> = Vec::new();
+    for (x, y, f) in keys {
+        let Some(m) = transfer.blocks.get(&(x, y, f)) else { continue };
+        if slot_of.last().is_none_or(|(k, _)| *k != (y, f)) {
+            let rows_at = p.rows.len() as u32;
+            let rows = level::response_rows(&level.blocks[y], f, res);
+            p.rows.extend(rows.iter().map(|r| r.map_or(NONE, |r| r as u32)));
+            slot_of.push(((y, f), p.slots.len() as u32));
+            p.slots.push([p.entries.len() as u32, 0, y as u32, rows_at]);
+        }
+        if let Some(slot) = p.slots.last_mut() {
+            slot[1] += 1;
+        }
+        p.entries.push([x as u32, p.transfer.len() as u32, 0, 0]);
+        p.transfer.extend(m.iter().map(|v| *v as f32));
+    }
+    for (bi, b) in level.blocks.iter().enumerate() {
+        let layout = Layout::new(b.shape, res);
+        let first = p.texels.len() as u32;
+        let surfaces: Vec<TexelSurface> = geometry_image(scene, bvh, b, res);
+        for s in &surfaces {
+            p.surfaces_found += u32::from(s.found);
+            p.texels.push(GpuTexel {
+                position: s.position.extend(if s.found { 1.0 } else { 0.0 }).to_array(),
+                normal: s.normal.extend(bi as f32).to_array(),
+                albedo: s.albedo.extend(0.0).to_array(),
+            });
+        }
+        let (t, u) = offsets.iter().find(|o| o.0 == b.shape).map_or((0, 0), |o| (o.1, o.2));
+        let mut starts = [NONE; 8];
+        let mut local = [0; 8];
+        for (k, w) in SIDES.iter().enumerate() {
+            let f = b.local_face(*w);
+            local[k] = f as u32;
+            starts[k] = layout.face_start(f).map_or(NONE, |s| first + s as u32);
+        }
+        let mut slots = [NONE; 4];
+        for (k, (_, s)) in slot_of.iter().filter(|((y, _), _)| *y == bi).take(4).enumerate() {
+            slots[k] = *s;
+        }
+        p.blocks.push(GpuBlock {
+            origin: b.origin.extend(f32::from(b.turns % 4)).to_array(),
+            size: b.size.extend(0.0).to_array(),
+            texels: [first, layout.len() as u32, t, u],
+            starts,
+            local,
+            slots,
+        });
+    }
+    p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::precompute::mrt::dictionary::{Progress, build, test_params};
+    use crate::precompute::mrt::level::Block;
+    use crate::precompute::mrt::shape::Shape;
+
+    #[test]
+    fn a_corridor_packs_its_texels_slots_and_response_rows() {
+        let d = build(&test_params(), &Progress::default()).expect("dictionary");
+        let blocks = vec![
+            Block::unit(Shape::DeadEnd, [0, 0, 0], 2),
+            Block::unit(Shape::Corridor, [0, 0, 1], 0),
+            Block::unit(Shape::DeadEnd, [0, 0, 2], 0),
+        ];
+        let level = Level::new(blocks);
+        assert_eq!(level.link_count(), 4, "two doorways, both directions");
+        let scene = Scene::new(Default::default(), Default::default()).expect("empty scene");
+        let bvh = SceneBvh::build(&scene);
+        let p = pack(&scene, &bvh, &level, &d, 4);
+        let n = |s: Shape| Layout::new(s, 3).len();
+        assert_eq!(p.texels.len(), 2 * n(Shape::DeadEnd) + n(Shape::Corridor));
+        assert_eq!(p.surfaces_found, 0, "an empty scene has no surfaces");
+        // Each directed interface is fed by every block whose light reaches it.
+        assert_eq!(p.slots.len(), 4);
+        let fed: u32 = p.slots.iter().map(|s| s[1]).sum();
+        assert_eq!(fed as usize, p.entries.len());
+        assert!(p.entries.len() >= 4);
+        // Each slot's rows cover its receiving block, the entry side excluded.
+        for s in &p.slots {
+            let b = &p.blocks[s[2] as usize];
+            let rows = &p.rows[s[3] as usize..(s[3] + b.texels[1]) as usize];
+            let none = rows.iter().filter(|r| **r == NONE).count();
+            assert_eq!(none, 9, "one face of 3x3 texels is the entry side");
+            assert!(b.slots.contains(&(p.slots.iter().position(|x| x == s).expect("slot") as u32)));
+        }
+        // The middle block's open sides have no texels.
+        let mid = &p.blocks[1];
+        assert_eq!(mid.starts.iter().take(6).filter(|s| **s == NONE).count(), 2);
+        assert_eq!(p.transfer.len(), p.entries.len() * (p.k_b * p.k_r) as usize);
+    }
+}

@@ -1,0 +1,413 @@
+//! MRT's GPU passes (Loos 2015 §3.6.3; digest section 7.3's wgpu mapping): A direct light at the
+//! texels (`mrt_direct.wgsl`), B b = T_{d->b} l_d (`mrt_reduce.wgsl`), C r = T_{b->r} b
+//! (`mrt_interface.wgsl`), D the texels' indirect light U_b b + U_r r (`mrt_reconstruct.wgsl`),
+//! F the lightmap on the view (`mrt_apply.wgsl`). Each is its own timed compute pass. The
+//! level's buffers are uploaded when the level changes; the per-frame ones (l_d, b, r, the
+//! texels' indirect light) live with them, so the texels' light of the last frame is there for
+//! the feedback and the inspector.
+
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+use super::pack::Packed;
+use crate::render::gi::inputs::GiInputs;
+use crate::render::readback;
+use crate::render::shaders::{self, ShaderError};
+use crate::render::targets::{Target, formats};
+
+/// `MrtParams` in `mrt_common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct MrtParams {
+    /// Blocks, texels, directed interfaces, k_b.
+    pub counts: [u32; 4],
+    /// k_r, texels per face side, unused x2.
+    pub sizes: [u32; 4],
+    /// Feedback gain, unused x3.
+    pub gains: [f32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<MrtParams>() == 48);
+
+/// What a binding is.
+#[derive(Clone, Copy)]
+enum Kind {
+    Uniform,
+    Read,
+    Write,
+    Depth,
+    DepthArray,
+    Comparison,
+    Float,
+    StorageTexture,
+}
+
+/// One pipeline and its bind group layout.
+struct Pass {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl Pass {
+    fn new(device: &wgpu::Device, name: &str, kinds: &[Kind]) -> Result<Self, ShaderError> {
+        let c = wgpu::ShaderStages::COMPUTE;
+        let entries: Vec<wgpu::BindGroupLayoutEntry> = kinds
+            .iter()
+            .enumerate()
+            .map(|(i, k)| {
+                let storage = |read_only| wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                };
+                let texture = |sample_type, view_dimension| wgpu::BindingType::Texture {
+                    sample_type,
+                    view_dimension,
+                    multisampled: false,
+                };
+                let ty = match k {
+                    Kind::Uniform => wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    Kind::Read => storage(true),
+                    Kind::Write => storage(false),
+                    Kind::Depth => texture(wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2),
+                    Kind::DepthArray => texture(wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
+                    Kind::Comparison => wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    Kind::Float => {
+                        texture(wgpu::TextureSampleType::Float { filterable: false }, wgpu::TextureViewDimension::D2)
+                    }
+                    Kind::StorageTexture => wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: formats::HDR,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                };
+                wgpu::BindGroupLayoutEntry { binding: i as u32, visibility: c, ty, count: None }
+            })
+            .collect();
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&format!("{name} layout")),
+            entries: &entries,
+        });
+        let module = shaders::module(device, &format!("render/gi/mrt/{name}.wgsl"))?;
+        let pipeline = crate::render::layouts::compute_pipeline(device, name, &layout, &module, "cs_main");
+        Ok(Self { layout, pipeline })
+    }
+
+    /// A bind group of `resources` in binding order.
+    fn bind(&self, device: &wgpu::Device, name: &str, resources: &[wgpu::BindingResource<'_>]) -> wgpu::BindGroup {
+        let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+            .iter()
+            .enumerate()
+            .map(|(i, r)| wgpu::BindGroupEntry { binding: i as u32, resource: r.clone() })
+            .collect();
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&format!("{name} bind group")),
+            layout: &self.layout,
+            entries: &entries,
+        })
+    }
+}
+
+/// The level's buffers.
+struct LevelBuffers {
+    params: wgpu::Buffer,
+    texels: wgpu::Buffer,
+    blocks: wgpu::Buffer,
+    matrices: wgpu::Buffer,
+    u_r: wgpu::Buffer,
+    transfer: wgpu::Buffer,
+    entries: wgpu::Buffer,
+    slots: wgpu::Buffer,
+    rows: wgpu::Buffer,
+    l_d: wgpu::Buffer,
+    b: wgpu::Buffer,
+    r: wgpu::Buffer,
+    indirect: wgpu::Buffer,
+    within: wgpu::Buffer,
+    counts: MrtParams,
+}
+
+impl LevelBuffers {
+    fn all(&self) -> [&wgpu::Buffer; 14] {
+        [
+            &self.params,
+            &self.texels,
+            &self.blocks,
+            &self.matrices,
+            &self.u_r,
+            &self.transfer,
+            &self.entries,
+            &self.slots,
+            &self.rows,
+            &self.l_d,
+            &self.b,
+            &self.r,
+            &self.indirect,
+            &self.within,
+        ]
+    }
+}
+
+/// A storage buffer holding `data` (at least 16 bytes: wgpu refuses empty bindings).
+fn upload<T: Pod>(device: &wgpu::Device, label: &str, data: &[T]) -> wgpu::Buffer {
+    let mut bytes = bytemuck::cast_slice::<T, u8>(data).to_vec();
+    bytes.resize(bytes.len().max(16), 0);
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: &bytes,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+    })
+}
+
+/// A zeroed per-frame storage buffer of `count` vec4s.
+fn vec4s(device: &wgpu::Device, label: &str, count: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: (16 * count.max(1)) as u64,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+/// A whole buffer as a binding.
+fn buf(b: &wgpu::Buffer) -> wgpu::BindingResource<'_> {
+    b.as_entire_binding()
+}
+
+/// The passes, their level buffers and the view's block assignment.
+pub struct MrtPasses {
+    direct: Pass,
+    reduce: Pass,
+    interface: Pass,
+    reconstruct: Pass,
+    apply: Pass,
+    shadow_sampler: wgpu::Sampler,
+    level: Option<LevelBuffers>,
+    /// Per pixel: block, canonical face, distance to the box (m).
+    assignment: Option<Target>,
+}
+
+impl MrtPasses {
+    /// Creates the pipelines.
+    pub fn new(device: &wgpu::Device) -> Result<Self, ShaderError> {
+        use Kind::*;
+        Ok(Self {
+            direct: Pass::new(
+                device,
+                "mrt_direct",
+                &[Uniform, Read, Read, DepthArray, Comparison, Uniform, Read, Read, Write],
+            )?,
+            reduce: Pass::new(device, "mrt_reduce", &[Uniform, Read, Read, Read, Write])?,
+            interface: Pass::new(device, "mrt_interface", &[Uniform, Read, Read, Read, Read, Write])?,
+            reconstruct: Pass::new(
+                device,
+                "mrt_reconstruct",
+                &[Uniform, Read, Read, Read, Read, Read, Read, Read, Read, Write, Write],
+            )?,
+            apply: Pass::new(
+                device,
+                "mrt_apply",
+                &[Uniform, Uniform, Read, Read, Depth, Float, StorageTexture, StorageTexture],
+            )?,
+            shadow_sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("mrt shadow comparison sampler"),
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                compare: Some(wgpu::CompareFunction::LessEqual),
+                ..Default::default()
+            }),
+            level: None,
+            assignment: None,
+        })
+    }
+
+    /// Uploads a level (replacing the previous one; its texels' light starts at zero).
+    pub fn upload(&mut self, device: &wgpu::Device, p: &Packed) {
+        let texels = p.texels.len();
+        let counts = MrtParams {
+            counts: [p.blocks.len() as u32, texels as u32, p.slots.len() as u32, p.k_b],
+            sizes: [p.k_r, p.res, 0, 0],
+            gains: [0.0; 4],
+        };
+        self.level = Some(LevelBuffers {
+            params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("mrt params"),
+                size: std::mem::size_of::<MrtParams>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            texels: upload(device, "mrt texels", &p.texels),
+            blocks: upload(device, "mrt blocks", &p.blocks),
+            matrices: upload(device, "mrt T_db and U_b", &p.matrices),
+            u_r: upload(device, "mrt U_r", &p.u_r),
+            transfer: upload(device, "mrt T_br", &p.transfer),
+            entries: upload(device, "mrt T_br entries", &p.entries),
+            slots: upload(device, "mrt interfaces", &p.slots),
+            rows: upload(device, "mrt response rows", &p.rows),
+            l_d: vec4s(device, "mrt l_d", texels),
+            b: vec4s(device, "mrt b", p.blocks.len() * p.k_b as usize),
+            r: vec4s(device, "mrt r", p.slots.len() * p.k_r as usize),
+            indirect: vec4s(device, "mrt texel indirect", texels),
+            within: vec4s(device, "mrt texel within-block indirect", texels),
+            counts,
+        });
+    }
+
+    /// Whether a level is uploaded.
+    pub fn has_level(&self) -> bool {
+        self.level.is_some()
+    }
+
+    /// Clears the texels' indirect light (the feedback's history).
+    pub fn clear_history(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(l) = &self.level {
+            encoder.clear_buffer(&l.indirect, 0, None);
+        }
+    }
+
+    /// Records passes A-F into `inputs.targets.indirect` (E / pi); false without a level.
+    pub fn record(&mut self, inputs: &mut GiInputs<'_>, feedback: f32) -> bool {
+        let Some(l) = &self.level else { return false };
+        let device = inputs.device;
+        let size = inputs.targets.size;
+        if self.assignment.as_ref().is_none_or(|t| t.texture.width() != size.0 || t.texture.height() != size.1) {
+            use wgpu::TextureUsages as U;
+            let usage = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
+            self.assignment = Some(Target::new(device, "mrt block assignment", size, formats::HDR, usage));
+        }
+        let Some(assignment) = &self.assignment else { return false };
+        let params = MrtParams { gains: [feedback, 0.0, 0.0, 0.0], ..l.counts };
+        inputs.queue.write_buffer(&l.params, 0, bytemuck::bytes_of(&params));
+        let [blocks, texels, slots, k_b] = l.counts.counts;
+        let lights = &inputs.lights;
+        let direct = self.direct.bind(
+            device,
+            "mrt_direct",
+            &[
+                buf(inputs.frame_buffer),
+                buf(lights.buffer),
+                buf(lights.shadow_views),
+                wgpu::BindingResource::TextureView(lights.shadow_maps),
+                wgpu::BindingResource::Sampler(&self.shadow_sampler),
+                buf(&l.params),
+                buf(&l.texels),
+                buf(&l.indirect),
+                buf(&l.l_d),
+            ],
+        );
+        let reduce = self.reduce.bind(
+            device,
+            "mrt_reduce",
+            &[buf(&l.params), buf(&l.blocks), buf(&l.matrices), buf(&l.l_d), buf(&l.b)],
+        );
+        let interface = self.interface.bind(
+            device,
+            "mrt_interface",
+            &[buf(&l.params), buf(&l.slots), buf(&l.entries), buf(&l.transfer), buf(&l.b), buf(&l.r)],
+        );
+        let reconstruct = self.reconstruct.bind(
+            device,
+            "mrt_reconstruct",
+            &[
+                buf(&l.params),
+                buf(&l.blocks),
+                buf(&l.texels),
+                buf(&l.matrices),
+                buf(&l.u_r),
+                buf(&l.slots),
+                buf(&l.rows),
+                buf(&l.b),
+                buf(&l.r),
+                buf(&l.indirect),
+                buf(&l.within),
+            ],
+        );
+        let t = inputs.targets;
+        let apply = self.apply.bind(
+            device,
+            "mrt_apply",
+            &[
+                buf(inputs.frame_buffer),
+                buf(&l.params),
+                buf(&l.blocks),
+                buf(&l.indirect),
+                wgpu::BindingResource::TextureView(&t.depth.view),
+                wgpu::BindingResource::TextureView(&t.normal.view),
+                wgpu::BindingResource::TextureView(&t.indirect.view),
+                wgpu::BindingResource::TextureView(&assignment.view),
+            ],
+        );
+        let k_r = l.counts.sizes[0];
+        let steps: [(&str, &Pass, &wgpu::BindGroup, [u32; 2]); 5] = [
+            ("mrt direct texels", &self.direct, &direct, [texels.div_ceil(64), 1]),
+            ("mrt b", &self.reduce, &reduce, [k_b, blocks]),
+            ("mrt interfaces r", &self.interface, &interface, [(slots * k_r).div_ceil(64), 1]),
+            ("mrt reconstruct", &self.reconstruct, &reconstruct, [texels.div_ceil(64), 1]),
+            ("mrt apply", &self.apply, &apply, [size.0.div_ceil(8), size.1.div_ceil(8)]),
+        ];
+        for (name, pass, group, [x, y]) in steps {
+            if x == 0 || y == 0 {
+                continue;
+            }
+            let mut cp = inputs.compute_pass(name);
+            cp.set_pipeline(&pass.pipeline);
+            cp.set_bind_group(0, group, &[]);
+            cp.dispatch_workgroups(x, y, 1);
+        }
+        true
+    }
+
+    /// Reads a per-texel buffer ("l_d", "indirect", "within") as RGBA floats.
+    pub fn read_texels(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        which: &str,
+    ) -> Option<Result<Vec<[f32; 4]>, readback::ReadbackError>> {
+        let l = self.level.as_ref()?;
+        let buffer = match which {
+            "l_d" => &l.l_d,
+            "indirect" => &l.indirect,
+            "within" => &l.within,
+            _ => return None,
+        };
+        let texels = l.counts.counts[1] as usize;
+        Some(
+            readback::read_buffer(device, queue, buffer)
+                .map(|bytes| bytemuck::pod_collect_to_vec::<u8, [f32; 4]>(&bytes).into_iter().take(texels).collect()),
+        )
+    }
+
+    /// Reads the b coefficients (blocks x k_b, rgb) or r (interfaces x k_r).
+    pub fn read_coefficients(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        which: &str,
+    ) -> Option<Result<Vec<[f32; 4]>, readback::ReadbackError>> {
+        let l = self.level.as_ref()?;
+        let buffer = if which == "b" { &l.b } else { &l.r };
+        Some(readback::read_buffer(device, queue, buffer).map(|bytes| bytemuck::pod_collect_to_vec(&bytes)))
+    }
+
+    /// The view's block assignment target.
+    pub fn assignment(&self) -> Option<&wgpu::Texture> {
+        self.assignment.as_ref().map(|t| &t.texture)
+    }
+
+    /// Frees the buffers and targets (pipelines stay).
+    pub fn release(&mut self) {
+        self.level = None;
+        self.assignment = None;
+    }
+
+    /// Bytes of GPU memory held.
+    pub fn gpu_bytes(&self) -> u64 {
+        let level: u64 = self.level.as_ref().map_or(0, |l| l.all().iter().map(|b| b.size()).sum());
+        level + self.assignment.as_ref().map_or(0, |t| crate::render::gi::technique::texture_bytes(&t.texture))
+    }
+}

@@ -1,0 +1,409 @@
+//! The `mrt` technique behind the GI seam (Loos 2015, digest section 18.1): prepares the
+//! dictionary and the level off the frame ([`super::job`]), uploads the level's records
+//! ([`super::pack`]) and runs the per-frame passes ([`super::passes`]) into E / pi for the
+//! composite. A scene without proxy blocks gets blocks fitted to its geometry, and says so.
+
+use std::sync::Arc;
+
+use super::job::{BuiltLevel, DictionaryJob, LevelJob};
+use super::pack::{NONE, Packed};
+use super::passes::MrtPasses;
+use crate::image_io::HdrImage;
+use crate::precompute::mrt::dictionary::{Dictionary, DictionaryParams};
+use crate::render::gi::inputs::GiInputs;
+use crate::render::gi::technique::{
+    BufferInfo, BufferView, GiOutput, GiTechnique, Readiness, ResetReason, SupportQuery, TechniqueStatus, note_reset,
+};
+use crate::render::{RenderError, readback};
+use crate::scene::Scene;
+use crate::settings::RenderSettings;
+
+/// An atlas buffer: one row of six face tiles (world sides -x +x -y +y -z +z) per block.
+const fn atlas(name: &'static str, description: &'static str) -> BufferInfo {
+    BufferInfo { name, description, format: "rgba32f, texels^2 per face", view: BufferView::Colour }
+}
+
+/// The inspector's buffers (digest section 14).
+pub const BUFFERS: &[BufferInfo] = &[
+    atlas(
+        "mrt_geometry_positions",
+        "geometry images: each texel's real surface position (fract of metres); one row of six face tiles (-x +x -y +y -z +z) per block, open sides black. Smooth walls, no holes",
+    ),
+    BufferInfo {
+        name: "mrt_geometry_normals",
+        description: "geometry images' normals (facing into the block), same atlas; mostly aligned with each face",
+        format: "rgba32f, texels^2 per face",
+        view: BufferView::Normal,
+    },
+    atlas("mrt_geometry_albedo", "geometry images' albedo, same atlas (black: no real surface behind the texel)"),
+    atlas(
+        "mrt_direct_texels",
+        "l_d: direct light (outgoing radiance) at the texels, with the feedback bounce; hot spots under lights, zero in unlit blocks without feedback",
+    ),
+    atlas("mrt_within_block", "U_b b: each block's indirect light from its own direct light"),
+    atlas("mrt_inter_block", "U_r r: indirect light that entered through the interfaces (zero in closed blocks)"),
+    atlas("mrt_lightmap", "the texels' indirect light (E / pi), within plus inter-block, before clamping at zero"),
+    BufferInfo {
+        name: "mrt_b",
+        description: "b = T_d->b l_d: one row per block, one column per mode (rgb); energy falls off to the right",
+        format: "rgb f32 per mode",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "mrt_r",
+        description: "r = T_b->r b: one row per directed interface, one column per response mode",
+        format: "rgb f32 per mode",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "mrt_assignment",
+        description: "per pixel: r = the block it reads, g = the canonical face, b = its distance outside the block (m); a surface outside every block shows b > 0",
+        format: "rgba32f",
+        view: BufferView::Id,
+    },
+];
+
+/// The level on the GPU and what the inspector needs of it.
+struct Shown {
+    packed: Packed,
+    fitted: bool,
+    blocks: usize,
+    links: usize,
+    unlinked: usize,
+    millis: f64,
+}
+
+/// Modular radiance transfer.
+pub struct MrtTechnique {
+    passes: MrtPasses,
+    status: TechniqueStatus,
+    dictionary: Option<(DictionaryParams, Arc<Dictionary>)>,
+    dictionary_job: Option<DictionaryJob>,
+    /// How the dictionary was obtained (loaded from / built into which file).
+    dictionary_source: String,
+    level_job: Option<LevelJob>,
+    /// The level must be rebuilt (scene edited, depth or dictionary changed).
+    level_dirty: bool,
+    depth: usize,
+    shown: Option<Shown>,
+    /// Why nothing can be shown (the dictionary or the level failed).
+    error: Option<String>,
+    /// A new level waits for upload (its texels' light starts at zero).
+    upload_pending: bool,
+}
+
+impl MrtTechnique {
+    /// Creates the pipelines.
+    pub fn new(device: &wgpu::Device, _layouts: &crate::render::layouts::Layouts) -> Result<Self, RenderError> {
+        Ok(Self {
+            passes: MrtPasses::new(device)?,
+            status: TechniqueStatus::default(),
+            dictionary: None,
+            dictionary_job: None,
+            dictionary_source: String::new(),
+            level_job: None,
+            level_dirty: true,
+            depth: 0,
+            shown: None,
+            error: None,
+            upload_pending: false,
+        })
+    }
+
+    /// Compute with storage buffers only, which every adapter the renderer runs on has.
+    pub fn support(_query: &SupportQuery<'_>) -> Result<(), String> {
+        Ok(())
+    }
+
+    /// Counts one event in the status counters.
+    fn count(&mut self, name: &'static str) {
+        match self.status.counters.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, v)) => *v += 1,
+            None => self.status.counters.push((name, 1)),
+        }
+    }
+
+    /// Advances the dictionary; `Some` while it is not ready.
+    fn prepare_dictionary(&mut self, params: DictionaryParams) -> Option<Readiness> {
+        if self.dictionary.as_ref().is_some_and(|(p, _)| *p == params) {
+            return None;
+        }
+        if self.error.is_some() && self.dictionary_job.is_none() {
+            return Some(Readiness::Ready);
+        }
+        if self.dictionary_job.as_ref().is_none_or(|j| j.params != params) {
+            self.dictionary_job = Some(DictionaryJob::start(params));
+        }
+        let job = self.dictionary_job.as_ref()?;
+        match job.finished() {
+            Some(Ok((d, how))) => {
+                self.dictionary = Some((params, Arc::new(d)));
+                self.dictionary_source = how;
+                self.dictionary_job = None;
+                self.level_dirty = true;
+                self.count("dictionary loads");
+                None
+            }
+            Some(Err(e)) => {
+                self.error = Some(format!("mrt dictionary: {e}"));
+                self.dictionary_job = None;
+                Some(Readiness::Ready)
+            }
+            None => {
+                let (fraction, left) = job.progress();
+                let left = left.map_or(String::new(), |s| format!(", {s:.0} s left"));
+                let what = format!("mrt: preparing the dictionary ({:.0}%{left})", 100.0 * fraction);
+                self.status.progress = Some(what.clone());
+                self.status.refining = true;
+                Some(Readiness::Pending { progress: fraction as f32, what })
+            }
+        }
+    }
+
+    /// Takes a finished level into use.
+    fn accept(&mut self, level: BuiltLevel) {
+        self.shown = Some(Shown {
+            fitted: level.fitted,
+            blocks: level.blocks.len(),
+            links: level.links,
+            unlinked: level.unlinked,
+            millis: level.millis,
+            packed: level.packed,
+        });
+        self.error = None;
+        self.upload_pending = true;
+        self.count("level builds");
+    }
+
+    /// Lays per-texel values out as the atlas (one row of six face tiles per block).
+    fn atlas(&self, values: &[[f32; 4]]) -> Option<HdrImage> {
+        let p = &self.shown.as_ref()?.packed;
+        let res = p.res as usize;
+        let (width, height) = (6 * res, p.blocks.len() * res);
+        let mut pixels = vec![[0.0, 0.0, 0.0, 1.0]; width * height];
+        for (bi, b) in p.blocks.iter().enumerate() {
+            for (k, start) in b.starts.iter().take(6).enumerate() {
+                if *start == NONE {
+                    continue;
+                }
+                for t in 0..res {
+                    for s in 0..res {
+                        let Some(v) = values.get(*start as usize + t * res + s) else { continue };
+                        let (x, y) = (k * res + s, bi * res + (res - 1 - t));
+                        pixels[y * width + x] = [v[0], v[1], v[2], 1.0];
+                    }
+                }
+            }
+        }
+        Some(HdrImage { width: width as u32, height: height as u32, pixels })
+    }
+
+    /// A coefficient image: `rows` rows of `cols` values.
+    fn coefficients(values: &[[f32; 4]], rows: usize, cols: usize) -> HdrImage {
+        let pixels =
+            (0..rows * cols).map(|i| values.get(i).map_or([0.0, 0.0, 0.0, 1.0], |v| [v[0], v[1], v[2], 1.0])).collect();
+        HdrImage { width: cols.max(1) as u32, height: rows.max(1) as u32, pixels }
+    }
+
+    /// The texel buffer `which` as an atlas.
+    fn texel_atlas(&self, device: &wgpu::Device, queue: &wgpu::Queue, which: &str) -> Result<HdrImage, RenderError> {
+        let values = self.passes.read_texels(device, queue, which).ok_or_else(|| not_yet(which))??;
+        self.atlas(&values).ok_or_else(|| not_yet(which))
+    }
+}
+
+fn not_yet(name: &str) -> RenderError {
+    RenderError::UnknownBuffer { name: name.into(), known: "render mrt first (once its level is ready)".into() }
+}
+
+impl GiTechnique for MrtTechnique {
+    fn prepare(&mut self, scene: &Scene, settings: &RenderSettings, _size: (u32, u32)) -> Readiness {
+        let s = &settings.mrt;
+        if let Some(pending) = self.prepare_dictionary(s.dictionary) {
+            return pending;
+        }
+        let depth = s.depth as usize;
+        if depth != self.depth {
+            self.depth = depth;
+            self.level_dirty = true;
+        }
+        if let Some(job) = &self.level_job
+            && let Some(result) = job.finished()
+        {
+            self.level_job = None;
+            match result {
+                Ok(level) => self.accept(level),
+                Err(e) => {
+                    self.error = Some(format!("mrt: {e}"));
+                    self.shown = None;
+                }
+            }
+        }
+        if self.level_dirty
+            && self.level_job.is_none()
+            && let Some((_, d)) = &self.dictionary
+        {
+            self.level_job = Some(LevelJob::start(scene, d.clone(), depth));
+            self.level_dirty = false;
+        }
+        let building = self.level_job.is_some();
+        self.status.refining = building || self.status.history_frames < self.status.refine_target;
+        if let Some(e) = &self.error {
+            self.status.progress = Some(e.clone());
+            return Readiness::Ready;
+        }
+        match &self.shown {
+            Some(shown) => {
+                let fitted = if shown.fitted { ", fitted (the scene has none)" } else { "" };
+                let rebuilding = if building { ", rebuilding" } else { "" };
+                self.status.progress =
+                    Some(format!("mrt: {} blocks{fitted}, {} links{rebuilding}", shown.blocks, shown.links));
+                Readiness::Ready
+            }
+            None => {
+                let what = "mrt: building the level (fitting blocks where the scene has none)".to_owned();
+                self.status.progress = Some(what.clone());
+                Readiness::Pending { progress: 0.0, what }
+            }
+        }
+    }
+
+    fn render(&mut self, inputs: &mut GiInputs<'_>) -> Result<GiOutput, RenderError> {
+        if let Some(shown) = &self.shown
+            && (!self.passes.has_level() || self.upload_pending)
+        {
+            self.passes.upload(inputs.device, &shown.packed);
+            self.count("uploads");
+            self.upload_pending = false;
+            self.status.history_frames = 0;
+        }
+        if !self.passes.record(inputs, inputs.settings.mrt.feedback) {
+            return Ok(GiOutput::Nothing);
+        }
+        self.status.history_frames = self.status.history_frames.saturating_add(1);
+        // Feedback adds a bounce per frame; 16 frames leave less than 3% of an albedo-0.8 tail.
+        self.status.refine_target = if inputs.settings.mrt.feedback > 0.0 { 16 } else { 1 };
+        Ok(GiOutput::IrradianceOverPi)
+    }
+
+    fn buffers(&self) -> &'static [BufferInfo] {
+        BUFFERS
+    }
+
+    fn read_buffer(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        name: &str,
+    ) -> Option<Result<HdrImage, RenderError>> {
+        if !BUFFERS.iter().any(|b| b.name == name) {
+            return None;
+        }
+        let shown = self.shown.as_ref();
+        let geometry = |f: &dyn Fn(&super::pack::GpuTexel) -> [f32; 4]| {
+            let values: Vec<[f32; 4]> = shown.map_or(Vec::new(), |s| s.packed.texels.iter().map(f).collect());
+            self.atlas(&values).ok_or_else(|| not_yet(name))
+        };
+        Some(match name {
+            "mrt_geometry_positions" => geometry(&|t| {
+                let p = t.position;
+                [p[0].rem_euclid(1.0), p[1].rem_euclid(1.0), p[2].rem_euclid(1.0), 1.0]
+            }),
+            "mrt_geometry_normals" => geometry(&|t| {
+                let n = t.normal;
+                [0.5 + 0.5 * n[0], 0.5 + 0.5 * n[1], 0.5 + 0.5 * n[2], 1.0]
+            }),
+            "mrt_geometry_albedo" => geometry(&|t| t.albedo),
+            "mrt_direct_texels" => self.texel_atlas(device, queue, "l_d"),
+            "mrt_within_block" => self.texel_atlas(device, queue, "within"),
+            "mrt_lightmap" => self.texel_atlas(device, queue, "indirect"),
+            "mrt_inter_block" => (|| {
+                let all = self.passes.read_texels(device, queue, "indirect").ok_or_else(|| not_yet(name))??;
+                let own = self.passes.read_texels(device, queue, "within").ok_or_else(|| not_yet(name))??;
+                let diff: Vec<[f32; 4]> =
+                    all.iter().zip(&own).map(|(a, o)| [a[0] - o[0], a[1] - o[1], a[2] - o[2], 1.0]).collect();
+                self.atlas(&diff).ok_or_else(|| not_yet(name))
+            })(),
+            "mrt_b" | "mrt_r" => (|| {
+                let p = &shown.ok_or_else(|| not_yet(name))?.packed;
+                let which = if name == "mrt_b" { "b" } else { "r" };
+                let values = self.passes.read_coefficients(device, queue, which).ok_or_else(|| not_yet(name))??;
+                let (rows, cols) =
+                    if which == "b" { (p.blocks.len(), p.k_b as usize) } else { (p.slots.len(), p.k_r as usize) };
+                Ok(Self::coefficients(&values, rows, cols))
+            })(),
+            _ => (|| {
+                let texture = self.passes.assignment().ok_or_else(|| not_yet(name))?;
+                let pixels = readback::read_as_rgba_f32(device, queue, texture)?;
+                Ok(HdrImage { width: texture.width(), height: texture.height(), pixels })
+            })(),
+        })
+    }
+
+    fn reset(&mut self, reason: ResetReason) {
+        note_reset(&mut self.status, reason);
+        self.status.history_frames = 0;
+        match reason {
+            ResetReason::SceneEdited | ResetReason::ModeEntered => self.level_dirty = true,
+            // A light edit changes l_d, which every frame recomputes; the feedback's bounces
+            // follow within a few frames.
+            _ => {}
+        }
+    }
+
+    fn release(&mut self) {
+        self.passes.release();
+        self.level_job = None;
+        self.dictionary_job = None;
+    }
+
+    fn gpu_bytes(&self) -> u64 {
+        self.passes.gpu_bytes()
+    }
+
+    fn limitations(&self, _scene: &Scene, _settings: &RenderSettings) -> Vec<String> {
+        let mut out = vec![
+            "indirect light is diffuse and reaches only the level's walls, floors and ceilings: objects inside blocks neither shadow nor reflect it (delta radiance transfer is not built yet)".to_owned(),
+            "geometry images read materials' base colour factors, not their textures".to_owned(),
+        ];
+        if let Some(e) = &self.error {
+            out.insert(0, e.clone());
+        }
+        if let Some(s) = &self.shown {
+            if s.fitted {
+                out.insert(
+                    0,
+                    format!(
+                        "the scene has no proxy blocks: {} were fitted to its geometry (Fit proxy blocks adds them to the scene for editing)",
+                        s.blocks
+                    ),
+                );
+            }
+            if s.unlinked > 0 {
+                out.push(format!(
+                    "{} open block sides lead to no other block: light leaving there is lost",
+                    s.unlinked
+                ));
+            }
+            out.push(format!(
+                "level: {} blocks, {} links, {} texels ({} on real surfaces), {:.0} ms to build, {:.1} MB on the GPU; dictionary {}",
+                s.blocks,
+                s.links,
+                s.packed.texels.len(),
+                s.packed.surfaces_found,
+                s.millis,
+                s.packed.bytes() as f64 / 1e6,
+                self.dictionary_source
+            ));
+        }
+        out
+    }
+
+    fn status(&self) -> TechniqueStatus {
+        self.status.clone()
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+}
