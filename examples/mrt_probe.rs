@@ -15,6 +15,7 @@ use std::path::Path;
 use bouncelab::precompute::bvh::SceneBvh;
 use bouncelab::precompute::mrt::cache;
 use bouncelab::precompute::mrt::dictionary::{DictionaryParams, Progress};
+use bouncelab::precompute::mrt::geometry_image;
 use bouncelab::precompute::mrt::level::{self, Operators};
 use bouncelab::precompute::mrt::proxy;
 use bouncelab::precompute::mrt::shape::Layout;
@@ -86,13 +87,34 @@ fn main() -> anyhow::Result<()> {
         }
     }
     let scene = &project.scene;
-    let (lvl, _) = proxy::level(scene)?;
+    let (mut lvl, _) = proxy::level(scene)?;
+    // MRT_PLAIN_WARP=1: the dissertation's plain warp (no stretch correction);
+    // MRT_FULL_SIDES=1: linked sides pass light over their whole area (no lintels).
+    if std::env::var_os("MRT_PLAIN_WARP").is_some() {
+        lvl = lvl.without_warp_correction();
+    }
+    let bvh = SceneBvh::build(scene);
+    if std::env::var_os("MRT_FULL_SIDES").is_none() {
+        for ((i, w), t) in geometry_image::transmissions(&bvh, &lvl) {
+            lvl.set_transmission(i, w, t);
+        }
+    }
     let params = DictionaryParams::default();
     let (dictionary, source) = cache::load_or_build(&cache::default_dir(), &params, &Progress::default())?;
     println!("dictionary: {source:?}");
     let ops = Operators { dictionary: &dictionary, interfaces: &dictionary.interfaces };
     let transfer = level::assemble(&lvl, &ops, 6);
-    let bvh = SceneBvh::build(scene);
+    if std::env::var_os("MRT_WARPS").is_some() {
+        for (x, w) in lvl.warps.iter().enumerate() {
+            let through: Vec<String> = w.through.iter().map(|r| format!("{:.2?}", r)).collect();
+            println!(
+                "block {x} {:?} walls {:.2?}\n  through {}",
+                lvl.blocks[x].size,
+                w.walls,
+                through.join("\n          ")
+            );
+        }
+    }
     // Every texel's real surface (point, normal, albedo), per block.
     let texels: Vec<Vec<Option<(Vec3, Vec3, Vec3)>>> = lvl
         .blocks
@@ -116,6 +138,24 @@ fn main() -> anyhow::Result<()> {
         .map(|t| t.iter().map(|s| s.map_or(0.0, |(q, n, a)| lum(direct(scene, &bvh, q, n, a)))).collect())
         .collect();
     let mrt = level::indirect(&lvl, &ops, &transfer, &l_d);
+    // MRT_BOUNCES=n: the feedback's bounces (albedo x indirect fed back), each's total light and
+    // its ratio to the previous one (the loop gain; above 1 the feedback diverges).
+    if let Some(n) = std::env::var("MRT_BOUNCES").ok().and_then(|v| v.parse::<usize>().ok()) {
+        let total = |v: &[Vec<f64>]| v.iter().flatten().map(|x| x.abs()).sum::<f64>();
+        let mut bounce = l_d.clone();
+        let mut last = total(&bounce);
+        for k in 1..=n {
+            let ind = level::indirect(&lvl, &ops, &transfer, &bounce);
+            bounce = ind
+                .iter()
+                .zip(&texels)
+                .map(|(b, t)| b.iter().zip(t).map(|(v, s)| v.max(0.0) * s.map_or(0.0, |(_, _, a)| lum(a))).collect())
+                .collect();
+            let now = total(&bounce);
+            println!("bounce {k}: {now:.4} ({:.3} of the previous)", now / last.max(1e-30));
+            last = now;
+        }
+    }
     // Brute force: cosine rays from the real surface point into the real scene.
     let truth: Vec<Vec<f64>> = texels
         .iter()

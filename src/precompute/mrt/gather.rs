@@ -60,7 +60,7 @@ pub fn apply(
 
 /// About `rays` cosine-distributed directions about `normal` (rounded down to a square),
 /// stratified on a sqrt(N) x sqrt(N) grid and jittered by `rng`.
-pub(super) fn cosine_rays(normal: Vec3, rays: usize, rng: &mut Pcg32) -> impl Iterator<Item = Vec3> + '_ {
+pub(crate) fn cosine_rays(normal: Vec3, rays: usize, rng: &mut Pcg32) -> impl Iterator<Item = Vec3> + '_ {
     let side = (rays as f64).sqrt().floor().max(1.0) as usize;
     let (t, b) = normal.any_orthonormal_pair();
     (0..side * side).map(move |q| {

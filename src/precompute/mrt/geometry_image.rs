@@ -9,7 +9,8 @@
 
 use glam::Vec3;
 
-use super::level::Block;
+use super::level::{Block, Level};
+use super::shape::Face;
 use super::shape::Layout;
 use crate::precompute::bvh::SceneBvh;
 use crate::scene::Scene;
@@ -58,6 +59,39 @@ pub fn geometry_image(scene: &Scene, bvh: &SceneBvh, block: &Block, res: usize) 
             let nw = block.world_dir(n).normalize_or_zero();
             let across = block.size[block.world_face(face).axis()];
             surface(scene, bvh, w, nw, SEARCH.min(0.45 * across))
+        })
+        .collect()
+}
+
+/// The share of each linked block side that the real geometry leaves open: the points of an
+/// 8 x 8 grid on the side whose segment across it (`SEARCH` either way, at most 45% of each
+/// block) meets no surface. A doorway with a lintel, fitted as a strip as tall as the room,
+/// passes only the doorway's share; a side between two parts of one room passes all.
+pub fn transmissions(bvh: &SceneBvh, level: &Level) -> Vec<((usize, Face), f64)> {
+    const GRID: usize = 8;
+    level
+        .linked_sides()
+        .into_iter()
+        .map(|(i, w)| {
+            let (plane, lo, hi) = level.side_rect(i, w);
+            let axis = w.axis();
+            let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+            let reach = SEARCH.min(0.45 * level.blocks[i].size[axis]);
+            let mut n = Vec3::ZERO;
+            n[axis] = 1.0;
+            let mut open = 0;
+            for u in 0..GRID {
+                for v in 0..GRID {
+                    let mut p = Vec3::ZERO;
+                    p[axis] = plane;
+                    p[a] = lo[a] + (hi[a] - lo[a]) * (u as f32 + 0.5) / GRID as f32;
+                    p[b] = lo[b] + (hi[b] - lo[b]) * (v as f32 + 0.5) / GRID as f32;
+                    if !bvh.occluded(p - n * reach, n, 2.0 * reach) {
+                        open += 1;
+                    }
+                }
+            }
+            ((i, w), f64::from(open) / (GRID * GRID) as f64)
         })
         .collect()
 }

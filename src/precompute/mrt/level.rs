@@ -17,6 +17,7 @@ use super::operators::Interfaces;
 use super::propagate::{ENTRY, Turn};
 use super::response;
 use super::shape::{Face, Layout, Shape, exit};
+use super::warp::Warp;
 use crate::precompute::rng::Pcg32;
 
 /// One block: a dictionary shape turned `turns` quarter turns about up (each maps +x to -z, as
@@ -93,6 +94,11 @@ pub struct Level {
     pub blocks: Vec<Block>,
     /// (block, world side) -> the neighbour light passes into.
     links: HashMap<(usize, Face), usize>,
+    /// Per block, the flux correction of its stretch ([`super::warp`]).
+    pub warps: Vec<Warp>,
+    /// (block, world side) -> the share of the linked side that is really open (1 unless set:
+    /// a doorway with a lintel in a side as tall as the room passes only its own share).
+    transmission: HashMap<(usize, Face), f64>,
 }
 
 /// Whether block `a`'s world side `w` and block `b`'s opposite side lie on one plane (within
@@ -124,7 +130,43 @@ impl Level {
                 }
             }
         }
-        Self { blocks, links }
+        let mut warps: Vec<Warp> = Vec::with_capacity(blocks.len());
+        for (i, b) in blocks.iter().enumerate() {
+            // Blocks of one size and shape share their correction.
+            let same = blocks[..i].iter().position(|o| o.size == b.size && o.shape == b.shape && o.turns == b.turns);
+            let present: Vec<Face> = b.shape.present_faces().into_iter().map(|f| b.world_face(f)).collect();
+            warps.push(same.map_or_else(|| Warp::new(b.size, &present), |j| warps[j]));
+        }
+        Self { blocks, links, warps, transmission: HashMap::new() }
+    }
+
+    /// The level without the stretch correction: the dissertation's plain warp (for
+    /// comparisons).
+    pub fn without_warp_correction(mut self) -> Self {
+        self.warps.iter_mut().for_each(|w| *w = Warp::NONE);
+        self
+    }
+
+    /// Sets the share of linked side `w` of block `i` that is really open (clamped to 0..=1).
+    pub fn set_transmission(&mut self, i: usize, w: Face, share: f64) {
+        self.transmission.insert((i, w), share.clamp(0.0, 1.0));
+    }
+
+    /// The share of linked side `w` of block `i` that light passes.
+    pub fn transmission(&self, i: usize, w: Face) -> f64 {
+        self.transmission.get(&(i, w)).copied().unwrap_or(1.0)
+    }
+
+    /// Every linked (block, world side), in a fixed order.
+    pub fn linked_sides(&self) -> Vec<(usize, Face)> {
+        let mut v: Vec<(usize, Face)> = self.links.keys().copied().collect();
+        v.sort();
+        v
+    }
+
+    /// The world rectangle of block `i`'s side `w`: its plane coordinate and the box's corners.
+    pub fn side_rect(&self, i: usize, w: Face) -> (f32, Vec3, Vec3) {
+        self.blocks[i].side(w)
     }
 
     /// Open sides that lead nowhere (block, world side): light leaves the level there.
@@ -237,7 +279,8 @@ pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
             let w = bx.world_face(f);
             let (Some(y), Some(exit)) = (level.link(x, w), ops.interfaces.exit(bx.shape, f)) else { continue };
             let a = frontier.entry((y, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
-            a.iter_mut().zip(&exit.r_b_rlf).for_each(|(a, r)| *a += r);
+            let scale = level.warps[x].walls[w as usize].min(super::warp::CAP) * level.transmission(x, w);
+            a.iter_mut().zip(&exit.r_b_rlf).for_each(|(a, r)| *a += scale * r);
         }
         for step in 0..=depth {
             let mut next: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
@@ -253,7 +296,10 @@ pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
                     let (Some(z), Some(turn)) = (level.link(*y, w), turn_between(*entry, w)) else { continue };
                     let Some(r) = ops.interfaces.turn(turn) else { continue };
                     let out = next.entry((z, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
-                    mul_add(out, r, a, k_rlf, k_rlf, k_b);
+                    let scale = level.warps[*y].through[*entry as usize][w as usize].min(super::warp::CAP)
+                        * level.transmission(*y, w);
+                    let scaled: Vec<f64> = a.iter().map(|v| v * scale).collect();
+                    mul_add(out, r, &scaled, k_rlf, k_rlf, k_b);
                 }
             }
             frontier = next;
@@ -285,6 +331,23 @@ pub fn response_rows(block: &Block, entry: Face, res: usize) -> Vec<Option<usize
         .collect()
 }
 
+/// Per sample of block `x`: the stretch correction of the light its own walls send it
+/// ([`Warp::walls`] of the sample's world face).
+pub fn within_scales(level: &Level, x: usize, res: usize) -> Vec<f64> {
+    let b = &level.blocks[x];
+    let layout = Layout::new(b.shape, res);
+    (0..layout.len()).map(|i| level.warps[x].walls[b.world_face(layout.sample(i).0) as usize]).collect()
+}
+
+/// Per sample of block `y` entered through world side `entry`: the stretch correction of the
+/// entering light meeting the sample's world face ([`Warp::through`]).
+pub fn response_scales(level: &Level, y: usize, entry: Face, res: usize) -> Vec<f64> {
+    let b = &level.blocks[y];
+    let layout = Layout::new(b.shape, res);
+    let w = &level.warps[y];
+    (0..layout.len()).map(|i| w.through[entry as usize][b.world_face(layout.sample(i).0) as usize]).collect()
+}
+
 /// A frame's one-bounce indirect light per block (each in its element's layout) from the
 /// blocks' direct light `l_d` (the same layouts): the block's own U_b b plus the surface
 /// response to every directed interface's r.
@@ -295,11 +358,16 @@ pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[
         .zip(l_d)
         .map(|(blk, l)| ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.project(l)))
         .collect();
+    let res = ops.dictionary.params.res;
     let mut out: Vec<Vec<f64>> = level
         .blocks
         .iter()
         .zip(&b)
-        .map(|(blk, b)| ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.reconstruct(b)))
+        .enumerate()
+        .map(|(x, (blk, b))| {
+            let own = ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.reconstruct(b));
+            own.iter().zip(within_scales(level, x, res)).map(|(v, s)| v * s).collect()
+        })
         .collect();
     let response = &ops.interfaces.response;
     let k_r = response.k_r;
@@ -313,12 +381,13 @@ pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[
         }
     }
     for ((y, entry), r) in &r_sum {
-        let rows = response_rows(&level.blocks[*y], *entry, ops.dictionary.params.res);
+        let rows = response_rows(&level.blocks[*y], *entry, res);
+        let scales = response_scales(level, *y, *entry, res);
         let walls: Vec<f64> =
             (0..response.n).map(|i| (0..k_r).map(|j| response.u_r[i * k_r + j] * r[j]).sum()).collect();
-        for (o, row) in out[*y].iter_mut().zip(rows) {
+        for ((o, row), scale) in out[*y].iter_mut().zip(rows).zip(scales) {
             if let Some(row) = row {
-                *o += walls[row];
+                *o += scale * walls[row];
             }
         }
     }

@@ -26,3 +26,4 @@ pub mod propagate;
 pub mod proxy;
 pub mod response;
 pub mod shape;
+pub mod warp;

@@ -9,7 +9,7 @@ struct Texel {
     position: vec4<f32>,
     // Unit normal facing into the block, w = block index.
     normal: vec4<f32>,
-    // Albedo, w unused.
+    // Albedo, w = the stretch correction of the block's own light on this texel's face.
     albedo: vec4<f32>,
 }
 

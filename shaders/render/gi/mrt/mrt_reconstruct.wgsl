@@ -1,7 +1,8 @@
 // MRT pass D (digest section 7.1 steps 3 and 5): each texel's indirect light, E / pi of a white
 // receiver: the block's own U_b b plus, for every interface entering its block, the surface
 // response U_r r at the texel's row (U_r laid out for the canonical entry, the rows turned to
-// this interface at level assembly). `within` keeps U_b b alone for the inspector.
+// this interface at level assembly), each with the stretch correction of its face
+// (`precompute::mrt::warp`). `within` keeps U_b b alone for the inspector.
 #import render/gi/mrt/mrt_common.wgsl
 
 @group(0) @binding(0) var<uniform> mp: MrtParams;
@@ -15,6 +16,8 @@
 @group(0) @binding(8) var<storage, read> r: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read_write> indirect: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read_write> within: array<vec4<f32>>;
+// Per entry of `rows`: the stretch correction of the entering light on that texel's face.
+@group(0) @binding(11) var<storage, read> row_scales: array<f32>;
 
 @compute @workgroup_size(64, 1, 1)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -32,19 +35,24 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var j = 0u; j < k_b; j = j + 1u) {
         own = own + matrices[u + j] * b[x * k_b + j].rgb;
     }
+    // The stretch correction of the block's own light on this face (texel albedo.w).
+    own = own * texels[i].albedo.w;
     var total = own;
     for (var k = 0u; k < 4u; k = k + 1u) {
         let s = blk.slots[k];
         if s == MRT_NONE {
             continue;
         }
-        let rr = rows[slots[s].w + row];
+        let at = slots[s].w + row;
+        let rr = rows[at];
         if rr == MRT_NONE {
             continue;
         }
+        var entering = vec3<f32>(0.0);
         for (var j = 0u; j < k_r; j = j + 1u) {
-            total = total + u_r[rr * k_r + j] * r[s * k_r + j].rgb;
+            entering = entering + u_r[rr * k_r + j] * r[s * k_r + j].rgb;
         }
+        total = total + entering * row_scales[at];
     }
     indirect[i] = vec4<f32>(total, 1.0);
     within[i] = vec4<f32>(own, 1.0);

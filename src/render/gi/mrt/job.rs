@@ -9,9 +9,9 @@ use std::time::Instant;
 
 use super::pack::{Packed, pack};
 use crate::precompute::bvh::SceneBvh;
-use crate::precompute::mrt::cache;
 use crate::precompute::mrt::dictionary::{Dictionary, DictionaryParams, Progress};
 use crate::precompute::mrt::proxy;
+use crate::precompute::mrt::{cache, geometry_image};
 use crate::scene::{ObjectRole, Scene};
 
 /// A result slot a worker thread fills.
@@ -112,8 +112,11 @@ pub fn build_level(scene: &Scene, dictionary: &Dictionary, depth: usize) -> Resu
         fitted_scene = s;
         &fitted_scene
     };
-    let (level, _) = proxy::level(source).map_err(|e| e.to_string())?;
+    let (mut level, _) = proxy::level(source).map_err(|e| e.to_string())?;
     let bvh = SceneBvh::build(scene);
+    for ((i, w), share) in geometry_image::transmissions(&bvh, &level) {
+        level.set_transmission(i, w, share);
+    }
     let packed = pack(scene, &bvh, &level, dictionary, depth);
     Ok(BuiltLevel {
         packed,

@@ -26,7 +26,7 @@ pub struct GpuTexel {
     pub position: [f32; 4],
     /// Unit normal facing into the block, w = the block's index.
     pub normal: [f32; 4],
-    /// Albedo, w unused.
+    /// Albedo, w = the stretch correction of the block's own light on this texel's face.
     pub albedo: [f32; 4],
 }
 
@@ -80,6 +80,8 @@ pub struct Packed {
     pub slots: Vec<GpuSlot>,
     /// Response row per texel of each slot's receiving block ([`NONE`] on the entry side).
     pub rows: Vec<u32>,
+    /// The stretch correction of the entering light per texel of `rows`.
+    pub row_scales: Vec<f32>,
     /// Modes per block k_b, response modes k_r, texels per face side, texels with a surface.
     pub k_b: u32,
     pub k_r: u32,
@@ -90,7 +92,8 @@ pub struct Packed {
 impl Packed {
     /// Bytes uploaded.
     pub fn bytes(&self) -> u64 {
-        let words = self.matrices.len() + self.u_r.len() + self.transfer.len() + self.rows.len();
+        let words =
+            self.matrices.len() + self.u_r.len() + self.transfer.len() + self.rows.len() + self.row_scales.len();
         (std::mem::size_of_val(self.texels.as_slice())
             + std::mem::size_of_val(self.blocks.as_slice())
             + 16 * (self.entries.len() + self.slots.len())
@@ -134,6 +137,7 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
             let rows_at = p.rows.len() as u32;
             let rows = level::response_rows(&level.blocks[y], f, res);
             p.rows.extend(rows.iter().map(|r| r.map_or(NONE, |r| r as u32)));
+            p.row_scales.extend(level::response_scales(level, y, f, res).iter().map(|v| *v as f32));
             slot_of.push(((y, f), p.slots.len() as u32));
             p.slots.push([p.entries.len() as u32, 0, y as u32, rows_at]);
         }
@@ -147,12 +151,13 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
         let layout = Layout::new(b.shape, res);
         let first = p.texels.len() as u32;
         let surfaces: Vec<TexelSurface> = geometry_image(scene, bvh, b, res);
-        for s in &surfaces {
+        let within = level::within_scales(level, bi, res);
+        for (s, w) in surfaces.iter().zip(within) {
             p.surfaces_found += u32::from(s.found);
             p.texels.push(GpuTexel {
                 position: s.position.extend(if s.found { 1.0 } else { 0.0 }).to_array(),
                 normal: s.normal.extend(bi as f32).to_array(),
-                albedo: s.albedo.extend(0.0).to_array(),
+                albedo: s.albedo.extend(w as f32).to_array(),
             });
         }
         let (t, u) = offsets.iter().find(|o| o.0 == b.shape).map_or((0, 0), |o| (o.1, o.2));
@@ -190,9 +195,9 @@ mod tests {
     fn a_corridor_packs_its_texels_slots_and_response_rows() {
         let d = build(&test_params(), &Progress::default()).expect("dictionary");
         let blocks = vec![
-            Block::unit(Shape::DeadEnd, [0, 0, 0], 2),
+            Block::unit(Shape::DeadEnd, [0, 0, 0], 0),
             Block::unit(Shape::Corridor, [0, 0, 1], 0),
-            Block::unit(Shape::DeadEnd, [0, 0, 2], 0),
+            Block::unit(Shape::DeadEnd, [0, 0, 2], 2),
         ];
         let level = Level::new(blocks);
         assert_eq!(level.link_count(), 4, "two doorways, both directions");
@@ -211,8 +216,10 @@ mod tests {
         for s in &p.slots {
             let b = &p.blocks[s[2] as usize];
             let rows = &p.rows[s[3] as usize..(s[3] + b.texels[1]) as usize];
-            let none = rows.iter().filter(|r| **r == NONE).count();
-            assert_eq!(none, 9, "one face of 3x3 texels is the entry side");
+            let n_r = d.interfaces.response.n as u32;
+            assert!(rows.iter().all(|r| *r < n_r), "the entry side is open: every texel has a response row");
+            let scales = &p.row_scales[s[3] as usize..(s[3] + b.texels[1]) as usize];
+            assert!(scales.iter().all(|v| (v - 1.0).abs() < 1e-6), "unit blocks need no stretch correction");
             assert!(b.slots.contains(&(p.slots.iter().position(|x| x == s).expect("slot") as u32)));
         }
         // The middle block's open sides have no texels.

@@ -123,6 +123,7 @@ struct LevelBuffers {
     entries: wgpu::Buffer,
     slots: wgpu::Buffer,
     rows: wgpu::Buffer,
+    row_scales: wgpu::Buffer,
     l_d: wgpu::Buffer,
     b: wgpu::Buffer,
     r: wgpu::Buffer,
@@ -132,7 +133,7 @@ struct LevelBuffers {
 }
 
 impl LevelBuffers {
-    fn all(&self) -> [&wgpu::Buffer; 14] {
+    fn all(&self) -> [&wgpu::Buffer; 15] {
         [
             &self.params,
             &self.texels,
@@ -143,6 +144,7 @@ impl LevelBuffers {
             &self.entries,
             &self.slots,
             &self.rows,
+            &self.row_scales,
             &self.l_d,
             &self.b,
             &self.r,
@@ -206,7 +208,7 @@ impl MrtPasses {
             reconstruct: Pass::new(
                 device,
                 "mrt_reconstruct",
-                &[Uniform, Read, Read, Read, Read, Read, Read, Read, Read, Write, Write],
+                &[Uniform, Read, Read, Read, Read, Read, Read, Read, Read, Write, Write, Read],
             )?,
             apply: Pass::new(
                 device,
@@ -248,6 +250,7 @@ impl MrtPasses {
             entries: upload(device, "mrt T_br entries", &p.entries),
             slots: upload(device, "mrt interfaces", &p.slots),
             rows: upload(device, "mrt response rows", &p.rows),
+            row_scales: upload(device, "mrt response stretch corrections", &p.row_scales),
             l_d: vec4s(device, "mrt l_d", texels),
             b: vec4s(device, "mrt b", p.blocks.len() * p.k_b as usize),
             r: vec4s(device, "mrt r", p.slots.len() * p.k_r as usize),
@@ -324,6 +327,7 @@ impl MrtPasses {
                 buf(&l.r),
                 buf(&l.indirect),
                 buf(&l.within),
+                buf(&l.row_scales),
             ],
         );
         let t = inputs.targets;
