@@ -14,6 +14,8 @@ geometry is modelled. Four scenes, the kinds issue 10's "done when" names:
   and a spot and a lamp.
 - offices: a corridor with a lamp and three offices behind 0.15 m partitions, a spot in the
   first; the camera in the unlit third (added later, see `offices`).
+- three_rooms_b / three_rooms_c: three box rooms in a row joined by doorways, a spot in the
+  first; the camera in the second / third room (issue 12's "done when" level for MRT).
 
 Usage: python3 tools/unseen_levels.py OUT_DIR  (writes OUT_DIR/<name>.gltf)
 """
@@ -313,10 +315,45 @@ def offices():
     return w
 
 
+def three_rooms(view):
+    """Added for issue 12 (MRT), never used for tuning: three box rooms of different sizes in a
+    row along x, 0.2 m slab walls, one 1.0 x 2.1 m doorway between each pair at different
+    places along z, a spot in the first room aimed at its floor; no other light. `view` "b" puts
+    the camera in the second room, "c" in the third (the same level, two files)."""
+    w = Writer()
+    wall, floor, ceil = w.material("plaster", WALL), w.material("oak", FLOOR), w.material("ceiling", CEILING)
+    green = w.material("green_wall", (0.35, 0.55, 0.35))
+    t, h = 0.2, 2.8
+    # Rooms along x: A [0, 4], B [4.2, 10.2], C [10.4, 14.9]; all z in [0, 5].
+    xa, xb, xc = (0.0, 4.0), (4.0 + t, 10.0 + t), (10.0 + 2 * t, 14.5 + 2 * t)
+    Z = 5.0
+    x0, x1 = -t, xc[1] + t
+    w.slab("floor", [x0, -t, -t], [x1, 0.0, Z + t], floor)
+    w.slab("ceiling", [x0, h, -t], [x1, h + t, Z + t], ceil)
+    w.slab("south", [x0, 0, -t], [x1, h, 0.0], wall)
+    w.slab("north", [x0, 0, Z], [x1, h, Z + t], wall)
+    w.slab("west", [x0, 0, 0.0], [0.0, h, Z], green)
+    w.slab("east", [xc[1], 0, 0.0], [x1, h, Z], wall)
+    door_h = 2.1
+    # Wall A|B at x [4, 4.2] with a doorway at z 3.2..4.2; wall B|C at x [10.2, 10.4], z 0.8..1.8.
+    for k, (xw, (za, zb)) in enumerate([((xa[1], xb[0]), (3.2, 4.2)), ((xb[1], xc[0]), (0.8, 1.8))]):
+        w.slab(f"partition_{k}_a", [xw[0], 0, 0.0], [xw[1], h, za], wall)
+        w.slab(f"partition_{k}_b", [xw[0], 0, zb], [xw[1], h, Z], wall)
+        w.slab(f"lintel_{k}", [xw[0], door_h, za], [xw[1], h, zb], wall)
+    w.light("spot", "spot", 40.0, [1.0, 2.6, 1.2], [0.5, -1.0, 0.6], cone=(0.3, 0.55))
+    if view == "b":
+        w.camera([9.6, 1.6, 4.5], [5.5, 0.8, 1.5], 1.2, 0.05)
+    else:
+        w.camera([14.3, 1.6, 4.6], [11.0, 0.7, 1.2], 1.2, 0.05)
+    return w
+
+
 def main():
     out = Path(sys.argv[1] if len(sys.argv) > 1 else "unseen")
     out.mkdir(parents=True, exist_ok=True)
-    for name, make in [("apartment", apartment), ("sunroom", sunroom), ("storeroom", storeroom), ("offices", offices)]:
+    levels = [("apartment", apartment), ("sunroom", sunroom), ("storeroom", storeroom), ("offices", offices)]
+    levels += [("three_rooms_b", lambda: three_rooms("b")), ("three_rooms_c", lambda: three_rooms("c"))]
+    for name, make in levels:
         make().write(out / f"{name}.gltf")
         print(out / f"{name}.gltf")
 

@@ -31,7 +31,13 @@ fn objects_key(scene: &Scene) -> Vec<u32> {
         let t = &o.transform;
         let floats = t.translation.to_array().into_iter().chain(t.rotation.to_array()).chain(t.scale.to_array());
         key.extend(floats.chain([o.sampling_weight]).map(f32::to_bits));
-        key.extend([o.material as u32, o.mesh as u32, u32::from(o.is_rendered())]);
+        key.extend([o.material as u32, o.mesh as u32, u32::from(o.is_rendered()), o.role as u32]);
+        // The generated shape (a proxy block's size and open sides reach MRT's level even
+        // though no mesh is drawn for it).
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        std::hash::Hash::hash(&format!("{:?}", o.source), &mut h);
+        let source = std::hash::Hasher::finish(&h);
+        key.extend([source as u32, (source >> 32) as u32]);
     }
     for m in scene.materials() {
         let values = m.base_color.iter().chain(&m.specular).chain([&m.roughness, &m.normal_scale]);

@@ -1,0 +1,200 @@
+//! `mrt` (Loos 2015's modular radiance transfer) through the GI seam with a small dictionary
+//! (4x4 texels per face, cached like any other): the suite's window room, a bare glTF whose
+//! blocks are fitted when the mode is chosen, against its cached path-traced reference (energy
+//! and FLIP well ahead of `direct`); linearity in the light; the feedback's bounces converging
+//! frame after frame; a block edit that rebuilds the level while a light edit does not; a
+//! level it cannot fit that renders direct light with a message; every inspector buffer.
+
+mod common;
+
+use std::path::Path;
+
+use bouncelab::image_io::HdrImage;
+use bouncelab::metrics;
+use bouncelab::precompute::mrt::dictionary::DictionaryParams;
+use bouncelab::precompute::mrt::operators::InterfaceParams;
+use bouncelab::project_file::Project;
+use bouncelab::render::Renderer;
+use bouncelab::render::gi::Readiness;
+use bouncelab::scene::{MeshSource, ObjectRole};
+use bouncelab::settings::{GiMode, MrtSettings, RenderSettings};
+use bouncelab::suite;
+
+const SIZE: (u32, u32) = (128, 72);
+
+/// A dictionary small enough to build in a debug test (seconds), large enough to carry light.
+fn small() -> MrtSettings {
+    let interfaces = InterfaceParams { positions: 4, directions: 8, supersample: 1, k_rlf: 48, k_r: 16, enrichment: 1 };
+    let dictionary = DictionaryParams { res: 4, k_d: 32, k_b: 16, rays: 256, enrichment: 1, seed: 3, interfaces };
+    MrtSettings { dictionary, ..MrtSettings::default() }
+}
+
+fn settings(project: &Project, mrt: MrtSettings) -> RenderSettings {
+    RenderSettings { mode: GiMode::Mrt, mrt, ..project.render.clone() }
+}
+
+/// Renders until the technique is ready (its dictionary and level prepared off the frame), then
+/// `frames` more; returns the last image.
+fn render(r: &mut Renderer, project: &Project, settings: &RenderSettings, frames: usize) -> HdrImage {
+    let mut waited = 0;
+    loop {
+        r.render(&project.scene, settings, SIZE).expect("render");
+        if !matches!(r.readiness(), Readiness::Pending { .. }) {
+            break;
+        }
+        waited += 1;
+        assert!(waited < 20_000, "mrt never became ready: {:?}", r.readiness());
+    }
+    for _ in 1..frames {
+        r.render(&project.scene, settings, SIZE).expect("render");
+    }
+    HdrImage { width: SIZE.0, height: SIZE.1, pixels: r.read_hdr().expect("hdr") }
+}
+
+fn window() -> Project {
+    suite::scene("window").expect("suite scene").load(Path::new(".")).expect("window")
+}
+
+fn counter(r: &Renderer, name: &str) -> u64 {
+    r.technique_status().map_or(0, |s| s.counter(name))
+}
+
+#[test]
+fn mrt_on_a_bare_window_room_fits_its_block_and_beats_direct_against_the_reference() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = window();
+    assert!(!project.scene.objects().iter().any(|o| o.role == ObjectRole::ProxyBlock), "a bare level");
+    let reference = suite::scene("window").expect("suite scene").reference(Path::new(".")).expect("reference");
+    let ev = bouncelab::cli::quality::exposure(&reference);
+    let big = (SIZE.0 * 2, SIZE.1 * 2);
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let s = settings(&project, small());
+    let mut image = |s: &RenderSettings, frames: usize| {
+        let mut waited = 0;
+        while {
+            r.render(&project.scene, s, big).expect("render");
+            matches!(r.readiness(), Readiness::Pending { .. })
+        } {
+            waited += 1;
+            assert!(waited < 20_000, "never ready");
+        }
+        for _ in 1..frames {
+            r.render(&project.scene, s, big).expect("render");
+        }
+        let pixels = bouncelab::image_io::box_downsample(&r.read_hdr().expect("hdr"), big, 2);
+        (HdrImage { width: SIZE.0, height: SIZE.1, pixels }, r.limitations(&project.scene, s))
+    };
+    let (mrt, notes) = image(&s, 16);
+    let (direct, _) = image(&RenderSettings { mode: GiMode::Direct, ..s.clone() }, 1);
+    assert!(notes.iter().any(|n| n.contains("fitted")), "a bare level says its blocks were fitted: {notes:?}");
+    let (m, d) = (
+        metrics::compare(&mrt, &reference, ev).expect("same size"),
+        metrics::compare(&direct, &reference, ev).expect("same size"),
+    );
+    eprintln!(
+        "window, 4x4-texel dictionary: mrt energy {:.3} FLIP {:.4}; direct energy {:.3} FLIP {:.4}",
+        m.luminance_ratio, m.flip, d.luminance_ratio, d.flip
+    );
+    assert!((0.85..=1.15).contains(&m.luminance_ratio), "mrt energy {:.3} of the reference", m.luminance_ratio);
+    assert!(m.flip < 0.5 * d.flip, "mrt FLIP {:.4} against direct's {:.4}", m.flip, d.flip);
+}
+
+#[test]
+fn mrt_indirect_light_is_linear_in_the_light_and_its_feedback_converges() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = window();
+    let one_bounce = settings(&project, MrtSettings { feedback: 0.0, ..small() });
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let mean = |r: &Renderer| metrics::mean_luminance(&r.read_buffer("indirect").expect("indirect"));
+    render(&mut r, &project, &one_bounce, 2);
+    let first = mean(&r);
+    // Twice every light: twice the indirect light (the whole pipeline is linear in l_d).
+    let mut brighter = project.clone();
+    for l in &mut brighter.scene.desc_mut().lights {
+        l.intensity *= 2.0;
+    }
+    render(&mut r, &brighter, &one_bounce, 2);
+    let doubled = mean(&r);
+    eprintln!("one bounce: indirect {first:.5}, with twice the light {doubled:.5}");
+    assert!(first > 0.0 && (doubled / first - 2.0).abs() < 0.01, "{doubled} / {first}");
+    // The feedback adds a bounce per frame: the indirect light grows, then settles.
+    let feedback = settings(&project, small());
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    render(&mut r, &project, &feedback, 1);
+    let mut means = vec![mean(&r)];
+    for _ in 0..23 {
+        r.render(&project.scene, &feedback, SIZE).expect("render");
+        means.push(mean(&r));
+    }
+    eprintln!("feedback: indirect by frame {means:.5?}");
+    assert!((means[0] - first).abs() < 1e-3 * first, "the first frame is one bounce: {} vs {first}", means[0]);
+    assert!(means[4] > means[0] * 1.05, "bounces add light: {means:?}");
+    assert!((means[23] - means[15]).abs() < 0.01 * means[23], "settled: {means:?}");
+    let status = r.technique_status().expect("status");
+    assert!(!status.refining && status.history_frames >= status.refine_target, "{status:?}");
+}
+
+#[test]
+fn a_block_edit_rebuilds_the_level_and_a_light_edit_does_not() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = window();
+    let fitted = bouncelab::precompute::mrt::proxy::fitted_objects(&project.scene).expect("fits");
+    project.scene.desc_mut().objects.extend(fitted);
+    let s = settings(&project, small());
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let before = render(&mut r, &project, &s, 4);
+    let builds = counter(&r, "level builds");
+    assert_eq!(builds, 1);
+    assert!(!r.limitations(&project.scene, &s).iter().any(|n| n.contains("fitted")), "blocks of its own");
+    // A light edit: l_d changes every frame, the level stays.
+    project.scene.desc_mut().lights[0].intensity *= 0.5;
+    render(&mut r, &project, &s, 2);
+    assert_eq!(counter(&r, "level builds"), builds, "a light edit keeps the level");
+    // A block edit: shrink the proxy to half its depth; the level is rebuilt off the frame and
+    // the image changes once it is in.
+    let index = project.scene.objects().iter().position(|o| o.role == ObjectRole::ProxyBlock).expect("block");
+    if let MeshSource::Cuboid { size, .. } = &mut project.scene.desc_mut().objects[index].source {
+        size.z *= 0.5;
+    }
+    let started = std::time::Instant::now();
+    while counter(&r, "level builds") == builds {
+        r.render(&project.scene, &s, SIZE).expect("render");
+        assert!(started.elapsed().as_secs() < 60, "the edit never rebuilt the level");
+    }
+    eprintln!("block edit to rebuilt level: {:.0} ms (debug build)", started.elapsed().as_secs_f64() * 1e3);
+    let after = render(&mut r, &project, &s, 2);
+    let diff: f64 = before.pixels.iter().zip(&after.pixels).map(|(a, b)| f64::from((a[0] - b[0]).abs())).sum();
+    assert!(diff > 0.0, "the edited block changed the image");
+}
+
+#[test]
+fn a_level_without_rooms_renders_direct_light_and_says_why() {
+    let Some(ctx) = common::gpu() else { return };
+    // The Cornell box's open planes enclose no room the fitter accepts.
+    let project = suite::scene("cornell").expect("suite scene").load(Path::new(".")).expect("cornell");
+    let s = settings(&project, small());
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let mrt = render(&mut r, &project, &s, 2);
+    let notes = r.limitations(&project.scene, &s);
+    assert!(notes.iter().any(|n| n.contains("no proxy blocks")), "{notes:?}");
+    assert!(mrt.pixels.iter().all(|p| p.iter().all(|v| v.is_finite())));
+    let mut d = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let direct = render(&mut d, &project, &RenderSettings { mode: GiMode::Direct, ..s.clone() }, 1);
+    assert_eq!(mrt.pixels, direct.pixels, "nothing added where nothing was fitted");
+}
+
+#[test]
+fn every_mrt_inspector_buffer_reads_back_finite() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = window();
+    let s = settings(&project, small());
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    render(&mut r, &project, &s, 3);
+    for b in bouncelab::render::gi::registry::buffers(GiMode::Mrt) {
+        let img = r.read_buffer(b.name).unwrap_or_else(|e| panic!("{}: {e}", b.name));
+        assert!(img.width > 0 && img.height > 0, "{}", b.name);
+        assert!(img.pixels.iter().flatten().all(|v| v.is_finite()), "{} holds non-finite values", b.name);
+    }
+    let lightmap = r.read_buffer("mrt_lightmap").expect("lightmap");
+    assert!(metrics::mean_luminance(&lightmap) > 0.0, "the lightmap holds light");
+}
