@@ -187,3 +187,21 @@ fn clutter_from_a_gltf_joins_the_project_and_saves() {
     assert_eq!(project.scene.objects().len(), objects);
     assert!(edits::add_clutter_asset(&mut project, &mut history, std::path::Path::new("nowhere.gltf")).is_err());
 }
+
+#[test]
+fn fitting_proxy_blocks_is_one_undo_step_and_never_replaces_blocks() {
+    let mut project =
+        bouncelab::suite::scene("rooms").expect("suite scene").load(std::path::Path::new(".")).expect("rooms");
+    let before = project.scene.objects().len();
+    let mut history = History::default();
+    let (selection, fitted) = edits::fit_proxy_blocks(&mut project, &mut history).expect("fits");
+    assert_eq!(fitted, 11, "the suite's rooms fit to 11 strips");
+    assert_eq!(selection, Selection::Object(before));
+    let blocks = || project.scene.objects().iter().filter(|o| o.role == ObjectRole::ProxyBlock).count();
+    assert_eq!(blocks(), 11);
+    // Again: refused, so an artist's edits to the fitted blocks are never overwritten.
+    let again = edits::fit_proxy_blocks(&mut project, &mut history).expect_err("blocks exist");
+    assert!(again.to_string().contains("already"), "{again}");
+    history.undo(&mut project).expect("one step");
+    assert_eq!(project.scene.objects().len(), before);
+}

@@ -32,6 +32,9 @@ pub enum EditError {
     /// A glTF to add could not be imported.
     #[error("{0}")]
     Import(String),
+    /// Proxy blocks could not be fitted (the fitter's reason), or the scene has some already.
+    #[error("fit proxy blocks: {0}")]
+    Fit(String),
 }
 
 fn structural(
@@ -109,6 +112,27 @@ pub fn add_box(project: &mut Project, history: &mut History, role: ObjectRole) -
         Ok(())
     })?;
     Ok(Selection::Object(index))
+}
+
+/// Fits MRT proxy blocks to the level's geometry and adds them as objects the artist can edit
+/// (one undo step). Refused where the scene has proxy blocks already, so that fitting never
+/// overwrites an artist's edits: delete them to fit again.
+pub fn fit_proxy_blocks(project: &mut Project, history: &mut History) -> Result<(Selection, usize), EditError> {
+    let existing = project.scene.objects().iter().filter(|o| o.role == ObjectRole::ProxyBlock).count();
+    if existing > 0 {
+        return Err(EditError::Fit(format!(
+            "the scene has {existing} proxy blocks already; delete them to fit again (fitting never replaces edited blocks)"
+        )));
+    }
+    let fitted =
+        crate::precompute::mrt::proxy::fitted_objects(&project.scene).map_err(|e| EditError::Fit(e.to_string()))?;
+    let count = fitted.len();
+    let first = project.scene.objects().len();
+    structural(project, history, "Fit proxy blocks", |d| {
+        d.objects.extend(fitted);
+        Ok(())
+    })?;
+    Ok((Selection::Object(first), count))
 }
 
 /// Deletes the selected light or object.

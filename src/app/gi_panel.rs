@@ -1,7 +1,7 @@
 //! The GI panel: the live mode switch (modes this build or adapter cannot run are disabled
 //! with the reason), what the active technique leaves out, its history and GPU memory, and
 //! every setting with its cost/quality trade-off as a tooltip. Each technique's own section
-//! lives in its own file (`gi_ism.rs`, `gi_sshgi.rs`).
+//! lives in its own file (`gi_ism.rs`, `gi_sshgi.rs`, `gi_mrt.rs`).
 
 use super::state::EditorState;
 use crate::render::Renderer;
@@ -69,6 +69,15 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
     }
     if render.mode == GiMode::Sshgi {
         super::gi_sshgi::sshgi_ui(&mut render.sshgi, ui);
+    }
+    if render.mode == GiMode::Mrt && super::gi_mrt::mrt_ui(&mut render.mrt, ui) {
+        match super::edits::fit_proxy_blocks(&mut state.project, &mut state.history) {
+            Ok((selection, n)) => {
+                state.selection = selection;
+                state.status = format!("fitted {n} proxy blocks");
+            }
+            Err(e) => state.report("fit proxy blocks", &e),
+        }
     }
     egui::CollapsingHeader::new("Reference path tracer").default_open(false).show(ui, |ui| {
         let r = &mut render.reference;

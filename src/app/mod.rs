@@ -10,6 +10,7 @@
 
 pub mod edits;
 mod gi_ism;
+mod gi_mrt;
 mod gi_panel;
 mod gi_sshgi;
 pub mod gizmo;

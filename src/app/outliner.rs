@@ -33,6 +33,16 @@ pub fn outliner_ui(state: &mut EditorState, ui: &mut egui::Ui) {
             if ui.button("Proxy block").clicked() {
                 result = Some(edits::add_box(&mut state.project, &mut state.history, ObjectRole::ProxyBlock));
             }
+            if ui
+                .button("Fit proxy blocks")
+                .on_hover_text("MRT: find the level's box-shaped rooms and corridors and their doorways, and add a proxy block for each (edit them afterwards)")
+                .clicked()
+            {
+                result = Some(edits::fit_proxy_blocks(&mut state.project, &mut state.history).map(|(sel, n)| {
+                    state.status = format!("fitted {n} proxy blocks");
+                    sel
+                }));
+            }
             if ui.button("Clutter box").clicked() {
                 result = Some(edits::add_box(&mut state.project, &mut state.history, ObjectRole::Clutter));
             }
