@@ -55,18 +55,26 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     let blk = blocks[best];
+    let lp = block_local_point(blk, p);
+    // The present face whose inward normal is closest to the pixel's; among faces the normal
+    // meets alike (a lintel's face in an open side is square to all of them), the nearest plane,
+    // so the choice does not flicker from pixel to pixel.
     var side = MRT_NONE;
-    var best_c = -2.0;
+    var best_c = -1.0e9;
     for (var w = 0u; w < 6u; w = w + 1u) {
-        let c = dot(n, side_inward(w));
-        if block_start(blk, w) != MRT_NONE && c > best_c {
+        if block_start(blk, w) == MRT_NONE {
+            continue;
+        }
+        let f = block_local(blk, w);
+        let plane = select(lp[f / 2u], 1.0 - lp[f / 2u], f % 2u == 1u);
+        let c = dot(n, side_inward(w)) - 0.25 * clamp(plane, 0.0, 1.0);
+        if c > best_c {
             best_c = c;
             side = w;
         }
     }
     let start = block_start(blk, side);
     let face = block_local(blk, side);
-    let lp = block_local_point(blk, p);
     // The canonical face's in-plane axes (shape::Face::plane_axes).
     var st = vec2<f32>(lp.x, lp.y);
     let axis = face / 2u;

@@ -261,7 +261,13 @@ impl GiTechnique for MrtTechnique {
                 Readiness::Ready
             }
             None => {
-                let what = "mrt: building the level (fitting blocks where the scene has none)".to_owned();
+                let fitting = !scene.objects().iter().any(|o| o.role == crate::scene::ObjectRole::ProxyBlock);
+                let what = if fitting {
+                    "mrt: building the level (fitting proxy blocks: the scene has none)"
+                } else {
+                    "mrt: building the level"
+                }
+                .to_owned();
                 self.status.progress = Some(what.clone());
                 Readiness::Pending { progress: 0.0, what }
             }
