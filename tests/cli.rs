@@ -195,13 +195,13 @@ fn fit_blocks_finds_the_suite_levels_rooms_and_doorways_and_names_what_it_cannot
     let run = bouncelab(&["fit-blocks", "assets/suite/rooms.gltf", "--out", out.to_str().expect("utf-8")]);
     let text = String::from_utf8_lossy(&run.stdout);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-    // Three rooms split at their doorways' jambs: 3 + 5 + 3 strips.
-    assert!(text.contains("11 proxy blocks"), "{text}");
-    // The written project reopens with its blocks, and they make one connected level: the strips
-    // of each room open to each other (8 sides) and two doorways, linked both ways.
+    // Three rooms, one doorway per side: one block each.
+    assert!(text.contains("3 proxy blocks"), "{text}");
+    // The written project reopens with its blocks, and they make one connected level: two
+    // doorway sides, linked both ways.
     let project = bouncelab::project_file::Project::load(&out).expect("the written project");
     let (level, objects) = bouncelab::precompute::mrt::proxy::level(&project.scene).expect("a level");
-    assert_eq!((objects.len(), level.link_count()), (11, 20));
+    assert_eq!((objects.len(), level.link_count()), (3, 4));
     assert!(level.unlinked().is_empty());
     // An open box (the Cornell box has no front) holds no room: a clear error, no file.
     let open = dir.join("cornell.ron");

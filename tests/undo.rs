@@ -195,10 +195,10 @@ fn fitting_proxy_blocks_is_one_undo_step_and_never_replaces_blocks() {
     let before = project.scene.objects().len();
     let mut history = History::default();
     let (selection, fitted) = edits::fit_proxy_blocks(&mut project, &mut history).expect("fits");
-    assert_eq!(fitted, 11, "the suite's rooms fit to 11 strips");
+    assert_eq!(fitted, 3, "the suite's rooms fit to one block each");
     assert_eq!(selection, Selection::Object(before));
     let blocks = || project.scene.objects().iter().filter(|o| o.role == ObjectRole::ProxyBlock).count();
-    assert_eq!(blocks(), 11);
+    assert_eq!(blocks(), 3);
     // Again: refused, so an artist's edits to the fitted blocks are never overwritten.
     let again = edits::fit_proxy_blocks(&mut project, &mut history).expect_err("blocks exist");
     assert!(again.to_string().contains("already"), "{again}");

@@ -331,12 +331,38 @@ pub fn response_rows(block: &Block, entry: Face, res: usize) -> Vec<Option<usize
         .collect()
 }
 
-/// Per sample of block `x`: the stretch correction of the light its own walls send it
-/// ([`Warp::walls`] of the sample's world face).
-pub fn within_scales(level: &Level, x: usize, res: usize) -> Vec<f64> {
-    let b = &level.blocks[x];
-    let layout = Layout::new(b.shape, res);
-    (0..layout.len()).map(|i| level.warps[x].walls[b.world_face(layout.sample(i).0) as usize]).collect()
+/// Block `x`'s indirect light from its own direct light `l`, face by face: each present face's
+/// share of b (T_{d->b} over that face's texels) reconstructed by U_b and scaled, on each
+/// receiving face, by the stretch correction of light leaving the emitting face
+/// ([`Warp::through`]: exact in flux for diffuse walls, which the block's own light is).
+pub fn own_light(level: &Level, x: usize, e: &super::basis::Element, l: &[f64], res: usize) -> Vec<f64> {
+    let layout = Layout::new(level.blocks[x].shape, res);
+    let per = res * res;
+    let scales = own_scales(level, x);
+    let mut own = vec![0.0; layout.len()];
+    for g in 0..layout.faces.len() {
+        let mut lg = vec![0.0; layout.len()];
+        lg[g * per..(g + 1) * per].copy_from_slice(&l[g * per..(g + 1) * per]);
+        let rec = e.reconstruct(&e.project(&lg));
+        for (i, (o, r)) in own.iter_mut().zip(rec).enumerate() {
+            *o += scales[g][i / per] * r;
+        }
+    }
+    own
+}
+
+/// Block `x`'s stretch corrections of its own light, `[emitting face slot][receiving face slot]`
+/// in its layout's face order (6 x 6, unused slots 1): what [`own_light`] applies.
+pub fn own_scales(level: &Level, x: usize) -> [[f64; 6]; 6] {
+    let blk = &level.blocks[x];
+    let faces = blk.shape.present_faces();
+    let mut out = [[1.0; 6]; 6];
+    for (g, fg) in faces.iter().enumerate() {
+        for (f, ff) in faces.iter().enumerate() {
+            out[g][f] = level.warps[x].through[blk.world_face(*fg) as usize][blk.world_face(*ff) as usize];
+        }
+    }
+    out
 }
 
 /// Per sample of block `y` entered through world side `entry`: the stretch correction of the
@@ -352,6 +378,7 @@ pub fn response_scales(level: &Level, y: usize, entry: Face, res: usize) -> Vec<
 /// blocks' direct light `l_d` (the same layouts): the block's own U_b b plus the surface
 /// response to every directed interface's r.
 pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    // b of each block's whole direct light (what leaves through its openings).
     let b: Vec<Vec<f64>> = level
         .blocks
         .iter()
@@ -362,11 +389,11 @@ pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[
     let mut out: Vec<Vec<f64>> = level
         .blocks
         .iter()
-        .zip(&b)
+        .zip(l_d)
         .enumerate()
-        .map(|(x, (blk, b))| {
-            let own = ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.reconstruct(b));
-            own.iter().zip(within_scales(level, x, res)).map(|(v, s)| v * s).collect()
+        .map(|(x, (blk, l))| {
+            let Some(e) = ops.dictionary.element(blk.shape) else { return Vec::new() };
+            own_light(level, x, e, l, res)
         })
         .collect();
     let response = &ops.interfaces.response;

@@ -12,8 +12,10 @@
 //! points, exact ray-box exits) against the same share in the unit cube. Light that enters
 //! through e and meets f (the surface response, the propagation out through an open side) is
 //! scaled by `(F[e][f] A_e / A_f) / F_cube[e][f]`, which makes its flux the real box's for
-//! uniform diffuse light; light from the block's own walls by the ratio of the walls' summed
-//! shares. A unit block's factors are exactly 1 (the same rays).
+//! uniform diffuse light; so is the block's own light, face by face (`level::own_light`: its
+//! walls are diffuse, so there the correction is exact in flux); light from all the walls
+//! leaving through an opening by the ratio of the walls' summed shares. A unit block's factors
+//! are exactly 1 (the same rays).
 
 use glam::Vec3;
 

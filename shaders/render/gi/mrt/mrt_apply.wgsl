@@ -3,8 +3,9 @@
 // normal) and to that block's present face whose inward normal is closest to the pixel's normal
 // (a floor to the floor, a wall to the wall behind it); its lightmap coordinate is the
 // orthographic projection of the point onto that face in the block's canonical frame, read
-// bilinearly between texel centres, clamped at the face's border. Writes E / pi (the composite
-// multiplies by the albedo); `assignment` holds the block and face for the inspector.
+// bilinearly between texel centres, clamped at the face's border. A surface in an open side
+// blends its neighbouring faces. Writes E / pi (the composite multiplies by the albedo);
+// `assignment` holds the block and face for the inspector.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import render/gi/mrt/mrt_common.wgsl
@@ -27,6 +28,61 @@ fn box_distance(b: Block, q: vec3<f32>) -> f32 {
 
 fn texel_at(start: u32, s: u32, t: u32) -> vec3<f32> {
     return max(indirect[start + t * mp.sizes.y + s].rgb, vec3<f32>(0.0));
+}
+
+// In-plane coordinates (s, t) of canonical point `lp` on canonical face `face`
+// (shape::Face::plane_axes: x faces (z, y), y faces (x, z), z faces (x, y)).
+fn plane_st(face: u32, lp: vec3<f32>) -> vec2<f32> {
+    let axis = face / 2u;
+    if axis == 0u {
+        return vec2<f32>(lp.z, lp.y);
+    }
+    if axis == 1u {
+        return vec2<f32>(lp.x, lp.z);
+    }
+    return vec2<f32>(lp.x, lp.y);
+}
+
+// The lightmap of present face `face` at canonical point `lp`, bilinear between texel centres,
+// clamped at the face's border.
+fn face_lookup(start: u32, face: u32, lp: vec3<f32>) -> vec3<f32> {
+    let res = f32(mp.sizes.y);
+    let c = clamp(plane_st(face, lp) * res - 0.5, vec2<f32>(0.0), vec2<f32>(res - 1.0));
+    let i0 = vec2<u32>(floor(c));
+    let i1 = min(i0 + 1u, vec2<u32>(mp.sizes.y - 1u));
+    let f = c - floor(c);
+    return mix(
+        mix(texel_at(start, i0.x, i0.y), texel_at(start, i1.x, i0.y), f.x),
+        mix(texel_at(start, i0.x, i1.y), texel_at(start, i1.x, i1.y), f.x),
+        f.y,
+    );
+}
+
+// A surface in an open side (the wall around a doorway when a room's whole side is its
+// opening) has no texels: blend the four neighbouring faces' light at the point's projection
+// onto each, weighted towards the nearer edge (a Coons-like patch across the opening, so the
+// open side continues its neighbours smoothly instead of taking whichever is nearest).
+fn open_side_lookup(blk: Block, face: u32, lp: vec3<f32>) -> vec3<f32> {
+    let axis = face / 2u;
+    var sum = vec3<f32>(0.0);
+    var weight = 0.0;
+    for (var k = 0u; k < 3u; k = k + 1u) {
+        if k == axis {
+            continue;
+        }
+        for (var side = 0u; side < 2u; side = side + 1u) {
+            let g = k * 2u + side;
+            let start = block_start(blk, g);
+            if start == MRT_NONE {
+                continue;
+            }
+            let along = clamp(lp[k], 0.0, 1.0);
+            let w = select(1.0 - along, along, side == 1u) + 1.0e-3;
+            sum = sum + w * face_lookup(start, g, lp);
+            weight = weight + w;
+        }
+    }
+    return sum / max(weight, 1.0e-6);
 }
 
 @compute @workgroup_size(8, 8, 1)
@@ -56,15 +112,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let blk = blocks[best];
     let lp = block_local_point(blk, p);
-    // The present face whose inward normal is closest to the pixel's; among faces the normal
-    // meets alike (a lintel's face in an open side is square to all of them), the nearest plane,
-    // so the choice does not flicker from pixel to pixel.
-    var side = MRT_NONE;
+    // The side whose inward normal is closest to the pixel's; among sides the normal meets alike
+    // (a lintel's underside, a jamb) the nearest plane, so the choice does not flicker.
+    var side = 0u;
     var best_c = -1.0e9;
     for (var w = 0u; w < 6u; w = w + 1u) {
-        if block_start(blk, w) == MRT_NONE {
-            continue;
-        }
         let f = block_local(blk, w);
         let plane = select(lp[f / 2u], 1.0 - lp[f / 2u], f % 2u == 1u);
         let c = dot(n, side_inward(w)) - 0.25 * clamp(plane, 0.0, 1.0);
@@ -73,26 +125,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             side = w;
         }
     }
-    let start = block_start(blk, side);
     let face = block_local(blk, side);
-    // The canonical face's in-plane axes (shape::Face::plane_axes).
-    var st = vec2<f32>(lp.x, lp.y);
-    let axis = face / 2u;
-    if axis == 0u {
-        st = vec2<f32>(lp.z, lp.y);
-    } else if axis == 1u {
-        st = vec2<f32>(lp.x, lp.z);
+    let start = block_start(blk, face);
+    var e = vec3<f32>(0.0);
+    if start == MRT_NONE {
+        e = open_side_lookup(blk, face, lp);
+    } else {
+        e = face_lookup(start, face, lp);
     }
-    let res = f32(mp.sizes.y);
-    let c = clamp(st * res - 0.5, vec2<f32>(0.0), vec2<f32>(res - 1.0));
-    let i0 = vec2<u32>(floor(c));
-    let i1 = min(i0 + 1u, vec2<u32>(mp.sizes.y - 1u));
-    let f = c - floor(c);
-    let e = mix(
-        mix(texel_at(start, i0.x, i0.y), texel_at(start, i1.x, i0.y), f.x),
-        mix(texel_at(start, i0.x, i1.y), texel_at(start, i1.x, i1.y), f.x),
-        f.y,
-    );
     textureStore(out_indirect, pixel, vec4<f32>(e, 1.0));
     textureStore(assignment, pixel, vec4<f32>(f32(best), f32(face), best_d, 1.0));
 }

@@ -9,7 +9,7 @@ struct Texel {
     position: vec4<f32>,
     // Unit normal facing into the block, w = block index.
     normal: vec4<f32>,
-    // Albedo, w = the stretch correction of the block's own light on this texel's face.
+    // Albedo, w unused.
     albedo: vec4<f32>,
 }
 
@@ -19,7 +19,7 @@ struct Block {
     size: vec4<f32>,
     // First texel, texel count n, T_{d->b} offset (k_b x n), U_b offset (n x k_b).
     texels: vec4<u32>,
-    // Per world side (-x +x -y +y -z +z): the canonical face's first texel, MRT_NONE where open.
+    // Per canonical face (-x +x -y +y -z +z): its first texel, MRT_NONE where open.
     starts_a: vec4<u32>,
     starts_b: vec4<u32>,
     // Per world side: the canonical face on it.
@@ -38,11 +38,12 @@ struct MrtParams {
     gains: vec4<f32>,
 }
 
-fn block_start(b: Block, side: u32) -> u32 {
-    if side < 4u {
-        return b.starts_a[side];
+// The first texel of canonical face `face`, MRT_NONE where it is open.
+fn block_start(b: Block, face: u32) -> u32 {
+    if face < 4u {
+        return b.starts_a[face];
     }
-    return b.starts_b[side - 4u];
+    return b.starts_b[face - 4u];
 }
 
 fn block_local(b: Block, side: u32) -> u32 {

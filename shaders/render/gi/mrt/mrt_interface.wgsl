@@ -24,7 +24,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         let entry = entries[e];
         let m = entry.y + mode * k_b;
         for (var j = 0u; j < k_b; j = j + 1u) {
-            sum = sum + transfer[m + j] * b[entry.x * k_b + j].rgb;
+            // b of the block's whole direct light: the sum of its faces' shares.
+            var bj = vec3<f32>(0.0);
+            for (var g = 0u; g < 6u; g = g + 1u) {
+                bj = bj + b[(entry.x * 6u + g) * k_b + j].rgb;
+            }
+            sum = sum + transfer[m + j] * bj;
         }
     }
     r[id.x] = vec4<f32>(sum, 0.0);

@@ -1,5 +1,6 @@
 // MRT pass D (digest section 7.1 steps 3 and 5): each texel's indirect light, E / pi of a white
-// receiver: the block's own U_b b plus, for every interface entering its block, the surface
+// receiver: the block's own U_b b (face by face, U_b b_g scaled by the stretch correction of
+// light from face g on this texel's face) plus, for every interface entering its block, the surface
 // response U_r r at the texel's row (U_r laid out for the canonical entry, the rows turned to
 // this interface at level assembly), each with the stretch correction of its face
 // (`precompute::mrt::warp`). `within` keeps U_b b alone for the inspector.
@@ -18,6 +19,8 @@
 @group(0) @binding(10) var<storage, read_write> within: array<vec4<f32>>;
 // Per entry of `rows`: the stretch correction of the entering light on that texel's face.
 @group(0) @binding(11) var<storage, read> row_scales: array<f32>;
+// Per block, 6 x 6: the stretch correction of light from face slot g on face slot f.
+@group(0) @binding(12) var<storage, read> own_scales: array<f32>;
 
 @compute @workgroup_size(64, 1, 1)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -32,11 +35,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let k_r = mp.sizes.x;
     var own = vec3<f32>(0.0);
     let u = blk.texels.w + row * k_b;
-    for (var j = 0u; j < k_b; j = j + 1u) {
-        own = own + matrices[u + j] * b[x * k_b + j].rgb;
+    let f = row / (mp.sizes.y * mp.sizes.y);
+    for (var g = 0u; g < 6u; g = g + 1u) {
+        var from_g = vec3<f32>(0.0);
+        for (var j = 0u; j < k_b; j = j + 1u) {
+            from_g = from_g + matrices[u + j] * b[(x * 6u + g) * k_b + j].rgb;
+        }
+        own = own + from_g * own_scales[x * 36u + g * 6u + f];
     }
-    // The stretch correction of the block's own light on this face (texel albedo.w).
-    own = own * texels[i].albedo.w;
     var total = own;
     for (var k = 0u; k < 4u; k = k + 1u) {
         let s = blk.slots[k];

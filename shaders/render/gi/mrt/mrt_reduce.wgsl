@@ -1,5 +1,7 @@
-// MRT pass B (digest section 7.3): b = T_{d->b} l_d per block, the most expensive indirect stage.
-// One workgroup per (mode, block): 64 threads each sum a strided share of the n products, then
+// MRT pass B (digest section 7.3): b = T_{d->b} l_d per block, the most expensive indirect stage,
+// kept per emitting face (b_g over face slot g's texels; b = the sum of the six), so that the
+// block's own light gets each face's stretch correction (`precompute::mrt::warp`). One workgroup
+// per (mode, block, face slot): 64 threads each sum a strided share of the face's products, then
 // a tree reduction in workgroup memory (WGSL has no float atomics).
 #import render/gi/mrt/mrt_common.wgsl
 
@@ -15,11 +17,16 @@ var<workgroup> partial: array<vec3<f32>, 64>;
 fn cs_main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) li: u32) {
     let mode = wg.x;
     let x = wg.y;
+    let g = wg.z;
     let blk = blocks[x];
     let n = blk.texels.y;
+    let per = mp.sizes.y * mp.sizes.y;
     let row = blk.texels.z + mode * n;
+    // Face slots past the shape's present faces sum nothing.
+    let first = min(g * per, n);
+    let last = min(first + per, n);
     var sum = vec3<f32>(0.0);
-    for (var i = li; i < n; i = i + 64u) {
+    for (var i = first + li; i < last; i = i + 64u) {
         sum = sum + matrices[row + i] * l_d[blk.texels.x + i].rgb;
     }
     partial[li] = sum;
@@ -31,6 +38,6 @@ fn cs_main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index
         workgroupBarrier();
     }
     if li == 0u {
-        b[x * mp.counts.w + mode] = vec4<f32>(partial[0], 0.0);
+        b[(x * 6u + g) * mp.counts.w + mode] = vec4<f32>(partial[0], 0.0);
     }
 }

@@ -26,7 +26,7 @@ pub struct GpuTexel {
     pub position: [f32; 4],
     /// Unit normal facing into the block, w = the block's index.
     pub normal: [f32; 4],
-    /// Albedo, w = the stretch correction of the block's own light on this texel's face.
+    /// Albedo, w unused.
     pub albedo: [f32; 4],
 }
 
@@ -43,8 +43,8 @@ pub struct GpuBlock {
     /// First texel, texel count n, offset of its element's T_{d->b} (k_b x n) and of its U_b
     /// (n x k_b) in the matrix buffers.
     pub texels: [u32; 4],
-    /// Per world side (-x, +x, -y, +y, -z, +z, -, -): the first texel of the canonical face on
-    /// that side, or [`NONE`] where it is open.
+    /// Per canonical face (-x, +x, -y, +y, -z, +z of the unit cube, then two unused): its first
+    /// texel, or [`NONE`] where it is open.
     pub starts: [u32; 8],
     /// Per world side: the canonical face on that side (`Face` as u32).
     pub local: [u32; 8],
@@ -82,6 +82,9 @@ pub struct Packed {
     pub rows: Vec<u32>,
     /// The stretch correction of the entering light per texel of `rows`.
     pub row_scales: Vec<f32>,
+    /// Per block, the stretch corrections of its own light, `[emitting slot][receiving slot]`
+    /// (36 each; `level::own_scales`).
+    pub own_scales: Vec<f32>,
     /// Modes per block k_b, response modes k_r, texels per face side, texels with a surface.
     pub k_b: u32,
     pub k_r: u32,
@@ -92,8 +95,12 @@ pub struct Packed {
 impl Packed {
     /// Bytes uploaded.
     pub fn bytes(&self) -> u64 {
-        let words =
-            self.matrices.len() + self.u_r.len() + self.transfer.len() + self.rows.len() + self.row_scales.len();
+        let words = self.matrices.len()
+            + self.u_r.len()
+            + self.transfer.len()
+            + self.rows.len()
+            + self.row_scales.len()
+            + self.own_scales.len();
         (std::mem::size_of_val(self.texels.as_slice())
             + std::mem::size_of_val(self.blocks.as_slice())
             + 16 * (self.entries.len() + self.slots.len())
@@ -151,13 +158,13 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
         let layout = Layout::new(b.shape, res);
         let first = p.texels.len() as u32;
         let surfaces: Vec<TexelSurface> = geometry_image(scene, bvh, b, res);
-        let within = level::within_scales(level, bi, res);
-        for (s, w) in surfaces.iter().zip(within) {
+        p.own_scales.extend(level::own_scales(level, bi).iter().flatten().map(|v| *v as f32));
+        for s in &surfaces {
             p.surfaces_found += u32::from(s.found);
             p.texels.push(GpuTexel {
                 position: s.position.extend(if s.found { 1.0 } else { 0.0 }).to_array(),
                 normal: s.normal.extend(bi as f32).to_array(),
-                albedo: s.albedo.extend(w as f32).to_array(),
+                albedo: s.albedo.extend(0.0).to_array(),
             });
         }
         let (t, u) = offsets.iter().find(|o| o.0 == b.shape).map_or((0, 0), |o| (o.1, o.2));
@@ -166,7 +173,7 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
         for (k, w) in SIDES.iter().enumerate() {
             let f = b.local_face(*w);
             local[k] = f as u32;
-            starts[k] = layout.face_start(f).map_or(NONE, |s| first + s as u32);
+            starts[f as usize] = layout.face_start(f).map_or(NONE, |s| first + s as u32);
         }
         let mut slots = [NONE; 4];
         for (k, (_, s)) in slot_of.iter().filter(|((y, _), _)| *y == bi).take(4).enumerate() {

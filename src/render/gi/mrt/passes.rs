@@ -124,6 +124,7 @@ struct LevelBuffers {
     slots: wgpu::Buffer,
     rows: wgpu::Buffer,
     row_scales: wgpu::Buffer,
+    own_scales: wgpu::Buffer,
     l_d: wgpu::Buffer,
     b: wgpu::Buffer,
     r: wgpu::Buffer,
@@ -133,7 +134,7 @@ struct LevelBuffers {
 }
 
 impl LevelBuffers {
-    fn all(&self) -> [&wgpu::Buffer; 15] {
+    fn all(&self) -> [&wgpu::Buffer; 16] {
         [
             &self.params,
             &self.texels,
@@ -145,6 +146,7 @@ impl LevelBuffers {
             &self.slots,
             &self.rows,
             &self.row_scales,
+            &self.own_scales,
             &self.l_d,
             &self.b,
             &self.r,
@@ -208,7 +210,7 @@ impl MrtPasses {
             reconstruct: Pass::new(
                 device,
                 "mrt_reconstruct",
-                &[Uniform, Read, Read, Read, Read, Read, Read, Read, Read, Write, Write, Read],
+                &[Uniform, Read, Read, Read, Read, Read, Read, Read, Read, Write, Write, Read, Read],
             )?,
             apply: Pass::new(
                 device,
@@ -251,8 +253,9 @@ impl MrtPasses {
             slots: upload(device, "mrt interfaces", &p.slots),
             rows: upload(device, "mrt response rows", &p.rows),
             row_scales: upload(device, "mrt response stretch corrections", &p.row_scales),
+            own_scales: upload(device, "mrt own-light stretch corrections", &p.own_scales),
             l_d: vec4s(device, "mrt l_d", texels),
-            b: vec4s(device, "mrt b", p.blocks.len() * p.k_b as usize),
+            b: vec4s(device, "mrt b per face", p.blocks.len() * 6 * p.k_b as usize),
             r: vec4s(device, "mrt r", p.slots.len() * p.k_r as usize),
             indirect: vec4s(device, "mrt texel indirect", texels),
             within: vec4s(device, "mrt texel within-block indirect", texels),
@@ -328,6 +331,7 @@ impl MrtPasses {
                 buf(&l.indirect),
                 buf(&l.within),
                 buf(&l.row_scales),
+                buf(&l.own_scales),
             ],
         );
         let t = inputs.targets;
@@ -346,21 +350,21 @@ impl MrtPasses {
             ],
         );
         let k_r = l.counts.sizes[0];
-        let steps: [(&str, &Pass, &wgpu::BindGroup, [u32; 2]); 5] = [
-            ("mrt direct texels", &self.direct, &direct, [texels.div_ceil(64), 1]),
-            ("mrt b", &self.reduce, &reduce, [k_b, blocks]),
-            ("mrt interfaces r", &self.interface, &interface, [(slots * k_r).div_ceil(64), 1]),
-            ("mrt reconstruct", &self.reconstruct, &reconstruct, [texels.div_ceil(64), 1]),
-            ("mrt apply", &self.apply, &apply, [size.0.div_ceil(8), size.1.div_ceil(8)]),
+        let steps: [(&str, &Pass, &wgpu::BindGroup, [u32; 3]); 5] = [
+            ("mrt direct texels", &self.direct, &direct, [texels.div_ceil(64), 1, 1]),
+            ("mrt b", &self.reduce, &reduce, [k_b, blocks, 6]),
+            ("mrt interfaces r", &self.interface, &interface, [(slots * k_r).div_ceil(64), 1, 1]),
+            ("mrt reconstruct", &self.reconstruct, &reconstruct, [texels.div_ceil(64), 1, 1]),
+            ("mrt apply", &self.apply, &apply, [size.0.div_ceil(8), size.1.div_ceil(8), 1]),
         ];
-        for (name, pass, group, [x, y]) in steps {
+        for (name, pass, group, [x, y, z]) in steps {
             if x == 0 || y == 0 {
                 continue;
             }
             let mut cp = inputs.compute_pass(name);
             cp.set_pipeline(&pass.pipeline);
             cp.set_bind_group(0, group, &[]);
-            cp.dispatch_workgroups(x, y, 1);
+            cp.dispatch_workgroups(x, y, z);
         }
         true
     }
@@ -386,7 +390,7 @@ impl MrtPasses {
         )
     }
 
-    /// Reads the b coefficients (blocks x k_b, rgb) or r (interfaces x k_r).
+    /// Reads the b coefficients (blocks x 6 face slots x k_b, rgb) or r (interfaces x k_r).
     pub fn read_coefficients(
         &self,
         device: &wgpu::Device,

@@ -18,7 +18,7 @@ use crate::render::{RenderError, readback};
 use crate::scene::Scene;
 use crate::settings::RenderSettings;
 
-/// An atlas buffer: one row of six face tiles (world sides -x +x -y +y -z +z) per block.
+/// An atlas buffer: one row of six face tiles (canonical faces -x +x -y +y -z +z) per block.
 const fn atlas(name: &'static str, description: &'static str) -> BufferInfo {
     BufferInfo { name, description, format: "rgba32f, texels^2 per face", view: BufferView::Colour }
 }
@@ -27,7 +27,7 @@ const fn atlas(name: &'static str, description: &'static str) -> BufferInfo {
 pub const BUFFERS: &[BufferInfo] = &[
     atlas(
         "mrt_geometry_positions",
-        "geometry images: each texel's real surface position (fract of metres); one row of six face tiles (-x +x -y +y -z +z) per block, open sides black. Smooth walls, no holes",
+        "geometry images: each texel's real surface position (fract of metres); one row of six face tiles per block (its canonical faces -x +x -y +y -z +z: floor third, ceiling fourth), open sides black. Smooth walls, no holes",
     ),
     BufferInfo {
         name: "mrt_geometry_normals",
@@ -45,7 +45,7 @@ pub const BUFFERS: &[BufferInfo] = &[
     atlas("mrt_lightmap", "the texels' indirect light (E / pi), within plus inter-block, before clamping at zero"),
     BufferInfo {
         name: "mrt_b",
-        description: "b = T_d->b l_d: one row per block, one column per mode (rgb); energy falls off to the right",
+        description: "b = T_d->b l_d per emitting face: six rows per block (its face slots), one column per mode (rgb); energy falls off to the right",
         format: "rgb f32 per mode",
         view: BufferView::Colour,
     },
@@ -335,7 +335,7 @@ impl GiTechnique for MrtTechnique {
                 let which = if name == "mrt_b" { "b" } else { "r" };
                 let values = self.passes.read_coefficients(device, queue, which).ok_or_else(|| not_yet(name))??;
                 let (rows, cols) =
-                    if which == "b" { (p.blocks.len(), p.k_b as usize) } else { (p.slots.len(), p.k_r as usize) };
+                    if which == "b" { (6 * p.blocks.len(), p.k_b as usize) } else { (p.slots.len(), p.k_r as usize) };
                 Ok(Self::coefficients(&values, rows, cols))
             })(),
             _ => (|| {
