@@ -198,3 +198,31 @@ fn every_mrt_inspector_buffer_reads_back_finite() {
     let lightmap = r.read_buffer("mrt_lightmap").expect("lightmap");
     assert!(metrics::mean_luminance(&lightmap) > 0.0, "the lightmap holds light");
 }
+
+#[test]
+fn mrt_lights_the_unlit_third_room_of_a_bare_multi_room_level() {
+    let Some(ctx) = common::gpu() else { return };
+    // The suite's rooms: a spot in the first room, the camera in the third, two doorways away;
+    // `direct` shows black. Blocks fitted on the fly (one per room), light carried through the
+    // doorway sides.
+    let project = suite::scene("rooms").expect("suite scene").load(Path::new(".")).expect("rooms");
+    let reference = suite::scene("rooms").expect("suite scene").reference(Path::new(".")).expect("reference");
+    let ev = bouncelab::cli::quality::exposure(&reference);
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let mrt = render(&mut r, &project, &settings(&project, small()), 16);
+    let notes = r.limitations(&project.scene, &settings(&project, small()));
+    assert!(notes.iter().any(|n| n.contains("3 were fitted")), "{notes:?}");
+    let mut d = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let direct = render(&mut d, &project, &RenderSettings { mode: GiMode::Direct, ..project.render.clone() }, 1);
+    let (m, dc) = (
+        metrics::compare(&mrt, &reference, ev).expect("same size"),
+        metrics::compare(&direct, &reference, ev).expect("same size"),
+    );
+    eprintln!(
+        "rooms, 4x4-texel dictionary: mrt energy {:.3} FLIP {:.4}; direct energy {:.3} FLIP {:.4}",
+        m.luminance_ratio, m.flip, dc.luminance_ratio, dc.flip
+    );
+    assert!(dc.luminance_ratio < 0.01, "the view is unlit by direct light");
+    assert!((0.5..=1.5).contains(&m.luminance_ratio), "mrt energy {:.3} of the reference", m.luminance_ratio);
+    assert!(m.flip < 0.6 * dc.flip, "mrt FLIP {:.4} against direct's {:.4}", m.flip, dc.flip);
+}
