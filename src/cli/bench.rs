@@ -12,11 +12,11 @@ use crate::settings::GiMode;
 use crate::settings::ReferenceSettings;
 
 /// One measured configuration.
-struct Row {
-    mode: GiMode,
-    size: (u32, u32),
-    frame_ms: f64,
-    passes: Vec<PassTiming>,
+pub(crate) struct Row {
+    pub(crate) mode: GiMode,
+    pub(crate) size: (u32, u32),
+    pub(crate) frame_ms: f64,
+    pub(crate) passes: Vec<PassTiming>,
 }
 
 /// The median of `v` (0 when empty).
@@ -25,10 +25,20 @@ pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
 
-fn measure(ctx: &GpuContext, project: &Project, mode: GiMode, size: (u32, u32), frames: usize) -> anyhow::Result<Row> {
+pub(crate) fn measure(
+    ctx: &GpuContext,
+    project: &Project,
+    mode: GiMode,
+    size: (u32, u32),
+    frames: usize,
+) -> anyhow::Result<Row> {
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue)?;
     let mut settings = project.render.clone();
     settings.mode = mode;
+    // A technique preparing on the CPU (MRT's dictionary and level) first.
+    let mut ready = project.clone();
+    ready.render = settings.clone();
+    super::render::until_ready(ctx, &mut renderer, &ready, size)?;
     // Warm-up: pipeline compilation and first uploads.
     for _ in 0..3 {
         renderer.render(&project.scene, &settings, size)?;
@@ -109,6 +119,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
     ism_rows(&mut md, &ctx, &project, quick)?;
     super::bench_sshgi::sshgi_rows(&mut md, &ctx, &project, quick)?;
     super::bench_mrt::mrt_rows(&mut md, quick)?;
+    super::bench_mrt::mrt_runtime_rows(&mut md, &ctx, quick)?;
     // Anything after the manual marker (hand-run external comparisons) survives a rerun.
     if let Ok(old) = std::fs::read_to_string(out)
         && let Some(i) = old.find(MANUAL_MARKER)

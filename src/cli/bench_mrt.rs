@@ -2,7 +2,8 @@
 //! its interface operators (what `mrt-dictionary` builds and caches), and, for random mazes of
 //! 11 and 41 unit blocks (the sizes of the dissertation's Table 3.3), the level assembly of
 //! T_{b->r} (what a block edit rebuilds) and one frame's indirect light in the reduced spaces
-//! on the CPU (the GPU runtime is a later work item).
+//! on the CPU; then the GPU runtime's per-stage cost on the suite's multi-room level, alone and
+//! with those mazes as its proxy blocks, as ratios to `direct` on the same view.
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -107,6 +108,79 @@ pub fn mrt_rows(md: &mut String, quick: bool) -> anyhow::Result<()> {
             level.link_count(),
             transfer.blocks.len(),
             bytes as f64 / 1e6
+        );
+    }
+    Ok(())
+}
+
+/// The proxy objects of `level`'s blocks (unrotated boxes with their world sides open), raised
+/// by `lift` metres.
+fn proxies(level: &Level, lift: f32) -> Vec<crate::scene::Object> {
+    use crate::precompute::mrt::proxy::OPENING_ORDER;
+    use crate::scene::{MeshSource, Object, ObjectRole, Transform};
+    level
+        .blocks
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let mut openings = [false; 6];
+            for f in b.shape.open_faces() {
+                if let Some(k) = OPENING_ORDER.iter().position(|o| *o == b.world_face(*f)) {
+                    openings[k] = true;
+                }
+            }
+            let centre = b.origin + 0.5 * b.size + glam::Vec3::Y * lift;
+            Object {
+                name: format!("maze {}", i + 1),
+                source: MeshSource::Cuboid { size: b.size, openings },
+                mesh: 0,
+                material: 0,
+                transform: Transform { translation: centre, ..Transform::default() },
+                sampling_weight: 1.0,
+                role: ObjectRole::ProxyBlock,
+                visible: true,
+            }
+        })
+        .collect()
+}
+
+/// Appends MRT's per-frame GPU cost per stage on the suite's rooms (blocks fitted on the fly),
+/// and with 11- and 41-block mazes as its proxy blocks (the stages scale with blocks and texels,
+/// the apply pass with pixels x blocks), as ratios to `direct` on the same view.
+pub fn mrt_runtime_rows(md: &mut String, ctx: &crate::render::GpuContext, quick: bool) -> anyhow::Result<()> {
+    use crate::settings::GiMode;
+    let rooms = crate::suite::scene("rooms")?.load(std::path::Path::new("."))?;
+    let size = (640, 360);
+    let frames = if quick { 5 } else { 20 };
+    let direct = super::bench::measure(ctx, &rooms, GiMode::Direct, size, frames)?;
+    let mut levels = vec![("the suite's rooms, 3 fitted blocks".to_owned(), rooms.clone())];
+    for count in [11usize, 41] {
+        let mut p = rooms.clone();
+        p.scene.desc_mut().objects.extend(proxies(&maze(count, 7), 0.0));
+        levels.push((format!("the rooms' view, a {count}-block maze as proxies"), p));
+    }
+    let _ = writeln!(md, "\n## MRT per frame (GPU runtime)\n");
+    let _ = writeln!(
+        md,
+        "640x360, default settings (16² texels per face, k_b 32, k_r 32, depth 6, feedback on). `direct` on the same view: {:.2} ms per frame. Pass times are GPU timestamps (median of {frames} frames).\n",
+        direct.frame_ms
+    );
+    let _ = writeln!(md, "| level | frame ms | frame / direct | MRT passes, GPU ms |");
+    let _ = writeln!(md, "|---|---|---|---|");
+    for (name, project) in &levels {
+        let row = super::bench::measure(ctx, project, GiMode::Mrt, size, frames)?;
+        let stages: Vec<String> = row
+            .passes
+            .iter()
+            .filter(|p| p.name.starts_with("mrt"))
+            .map(|p| format!("{} {:.2}", p.name, p.ms))
+            .collect();
+        let _ = writeln!(
+            md,
+            "| {name} | {:.2} | {:.2} | {} |",
+            row.frame_ms,
+            row.frame_ms / direct.frame_ms.max(1e-9),
+            if stages.is_empty() { "(no timestamp queries)".to_owned() } else { stages.join(", ") }
         );
     }
     Ok(())
