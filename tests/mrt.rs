@@ -226,3 +226,44 @@ fn mrt_lights_the_unlit_third_room_of_a_bare_multi_room_level() {
     assert!((0.5..=1.5).contains(&m.luminance_ratio), "mrt energy {:.3} of the reference", m.luminance_ratio);
     assert!(m.flip < 0.6 * dc.flip, "mrt FLIP {:.4} against direct's {:.4}", m.flip, dc.flip);
 }
+
+#[test]
+fn padding_blends_two_blocks_that_split_one_room_so_their_seam_steps_less() {
+    let Some(ctx) = common::gpu() else { return };
+    // The window room covered by two hand-placed blocks, halves along x, open to each other over
+    // their whole shared side: without padding each half reads its own edge texels and the
+    // lightmap steps at the split plane.
+    let mut project = window();
+    let fitted = bouncelab::precompute::mrt::proxy::fitted_objects(&project.scene).expect("fits");
+    let whole = fitted.first().expect("one block").clone();
+    let MeshSource::Cuboid { size, .. } = whole.source else { panic!("a box") };
+    let half = glam::Vec3::new(0.5 * size.x, size.y, size.z);
+    for (k, dx) in [(0usize, -0.25), (1, 0.25)] {
+        let mut o = whole.clone();
+        let mut openings = [false; 6];
+        // +X (index 0) on the west half, -X (index 1) on the east half.
+        openings[k] = true;
+        o.name = format!("half {k}");
+        o.source = MeshSource::Cuboid { size: half, openings };
+        o.transform.translation.x += dx * size.x;
+        project.scene.desc_mut().objects.push(o);
+    }
+    let variation = |padding: bool| {
+        let s = settings(&project, MrtSettings { padding, ..small() });
+        let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        render(&mut r, &project, &s, 4);
+        let img = r.read_buffer("indirect").expect("indirect");
+        let lum: Vec<f64> = img.pixels.iter().map(|p| f64::from(metrics::luminance(p))).collect();
+        let w = img.width as usize;
+        let mut tv = 0.0;
+        for (i, v) in lum.iter().enumerate() {
+            if i % w + 1 < w {
+                tv += (lum[i + 1] - v).abs();
+            }
+        }
+        tv
+    };
+    let (padded, unpadded) = (variation(true), variation(false));
+    eprintln!("row variation of the indirect light: padded {padded:.4}, unpadded {unpadded:.4}");
+    assert!(padded < unpadded, "padding smooths the seam: {padded} vs {unpadded}");
+}

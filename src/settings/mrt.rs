@@ -26,11 +26,16 @@ pub struct MrtSettings {
     /// frame. 0 = one bounce; 1 = every bounce (converges in a few frames for albedo < 1). Free:
     /// one read per texel.
     pub feedback: f32,
+    /// Pad the lightmap across sides open over their whole area (Loos 2015 §4.6): within half a
+    /// texel of such a side a lookup blends towards the block beyond, so neighbouring blocks
+    /// meet without a seam. Off shows the unpadded lightmap (the inspector's comparison). Cost:
+    /// a second block lookup for pixels near such sides (the apply pass).
+    pub padding: bool,
 }
 
 impl Default for MrtSettings {
     fn default() -> Self {
-        Self { dictionary: DictionaryParams::default(), depth: 6, feedback: 1.0 }
+        Self { dictionary: DictionaryParams::default(), depth: 6, feedback: 1.0, padding: true }
     }
 }
 

@@ -4,7 +4,8 @@
 // (a floor to the floor, a wall to the wall behind it); its lightmap coordinate is the
 // orthographic projection of the point onto that face in the block's canonical frame, read
 // bilinearly between texel centres, clamped at the face's border. A surface in an open side
-// blends its neighbouring faces. Writes E / pi (the composite multiplies by the albedo);
+// blends its neighbouring faces; near a side open over its whole area the block beyond is
+// blended in (padding). Writes E / pi (the composite multiplies by the albedo);
 // `assignment` holds the block and face for the inspector.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
@@ -85,6 +86,31 @@ fn open_side_lookup(blk: Block, face: u32, lp: vec3<f32>) -> vec3<f32> {
     return sum / max(weight, 1.0e-6);
 }
 
+// The light of block `x` at world point `p` with normal `n` (rgb) and the canonical face read (w).
+fn block_light(x: u32, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    let blk = blocks[x];
+    let lp = block_local_point(blk, p);
+    // The side whose inward normal is closest to the pixel's; among sides the normal meets alike
+    // (a lintel's underside, a jamb) the nearest plane, so the choice does not flicker.
+    var side = 0u;
+    var best_c = -1.0e9;
+    for (var w = 0u; w < 6u; w = w + 1u) {
+        let f = block_local(blk, w);
+        let plane = select(lp[f / 2u], 1.0 - lp[f / 2u], f % 2u == 1u);
+        let c = dot(n, side_inward(w)) - 0.25 * clamp(plane, 0.0, 1.0);
+        if c > best_c {
+            best_c = c;
+            side = w;
+        }
+    }
+    let face = block_local(blk, side);
+    let start = block_start(blk, face);
+    if start == MRT_NONE {
+        return vec4<f32>(open_side_lookup(blk, face, lp), f32(face));
+    }
+    return vec4<f32>(face_lookup(start, face, lp), f32(face));
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = vec2<u32>(frame.size.xy);
@@ -110,29 +136,26 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             best = x;
         }
     }
-    let blk = blocks[best];
-    let lp = block_local_point(blk, p);
-    // The side whose inward normal is closest to the pixel's; among sides the normal meets alike
-    // (a lintel's underside, a jamb) the nearest plane, so the choice does not flicker.
-    var side = 0u;
-    var best_c = -1.0e9;
-    for (var w = 0u; w < 6u; w = w + 1u) {
-        let f = block_local(blk, w);
-        let plane = select(lp[f / 2u], 1.0 - lp[f / 2u], f % 2u == 1u);
-        let c = dot(n, side_inward(w)) - 0.25 * clamp(plane, 0.0, 1.0);
-        if c > best_c {
-            best_c = c;
-            side = w;
+    let here = block_light(best, p, n);
+    var e = here.rgb;
+    // Padding (digest section 6.4): within half a texel of a side open over its whole area, blend
+    // towards the block beyond, so both sides meet at the same value (the dissertation's padded
+    // atlas, read here from the neighbour's own faces).
+    if mp.sizes.z == 1u {
+        let blk = blocks[best];
+        let lp = block_local_point(blk, p);
+        for (var f = 0u; f < 6u; f = f + 1u) {
+            let nb = block_across(blk, f);
+            if nb == MRT_NONE || f / 2u == 1u {
+                continue;
+            }
+            let dist = select(lp[f / 2u], 1.0 - lp[f / 2u], f % 2u == 1u) * f32(mp.sizes.y);
+            if dist < 0.5 {
+                e = mix(e, block_light(nb, p, n).rgb, 0.5 - dist);
+            }
         }
     }
-    let face = block_local(blk, side);
-    let start = block_start(blk, face);
-    var e = vec3<f32>(0.0);
-    if start == MRT_NONE {
-        e = open_side_lookup(blk, face, lp);
-    } else {
-        e = face_lookup(start, face, lp);
-    }
+    let face = u32(here.w);
     textureStore(out_indirect, pixel, vec4<f32>(e, 1.0));
     textureStore(assignment, pixel, vec4<f32>(f32(best), f32(face), best_d, 1.0));
 }

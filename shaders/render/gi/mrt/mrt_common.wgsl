@@ -27,12 +27,16 @@ struct Block {
     local_b: vec4<u32>,
     // Directed interfaces entering the block (slot indices, MRT_NONE for none).
     slots: vec4<u32>,
+    // Per canonical face: the block beyond it where it is open over its whole area, else
+    // MRT_NONE (the lookup pads across such sides).
+    across_a: vec4<u32>,
+    across_b: vec4<u32>,
 }
 
 struct MrtParams {
     // blocks, texels, slots, k_b.
     counts: vec4<u32>,
-    // k_r, texels per face side, unused x2.
+    // k_r, texels per face side, padding across open sides (1) or not (0), unused.
     sizes: vec4<u32>,
     // feedback gain, unused x3.
     gains: vec4<f32>,
@@ -44,6 +48,13 @@ fn block_start(b: Block, face: u32) -> u32 {
         return b.starts_a[face];
     }
     return b.starts_b[face - 4u];
+}
+
+fn block_across(b: Block, face: u32) -> u32 {
+    if face < 4u {
+        return b.across_a[face];
+    }
+    return b.across_b[face - 4u];
 }
 
 fn block_local(b: Block, side: u32) -> u32 {

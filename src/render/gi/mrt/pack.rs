@@ -50,9 +50,16 @@ pub struct GpuBlock {
     pub local: [u32; 8],
     /// The directed interfaces entering this block (slot indices, [`NONE`] for none).
     pub slots: [u32; 4],
+    /// Per canonical face: the block beyond it where it is an opening open over its whole area
+    /// (the lookup pads across it), else [`NONE`].
+    pub across: [u32; 8],
 }
 
-const _: () = assert!(std::mem::size_of::<GpuBlock>() == 128);
+const _: () = assert!(std::mem::size_of::<GpuBlock>() == 160);
+
+/// The share of a linked side that must be open for the lookup to pad across it: a doorway in
+/// a room's whole side is not, and padding there would carry light through the wall beside it.
+pub const PAD_OPEN: f64 = 0.95;
 
 /// One directed interface's record (`Slot`): its first entry, entry count, receiving block, and
 /// where its response rows start in `rows`.
@@ -175,6 +182,13 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
             local[k] = f as u32;
             starts[f as usize] = layout.face_start(f).map_or(NONE, |s| first + s as u32);
         }
+        let mut across = [NONE; 8];
+        for f in b.shape.open_faces() {
+            let w = b.world_face(*f);
+            if let Some(j) = level.link(bi, w).filter(|_| level.transmission(bi, w) >= PAD_OPEN) {
+                across[*f as usize] = j as u32;
+            }
+        }
         let mut slots = [NONE; 4];
         for (k, (_, s)) in slot_of.iter().filter(|((y, _), _)| *y == bi).take(4).enumerate() {
             slots[k] = *s;
@@ -186,6 +200,7 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
             starts,
             local,
             slots,
+            across,
         });
     }
     p

@@ -21,7 +21,7 @@ use crate::render::targets::{Target, formats};
 pub struct MrtParams {
     /// Blocks, texels, directed interfaces, k_b.
     pub counts: [u32; 4],
-    /// k_r, texels per face side, unused x2.
+    /// k_r, texels per face side, padding on (1) or off (0), unused.
     pub sizes: [u32; 4],
     /// Feedback gain, unused x3.
     pub gains: [f32; 4],
@@ -275,8 +275,9 @@ impl MrtPasses {
         }
     }
 
-    /// Records passes A-F into `inputs.targets.indirect` (E / pi); false without a level.
-    pub fn record(&mut self, inputs: &mut GiInputs<'_>, feedback: f32) -> bool {
+    /// Records passes A-F into `inputs.targets.indirect` (E / pi) with the feedback gain and
+    /// padding on or off; false without a level.
+    pub fn record(&mut self, inputs: &mut GiInputs<'_>, feedback: f32, padding: bool) -> bool {
         let Some(l) = &self.level else { return false };
         let device = inputs.device;
         let size = inputs.targets.size;
@@ -286,7 +287,8 @@ impl MrtPasses {
             self.assignment = Some(Target::new(device, "mrt block assignment", size, formats::HDR, usage));
         }
         let Some(assignment) = &self.assignment else { return false };
-        let params = MrtParams { gains: [feedback, 0.0, 0.0, 0.0], ..l.counts };
+        let mut params = MrtParams { gains: [feedback, 0.0, 0.0, 0.0], ..l.counts };
+        params.sizes[2] = u32::from(padding);
         inputs.queue.write_buffer(&l.params, 0, bytemuck::bytes_of(&params));
         let [blocks, texels, slots, k_b] = l.counts.counts;
         let lights = &inputs.lights;

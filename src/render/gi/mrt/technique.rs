@@ -283,7 +283,9 @@ impl GiTechnique for MrtTechnique {
             self.upload_pending = false;
             self.status.history_frames = 0;
         }
-        if !self.passes.record(inputs, inputs.settings.mrt.feedback) {
+        let m = &inputs.settings.mrt;
+        let (feedback, padding) = (m.feedback, m.padding);
+        if !self.passes.record(inputs, feedback, padding) {
             return Ok(GiOutput::Nothing);
         }
         self.status.history_frames = self.status.history_frames.saturating_add(1);
