@@ -91,6 +91,8 @@ pub struct BuiltLevel {
     pub blocks: Vec<crate::precompute::mrt::level::Block>,
     /// Links between blocks (both directions counted).
     pub links: usize,
+    /// Each linked side's centre and the share of it that is open.
+    pub openings: Vec<(glam::Vec3, f32)>,
     /// Open sides leading nowhere.
     pub unlinked: usize,
     /// CPU time of the build (ms).
@@ -114,14 +116,20 @@ pub fn build_level(scene: &Scene, dictionary: &Dictionary, depth: usize) -> Resu
     };
     let (mut level, _) = proxy::level(source).map_err(|e| e.to_string())?;
     let bvh = SceneBvh::build(scene);
+    let mut openings = Vec::new();
     for ((i, w), share) in geometry_image::transmissions(&bvh, &level) {
         level.set_transmission(i, w, share);
+        let (plane, lo, hi) = level.side_rect(i, w);
+        let mut centre = 0.5 * (lo + hi);
+        centre[w.axis()] = plane;
+        openings.push((centre, share as f32));
     }
     let packed = pack(scene, &bvh, &level, dictionary, depth);
     Ok(BuiltLevel {
         packed,
         fitted: !has_blocks,
         links: level.link_count(),
+        openings,
         unlinked: level.unlinked().len(),
         blocks: level.blocks,
         millis: started.elapsed().as_secs_f64() * 1e3,

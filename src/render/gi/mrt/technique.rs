@@ -6,13 +6,14 @@
 use std::sync::Arc;
 
 use super::job::{BuiltLevel, DictionaryJob, LevelJob};
-use super::pack::{NONE, Packed};
+use super::pack::Packed;
 use super::passes::MrtPasses;
 use crate::image_io::HdrImage;
 use crate::precompute::mrt::dictionary::{Dictionary, DictionaryParams};
 use crate::render::gi::inputs::GiInputs;
 use crate::render::gi::technique::{
-    BufferInfo, BufferView, GiOutput, GiTechnique, Readiness, ResetReason, SupportQuery, TechniqueStatus, note_reset,
+    BufferInfo, BufferView, GiOutput, GiTechnique, Overlay, OverlayPoint, Readiness, ResetReason, SupportQuery,
+    TechniqueStatus, note_reset,
 };
 use crate::render::{RenderError, readback};
 use crate::scene::Scene;
@@ -55,6 +56,28 @@ pub const BUFFERS: &[BufferInfo] = &[
         format: "rgb f32 per mode",
         view: BufferView::Colour,
     },
+    atlas(
+        "mrt_prior_error",
+        "the part of this frame's direct light the block's prior cannot represent, |l_d - Q Q^T l_d| (Q spans P S): small and smooth; bright at shadow edges sharper than the training lights",
+    ),
+    BufferInfo {
+        name: "mrt_u_b",
+        description: "the dictionary's U_b per shape (n texels down, k_b modes across, a column block per shape): red positive, blue negative, each mode scaled to its peak; smooth first modes, finer later ones",
+        format: "f64 matrices",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "mrt_t_db",
+        description: "T_d->b per shape, transposed to the same layout as mrt_u_b (the projection of direct light onto the modes)",
+        format: "f64 matrices",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "mrt_spectra",
+        description: "singular values per shape (a panel each, log scale over four decades): red the direct light's (the prior's data), green the indirect transfer's, which falls far faster",
+        format: "bar plot",
+        view: BufferView::Colour,
+    },
     BufferInfo {
         name: "mrt_assignment",
         description: "per pixel: r = the block it reads, g = the canonical face, b = its distance outside the block (m); a surface outside every block shows b > 0",
@@ -67,7 +90,9 @@ pub const BUFFERS: &[BufferInfo] = &[
 struct Shown {
     packed: Packed,
     fitted: bool,
-    blocks: usize,
+    blocks: Vec<crate::precompute::mrt::level::Block>,
+    /// Each linked side's centre and the share of it that is open.
+    openings: Vec<(glam::Vec3, f32)>,
     links: usize,
     unlinked: usize,
     millis: f64,
@@ -164,7 +189,8 @@ impl MrtTechnique {
     fn accept(&mut self, level: BuiltLevel) {
         self.shown = Some(Shown {
             fitted: level.fitted,
-            blocks: level.blocks.len(),
+            openings: level.openings,
+            blocks: level.blocks,
             links: level.links,
             unlinked: level.unlinked,
             millis: level.millis,
@@ -175,34 +201,9 @@ impl MrtTechnique {
         self.count("level builds");
     }
 
-    /// Lays per-texel values out as the atlas (one row of six face tiles per block).
+    /// Lays per-texel values out as the atlas.
     fn atlas(&self, values: &[[f32; 4]]) -> Option<HdrImage> {
-        let p = &self.shown.as_ref()?.packed;
-        let res = p.res as usize;
-        let (width, height) = (6 * res, p.blocks.len() * res);
-        let mut pixels = vec![[0.0, 0.0, 0.0, 1.0]; width * height];
-        for (bi, b) in p.blocks.iter().enumerate() {
-            for (k, start) in b.starts.iter().take(6).enumerate() {
-                if *start == NONE {
-                    continue;
-                }
-                for t in 0..res {
-                    for s in 0..res {
-                        let Some(v) = values.get(*start as usize + t * res + s) else { continue };
-                        let (x, y) = (k * res + s, bi * res + (res - 1 - t));
-                        pixels[y * width + x] = [v[0], v[1], v[2], 1.0];
-                    }
-                }
-            }
-        }
-        Some(HdrImage { width: width as u32, height: height as u32, pixels })
-    }
-
-    /// A coefficient image: `rows` rows of `cols` values.
-    fn coefficients(values: &[[f32; 4]], rows: usize, cols: usize) -> HdrImage {
-        let pixels =
-            (0..rows * cols).map(|i| values.get(i).map_or([0.0, 0.0, 0.0, 1.0], |v| [v[0], v[1], v[2], 1.0])).collect();
-        HdrImage { width: cols.max(1) as u32, height: rows.max(1) as u32, pixels }
+        Some(super::inspect::atlas(&self.shown.as_ref()?.packed, values))
     }
 
     /// The texel buffer `which` as an atlas.
@@ -257,7 +258,7 @@ impl GiTechnique for MrtTechnique {
                 let fitted = if shown.fitted { ", fitted (the scene has none)" } else { "" };
                 let rebuilding = if building { ", rebuilding" } else { "" };
                 self.status.progress =
-                    Some(format!("mrt: {} blocks{fitted}, {} links{rebuilding}", shown.blocks, shown.links));
+                    Some(format!("mrt: {} blocks{fitted}, {} links{rebuilding}", shown.blocks.len(), shown.links));
                 Readiness::Ready
             }
             None => {
@@ -332,13 +333,28 @@ impl GiTechnique for MrtTechnique {
                     all.iter().zip(&own).map(|(a, o)| [a[0] - o[0], a[1] - o[1], a[2] - o[2], 1.0]).collect();
                 self.atlas(&diff).ok_or_else(|| not_yet(name))
             })(),
+            "mrt_u_b" | "mrt_t_db" | "mrt_spectra" => {
+                let Some((_, d)) = &self.dictionary else { return Some(Err(not_yet(name))) };
+                Ok(match name {
+                    "mrt_u_b" => super::inspect::matrices(d, false),
+                    "mrt_t_db" => super::inspect::matrices(d, true),
+                    _ => super::inspect::spectra(d),
+                })
+            }
+            "mrt_prior_error" => (|| {
+                let s = shown.ok_or_else(|| not_yet(name))?;
+                let Some((_, d)) = &self.dictionary else { return Err(not_yet(name)) };
+                let l_d = self.passes.read_texels(device, queue, "l_d").ok_or_else(|| not_yet(name))??;
+                let error = super::inspect::prior_error(d, &s.packed, &s.blocks, &l_d);
+                self.atlas(&error).ok_or_else(|| not_yet(name))
+            })(),
             "mrt_b" | "mrt_r" => (|| {
                 let p = &shown.ok_or_else(|| not_yet(name))?.packed;
                 let which = if name == "mrt_b" { "b" } else { "r" };
                 let values = self.passes.read_coefficients(device, queue, which).ok_or_else(|| not_yet(name))??;
                 let (rows, cols) =
                     if which == "b" { (6 * p.blocks.len(), p.k_b as usize) } else { (p.slots.len(), p.k_r as usize) };
-                Ok(Self::coefficients(&values, rows, cols))
+                Ok(super::inspect::coefficients(&values, rows, cols))
             })(),
             _ => (|| {
                 let texture = self.passes.assignment().ok_or_else(|| not_yet(name))?;
@@ -346,6 +362,23 @@ impl GiTechnique for MrtTechnique {
                 Ok(HdrImage { width: texture.width(), height: texture.height(), pixels })
             })(),
         })
+    }
+
+    fn overlays(&self, _device: &wgpu::Device, _queue: &wgpu::Queue) -> Vec<Overlay> {
+        let Some(s) = &self.shown else { return Vec::new() };
+        let openings =
+            s.openings.iter().map(|(p, share)| OverlayPoint { position: *p, tone: *share, radius: 7.0 }).collect();
+        let texels = s
+            .packed
+            .texels
+            .iter()
+            .filter(|t| t.position[3] > 0.5)
+            .map(|t| OverlayPoint { position: glam::Vec3::from_slice(&t.position[..3]), tone: 0.0, radius: 1.5 })
+            .collect();
+        vec![
+            Overlay { name: "MRT openings (tone: open share)", points: openings },
+            Overlay { name: "MRT texels (geometry images)", points: texels },
+        ]
     }
 
     fn reset(&mut self, reason: ResetReason) {
@@ -383,7 +416,7 @@ impl GiTechnique for MrtTechnique {
                     0,
                     format!(
                         "the scene has no proxy blocks: {} were fitted to its geometry (Fit proxy blocks adds them to the scene for editing)",
-                        s.blocks
+                        s.blocks.len()
                     ),
                 );
             }
@@ -395,7 +428,7 @@ impl GiTechnique for MrtTechnique {
             }
             out.push(format!(
                 "level: {} blocks, {} links, {} texels ({} on real surfaces), {:.0} ms to build, {:.1} MB on the GPU; dictionary {}",
-                s.blocks,
+                s.blocks.len(),
                 s.links,
                 s.packed.texels.len(),
                 s.packed.surfaces_found,
