@@ -17,7 +17,7 @@ use bouncelab::project_file::Project;
 use bouncelab::render::Renderer;
 use bouncelab::render::gi::Readiness;
 use bouncelab::scene::{MeshSource, ObjectRole};
-use bouncelab::settings::{GiMode, MrtSettings, RenderSettings};
+use bouncelab::settings::{BlockOverride, GiMode, MrtSettings, RenderSettings};
 use bouncelab::suite;
 
 const SIZE: (u32, u32) = (128, 72);
@@ -266,4 +266,44 @@ fn padding_blends_two_blocks_that_split_one_room_so_their_seam_steps_less() {
     let (padded, unpadded) = (variation(true), variation(false));
     eprintln!("row variation of the indirect light: padded {padded:.4}, unpadded {unpadded:.4}");
     assert!(padded < unpadded, "padding smooths the seam: {padded} vs {unpadded}");
+}
+
+#[test]
+fn an_objects_block_override_makes_its_surfaces_read_that_block_and_a_bad_name_is_reported() {
+    let Some(ctx) = common::gpu() else { return };
+    // The suite's rooms with their fitted blocks as objects ("proxy 1" .. "proxy 3"); the third
+    // room's floor, seen by the camera, assigned to the first room's block.
+    let mut project = suite::scene("rooms").expect("suite scene").load(Path::new(".")).expect("rooms");
+    let fitted = bouncelab::precompute::mrt::proxy::fitted_objects(&project.scene).expect("fits");
+    project.scene.desc_mut().objects.extend(fitted);
+    let floor = project.scene.objects().iter().position(|o| o.name == "floor_2").expect("the third room's floor");
+    let blocks_of_floor = |mrt: MrtSettings| {
+        let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        let s = settings(&project, mrt);
+        render(&mut r, &project, &s, 1);
+        let ids = r.read_buffer("object_id").expect("ids");
+        let assignment = r.read_buffer("mrt_assignment").expect("assignment");
+        let mut blocks: Vec<u32> = ids
+            .pixels
+            .iter()
+            .zip(&assignment.pixels)
+            .filter(|(id, _)| id[0] as usize == floor + 1)
+            .map(|(_, a)| a[0] as u32)
+            .collect();
+        blocks.sort_unstable();
+        blocks.dedup();
+        (blocks, r.limitations(&project.scene, &s))
+    };
+    let (automatic, _) = blocks_of_floor(small());
+    assert_eq!(automatic, vec![2], "the third room's floor reads the third block");
+    let assigned = MrtSettings {
+        block_overrides: vec![
+            BlockOverride { object: "floor_2".into(), block: "proxy 1".into() },
+            BlockOverride { object: "no such object".into(), block: "proxy 2".into() },
+        ],
+        ..small()
+    };
+    let (forced, notes) = blocks_of_floor(assigned);
+    assert_eq!(forced, vec![0], "assigned to the first block");
+    assert!(notes.iter().any(|n| n.contains("no object named \"no such object\"")), "{notes:?}");
 }

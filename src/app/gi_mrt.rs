@@ -1,10 +1,11 @@
 //! The GI panel's `mrt` section: the runtime settings and the dictionary's parameters with
 //! their cost as tooltips, and the command that fits proxy blocks to the level.
 
-use crate::settings::MrtSettings;
+use crate::settings::{BlockOverride, MrtSettings};
 
-/// Draws the mrt settings; true when "Fit proxy blocks" was clicked.
-pub fn mrt_ui(m: &mut MrtSettings, ui: &mut egui::Ui) -> bool {
+/// Draws the mrt settings; `objects` and `blocks` name the scene's objects and proxy blocks
+/// (for the block overrides). True when "Fit proxy blocks" was clicked.
+pub fn mrt_ui(m: &mut MrtSettings, ui: &mut egui::Ui, objects: &[String], blocks: &[String]) -> bool {
     let mut fit = false;
     egui::CollapsingHeader::new("Modular radiance transfer (Loos 2015)").default_open(true).show(ui, |ui| {
         fit = ui
@@ -17,6 +18,7 @@ pub fn mrt_ui(m: &mut MrtSettings, ui: &mut egui::Ui) -> bool {
             .on_hover_text("Blend towards the block beyond within half a texel of a side open over its whole area, so blocks meet without a seam (off: the unpadded lightmap). Cost: a second lookup near such sides.");
         ui.add(egui::Slider::new(&mut m.depth, 0..=16).text("propagation depth"))
             .on_hover_text("Blocks beyond a source's neighbours its light is carried through the interfaces. Cost: T_b->r grows with the blocks reached (level rebuild and per-frame r).");
+        overrides_ui(&mut m.block_overrides, ui, objects, blocks);
         egui::CollapsingHeader::new("Dictionary (precomputed, cached)").default_open(false).show(ui, |ui| {
             let d = &mut m.dictionary;
             egui::ComboBox::from_label("texels per face side").selected_text(d.res.to_string()).show_ui(ui, |ui| {
@@ -33,4 +35,44 @@ pub fn mrt_ui(m: &mut MrtSettings, ui: &mut egui::Ui) -> bool {
         });
     });
     fit
+}
+
+/// The artist's object-to-block assignments: a row per override (object, block, remove) and an
+/// add button.
+fn overrides_ui(list: &mut Vec<BlockOverride>, ui: &mut egui::Ui, objects: &[String], blocks: &[String]) {
+    egui::CollapsingHeader::new(format!("Block overrides ({})", list.len())).default_open(false).show(ui, |ui| {
+        let mut remove = None;
+        for (i, o) in list.iter_mut().enumerate() {
+            ui.horizontal(|ui| {
+                egui::ComboBox::from_id_salt(("mrt override object", i)).selected_text(o.object.as_str()).show_ui(
+                    ui,
+                    |ui| {
+                        for name in objects {
+                            ui.selectable_value(&mut o.object, name.clone(), name);
+                        }
+                    },
+                );
+                ui.label("reads");
+                egui::ComboBox::from_id_salt(("mrt override block", i)).selected_text(o.block.as_str()).show_ui(ui, |ui| {
+                    for name in blocks {
+                        ui.selectable_value(&mut o.block, name.clone(), name);
+                    }
+                });
+                if ui.small_button("x").on_hover_text("Remove this override").clicked() {
+                    remove = Some(i);
+                }
+            });
+        }
+        if let Some(i) = remove {
+            list.remove(i);
+        }
+        let can_add = !objects.is_empty() && !blocks.is_empty();
+        if ui
+            .add_enabled(can_add, egui::Button::new("Add override"))
+            .on_hover_text("Make an object's surfaces read their light from a chosen proxy block instead of the nearest one (a pillar in an opening, a beam across two rooms). Needs proxy blocks in the scene.")
+            .clicked()
+        {
+            list.push(BlockOverride { object: objects[0].clone(), block: blocks[0].clone() });
+        }
+    });
 }

@@ -70,7 +70,14 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
     if render.mode == GiMode::Sshgi {
         super::gi_sshgi::sshgi_ui(&mut render.sshgi, ui);
     }
-    if render.mode == GiMode::Mrt && super::gi_mrt::mrt_ui(&mut render.mrt, ui) {
+    let names = |role: crate::scene::ObjectRole| -> Vec<String> {
+        state.project.scene.objects().iter().filter(|o| o.role == role).map(|o| o.name.clone()).collect()
+    };
+    let fit = render.mode == GiMode::Mrt && {
+        let (objects, blocks) = (names(crate::scene::ObjectRole::Static), names(crate::scene::ObjectRole::ProxyBlock));
+        super::gi_mrt::mrt_ui(&mut render.mrt, ui, &objects, &blocks)
+    };
+    if fit {
         match super::edits::fit_proxy_blocks(&mut state.project, &mut state.history) {
             Ok((selection, n)) => {
                 state.selection = selection;

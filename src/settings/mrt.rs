@@ -31,11 +31,33 @@ pub struct MrtSettings {
     /// meet without a seam. Off shows the unpadded lightmap (the inspector's comparison). Cost:
     /// a second block lookup for pixels near such sides (the apply pass).
     pub padding: bool,
+    /// Objects whose surfaces read their light from a chosen proxy block instead of the block
+    /// nearest to each point (Loos 2015 §3.6.2's artist-assigned mapping; the automatic one
+    /// suits walls, floors and ceilings, not a pillar standing in an opening or a beam across
+    /// two rooms). Names of scene objects and of proxy blocks; a name that matches nothing is
+    /// reported in the GI panel. Free.
+    pub block_overrides: Vec<BlockOverride>,
+}
+
+/// One object assigned to one proxy block.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockOverride {
+    /// The object's name.
+    pub object: String,
+    /// The proxy block's name.
+    pub block: String,
 }
 
 impl Default for MrtSettings {
     fn default() -> Self {
-        Self { dictionary: DictionaryParams::default(), depth: 6, feedback: 1.0, padding: true }
+        Self {
+            dictionary: DictionaryParams::default(),
+            depth: 6,
+            feedback: 1.0,
+            padding: true,
+            block_overrides: Vec::new(),
+        }
     }
 }
 

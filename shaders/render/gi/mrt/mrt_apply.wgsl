@@ -1,6 +1,6 @@
 // MRT pass F (digest sections 6.3 and 6.5): the lightmap applied to the real scene. Each pixel
 // belongs to the block its surface faces into (the box nearest to the point lifted 5 cm along its
-// normal) and to that block's present face whose inward normal is closest to the pixel's normal
+// normal; or the block an artist assigned its object to) and to that block's present face whose inward normal is closest to the pixel's normal
 // (a floor to the floor, a wall to the wall behind it); its lightmap coordinate is the
 // orthographic projection of the point onto that face in the block's canonical frame, read
 // bilinearly between texel centres, clamped at the face's border. A surface in an open side
@@ -19,6 +19,9 @@
 @group(0) @binding(5) var normal_tex: texture_2d<f32>;
 @group(0) @binding(6) var out_indirect: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(7) var assignment: texture_storage_2d<rgba32float, write>;
+// The G-buffer's object id (scene index + 1, 0 where none) and each object's overridden block.
+@group(0) @binding(8) var object_tex: texture_2d<u32>;
+@group(0) @binding(9) var<storage, read> object_block: array<u32>;
 
 fn box_distance(b: Block, q: vec3<f32>) -> f32 {
     let lo = b.origin.xyz;
@@ -129,11 +132,22 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let q = p + n * 0.05;
     var best = 0u;
     var best_d = 1.0e30;
-    for (var x = 0u; x < mp.counts.x; x = x + 1u) {
-        let d = box_distance(blocks[x], q);
-        if d < best_d {
-            best_d = d;
-            best = x;
+    let object = textureLoad(object_tex, pixel, 0).x;
+    var forced = MRT_NONE;
+    if object > 0u && object - 1u < arrayLength(&object_block) {
+        forced = object_block[object - 1u];
+    }
+    if forced < mp.counts.x {
+        // The artist assigned this object to a block.
+        best = forced;
+        best_d = box_distance(blocks[forced], q);
+    } else {
+        for (var x = 0u; x < mp.counts.x; x = x + 1u) {
+            let d = box_distance(blocks[x], q);
+            if d < best_d {
+                best_d = d;
+                best = x;
+            }
         }
     }
     let here = block_light(best, p, n);

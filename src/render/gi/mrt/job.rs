@@ -13,6 +13,7 @@ use crate::precompute::mrt::dictionary::{Dictionary, DictionaryParams, Progress}
 use crate::precompute::mrt::proxy;
 use crate::precompute::mrt::{cache, geometry_image};
 use crate::scene::{ObjectRole, Scene};
+use crate::settings::BlockOverride;
 
 /// A result slot a worker thread fills.
 type Slot<T> = Arc<Mutex<Option<Result<T, String>>>>;
@@ -93,14 +94,40 @@ pub struct BuiltLevel {
     pub links: usize,
     /// Each linked side's centre and the share of it that is open.
     pub openings: Vec<(glam::Vec3, f32)>,
+    /// What the level could not honour (an override naming nothing).
+    pub warnings: Vec<String>,
     /// Open sides leading nowhere.
     pub unlinked: usize,
     /// CPU time of the build (ms).
     pub millis: f64,
 }
 
-/// Builds the level of `scene` (its proxy blocks, or fitted ones) with `dictionary`.
-pub fn build_level(scene: &Scene, dictionary: &Dictionary, depth: usize) -> Result<BuiltLevel, String> {
+/// Each object's overridden block (level block index, or `pack::NONE`), and a sentence for each
+/// override naming nothing.
+fn overrides(scene: &Scene, block_objects: &[usize], list: &[BlockOverride]) -> (Vec<u32>, Vec<String>) {
+    let objects = scene.objects();
+    let mut table = vec![super::pack::NONE; objects.len()];
+    let mut unknown = Vec::new();
+    for o in list {
+        let object = objects.iter().position(|x| x.name == o.object);
+        let block = block_objects.iter().position(|&i| objects.get(i).is_some_and(|x| x.name == o.block));
+        match (object, block) {
+            (Some(i), Some(b)) => table[i] = b as u32,
+            (None, _) => unknown.push(format!("mrt block override: no object named {:?}", o.object)),
+            (_, None) => unknown.push(format!("mrt block override: no proxy block named {:?}", o.block)),
+        }
+    }
+    (table, unknown)
+}
+
+/// Builds the level of `scene` (its proxy blocks, or fitted ones) with `dictionary`, `depth`
+/// blocks of propagation and the artist's block `overrides`.
+pub fn build_level(
+    scene: &Scene,
+    dictionary: &Dictionary,
+    depth: usize,
+    block_overrides: &[BlockOverride],
+) -> Result<BuiltLevel, String> {
     let started = Instant::now();
     let has_blocks = scene.objects().iter().any(|o| o.role == ObjectRole::ProxyBlock);
     let fitted_scene;
@@ -114,7 +141,7 @@ pub fn build_level(scene: &Scene, dictionary: &Dictionary, depth: usize) -> Resu
         fitted_scene = s;
         &fitted_scene
     };
-    let (mut level, _) = proxy::level(source).map_err(|e| e.to_string())?;
+    let (mut level, block_objects) = proxy::level(source).map_err(|e| e.to_string())?;
     let bvh = SceneBvh::build(scene);
     let mut openings = Vec::new();
     for ((i, w), share) in geometry_image::transmissions(&bvh, &level) {
@@ -124,12 +151,15 @@ pub fn build_level(scene: &Scene, dictionary: &Dictionary, depth: usize) -> Resu
         centre[w.axis()] = plane;
         openings.push((centre, share as f32));
     }
-    let packed = pack(scene, &bvh, &level, dictionary, depth);
+    let mut packed = pack(scene, &bvh, &level, dictionary, depth);
+    let (table, warnings) = overrides(scene, if has_blocks { &block_objects } else { &[] }, block_overrides);
+    packed.object_block = table;
     Ok(BuiltLevel {
         packed,
         fitted: !has_blocks,
         links: level.link_count(),
         openings,
+        warnings,
         unlinked: level.unlinked().len(),
         blocks: level.blocks,
         millis: started.elapsed().as_secs_f64() * 1e3,
@@ -145,9 +175,10 @@ pub struct LevelJob {
 
 impl LevelJob {
     /// Starts building `scene`'s level.
-    pub fn start(scene: &Scene, dictionary: Arc<Dictionary>, depth: usize) -> Self {
+    pub fn start(scene: &Scene, dictionary: Arc<Dictionary>, depth: usize, overrides: &[BlockOverride]) -> Self {
         let scene_copy = scene.clone();
-        let slot = spawn("mrt level", move || build_level(&scene_copy, &dictionary, depth));
+        let overrides = overrides.to_vec();
+        let slot = spawn("mrt level", move || build_level(&scene_copy, &dictionary, depth, &overrides));
         Self { slot, revision: scene.revision() }
     }
 

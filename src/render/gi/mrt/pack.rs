@@ -92,6 +92,9 @@ pub struct Packed {
     /// Per block, the stretch corrections of its own light, `[emitting slot][receiving slot]`
     /// (36 each; `level::own_scales`).
     pub own_scales: Vec<f32>,
+    /// Per scene object, the block its surfaces read (an artist's override), or [`NONE`]
+    /// (the nearest block to each point).
+    pub object_block: Vec<u32>,
     /// Modes per block k_b, response modes k_r, texels per face side, texels with a surface.
     pub k_b: u32,
     pub k_r: u32,

@@ -39,6 +39,7 @@ enum Kind {
     DepthArray,
     Comparison,
     Float,
+    Uint,
     StorageTexture,
 }
 
@@ -79,6 +80,7 @@ impl Pass {
                     Kind::Float => {
                         texture(wgpu::TextureSampleType::Float { filterable: false }, wgpu::TextureViewDimension::D2)
                     }
+                    Kind::Uint => texture(wgpu::TextureSampleType::Uint, wgpu::TextureViewDimension::D2),
                     Kind::StorageTexture => wgpu::BindingType::StorageTexture {
                         access: wgpu::StorageTextureAccess::WriteOnly,
                         format: formats::HDR,
@@ -125,6 +127,7 @@ struct LevelBuffers {
     rows: wgpu::Buffer,
     row_scales: wgpu::Buffer,
     own_scales: wgpu::Buffer,
+    object_block: wgpu::Buffer,
     l_d: wgpu::Buffer,
     b: wgpu::Buffer,
     r: wgpu::Buffer,
@@ -134,7 +137,7 @@ struct LevelBuffers {
 }
 
 impl LevelBuffers {
-    fn all(&self) -> [&wgpu::Buffer; 16] {
+    fn all(&self) -> [&wgpu::Buffer; 17] {
         [
             &self.params,
             &self.texels,
@@ -147,6 +150,7 @@ impl LevelBuffers {
             &self.rows,
             &self.row_scales,
             &self.own_scales,
+            &self.object_block,
             &self.l_d,
             &self.b,
             &self.r,
@@ -215,7 +219,7 @@ impl MrtPasses {
             apply: Pass::new(
                 device,
                 "mrt_apply",
-                &[Uniform, Uniform, Read, Read, Depth, Float, StorageTexture, StorageTexture],
+                &[Uniform, Uniform, Read, Read, Depth, Float, StorageTexture, StorageTexture, Uint, Read],
             )?,
             shadow_sampler: device.create_sampler(&wgpu::SamplerDescriptor {
                 label: Some("mrt shadow comparison sampler"),
@@ -254,6 +258,7 @@ impl MrtPasses {
             rows: upload(device, "mrt response rows", &p.rows),
             row_scales: upload(device, "mrt response stretch corrections", &p.row_scales),
             own_scales: upload(device, "mrt own-light stretch corrections", &p.own_scales),
+            object_block: upload(device, "mrt object block overrides", &p.object_block),
             l_d: vec4s(device, "mrt l_d", texels),
             b: vec4s(device, "mrt b per face", p.blocks.len() * 6 * p.k_b as usize),
             r: vec4s(device, "mrt r", p.slots.len() * p.k_r as usize),
@@ -349,6 +354,8 @@ impl MrtPasses {
                 wgpu::BindingResource::TextureView(&t.normal.view),
                 wgpu::BindingResource::TextureView(&t.indirect.view),
                 wgpu::BindingResource::TextureView(&assignment.view),
+                wgpu::BindingResource::TextureView(&t.object_id.view),
+                buf(&l.object_block),
             ],
         );
         let k_r = l.counts.sizes[0];

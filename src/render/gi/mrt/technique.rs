@@ -93,6 +93,7 @@ struct Shown {
     blocks: Vec<crate::precompute::mrt::level::Block>,
     /// Each linked side's centre and the share of it that is open.
     openings: Vec<(glam::Vec3, f32)>,
+    warnings: Vec<String>,
     links: usize,
     unlinked: usize,
     millis: f64,
@@ -110,6 +111,7 @@ pub struct MrtTechnique {
     /// The level must be rebuilt (scene edited, depth or dictionary changed).
     level_dirty: bool,
     depth: usize,
+    overrides: Vec<crate::settings::BlockOverride>,
     shown: Option<Shown>,
     /// Why nothing can be shown (the dictionary or the level failed).
     error: Option<String>,
@@ -129,6 +131,7 @@ impl MrtTechnique {
             level_job: None,
             level_dirty: true,
             depth: 0,
+            overrides: Vec::new(),
             shown: None,
             error: None,
             upload_pending: false,
@@ -190,6 +193,7 @@ impl MrtTechnique {
         self.shown = Some(Shown {
             fitted: level.fitted,
             openings: level.openings,
+            warnings: level.warnings,
             blocks: level.blocks,
             links: level.links,
             unlinked: level.unlinked,
@@ -224,8 +228,9 @@ impl GiTechnique for MrtTechnique {
             return pending;
         }
         let depth = s.depth as usize;
-        if depth != self.depth {
+        if depth != self.depth || s.block_overrides != self.overrides {
             self.depth = depth;
+            self.overrides = s.block_overrides.clone();
             self.level_dirty = true;
         }
         if let Some(job) = &self.level_job
@@ -244,7 +249,7 @@ impl GiTechnique for MrtTechnique {
             && self.level_job.is_none()
             && let Some((_, d)) = &self.dictionary
         {
-            self.level_job = Some(LevelJob::start(scene, d.clone(), depth));
+            self.level_job = Some(LevelJob::start(scene, d.clone(), depth, &self.overrides));
             self.level_dirty = false;
         }
         let building = self.level_job.is_some();
@@ -420,6 +425,7 @@ impl GiTechnique for MrtTechnique {
                     ),
                 );
             }
+            out.extend(s.warnings.iter().cloned());
             if s.unlinked > 0 {
                 out.push(format!(
                     "{} open block sides lead to no other block: light leaving there is lost",
