@@ -78,7 +78,7 @@ fn switch_mode_and_inspect_buffers() {
     h.run_steps(2);
     assert_eq!(h.state().state().project.render.mode, GiMode::Direct);
     // Modes not built yet are shown but disabled.
-    h.get_by_label("mrt").click();
+    h.get_by_label("rcs").click();
     h.run_steps(2);
     assert_eq!(h.state().state().project.render.mode, GiMode::Direct, "a disabled mode cannot be chosen");
     h.get_by_label("ism").click();

@@ -42,7 +42,11 @@ fn every_entry_shader_validates_with_naga() {
 #[test]
 fn every_parameter_block_matches_its_wgsl_struct() {
     use bouncelab::render::gi::ism::params::PARAM_BLOCKS;
-    for (path, name, size) in PARAM_BLOCKS.iter().chain(bouncelab::render::gi::sshgi::PARAM_BLOCKS) {
+    for (path, name, size) in PARAM_BLOCKS
+        .iter()
+        .chain(bouncelab::render::gi::sshgi::PARAM_BLOCKS)
+        .chain(bouncelab::render::gi::mrt::PARAM_BLOCKS)
+    {
         let text = assemble(path).expect("assembles");
         let module =
             naga::front::wgsl::parse_str(&text).unwrap_or_else(|e| panic!("{path}: {}", e.emit_to_string(&text)));
@@ -63,7 +67,7 @@ fn every_pipeline_of_every_mode_builds_on_the_noop_backend() {
     let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let project = Project::load(&default_project_path()).expect("project");
-    let modes = [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel, GiMode::Sshgi, GiMode::Reference];
+    let modes = [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel, GiMode::Sshgi, GiMode::Mrt, GiMode::Reference];
     for mode in modes {
         for sh_filter in [false, true] {
             // Inspecting the splats and a pyramid level adds the capture copies and the pyramid.
@@ -80,7 +84,7 @@ fn every_pipeline_of_every_mode_builds_on_the_noop_backend() {
         panic!("validation error on the noop backend: {e}");
     }
     // Every mode that is not built says so instead of failing later.
-    for mode in [GiMode::Mrt, GiMode::Rcs] {
+    for mode in [GiMode::Rcs] {
         let settings = RenderSettings { mode, ..project.render.clone() };
         let e = renderer.support(&settings, (32, 16)).expect_err("not built yet");
         assert!(e.contains("not implemented"), "{e}");

@@ -9,3 +9,11 @@ pub mod job;
 pub mod pack;
 pub mod passes;
 pub mod technique;
+
+/// Parameter blocks and records shared with WGSL (file, struct, bytes), checked by the shader
+/// tests against naga's layout.
+pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
+    ("render/gi/mrt/mrt_direct.wgsl", "MrtParams", std::mem::size_of::<passes::MrtParams>()),
+    ("render/gi/mrt/mrt_direct.wgsl", "Texel", std::mem::size_of::<pack::GpuTexel>()),
+    ("render/gi/mrt/mrt_apply.wgsl", "Block", std::mem::size_of::<pack::GpuBlock>()),
+];
