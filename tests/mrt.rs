@@ -307,3 +307,47 @@ fn an_objects_block_override_makes_its_surfaces_read_that_block_and_a_bad_name_i
     assert_eq!(forced, vec![0], "assigned to the first block");
     assert!(notes.iter().any(|n| n.contains("no object named \"no such object\"")), "{notes:?}");
 }
+
+#[test]
+fn the_gpu_runtime_computes_what_the_cpu_reference_computes_in_the_reduced_spaces() {
+    use bouncelab::precompute::mrt::{cache, dictionary::Progress, geometry_image, level, proxy};
+    use bouncelab::render::gi::mrt::technique::MrtTechnique;
+    let Some(ctx) = common::gpu() else { return };
+    // The suite's rooms with their blocks as objects: interfaces, transmissions and stretched
+    // blocks all take part. One bounce, so the texels' indirect light is one pass of the
+    // operators over this frame's l_d.
+    let mut project = suite::scene("rooms").expect("suite scene").load(Path::new(".")).expect("rooms");
+    let fitted = proxy::fitted_objects(&project.scene).expect("fits");
+    project.scene.desc_mut().objects.extend(fitted);
+    let mrt = MrtSettings { feedback: 0.0, ..small() };
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    render(&mut r, &project, &settings(&project, mrt.clone()), 2);
+    let technique = r.technique_as::<MrtTechnique>().expect("mrt is active");
+    let l_d = technique.texels(&ctx.device, &ctx.queue, "l_d").expect("a level").expect("readback");
+    let gpu = technique.texels(&ctx.device, &ctx.queue, "indirect").expect("a level").expect("readback");
+    let (_, packed) = technique.level().expect("a level");
+    // The same level on the CPU: blocks, transmissions, dictionary, T_b->r.
+    let (mut cpu_level, _) = proxy::level(&project.scene).expect("a level");
+    let bvh = bouncelab::precompute::bvh::SceneBvh::build(&project.scene);
+    for ((i, w), share) in geometry_image::transmissions(&bvh, &cpu_level) {
+        cpu_level.set_transmission(i, w, share);
+    }
+    let (d, _) =
+        cache::load_or_build(&cache::default_dir(), &mrt.dictionary, &Progress::default()).expect("dictionary");
+    let ops = level::Operators { dictionary: &d, interfaces: &d.interfaces };
+    let transfer = level::assemble(&cpu_level, &ops, mrt.depth as usize);
+    let ranges: Vec<(usize, usize)> =
+        packed.blocks.iter().map(|b| (b.texels[0] as usize, b.texels[1] as usize)).collect();
+    let red: Vec<Vec<f64>> =
+        ranges.iter().map(|(f, n)| l_d[*f..f + n].iter().map(|v| f64::from(v[0])).collect()).collect();
+    let cpu = level::indirect(&cpu_level, &ops, &transfer, &red);
+    let peak = cpu.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut worst = 0.0f64;
+    for ((f, n), c) in ranges.iter().zip(&cpu) {
+        for (g, c) in gpu[*f..f + n].iter().zip(c) {
+            worst = worst.max((f64::from(g[0]) - c).abs());
+        }
+    }
+    eprintln!("texel indirect, GPU against CPU: worst difference {worst:.3e} of a peak {peak:.3e}");
+    assert!(peak > 0.0 && worst < 1e-3 * peak, "{worst} of {peak}");
+}

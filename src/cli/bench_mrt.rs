@@ -113,11 +113,9 @@ pub fn mrt_rows(md: &mut String, quick: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The proxy objects of `level`'s blocks (unrotated boxes with their world sides open), raised
-/// by `lift` metres.
-fn proxies(level: &Level, lift: f32) -> Vec<crate::scene::Object> {
-    use crate::precompute::mrt::proxy::OPENING_ORDER;
-    use crate::scene::{MeshSource, Object, ObjectRole, Transform};
+/// The proxy objects of `level`'s blocks (unrotated boxes with their world sides open).
+fn proxies(level: &Level) -> Vec<crate::scene::Object> {
+    use crate::precompute::mrt::proxy::{OPENING_ORDER, block_object};
     level
         .blocks
         .iter()
@@ -129,17 +127,7 @@ fn proxies(level: &Level, lift: f32) -> Vec<crate::scene::Object> {
                     openings[k] = true;
                 }
             }
-            let centre = b.origin + 0.5 * b.size + glam::Vec3::Y * lift;
-            Object {
-                name: format!("maze {}", i + 1),
-                source: MeshSource::Cuboid { size: b.size, openings },
-                mesh: 0,
-                material: 0,
-                transform: Transform { translation: centre, ..Transform::default() },
-                sampling_weight: 1.0,
-                role: ObjectRole::ProxyBlock,
-                visible: true,
-            }
+            block_object(&format!("maze {}", i + 1), b.origin, b.origin + b.size, openings)
         })
         .collect()
 }
@@ -156,7 +144,7 @@ pub fn mrt_runtime_rows(md: &mut String, ctx: &crate::render::GpuContext, quick:
     let mut levels = vec![("the suite's rooms, 3 fitted blocks".to_owned(), rooms.clone())];
     for count in [11usize, 41] {
         let mut p = rooms.clone();
-        p.scene.desc_mut().objects.extend(proxies(&maze(count, 7), 0.0));
+        p.scene.desc_mut().objects.extend(proxies(&maze(count, 7)));
         levels.push((format!("the rooms' view, a {count}-block maze as proxies"), p));
     }
     let _ = writeln!(md, "\n## MRT per frame (GPU runtime)\n");

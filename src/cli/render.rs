@@ -181,8 +181,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
 
 /// Renders frames of `project` at `size` until its technique is no longer preparing on the CPU
 /// (MRT's dictionary and level: the frame meanwhile shows direct light), saying what it waits
-/// for. Returns how many of the frames rendered were the technique's own (0 or 1), so callers
-/// count those toward their frames.
+/// for. Returns how many of the frames rendered were the technique's own (the last one, 1), so
+/// callers count it toward their frames.
 pub fn until_ready(
     ctx: &GpuContext,
     renderer: &mut Renderer,

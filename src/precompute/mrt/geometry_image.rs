@@ -64,9 +64,9 @@ pub fn geometry_image(scene: &Scene, bvh: &SceneBvh, block: &Block, res: usize) 
 }
 
 /// The share of each linked block side that the real geometry leaves open: the points of an
-/// 8 x 8 grid on the side whose segment across it (`SEARCH` either way, at most 45% of each
-/// block) meets no surface. A doorway with a lintel, fitted as a strip as tall as the room,
-/// passes only the doorway's share; a side between two parts of one room passes all.
+/// 8 x 8 grid on the side whose segment across it (`SEARCH` either way, at most 45% of the
+/// block's depth across the side) meets no surface. A room's doorway side passes only the
+/// doorway's share (lintel included); a side between two parts of one room passes all.
 pub fn transmissions(bvh: &SceneBvh, level: &Level) -> Vec<((usize, Face), f64)> {
     const GRID: usize = 8;
     level

@@ -366,12 +366,15 @@ pub fn own_scales(level: &Level, x: usize) -> [[f64; 6]; 6] {
 }
 
 /// Per sample of block `y` entered through world side `entry`: the stretch correction of the
-/// entering light meeting the sample's world face ([`Warp::through`]).
+/// entering light meeting the sample's world face ([`Warp::through`], capped at
+/// [`super::warp::CAP`] as the propagation: entering light is not diffuse).
 pub fn response_scales(level: &Level, y: usize, entry: Face, res: usize) -> Vec<f64> {
     let b = &level.blocks[y];
     let layout = Layout::new(b.shape, res);
     let w = &level.warps[y];
-    (0..layout.len()).map(|i| w.through[entry as usize][b.world_face(layout.sample(i).0) as usize]).collect()
+    (0..layout.len())
+        .map(|i| w.through[entry as usize][b.world_face(layout.sample(i).0) as usize].min(super::warp::CAP))
+        .collect()
 }
 
 /// A frame's one-bounce indirect light per block (each in its element's layout) from the

@@ -99,17 +99,23 @@ pub fn fitted_objects(scene: &Scene) -> Result<Vec<crate::scene::Object>, super:
     Ok(blocks
         .iter()
         .enumerate()
-        .map(|(i, b)| crate::scene::Object {
-            name: format!("proxy {}", i + 1),
-            source: MeshSource::Cuboid { size: b.max - b.min, openings: b.openings },
-            mesh: 0,
-            material: 0,
-            transform: crate::scene::Transform { translation: 0.5 * (b.min + b.max), ..Default::default() },
-            sampling_weight: 1.0,
-            role: ObjectRole::ProxyBlock,
-            visible: true,
-        })
+        .map(|(i, b)| block_object(&format!("proxy {}", i + 1), b.min, b.max, b.openings))
         .collect())
+}
+
+/// An unrotated proxy block object spanning `min .. max` with `openings` (in
+/// [`OPENING_ORDER`]), using the scene's first material.
+pub fn block_object(name: &str, min: Vec3, max: Vec3, openings: [bool; 6]) -> crate::scene::Object {
+    crate::scene::Object {
+        name: name.to_owned(),
+        source: MeshSource::Cuboid { size: max - min, openings },
+        mesh: 0,
+        material: 0,
+        transform: crate::scene::Transform { translation: 0.5 * (min + max), ..Default::default() },
+        sampling_weight: 1.0,
+        role: ObjectRole::ProxyBlock,
+        visible: true,
+    }
 }
 
 #[cfg(test)]

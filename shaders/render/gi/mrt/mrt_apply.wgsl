@@ -163,9 +163,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             if nb == MRT_NONE || f / 2u == 1u {
                 continue;
             }
+            // Texels from the side; beyond it (a point an override assigned to this block) the
+            // blend stays at half and fades out within half a texel.
             let dist = select(lp[f / 2u], 1.0 - lp[f / 2u], f % 2u == 1u) * f32(mp.sizes.y);
-            if dist < 0.5 {
-                e = mix(e, block_light(nb, p, n).rgb, 0.5 - dist);
+            if dist < 0.5 && dist > -0.5 {
+                e = mix(e, block_light(nb, p, n).rgb, 0.5 - max(dist, 0.0));
             }
         }
     }

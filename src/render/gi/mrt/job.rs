@@ -22,8 +22,11 @@ type Slot<T> = Arc<Mutex<Option<Result<T, String>>>>;
 fn spawn<T: Send + 'static>(name: &str, work: impl FnOnce() -> Result<T, String> + Send + 'static) -> Slot<T> {
     let slot: Slot<T> = Arc::new(Mutex::new(None));
     let s = slot.clone();
+    let what = name.to_owned();
     let spawned = std::thread::Builder::new().name(name.into()).spawn(move || {
-        let result = work();
+        // A panic in the work must still end the job, or the technique would wait forever.
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(work))
+            .unwrap_or_else(|_| Err(format!("the {what} work failed (a panic; see the log)")));
         if let Ok(mut guard) = s.lock() {
             *guard = Some(result);
         }
@@ -152,7 +155,9 @@ pub fn build_level(
         openings.push((centre, share as f32));
     }
     let mut packed = pack(scene, &bvh, &level, dictionary, depth);
-    let (table, warnings) = overrides(scene, if has_blocks { &block_objects } else { &[] }, block_overrides);
+    let (mut table, warnings) = overrides(scene, if has_blocks { &block_objects } else { &[] }, block_overrides);
+    // One NONE past the objects (see `pack`: never an empty or zero-padded table).
+    table.push(super::pack::NONE);
     packed.object_block = table;
     Ok(BuiltLevel {
         packed,
@@ -169,8 +174,6 @@ pub fn build_level(
 /// A level being built.
 pub struct LevelJob {
     slot: Slot<BuiltLevel>,
-    /// The scene revision it builds.
-    pub revision: u64,
 }
 
 impl LevelJob {
@@ -179,7 +182,7 @@ impl LevelJob {
         let scene_copy = scene.clone();
         let overrides = overrides.to_vec();
         let slot = spawn("mrt level", move || build_level(&scene_copy, &dictionary, depth, &overrides));
-        Self { slot, revision: scene.revision() }
+        Self { slot }
     }
 
     /// The finished level, once.

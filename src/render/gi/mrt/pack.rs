@@ -118,7 +118,7 @@ impl Packed {
     }
 }
 
-/// The world sides in `GpuBlock::starts` order.
+/// The world sides in `GpuBlock::local` order.
 pub const SIDES: [Face; 6] = Face::ALL;
 
 /// Lays out `level` with `dictionary`'s operators, propagated `depth` blocks, its texels' real
@@ -133,16 +133,23 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
         res: res as u32,
         ..Packed::default()
     };
-    // Elements' matrices: T_{d->b} then U_b, each element once.
+    // Elements' matrices: T_{d->b} then U_b, each element once, every one with the largest
+    // element's k_b modes (an element the precompute gave fewer modes gets zero rows and
+    // columns), so that one stride serves the GPU and the products equal the CPU's.
+    let k_b = dictionary.elements.iter().map(|e| e.k_b).max().unwrap_or(0);
+    p.k_b = k_b as u32;
     let mut offsets = Vec::new();
     for e in &dictionary.elements {
         let t = p.matrices.len() as u32;
-        p.matrices.extend(e.t_db.iter().map(|v| *v as f32));
+        for j in 0..k_b {
+            p.matrices.extend((0..e.n).map(|i| if j < e.k_b { e.t_db[j * e.n + i] as f32 } else { 0.0 }));
+        }
         let u = p.matrices.len() as u32;
-        p.matrices.extend(e.u_b.iter().map(|v| *v as f32));
-        offsets.push((e.shape, t, u, e.k_b as u32));
+        for i in 0..e.n {
+            p.matrices.extend((0..k_b).map(|j| if j < e.k_b { e.u_b[i * e.k_b + j] as f32 } else { 0.0 }));
+        }
+        offsets.push((e.shape, t, u));
     }
-    p.k_b = offsets.iter().map(|o| o.3).min().unwrap_or(0);
     p.u_r = dictionary.interfaces.response.u_r.iter().map(|v| *v as f32).collect();
     // Directed interfaces (receiver, entry side) in a fixed order, and their entries.
     let mut keys: Vec<(usize, usize, Face)> = transfer.blocks.keys().copied().collect();
@@ -162,7 +169,11 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
             slot[1] += 1;
         }
         p.entries.push([x as u32, p.transfer.len() as u32, 0, 0]);
-        p.transfer.extend(m.iter().map(|v| *v as f32));
+        // k_r x k_b(source), laid out with the common k_b stride.
+        let source = m.len() / (p.k_r as usize).max(1);
+        for i in 0..p.k_r as usize {
+            p.transfer.extend((0..k_b).map(|j| if j < source { m[i * source + j] as f32 } else { 0.0 }));
+        }
     }
     for (bi, b) in level.blocks.iter().enumerate() {
         let layout = Layout::new(b.shape, res);
@@ -177,6 +188,8 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
                 albedo: s.albedo.extend(0.0).to_array(),
             });
         }
+        // Every dictionary has all six shapes (`dictionary::build`); a block of a missing one
+        // would read the first element's matrices.
         let (t, u) = offsets.iter().find(|o| o.0 == b.shape).map_or((0, 0), |o| (o.1, o.2));
         let mut starts = [NONE; 8];
         let mut local = [0; 8];
@@ -206,6 +219,11 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
             across,
         });
     }
+    // wgpu refuses empty bindings and the upload pads short ones with zeros, which an index
+    // table would read as "block 0" or "row 0": end each with one NONE.
+    p.rows.push(NONE);
+    p.row_scales.push(0.0);
+    p.object_block.push(NONE);
     p
 }
 

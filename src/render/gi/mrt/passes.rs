@@ -273,13 +273,6 @@ impl MrtPasses {
         self.level.is_some()
     }
 
-    /// Clears the texels' indirect light (the feedback's history).
-    pub fn clear_history(&self, encoder: &mut wgpu::CommandEncoder) {
-        if let Some(l) = &self.level {
-            encoder.clear_buffer(&l.indirect, 0, None);
-        }
-    }
-
     /// Records passes A-F into `inputs.targets.indirect` (E / pi) with the feedback gain and
     /// padding on or off; false without a level.
     pub fn record(&mut self, inputs: &mut GiInputs<'_>, feedback: f32, padding: bool) -> bool {

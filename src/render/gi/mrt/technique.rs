@@ -113,8 +113,10 @@ pub struct MrtTechnique {
     depth: usize,
     overrides: Vec<crate::settings::BlockOverride>,
     shown: Option<Shown>,
-    /// Why nothing can be shown (the dictionary or the level failed).
-    error: Option<String>,
+    /// The dictionary parameters that failed to build, and why (not retried until they change).
+    dictionary_error: Option<(DictionaryParams, String)>,
+    /// Why the last level could not be built (retried at the next scene edit).
+    level_error: Option<String>,
     /// A new level waits for upload (its texels' light starts at zero).
     upload_pending: bool,
 }
@@ -133,13 +135,40 @@ impl MrtTechnique {
             depth: 0,
             overrides: Vec::new(),
             shown: None,
-            error: None,
+            dictionary_error: None,
+            level_error: None,
             upload_pending: false,
         })
     }
 
-    /// Compute with storage buffers only, which every adapter the renderer runs on has.
-    pub fn support(_query: &SupportQuery<'_>) -> Result<(), String> {
+    /// The last frame's per-texel buffer `which` ("l_d", "indirect" or "within"), block after
+    /// block as [`Self::level`]'s records lay them out (tests, tools).
+    pub fn texels(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        which: &str,
+    ) -> Option<Result<Vec<[f32; 4]>, crate::render::readback::ReadbackError>> {
+        self.passes.read_texels(device, queue, which)
+    }
+
+    /// The level in use: its blocks and their GPU records.
+    pub fn level(&self) -> Option<(&[crate::precompute::mrt::level::Block], &Packed)> {
+        self.shown.as_ref().map(|s| (s.blocks.as_slice(), &s.packed))
+    }
+
+    /// Storage buffers a pass binds at most (the reconstruction: 12).
+    pub const STORAGE_BUFFERS: u32 = 12;
+
+    /// Compute with up to [`Self::STORAGE_BUFFERS`] storage buffers in one pass.
+    pub fn support(query: &SupportQuery<'_>) -> Result<(), String> {
+        let have = query.limits.max_storage_buffers_per_shader_stage;
+        if have < Self::STORAGE_BUFFERS {
+            return Err(format!(
+                "mrt binds {} storage buffers in one pass; this adapter allows {have}",
+                Self::STORAGE_BUFFERS
+            ));
+        }
         Ok(())
     }
 
@@ -154,9 +183,11 @@ impl MrtTechnique {
     /// Advances the dictionary; `Some` while it is not ready.
     fn prepare_dictionary(&mut self, params: DictionaryParams) -> Option<Readiness> {
         if self.dictionary.as_ref().is_some_and(|(p, _)| *p == params) {
+            // Parameters changed and changed back: stop building the other set.
+            self.dictionary_job = None;
             return None;
         }
-        if self.error.is_some() && self.dictionary_job.is_none() {
+        if self.dictionary_error.as_ref().is_some_and(|(p, _)| *p == params) {
             return Some(Readiness::Ready);
         }
         if self.dictionary_job.as_ref().is_none_or(|j| j.params != params) {
@@ -165,6 +196,7 @@ impl MrtTechnique {
         let job = self.dictionary_job.as_ref()?;
         match job.finished() {
             Some(Ok((d, how))) => {
+                self.dictionary_error = None;
                 self.dictionary = Some((params, Arc::new(d)));
                 self.dictionary_source = how;
                 self.dictionary_job = None;
@@ -173,7 +205,7 @@ impl MrtTechnique {
                 None
             }
             Some(Err(e)) => {
-                self.error = Some(format!("mrt dictionary: {e}"));
+                self.dictionary_error = Some((params, format!("mrt dictionary: {e}")));
                 self.dictionary_job = None;
                 Some(Readiness::Ready)
             }
@@ -188,6 +220,12 @@ impl MrtTechnique {
         }
     }
 
+    /// Why nothing can be shown with dictionary `params`, if so.
+    fn error(&self, params: &DictionaryParams) -> Option<String> {
+        let dictionary = self.dictionary_error.as_ref().filter(|(p, _)| p == params).map(|(_, e)| e.clone());
+        dictionary.or_else(|| self.level_error.clone())
+    }
+
     /// Takes a finished level into use.
     fn accept(&mut self, level: BuiltLevel) {
         self.shown = Some(Shown {
@@ -200,7 +238,7 @@ impl MrtTechnique {
             millis: level.millis,
             packed: level.packed,
         });
-        self.error = None;
+        self.level_error = None;
         self.upload_pending = true;
         self.count("level builds");
     }
@@ -240,8 +278,10 @@ impl GiTechnique for MrtTechnique {
             match result {
                 Ok(level) => self.accept(level),
                 Err(e) => {
-                    self.error = Some(format!("mrt: {e}"));
+                    // Show nothing rather than the previous level beside the message.
+                    self.level_error = Some(format!("mrt: {e}"));
                     self.shown = None;
+                    self.passes.release();
                 }
             }
         }
@@ -254,8 +294,8 @@ impl GiTechnique for MrtTechnique {
         }
         let building = self.level_job.is_some();
         self.status.refining = building || self.status.history_frames < self.status.refine_target;
-        if let Some(e) = &self.error {
-            self.status.progress = Some(e.clone());
+        if let Some(e) = self.error(&s.dictionary) {
+            self.status.progress = Some(e);
             return Readiness::Ready;
         }
         match &self.shown {
@@ -407,13 +447,13 @@ impl GiTechnique for MrtTechnique {
         self.passes.gpu_bytes()
     }
 
-    fn limitations(&self, _scene: &Scene, _settings: &RenderSettings) -> Vec<String> {
+    fn limitations(&self, _scene: &Scene, settings: &RenderSettings) -> Vec<String> {
         let mut out = vec![
             "indirect light is diffuse and reaches only the level's walls, floors and ceilings: objects inside blocks neither shadow nor reflect it (delta radiance transfer is not built yet)".to_owned(),
             "geometry images read materials' base colour factors, not their textures".to_owned(),
         ];
-        if let Some(e) = &self.error {
-            out.insert(0, e.clone());
+        if let Some(e) = self.error(&settings.mrt.dictionary) {
+            out.insert(0, e);
         }
         if let Some(s) = &self.shown {
             if s.fitted {
