@@ -89,7 +89,7 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
         "Written by `bouncelab bench --quality` (release build). Adapter: **{}**. Every mode on every \
          scene of the suite (`src/suite/`) at {}x{} ({}x{} supersampling), against the cached \
          {}-spp path-traced reference (32768 spp for the rooms, seen from the unlit room); FLIP at the exposure that puts the reference's mean at 0.18 (`assets/suite/references/`, `bouncelab suite --references`). \
-         `ism` and `sshgi` are the last of {FRAMES} frames (both temporal); `direct` and `ism-ritschel` single frames. Energy is the \
+         `ism`, `sshgi` and `mrt` are the last of {FRAMES} frames (temporal, or multi-bounce feedback for `mrt`, whose blocks are fitted on the fly where a scene has none); `direct` and `ism-ritschel` single frames. Energy is the \
          mean-luminance ratio to the reference; frame time is relative to `direct` on the same scene in \
          the same run (wall clock, median of the last 8 frames).\n",
         ctx.describe(),
