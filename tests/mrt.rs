@@ -121,6 +121,10 @@ fn mrt_indirect_light_is_linear_in_the_light_and_its_feedback_converges() {
     let feedback = settings(&project, small());
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     render(&mut r, &project, &feedback, 1);
+    // An editor renders an unchanged view only while the technique says it refines: the first
+    // frame of a level must say so, or the feedback never gets its bounces.
+    let first_frame = r.technique_status().expect("status");
+    assert!(first_frame.refining && first_frame.refine_target == 16, "{first_frame:?}");
     let mut means = vec![mean(&r)];
     for _ in 0..23 {
         r.render(&project.scene, &feedback, SIZE).expect("render");

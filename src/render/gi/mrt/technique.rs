@@ -293,7 +293,12 @@ impl GiTechnique for MrtTechnique {
             self.level_dirty = false;
         }
         let building = self.level_job.is_some();
-        self.status.refining = building || self.status.history_frames < self.status.refine_target;
+        // Feedback adds a bounce per frame; 16 frames leave less than 3% of an albedo-0.8 tail.
+        // Set here, before the first frame of a level, so an editor that renders only while
+        // this says "refining" gives the feedback its frames.
+        self.status.refine_target = if s.feedback > 0.0 { 16 } else { 1 };
+        self.status.refining =
+            building || self.upload_pending || self.status.history_frames < self.status.refine_target;
         if let Some(e) = self.error(&s.dictionary) {
             self.status.progress = Some(e);
             return Readiness::Ready;
@@ -335,8 +340,6 @@ impl GiTechnique for MrtTechnique {
             return Ok(GiOutput::Nothing);
         }
         self.status.history_frames = self.status.history_frames.saturating_add(1);
-        // Feedback adds a bounce per frame; 16 frames leave less than 3% of an albedo-0.8 tail.
-        self.status.refine_target = if inputs.settings.mrt.feedback > 0.0 { 16 } else { 1 };
         Ok(GiOutput::IrradianceOverPi)
     }
 
