@@ -25,6 +25,17 @@ fn default_project_round_trips_byte_identical() {
 }
 
 #[test]
+fn the_mrt_example_project_opens_in_mrt_with_its_blocks_and_round_trips() {
+    let path = PathBuf::from("projects/rooms_mrt.ron");
+    let original = std::fs::read_to_string(&path).expect("the example exists");
+    let project = Project::load(&path).expect("loads");
+    assert_eq!(project.render.mode, GiMode::Mrt);
+    let (level, _) = bouncelab::precompute::mrt::proxy::level(&project.scene).expect("its blocks make a level");
+    assert_eq!((level.blocks.len(), level.link_count()), (3, 4));
+    assert_eq!(project.to_ron(&path).expect("serialises"), original, "load + save changes nothing");
+}
+
+#[test]
 fn edited_project_saves_and_reopens_exactly() {
     let dir = temp_dir("edit");
     let mut project = Project::load(&default_project_path()).expect("loads");
