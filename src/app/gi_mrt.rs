@@ -12,11 +12,11 @@ pub fn mrt_ui(m: &mut MrtSettings, ui: &mut egui::Ui, objects: &[String], blocks
             .button("Fit proxy blocks")
             .on_hover_text("Add proxy blocks fitted to the level's rooms and doorways as objects you can move, resize and open (refused where the scene has blocks). Without blocks, mrt fits them on the fly and says so.")
             .clicked();
-        ui.add(egui::Slider::new(&mut m.feedback, 0.0..=1.0).text("bounce feedback"))
+        ui.add(egui::Slider::new(&mut m.feedback, 0.0..=1.0).text("feedback"))
             .on_hover_text("Each frame adds albedo x the last frame's indirect light to the texels' direct light: one more bounce per frame (0 = one bounce). Free.");
         ui.checkbox(&mut m.padding, "pad across open sides")
             .on_hover_text("Blend towards the block beyond within half a texel of a side open over its whole area, so blocks meet without a seam (off: the unpadded lightmap). Cost: a second lookup near such sides.");
-        ui.add(egui::Slider::new(&mut m.depth, 0..=16).text("propagation depth"))
+        ui.add(egui::Slider::new(&mut m.depth, 0..=16).text("depth"))
             .on_hover_text("Blocks beyond a source's neighbours its light is carried through the interfaces. Cost: T_b->r grows with the blocks reached (level rebuild and per-frame r).");
         overrides_ui(&mut m.block_overrides, ui, objects, blocks);
         egui::CollapsingHeader::new("Dictionary (precomputed, cached)").default_open(false).show(ui, |ui| {
