@@ -4,8 +4,7 @@
 //! farther than a closing radius from any surface, so a window does not open a room, then spread
 //! back by it), keep the enclosed air; in plan, erode the air by half a doorway so rooms part at their doorways, label the cores,
 //! grow the labels back over the air; each room's box is its core's bounds grown back, its height
-//! the air's; rooms that touch become blocks whose facing sides are opened and snapped to the
-//! wall's mid-plane so the two blocks meet. What it cannot fit is a named error: no enclosed air
+//! the air's; rooms that touch are joined through their doorways ([`super::doorways`]). What it cannot fit is a named error: no enclosed air
 //! (an open field, a lone triangle), a level far from axis-aligned (a sphere).
 //!
 //! Loos leaves fitting to the artist (§4.3.1) and names it open research (§7.1); thresholds here
@@ -23,7 +22,7 @@ const HALF_DOORWAY: f32 = 0.6;
 /// The smallest room kept (m², plan).
 const MIN_ROOM_AREA: f32 = 1.0;
 /// The thickest wall between two rooms whose sides are joined (m).
-const MAX_WALL: f32 = 0.8;
+pub(super) const MAX_WALL: f32 = 0.8;
 /// The closing radius of the outside flood (m): windows and exterior doors up to twice it do not
 /// open a room to the outside.
 const CLOSE: f32 = 0.65;
@@ -409,127 +408,7 @@ pub fn fit(tris: &[[Vec3; 3]]) -> Result<Vec<FittedBlock>, FitError> {
     let mut doors: Vec<(usize, usize, (Vec3, Vec3))> =
         touching.iter().filter_map(|(&(a, b), span)| Some((slot(a)?, slot(b)?, *span))).collect();
     doors.sort_by_key(|d| (d.0, d.1));
-    Ok(split_at_doors(rooms.into_iter().map(|r| r.1).collect(), &doors))
-}
-
-/// The thinnest strip a room is split into at a door jamb (m); jambs nearer a room's corner move
-/// to the corner.
-const MIN_STRIP: f32 = 0.3;
-
-/// Joins rooms through their doorways. A room with at most one doorway per side stays one block
-/// (its doorway sides open; the level passes only the doorway's share of each, see
-/// `geometry_image::transmissions`). A room with two doorways on one side is split into strips
-/// at its doorways' jambs, so that each doorway is a whole side of one strip (the 2D dictionary
-/// opens whole sides only, one neighbour per side), the sides between its strips open. Measured
-/// on the suite's rooms (one bounce per room against a brute force in the real level,
-/// `examples/mrt_probe.rs`): strips everywhere 0.92 / 0.97 / 1.29, whole rooms 0.99 / 0.94 /
-/// 0.87; thin strips (0.4 m x 5 m) are far from the unit cube the operators assume.
-fn split_at_doors(rooms: Vec<FittedBlock>, doors: &[(usize, usize, (Vec3, Vec3))]) -> Vec<FittedBlock> {
-    // Which axis each door crosses (0 x, 2 z), from the rooms' boxes.
-    let crossing = |a: &FittedBlock, b: &FittedBlock| {
-        [0usize, 2].into_iter().find(|&axis| {
-            let gap = (b.min[axis] - a.max[axis]).max(a.min[axis] - b.max[axis]);
-            (-MAX_WALL..=MAX_WALL).contains(&gap)
-        })
-    };
-    let mut cuts: Vec<[Vec<f32>; 2]> = vec![[Vec::new(), Vec::new()]; rooms.len()];
-    let mut crossings = Vec::new();
-    // Doorways per room side (axis, the side's sign): a room whose every side has at most one
-    // stays whole, its doorway side open and passing only the doorway's share of it (the
-    // level's transmission); a side with two needs strips, one per doorway.
-    let mut per_side: HashMap<(usize, usize, bool), usize> = HashMap::new();
-    for &(a, b, _) in doors {
-        let Some(axis) = crossing(&rooms[a], &rooms[b]) else { continue };
-        let b_after = rooms[b].min[axis] > rooms[a].min[axis];
-        *per_side.entry((a, axis, b_after)).or_default() += 1;
-        *per_side.entry((b, axis, !b_after)).or_default() += 1;
-    }
-    let split: Vec<bool> = (0..rooms.len()).map(|r| per_side.iter().any(|(k, n)| k.0 == r && *n > 1)).collect();
-    for &(a, b, (lo, hi)) in doors {
-        let Some(axis) = crossing(&rooms[a], &rooms[b]) else { continue };
-        let along = 2 - axis;
-        for r in [a, b].into_iter().filter(|r| split[*r]) {
-            cuts[r][usize::from(along == 2)].extend([lo[along], hi[along]]);
-        }
-        crossings.push((a, b, axis, lo[along], hi[along]));
-    }
-    // Each room's strips: a grid of x intervals by z intervals, open to each other.
-    let intervals = |lo: f32, hi: f32, cuts: &[f32]| {
-        let mut edges = vec![lo];
-        let mut inner: Vec<f32> = cuts.iter().copied().filter(|c| *c > lo + MIN_STRIP && *c < hi - MIN_STRIP).collect();
-        inner.sort_by(f32::total_cmp);
-        for c in inner {
-            if c - edges.last().copied().unwrap_or(lo) >= MIN_STRIP {
-                edges.push(c);
-            }
-        }
-        if hi - edges.last().copied().unwrap_or(lo) < MIN_STRIP && edges.len() > 1 {
-            edges.pop();
-        }
-        edges.push(hi);
-        edges.windows(2).map(|w| (w[0], w[1])).collect::<Vec<_>>()
-    };
-    let mut out: Vec<FittedBlock> = Vec::new();
-    let mut of_room: Vec<Vec<usize>> = Vec::new();
-    for (r, room) in rooms.iter().enumerate() {
-        let xs = intervals(room.min.x, room.max.x, &cuts[r][0]);
-        let zs = intervals(room.min.z, room.max.z, &cuts[r][1]);
-        let mut mine = Vec::new();
-        for (ix, x) in xs.iter().enumerate() {
-            for (iz, z) in zs.iter().enumerate() {
-                let mut openings = room.openings;
-                openings[0] |= ix + 1 < xs.len();
-                openings[1] |= ix > 0;
-                openings[4] |= iz + 1 < zs.len();
-                openings[5] |= iz > 0;
-                mine.push(out.len());
-                out.push(FittedBlock {
-                    min: Vec3::new(x.0, room.min.y, z.0),
-                    max: Vec3::new(x.1, room.max.y, z.1),
-                    openings,
-                });
-            }
-        }
-        of_room.push(mine);
-    }
-    // Through each doorway: the strips of either room inside the doorway's span and on the side
-    // facing the other room.
-    for &(a, b, axis, t0, t1) in &crossings {
-        let along = 2 - axis;
-        let inside = |blk: &FittedBlock, whole: bool| {
-            let overlap = blk.max[along].min(t1) - blk.min[along].max(t0);
-            whole || overlap > 0.5 * (blk.max[along] - blk.min[along])
-        };
-        for &sa in &of_room[a] {
-            for &sb in &of_room[b] {
-                if inside(&out[sa], !split[a]) && inside(&out[sb], !split[b]) {
-                    join(&mut out, sa, sb, axis);
-                }
-            }
-        }
-    }
-    out
-}
-
-/// Opens the facing sides of blocks `a` and `b` across `axis` and moves both to the mid-plane of
-/// the wall between them, where one lies beside the other with at most [`MAX_WALL`] between and
-/// they overlap along the other axis.
-fn join(blocks: &mut [FittedBlock], a: usize, b: usize, axis: usize) {
-    let (pos, neg) = if axis == 0 { (0, 1) } else { (4, 5) };
-    for (first, second) in [(a, b), (b, a)] {
-        let (f, s) = (&blocks[first], &blocks[second]);
-        let gap = s.min[axis] - f.max[axis];
-        let other = 2 - axis;
-        let overlap = f.max[other].min(s.max[other]) - f.min[other].max(s.min[other]);
-        if (-MAX_WALL..=MAX_WALL).contains(&gap) && overlap > 0.0 {
-            let mid = 0.5 * (f.max[axis] + s.min[axis]);
-            blocks[first].max[axis] = mid;
-            blocks[first].openings[pos] = true;
-            blocks[second].min[axis] = mid;
-            blocks[second].openings[neg] = true;
-            return;
-        }
-    }
+    Ok(super::doorways::split_at_doors(rooms.into_iter().map(|r| r.1).collect(), &doors))
 }
 
 #[cfg(test)]

@@ -8,12 +8,14 @@
 //! ([`propagate`]) and a block's surface response to entering light ([`response`]: U_r,
 //! T_{rlf->r}); a level of blocks from the scene's proxy boxes ([`proxy`]) with its links,
 //! T_{b->r} and a frame's indirect light in the reduced spaces ([`level`]); the real surface
-//! behind each block texel ([`geometry_image`]). The GPU runtime (`render::gi::mrt`) builds on
-//! these.
+//! behind each block texel ([`geometry_image`]); the flux correction of stretched blocks
+//! ([`warp`]); proxy blocks fitted to a bare level ([`fit`], joined through their doorways by
+//! [`doorways`]). The GPU runtime (`render::gi::mrt`) builds on these.
 
 pub mod basis;
 pub mod cache;
 pub mod dictionary;
+pub mod doorways;
 pub mod fit;
 pub mod gather;
 pub mod geometry_image;
