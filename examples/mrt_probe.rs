@@ -48,23 +48,6 @@ fn direct(scene: &Scene, bvh: &SceneBvh, p: Vec3, n: Vec3, albedo: Vec3) -> Vec3
     albedo * e / std::f32::consts::PI
 }
 
-/// The real surface a proxy texel stands for: the first hit from half a metre inside the block
-/// back through the texel along its inward normal `n` (so the wall just behind the proxy face, or
-/// whatever stands in front of it); its point, normal facing the block, and albedo.
-fn real_surface(scene: &Scene, bvh: &SceneBvh, p: Vec3, n: Vec3) -> Option<(Vec3, Vec3, Vec3)> {
-    let back = 0.5;
-    let start = p + n * back;
-    let hit = bvh.intersect(start, -n, 2.0 * back)?;
-    let tri = &bvh.tris[hit.tri as usize];
-    let point = start - n * hit.t;
-    let albedo = scene
-        .materials()
-        .get(tri.material as usize)
-        .map_or(Vec3::splat(0.8), |m| Vec3::new(m.base_color[0], m.base_color[1], m.base_color[2]));
-    let ng = if tri.ng.dot(n) > 0.0 { tri.ng } else { -tri.ng };
-    Some((point, ng, albedo))
-}
-
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
     let name = args.get(1).map_or("rooms", String::as_str);
@@ -115,19 +98,14 @@ fn main() -> anyhow::Result<()> {
             );
         }
     }
-    // Every texel's real surface (point, normal, albedo), per block.
+    // Every texel's real surface (point, normal, albedo), per block: the runtime's geometry images.
     let texels: Vec<Vec<Option<(Vec3, Vec3, Vec3)>>> = lvl
         .blocks
         .iter()
         .map(|b| {
-            let layout = Layout::new(b.shape, params.res);
-            (0..layout.len())
-                .map(|i| {
-                    let (_, _, p, n) = layout.sample(i);
-                    let w = b.world_point(p);
-                    let nw = b.world_dir(n).normalize_or_zero();
-                    real_surface(scene, &bvh, w, nw)
-                })
+            geometry_image::geometry_image(scene, &bvh, b, params.res)
+                .into_iter()
+                .map(|s| s.found.then_some((s.position, s.normal, s.albedo)))
                 .collect()
         })
         .collect();
@@ -181,9 +159,7 @@ fn main() -> anyhow::Result<()> {
                             let tri = &bvh.tris[hit.tri as usize];
                             let p = origin + d * hit.t;
                             let ng = if tri.ng.dot(d) < 0.0 { tri.ng } else { continue };
-                            let albedo = scene.materials().get(tri.material as usize).map_or(Vec3::splat(0.8), |m| {
-                                Vec3::new(m.base_color[0], m.base_color[1], m.base_color[2])
-                            });
+                            let albedo = geometry_image::albedo(scene, tri.material);
                             sum += lum(direct(scene, &bvh, p, ng, albedo));
                         }
                     }

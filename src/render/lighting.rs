@@ -1,7 +1,10 @@
 //! Deferred direct lighting (`shaders/render/lighting.wgsl`), one compute pass over the
 //! G-buffer into the view's `direct` target.
 
-use super::layouts::{storage_entry, storage_texture_entry, texture_entry, uniform_entry};
+use super::layouts::{
+    comparison_sampler_entry, depth_array_entry, shadow_sampler, storage_entry, storage_texture_entry, texture_entry,
+    uniform_entry,
+};
 use super::shaders::{self, ShaderError};
 use super::targets::{ViewTargets, formats};
 use super::timing::TimestampPair;
@@ -35,22 +38,8 @@ impl LightingPass {
                 uniform_entry(0, c, false),
                 storage_entry(1, c),
                 storage_entry(2, c),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: c,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Depth,
-                        view_dimension: wgpu::TextureViewDimension::D2Array,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 4,
-                    visibility: c,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                    count: None,
-                },
+                depth_array_entry(3, c),
+                comparison_sampler_entry(4, c),
             ],
         });
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
@@ -78,13 +67,7 @@ impl LightingPass {
             compilation_options: Default::default(),
             cache: None,
         });
-        let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("shadow comparison sampler"),
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            compare: Some(wgpu::CompareFunction::LessEqual),
-            ..Default::default()
-        });
+        let shadow_sampler = shadow_sampler(device, "shadow comparison sampler");
         Ok(Self { pipeline, inputs_layout, targets_layout, shadow_sampler })
     }
 

@@ -12,14 +12,15 @@ use crate::precompute::mrt::dictionary::DictionaryParams;
 #[serde(deny_unknown_fields, default)]
 pub struct MrtSettings {
     /// The dictionary: texels per face (16), modes k_b (32), gather rays, the interface light
-    /// fields. A new parameter set builds a new dictionary (about 22 s on two cores at the
+    /// fields. A new parameter set builds a new dictionary (18 s on two cores at the
     /// defaults, release build; then cached in `~/.cache/bouncelab`). Per frame, every block costs
     /// k_b x n multiply-adds for b (n = 6 x texels^2) and k_b more per texel for U_b b.
     pub dictionary: DictionaryParams,
     /// Propagation depth: how many blocks beyond a source's neighbours its light is carried
     /// through the interfaces (the level's T_{b->r} has one k_r x k_b matrix per source and
     /// reached interface, so its size and the per-frame r cost grow with the blocks reached).
-    /// Assembly of the suite's 11-block rooms: 37 ms at depth 6.
+    /// Assembly at depth 6 (`bouncelab bench`, two cores): an 11-block maze 80 ms, a 41-block
+    /// one 686 ms.
     pub depth: u32,
     /// Multi-bounce feedback gain (Loos 2015 §3.6.3): each frame adds albedo x the previous
     /// frame's indirect light (clamped at zero) to the texels' direct light, one more bounce per

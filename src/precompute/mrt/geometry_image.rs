@@ -33,7 +33,7 @@ pub struct TexelSurface {
 }
 
 /// The albedo of a material index (its base colour factor; textures are not read).
-fn albedo(scene: &Scene, material: u32) -> Vec3 {
+pub fn albedo(scene: &Scene, material: u32) -> Vec3 {
     scene.materials().get(material as usize).map_or(Vec3::splat(0.8), |m| Vec3::from_slice(&m.base_color[..3]))
 }
 

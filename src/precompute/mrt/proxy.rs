@@ -59,9 +59,14 @@ pub fn open_faces(openings: &[bool; 6], turns: u8) -> Vec<Face> {
 
 /// The level of `scene`'s proxy blocks, and each block's object index.
 pub fn level(scene: &Scene) -> Result<(Level, Vec<usize>), ProxyError> {
+    level_of(scene.objects())
+}
+
+/// The level of the proxy blocks among `objects`, and each block's index in `objects`.
+pub fn level_of(all: &[crate::scene::Object]) -> Result<(Level, Vec<usize>), ProxyError> {
     let mut blocks = Vec::new();
     let mut objects = Vec::new();
-    for (index, object) in scene.objects().iter().enumerate().filter(|(_, o)| o.role == ObjectRole::ProxyBlock) {
+    for (index, object) in all.iter().enumerate().filter(|(_, o)| o.role == ObjectRole::ProxyBlock) {
         let MeshSource::Cuboid { size, openings } = &object.source else {
             return Err(ProxyError::NotABox(object.name.clone()));
         };
@@ -87,7 +92,14 @@ pub fn level(scene: &Scene) -> Result<(Level, Vec<usize>), ProxyError> {
 /// Proxy boxes fitted to `scene`'s static geometry ([`super::fit`]), as scene objects of role
 /// `ProxyBlock` named "proxy 1", "proxy 2", ... (the scene's first material).
 pub fn fitted_objects(scene: &Scene) -> Result<Vec<crate::scene::Object>, super::fit::FitError> {
-    let bvh = crate::precompute::bvh::SceneBvh::build(scene);
+    fitted_objects_in(scene, &crate::precompute::bvh::SceneBvh::build(scene))
+}
+
+/// [`fitted_objects`] with `scene`'s BVH already built.
+pub fn fitted_objects_in(
+    scene: &Scene,
+    bvh: &crate::precompute::bvh::SceneBvh,
+) -> Result<Vec<crate::scene::Object>, super::fit::FitError> {
     let objects = scene.objects();
     let tris: Vec<[Vec3; 3]> = bvh
         .tris

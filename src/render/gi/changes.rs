@@ -32,12 +32,12 @@ fn objects_key(scene: &Scene) -> Vec<u32> {
         let floats = t.translation.to_array().into_iter().chain(t.rotation.to_array()).chain(t.scale.to_array());
         key.extend(floats.chain([o.sampling_weight]).map(f32::to_bits));
         key.extend([o.material as u32, o.mesh as u32, u32::from(o.is_rendered()), o.role as u32]);
-        // The generated shape (a proxy block's size and open sides reach MRT's level even
-        // though no mesh is drawn for it).
-        let mut h = std::collections::hash_map::DefaultHasher::new();
-        std::hash::Hash::hash(&format!("{:?}", o.source), &mut h);
-        let source = std::hash::Hasher::finish(&h);
-        key.extend([source as u32, (source >> 32) as u32]);
+        // A generated box's size and open sides (a proxy block's reach MRT's level though no
+        // mesh is drawn for it); other sources are their mesh, keyed above.
+        if let crate::scene::MeshSource::Cuboid { size, openings } = &o.source {
+            key.extend(size.to_array().map(f32::to_bits));
+            key.push(openings.iter().enumerate().map(|(i, open)| u32::from(*open) << i).sum());
+        }
     }
     for m in scene.materials() {
         let values = m.base_color.iter().chain(&m.specular).chain([&m.roughness, &m.normal_scale]);

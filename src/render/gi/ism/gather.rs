@@ -20,18 +20,7 @@ const PULL_LEVELS: usize = 2;
 /// Largest splat half-extent in texels (a 33^2 box), a bound on one thread's work for points
 /// right next to a VPL.
 const MAX_SPLAT_HALF_EXTENT: f32 = 16.0;
-pub(super) fn storage_rw(binding: u32) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Storage { read_only: false },
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        },
-        count: None,
-    }
-}
+pub(super) use crate::render::layouts::storage_rw_entry as storage_rw;
 
 /// Sizes the atlas and view resources were made for.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -133,19 +133,15 @@ pub fn build_level(
 ) -> Result<BuiltLevel, String> {
     let started = Instant::now();
     let has_blocks = scene.objects().iter().any(|o| o.role == ObjectRole::ProxyBlock);
-    let fitted_scene;
-    let source = if has_blocks {
-        scene
-    } else {
-        let fitted = proxy::fitted_objects(scene)
-            .map_err(|e| format!("the scene has no proxy blocks and none could be fitted: {e}"))?;
-        let mut s = scene.clone();
-        s.desc_mut().objects.extend(fitted);
-        fitted_scene = s;
-        &fitted_scene
-    };
-    let (mut level, block_objects) = proxy::level(source).map_err(|e| e.to_string())?;
     let bvh = SceneBvh::build(scene);
+    let (mut level, block_objects) = if has_blocks {
+        proxy::level(scene)
+    } else {
+        let fitted = proxy::fitted_objects_in(scene, &bvh)
+            .map_err(|e| format!("the scene has no proxy blocks and none could be fitted: {e}"))?;
+        proxy::level_of(&fitted)
+    }
+    .map_err(|e| e.to_string())?;
     let mut openings = Vec::new();
     for ((i, w), share) in geometry_image::transmissions(&bvh, &level) {
         level.set_transmission(i, w, share);

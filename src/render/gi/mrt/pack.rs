@@ -118,9 +118,6 @@ impl Packed {
     }
 }
 
-/// The world sides in `GpuBlock::local` order.
-pub const SIDES: [Face; 6] = Face::ALL;
-
 /// Lays out `level` with `dictionary`'s operators, propagated `depth` blocks, its texels' real
 /// surfaces from `scene` (traced in `bvh`).
 pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionary, depth: usize) -> Packed {
@@ -193,7 +190,7 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
         let (t, u) = offsets.iter().find(|o| o.0 == b.shape).map_or((0, 0), |o| (o.1, o.2));
         let mut starts = [NONE; 8];
         let mut local = [0; 8];
-        for (k, w) in SIDES.iter().enumerate() {
+        for (k, w) in Face::ALL.iter().enumerate() {
             let f = b.local_face(*w);
             local[k] = f as u32;
             starts[f as usize] = layout.face_start(f).map_or(NONE, |s| first + s as u32);

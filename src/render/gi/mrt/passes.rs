@@ -29,7 +29,7 @@ pub struct MrtParams {
 
 const _: () = assert!(std::mem::size_of::<MrtParams>() == 48);
 
-/// What a binding is.
+/// What a binding is (each maps to one of `render::layouts`' entries).
 #[derive(Clone, Copy)]
 enum Kind {
     Uniform,
@@ -51,43 +51,24 @@ struct Pass {
 
 impl Pass {
     fn new(device: &wgpu::Device, name: &str, kinds: &[Kind]) -> Result<Self, ShaderError> {
+        use crate::render::layouts::{
+            comparison_sampler_entry, depth_array_entry, storage_entry, storage_rw_entry, storage_texture_entry,
+            texture_entry, uniform_entry,
+        };
         let c = wgpu::ShaderStages::COMPUTE;
         let entries: Vec<wgpu::BindGroupLayoutEntry> = kinds
             .iter()
-            .enumerate()
-            .map(|(i, k)| {
-                let storage = |read_only| wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Storage { read_only },
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                };
-                let texture = |sample_type, view_dimension| wgpu::BindingType::Texture {
-                    sample_type,
-                    view_dimension,
-                    multisampled: false,
-                };
-                let ty = match k {
-                    Kind::Uniform => wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    Kind::Read => storage(true),
-                    Kind::Write => storage(false),
-                    Kind::Depth => texture(wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2),
-                    Kind::DepthArray => texture(wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
-                    Kind::Comparison => wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
-                    Kind::Float => {
-                        texture(wgpu::TextureSampleType::Float { filterable: false }, wgpu::TextureViewDimension::D2)
-                    }
-                    Kind::Uint => texture(wgpu::TextureSampleType::Uint, wgpu::TextureViewDimension::D2),
-                    Kind::StorageTexture => wgpu::BindingType::StorageTexture {
-                        access: wgpu::StorageTextureAccess::WriteOnly,
-                        format: formats::HDR,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                    },
-                };
-                wgpu::BindGroupLayoutEntry { binding: i as u32, visibility: c, ty, count: None }
+            .zip(0u32..)
+            .map(|(k, i)| match k {
+                Kind::Uniform => uniform_entry(i, c, false),
+                Kind::Read => storage_entry(i, c),
+                Kind::Write => storage_rw_entry(i),
+                Kind::Depth => texture_entry(i, c, wgpu::TextureSampleType::Depth),
+                Kind::DepthArray => depth_array_entry(i, c),
+                Kind::Comparison => comparison_sampler_entry(i, c),
+                Kind::Float => texture_entry(i, c, wgpu::TextureSampleType::Float { filterable: false }),
+                Kind::Uint => texture_entry(i, c, wgpu::TextureSampleType::Uint),
+                Kind::StorageTexture => storage_texture_entry(i, formats::HDR),
             })
             .collect();
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -181,6 +162,13 @@ fn vec4s(device: &wgpu::Device, label: &str, count: usize) -> wgpu::Buffer {
     })
 }
 
+/// The bind groups made once per level.
+struct LevelGroups {
+    reduce: wgpu::BindGroup,
+    interface: wgpu::BindGroup,
+    reconstruct: wgpu::BindGroup,
+}
+
 /// A whole buffer as a binding.
 fn buf(b: &wgpu::Buffer) -> wgpu::BindingResource<'_> {
     b.as_entire_binding()
@@ -195,6 +183,7 @@ pub struct MrtPasses {
     apply: Pass,
     shadow_sampler: wgpu::Sampler,
     level: Option<LevelBuffers>,
+    level_groups: Option<LevelGroups>,
     /// Per pixel: block, canonical face, distance to the box (m).
     assignment: Option<Target>,
 }
@@ -221,14 +210,9 @@ impl MrtPasses {
                 "mrt_apply",
                 &[Uniform, Uniform, Read, Read, Depth, Float, StorageTexture, StorageTexture, Uint, Read],
             )?,
-            shadow_sampler: device.create_sampler(&wgpu::SamplerDescriptor {
-                label: Some("mrt shadow comparison sampler"),
-                mag_filter: wgpu::FilterMode::Linear,
-                min_filter: wgpu::FilterMode::Linear,
-                compare: Some(wgpu::CompareFunction::LessEqual),
-                ..Default::default()
-            }),
+            shadow_sampler: crate::render::layouts::shadow_sampler(device, "mrt shadow comparison sampler"),
             level: None,
+            level_groups: None,
             assignment: None,
         })
     }
@@ -266,6 +250,42 @@ impl MrtPasses {
             within: vec4s(device, "mrt texel within-block indirect", texels),
             counts,
         });
+        self.level_groups = self.level.as_ref().map(|l| self.level_groups_of(device, l));
+    }
+
+    /// The bind groups of the passes that read only the level's own buffers (made once per
+    /// level; the direct and apply passes also read the frame's lights and targets).
+    fn level_groups_of(&self, device: &wgpu::Device, l: &LevelBuffers) -> LevelGroups {
+        let reduce = self.reduce.bind(
+            device,
+            "mrt_reduce",
+            &[buf(&l.params), buf(&l.blocks), buf(&l.matrices), buf(&l.l_d), buf(&l.b)],
+        );
+        let interface = self.interface.bind(
+            device,
+            "mrt_interface",
+            &[buf(&l.params), buf(&l.slots), buf(&l.entries), buf(&l.transfer), buf(&l.b), buf(&l.r)],
+        );
+        let reconstruct = self.reconstruct.bind(
+            device,
+            "mrt_reconstruct",
+            &[
+                buf(&l.params),
+                buf(&l.blocks),
+                buf(&l.texels),
+                buf(&l.matrices),
+                buf(&l.u_r),
+                buf(&l.slots),
+                buf(&l.rows),
+                buf(&l.b),
+                buf(&l.r),
+                buf(&l.indirect),
+                buf(&l.within),
+                buf(&l.row_scales),
+                buf(&l.own_scales),
+            ],
+        );
+        LevelGroups { reduce, interface, reconstruct }
     }
 
     /// Whether a level is uploaded.
@@ -305,35 +325,7 @@ impl MrtPasses {
                 buf(&l.l_d),
             ],
         );
-        let reduce = self.reduce.bind(
-            device,
-            "mrt_reduce",
-            &[buf(&l.params), buf(&l.blocks), buf(&l.matrices), buf(&l.l_d), buf(&l.b)],
-        );
-        let interface = self.interface.bind(
-            device,
-            "mrt_interface",
-            &[buf(&l.params), buf(&l.slots), buf(&l.entries), buf(&l.transfer), buf(&l.b), buf(&l.r)],
-        );
-        let reconstruct = self.reconstruct.bind(
-            device,
-            "mrt_reconstruct",
-            &[
-                buf(&l.params),
-                buf(&l.blocks),
-                buf(&l.texels),
-                buf(&l.matrices),
-                buf(&l.u_r),
-                buf(&l.slots),
-                buf(&l.rows),
-                buf(&l.b),
-                buf(&l.r),
-                buf(&l.indirect),
-                buf(&l.within),
-                buf(&l.row_scales),
-                buf(&l.own_scales),
-            ],
-        );
+        let Some(g) = &self.level_groups else { return false };
         let t = inputs.targets;
         let apply = self.apply.bind(
             device,
@@ -354,9 +346,9 @@ impl MrtPasses {
         let k_r = l.counts.sizes[0];
         let steps: [(&str, &Pass, &wgpu::BindGroup, [u32; 3]); 5] = [
             ("mrt direct texels", &self.direct, &direct, [texels.div_ceil(64), 1, 1]),
-            ("mrt b", &self.reduce, &reduce, [k_b, blocks, 6]),
-            ("mrt interfaces r", &self.interface, &interface, [(slots * k_r).div_ceil(64), 1, 1]),
-            ("mrt reconstruct", &self.reconstruct, &reconstruct, [texels.div_ceil(64), 1, 1]),
+            ("mrt b", &self.reduce, &g.reduce, [k_b, blocks, 6]),
+            ("mrt interfaces r", &self.interface, &g.interface, [(slots * k_r).div_ceil(64), 1, 1]),
+            ("mrt reconstruct", &self.reconstruct, &g.reconstruct, [texels.div_ceil(64), 1, 1]),
             ("mrt apply", &self.apply, &apply, [size.0.div_ceil(8), size.1.div_ceil(8), 1]),
         ];
         for (name, pass, group, [x, y, z]) in steps {
@@ -412,6 +404,7 @@ impl MrtPasses {
     /// Frees the buffers and targets (pipelines stay).
     pub fn release(&mut self) {
         self.level = None;
+        self.level_groups = None;
         self.assignment = None;
     }
 

@@ -130,20 +130,7 @@ impl VoxelPass {
         let c = wgpu::ShaderStages::COMPUTE;
         let mip_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("sshgi voxel mip layout"),
-            entries: &[
-                uniform_entry(0, c, true),
-                storage_entry(1, c),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: c,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: false },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-            ],
+            entries: &[uniform_entry(0, c, true), storage_entry(1, c), crate::render::layouts::storage_rw_entry(2)],
         });
         let mip_module = shaders::module(device, "render/gi/sshgi/sshgi_voxel_mip.wgsl")?;
         let uniform = |label, size| {
