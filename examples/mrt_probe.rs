@@ -77,16 +77,78 @@ fn main() -> anyhow::Result<()> {
         lvl = lvl.without_warp_correction();
     }
     let bvh = SceneBvh::build(scene);
+    // MRT_BANDS=n: the light-field basis' position bands (the dictionary's default otherwise).
+    let mut params = DictionaryParams::default();
+    if let Some(b) = std::env::var("MRT_BANDS").ok().and_then(|v| v.parse().ok()) {
+        params.interfaces.bands = b;
+    }
+    let (dictionary, source) = cache::load_or_build(&cache::default_dir(), &params, &Progress::default())?;
+    // MRT_SHARE_ONLY=1: each linked side passes its open share everywhere and reflects nothing
+    // (the scalar transmission before per-position openings); MRT_NO_REFLECT=1: masked by
+    // position, reflecting nothing.
     if std::env::var_os("MRT_FULL_SIDES").is_none() {
-        for ((i, w), t) in geometry_image::transmissions(&bvh, &lvl) {
-            lvl.set_transmission(i, w, t);
+        let positions = dictionary.interfaces.positions.positions;
+        for ((i, w), o) in geometry_image::openings(scene, &bvh, &lvl, positions) {
+            let o = if std::env::var_os("MRT_SHARE_ONLY").is_some() {
+                bouncelab::precompute::mrt::opening::Opening::uniform(positions, o.share(), 0.0)
+            } else if std::env::var_os("MRT_NO_REFLECT").is_some() {
+                bouncelab::precompute::mrt::opening::Opening { albedo: vec![0.0; o.open.len()], ..o }
+            } else {
+                o
+            };
+            lvl.set_opening(i, w, o);
         }
     }
-    let params = DictionaryParams::default();
-    let (dictionary, source) = cache::load_or_build(&cache::default_dir(), &params, &Progress::default())?;
     println!("dictionary: {source:?}");
     let ops = Operators { dictionary: &dictionary, interfaces: &dictionary.interfaces };
     let transfer = level::assemble(&lvl, &ops, 6);
+    // MRT_FLUX=1: per partly open side, the flux of the light field that uniform walls send out
+    // through it: all of it, over the open positions, what the mask passes, the closed share
+    // times albedo, and what the reflection sends back.
+    if std::env::var_os("MRT_FLUX").is_some() {
+        let pos = &dictionary.interfaces.positions;
+        let k = pos.k;
+        let flux = |q: &[f64], weights: &dyn Fn(usize) -> f64| -> f64 {
+            (0..pos.positions * pos.positions)
+                .map(|p| weights(p) * pos.irradiance[p * k..(p + 1) * k].iter().zip(q).map(|(e, x)| e * x).sum::<f64>())
+                .sum()
+        };
+        let apply =
+            |m: &[f64], q: &[f64]| -> Vec<f64> { (0..k).map(|i| (0..k).map(|j| m[i * k + j] * q[j]).sum()).collect() };
+        for (x, w) in lvl.linked_sides() {
+            let Some(o) = lvl.opening(x, w) else { continue };
+            let b = lvl.blocks[x];
+            let Some(e) = dictionary.element(b.shape) else { continue };
+            let Some(exit) = dictionary.interfaces.exit(b.shape, b.local_face(w)) else { continue };
+            let l = vec![1.0; Layout::new(b.shape, params.res).len()];
+            let bb = e.project(&l);
+            let q: Vec<f64> = (0..k).map(|i| (0..e.k_b).map(|j| exit.r_b_rlf[i * e.k_b + j] * bb[j]).sum()).collect();
+            let all = flux(&q, &|_| 1.0);
+            let open = flux(&q, &|p| o.open[p]);
+            let closed = flux(&q, &|p| o.albedo[p] * (1.0 - o.open[p]));
+            let passed = pos.mask(&o.open).map_or(all, |m| flux(&apply(&m, &q), &|_| 1.0));
+            let back = pos.reflection(&o.open, &o.albedo).map_or(0.0, |m| flux(&apply(&m, &q), &|_| 1.0));
+            println!(
+                "block {x} side {w:?}: share {:.3}, flux {all:.3}, over open {open:.3}, passed {passed:.3}, albedo x closed {closed:.3}, reflected {back:.3}",
+                o.share()
+            );
+            // The passed light's irradiance profile along u (summed over v): masked exactly,
+            // and through the reduced mask.
+            let np = pos.positions;
+            if let Some(m) = pos.mask(&o.open) {
+                let mq = apply(&m, &q);
+                let at = |v: &[f64], p: usize| {
+                    pos.irradiance[p * k..(p + 1) * k].iter().zip(v).map(|(e, x)| e * x).sum::<f64>()
+                };
+                let exact: Vec<String> = (0..np)
+                    .map(|i| format!("{:5.1}", (0..np).map(|j| o.open[j * np + i] * at(&q, j * np + i)).sum::<f64>()))
+                    .collect();
+                let reduced: Vec<String> =
+                    (0..np).map(|i| format!("{:5.1}", (0..np).map(|j| at(&mq, j * np + i)).sum::<f64>())).collect();
+                println!("  exact   {}\n  reduced {}", exact.join(" "), reduced.join(" "));
+            }
+        }
+    }
     if std::env::var_os("MRT_WARPS").is_some() {
         for (x, w) in lvl.warps.iter().enumerate() {
             let through: Vec<String> = w.through.iter().map(|r| format!("{:.2?}", r)).collect();
@@ -111,11 +173,48 @@ fn main() -> anyhow::Result<()> {
         .collect();
     // MRT's direct light (luminance-like mean of rgb) and its transfer.
     let lum = |v: Vec3| f64::from((v.x + v.y + v.z) / 3.0);
+    // MRT_SOURCE=k: only block k's direct light (and, in the brute force, only light from
+    // points inside block k's box, grown by 0.15 m) takes part: one bounce's sources one by one.
+    let source: Option<usize> = std::env::var("MRT_SOURCE").ok().and_then(|v| v.parse().ok());
+    // MRT_UNIFORM=1: every texel (and every real surface facing along y or z in the brute force)
+    // emits 1 in place of the direct light.
+    let uniform = std::env::var_os("MRT_UNIFORM").is_some();
+    let inside = |p: Vec3| {
+        source.is_none_or(|k| {
+            let b = &lvl.blocks[k];
+            (p - b.origin).cmpge(Vec3::splat(-0.15)).all() && (b.origin + b.size - p).cmpge(Vec3::splat(-0.15)).all()
+        })
+    };
     let l_d: Vec<Vec<f64>> = texels
         .iter()
-        .map(|t| t.iter().map(|s| s.map_or(0.0, |(q, n, a)| lum(direct(scene, &bvh, q, n, a)))).collect())
+        .enumerate()
+        .map(|(x, t)| {
+            t.iter()
+                .map(|s| match s {
+                    Some(_) if uniform && source.is_none_or(|k| k == x) => 1.0,
+                    Some((q, n, a)) if source.is_none_or(|k| k == x) => lum(direct(scene, &bvh, *q, *n, *a)),
+                    _ => 0.0,
+                })
+                .collect()
+        })
         .collect();
-    let mrt = level::indirect(&lvl, &ops, &transfer, &l_d);
+    // MRT_MULTI=n: n bounces on both sides (MRT's feedback iterated n times: albedo x the last
+    // indirect added to the direct texels; the brute force a path of n diffuse bounces).
+    let bounces: usize = std::env::var("MRT_MULTI").ok().and_then(|v| v.parse().ok()).unwrap_or(1).max(1);
+    let mut mrt = level::indirect(&lvl, &ops, &transfer, &l_d);
+    let mut last_input = l_d.clone();
+    for _ in 1..bounces {
+        let fed: Vec<Vec<f64>> = l_d
+            .iter()
+            .zip(&mrt)
+            .zip(&texels)
+            .map(|((d, m), t)| {
+                d.iter().zip(m).zip(t).map(|((d, m), s)| d + m.max(0.0) * s.map_or(0.0, |(_, _, a)| lum(a))).collect()
+            })
+            .collect();
+        mrt = level::indirect(&lvl, &ops, &transfer, &fed);
+        last_input = fed;
+    }
     // MRT_BOUNCES=n: the feedback's bounces (albedo x indirect fed back), each's total light and
     // its ratio to the previous one (the loop gain; above 1 the feedback diverges).
     if let Some(n) = std::env::var("MRT_BOUNCES").ok().and_then(|v| v.parse::<usize>().ok()) {
@@ -134,40 +233,113 @@ fn main() -> anyhow::Result<()> {
             last = now;
         }
     }
+    // MRT_MIMIC=1: the brute force treats the surfaces of linked sides (within 0.15 m of the
+    // side, facing across it) as MRT does: they get no direct light and reflecting there
+    // does not count as a bounce (MRT's reflection happens within the transfer).
+    let mimic = std::env::var_os("MRT_MIMIC").is_some();
+    let linked: Vec<(usize, f32, Vec3, Vec3)> = lvl
+        .linked_sides()
+        .into_iter()
+        .map(|(i, w)| {
+            let (plane, lo, hi) = lvl.side_rect(i, w);
+            (w.axis(), plane, lo, hi)
+        })
+        .collect();
+    let on_side = |p: Vec3, ng: Vec3| {
+        linked.iter().any(|(axis, plane, lo, hi)| {
+            ng[*axis].abs() > 0.5
+                && (p[*axis] - plane).abs() < 0.15
+                && (0..3).filter(|a| a != axis).all(|a| p[a] >= lo[a] - 0.01 && p[a] <= hi[a] + 0.01)
+        })
+    };
     // Brute force: cosine rays from the real surface point into the real scene.
+    let gather = |q: Vec3, n: Vec3, seed: u64| -> f64 {
+        let mut rng = Pcg32::new(5, seed, 0);
+        let (tt, bb) = n.any_orthonormal_pair();
+        let side = (rays as f64).sqrt() as usize;
+        let mut sum = 0.0;
+        for a in 0..side {
+            for c in 0..side {
+                let r1 = (a as f32 + rng.next_f32()) / side as f32;
+                let r2 = (c as f32 + rng.next_f32()) / side as f32;
+                let (r, phi) = (r1.sqrt(), std::f32::consts::TAU * r2);
+                let mut d = (tt * r * phi.cos() + bb * r * phi.sin() + n * (1.0 - r1).max(0.0).sqrt()).normalize();
+                let mut origin = q + n * 1e-3 * bvh.scale;
+                let mut throughput = 1.0;
+                let mut k = 0;
+                let mut steps = 0;
+                while k < bounces && steps < 64 {
+                    steps += 1;
+                    let Some(hit) = bvh.intersect(origin, d, f32::INFINITY) else { break };
+                    let tri = &bvh.tris[hit.tri as usize];
+                    let p = origin + d * hit.t;
+                    let ng = if tri.ng.dot(d) < 0.0 { tri.ng } else { break };
+                    let albedo = geometry_image::albedo(scene, tri.material);
+                    if mimic && on_side(p, ng) {
+                        // MRT's closed part of a linked side: no direct light, a
+                        // reflection within the same bounce.
+                    } else if uniform {
+                        if inside(p) && ng.x.abs() < 0.5 {
+                            sum += throughput;
+                        }
+                    } else if inside(p) {
+                        sum += throughput * lum(direct(scene, &bvh, p, ng, albedo));
+                    }
+                    if !(mimic && on_side(p, ng)) {
+                        k += 1;
+                        if k == bounces {
+                            break;
+                        }
+                    }
+                    throughput *= lum(albedo);
+                    let (t2, b2) = ng.any_orthonormal_pair();
+                    let (u1, u2) = (rng.next_f32(), rng.next_f32());
+                    let (r, phi) = (u1.sqrt(), std::f32::consts::TAU * u2);
+                    d = (t2 * r * phi.cos() + b2 * r * phi.sin() + ng * (1.0 - u1).max(0.0).sqrt()).normalize();
+                    origin = p + ng * 1e-3 * bvh.scale;
+                }
+            }
+        }
+        sum / (side * side) as f64
+    };
     let truth: Vec<Vec<f64>> = texels
         .iter()
         .enumerate()
         .map(|(x, t)| {
             t.par_iter()
                 .enumerate()
-                .map(|(i, s)| {
-                    let Some((q, n, _)) = *s else { return 0.0 };
-                    let mut rng = Pcg32::new(5, (x * 100_000 + i) as u64, 0);
-                    let (tt, bb) = n.any_orthonormal_pair();
-                    let side = (rays as f64).sqrt() as usize;
-                    let mut sum = 0.0;
-                    for a in 0..side {
-                        for c in 0..side {
-                            let r1 = (a as f32 + rng.next_f32()) / side as f32;
-                            let r2 = (c as f32 + rng.next_f32()) / side as f32;
-                            let (r, phi) = (r1.sqrt(), std::f32::consts::TAU * r2);
-                            let d =
-                                (tt * r * phi.cos() + bb * r * phi.sin() + n * (1.0 - r1).max(0.0).sqrt()).normalize();
-                            let origin = q + n * 1e-3 * bvh.scale;
-                            let Some(hit) = bvh.intersect(origin, d, f32::INFINITY) else { continue };
-                            let tri = &bvh.tris[hit.tri as usize];
-                            let p = origin + d * hit.t;
-                            let ng = if tri.ng.dot(d) < 0.0 { tri.ng } else { continue };
-                            let albedo = geometry_image::albedo(scene, tri.material);
-                            sum += lum(direct(scene, &bvh, p, ng, albedo));
-                        }
-                    }
-                    sum / (side * side) as f64
-                })
+                .map(|(i, s)| s.map_or(0.0, |(q, n, _)| gather(q, n, (x * 100_000 + i) as u64)))
                 .collect()
         })
         .collect();
+    // MRT_SIDES=1: the light on the closed part of each partly open side (the wall around a
+    // doorway, which has no texels): MRT's against the brute force at the real surface behind
+    // each closed opening position.
+    if std::env::var_os("MRT_SIDES").is_some() {
+        let np = dictionary.interfaces.positions.positions;
+        for ((x, w), v) in level::side_light(&lvl, &ops, &transfer, &last_input) {
+            let (Some(o), Some(frame)) = (lvl.opening(x, w), geometry_image::SideFrame::new(&lvl, x, w)) else {
+                continue;
+            };
+            let cells: Vec<usize> = (0..np * np).filter(|p| o.open[*p] < 0.5).collect();
+            let reach = geometry_image::SEARCH.min(0.45 * lvl.blocks[x].size[w.axis()]);
+            let brute: Vec<f64> = cells
+                .par_iter()
+                .map(|&p| {
+                    let at = frame.point(((p % np) as f32 + 0.5) / np as f32, ((p / np) as f32 + 0.5) / np as f32);
+                    let s = geometry_image::surface(scene, &bvh, at, -frame.n, reach);
+                    if s.found { gather(s.position, s.normal, 900_000 + (x * 1000 + p) as u64) } else { 0.0 }
+                })
+                .collect();
+            let t = brute.iter().sum::<f64>() / cells.len().max(1) as f64;
+            let m = cells.iter().map(|p| v[*p]).sum::<f64>() / cells.len().max(1) as f64;
+            println!(
+                "side {x} {w:?}: {} closed positions, brute force {t:.4}, MRT {m:.4}: {:.3}",
+                cells.len(),
+                m / t.max(1e-12)
+            );
+        }
+    }
     // Area-weighted light per room (a texel stands for its face's area / res^2), the blocks
     // grouped by their centres along x at `MRT_ROOMS_X` (e.g. "5.1,10.3").
     let cuts: Vec<f32> = std::env::var("MRT_ROOMS_X")
@@ -198,6 +370,22 @@ fn main() -> anyhow::Result<()> {
     for (k, (t, m, d)) in rooms.iter().enumerate() {
         let ratio = m / t.max(1e-12);
         println!("room {k}: direct {d:.4}, brute-force bounce {t:.4}, MRT bounce {m:.4}: MRT / brute force {ratio:.3}");
+    }
+    // MRT_FACES=1: each block's faces (world side): mean brute-force and MRT light.
+    if std::env::var_os("MRT_FACES").is_some() {
+        for (x, b) in lvl.blocks.iter().enumerate() {
+            let layout = Layout::new(b.shape, params.res);
+            let per = params.res * params.res;
+            let line: Vec<String> = (0..layout.len() / per)
+                .map(|g| {
+                    let face = b.world_face(layout.sample(g * per).0);
+                    let t: f64 = truth[x][g * per..(g + 1) * per].iter().sum::<f64>() / per as f64;
+                    let m: f64 = mrt[x][g * per..(g + 1) * per].iter().sum::<f64>() / per as f64;
+                    format!("{face:?} {t:.4}/{m:.4}")
+                })
+                .collect();
+            println!("block {x}: {}", line.join(", "));
+        }
     }
     println!(
         "| block | shape | size (m) | direct | brute-force bounce | MRT bounce | MRT / brute force | texel rms / mean |"

@@ -24,7 +24,8 @@ const SIZE: (u32, u32) = (128, 72);
 
 /// A dictionary small enough to build in a debug test (seconds), large enough to carry light.
 fn small() -> MrtSettings {
-    let interfaces = InterfaceParams { positions: 4, directions: 8, supersample: 1, k_rlf: 48, k_r: 16, enrichment: 1 };
+    let interfaces =
+        InterfaceParams { positions: 4, directions: 8, supersample: 1, k_rlf: 48, k_r: 16, enrichment: 1, bands: 2 };
     let dictionary = DictionaryParams { res: 4, k_d: 32, k_b: 16, rays: 256, enrichment: 1, seed: 3, interfaces };
     MrtSettings { dictionary, ..MrtSettings::default() }
 }
@@ -333,11 +334,13 @@ fn the_gpu_runtime_computes_what_the_cpu_reference_computes_in_the_reduced_space
     // The same level on the CPU: blocks, transmissions, dictionary, T_b->r.
     let (mut cpu_level, _) = proxy::level(&project.scene).expect("a level");
     let bvh = bouncelab::precompute::bvh::SceneBvh::build(&project.scene);
-    for ((i, w), share) in geometry_image::transmissions(&bvh, &cpu_level) {
-        cpu_level.set_transmission(i, w, share);
-    }
     let (d, _) =
         cache::load_or_build(&cache::default_dir(), &mrt.dictionary, &Progress::default()).expect("dictionary");
+    for ((i, w), opening) in
+        geometry_image::openings(&project.scene, &bvh, &cpu_level, d.interfaces.positions.positions)
+    {
+        cpu_level.set_opening(i, w, opening);
+    }
     let ops = level::Operators { dictionary: &d, interfaces: &d.interfaces };
     let transfer = level::assemble(&cpu_level, &ops, mrt.depth as usize);
     let ranges: Vec<(usize, usize)> =

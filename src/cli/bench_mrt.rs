@@ -54,8 +54,15 @@ pub fn maze(count: usize, seed: u64) -> Level {
 /// Appends the MRT precompute section.
 pub fn mrt_rows(md: &mut String, quick: bool) -> anyhow::Result<()> {
     let params = if quick {
-        let interfaces =
-            InterfaceParams { positions: 6, directions: 12, supersample: 3, k_rlf: 128, k_r: 32, enrichment: 1 };
+        let interfaces = InterfaceParams {
+            positions: 6,
+            directions: 12,
+            supersample: 3,
+            k_rlf: 128,
+            k_r: 32,
+            enrichment: 1,
+            bands: 4,
+        };
         DictionaryParams { res: 8, rays: 1024, interfaces, ..DictionaryParams::default() }
     } else {
         DictionaryParams::default()

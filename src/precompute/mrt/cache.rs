@@ -8,7 +8,8 @@
 //! length-prefixed f64 arrays (prior, prior_sigma, data_sigma, m_sigma, u_b, t_db, l_imp); the
 //! interface operators: u32 k_rlf, the light-field spectrum, u32 exit count and per exit u8
 //! shape, u8 face and R_{b->rlf}, u32 turn count and per turn u8 turn and R, the response's u32
-//! res, n, k_r, U_r, T_{rlf->r} and spectrum; then a u64 FNV-1a checksum of everything before.
+//! res, n, k_r, U_r, T_{rlf->r} and spectrum, the u32 opening positions P and the per-position
+//! G_p, E_p and D_p ([`super::opening`]); then a u64 FNV-1a checksum of everything before.
 
 use std::path::{Path, PathBuf};
 
@@ -17,6 +18,7 @@ use thiserror::Error;
 use super::basis::Element;
 use super::dictionary::{self, Dictionary, DictionaryError, DictionaryParams, Progress};
 use super::interface::Exit;
+use super::opening::PositionOps;
 use super::operators::Interfaces;
 use super::propagate::Turn;
 use super::response::Response;
@@ -26,7 +28,7 @@ const MAGIC: &[u8; 8] = b"BLMRTDIC";
 
 /// Bumped whenever the file layout or the precompute's algorithm changes (old files are then
 /// rebuilt, never read).
-pub const FORMAT_VERSION: u32 = 3;
+pub const FORMAT_VERSION: u32 = 4;
 
 /// Why a cache file was not used, or could not be written.
 #[derive(Debug, Error)]
@@ -76,6 +78,7 @@ fn params_bytes(p: &DictionaryParams) -> Vec<u8> {
         i.k_rlf as u64,
         i.k_r as u64,
         i.enrichment as u64,
+        i.bands as u64,
     ] {
         out.extend_from_slice(&v.to_le_bytes());
     }
@@ -147,6 +150,11 @@ pub fn encode(d: &Dictionary) -> Vec<u8> {
     put_array(&mut out, &r.u_r);
     put_array(&mut out, &r.t_rlf_r);
     put_array(&mut out, &r.sigma);
+    let p = &i.positions;
+    out.extend_from_slice(&(p.positions as u32).to_le_bytes());
+    for a in [&p.gram, &p.irradiance, &p.diffuse] {
+        put_array(&mut out, a);
+    }
     let sum = fnv1a(&out);
     out.extend_from_slice(&sum.to_le_bytes());
     out
@@ -304,7 +312,18 @@ fn read_interfaces(r: &mut Reader<'_>, params: &DictionaryParams, elements: &[El
         t_rlf_r: r.array(k_r * k_rlf)?,
         sigma: r.spectrum(n.min(k_rlf))?,
     };
-    Ok(Interfaces { k_rlf, sigma, exits, turns, response })
+    let p = r.u32()? as usize;
+    if p != params.interfaces.positions {
+        return Err(format!("{p} opening positions where the parameters give {}", params.interfaces.positions));
+    }
+    let positions = PositionOps {
+        positions: p,
+        k: k_rlf,
+        gram: r.array(p * p * k_rlf * k_rlf)?,
+        irradiance: r.array(p * p * k_rlf)?,
+        diffuse: r.array(p * p * k_rlf)?,
+    };
+    Ok(Interfaces { k_rlf, sigma, exits, turns, response, positions })
 }
 
 /// The dictionary for `params` from `dir`, or built (and written there) when the file is

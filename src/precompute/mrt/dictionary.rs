@@ -62,7 +62,7 @@ impl DictionaryParams {
     /// Checks ranges.
     pub fn validate(&self) -> Result<(), DictionaryError> {
         let i = &self.interfaces;
-        let checks: [(&'static str, bool, String, &'static str); 10] = [
+        let checks: [(&'static str, bool, String, &'static str); 11] = [
             ("res", (2..=32).contains(&self.res), self.res.to_string(), "2..=32"),
             ("k_d", (1..=256).contains(&self.k_d), self.k_d.to_string(), "1..=256"),
             ("k_b", (1..=self.k_d).contains(&self.k_b), self.k_b.to_string(), "1..=k_d"),
@@ -73,6 +73,7 @@ impl DictionaryParams {
             ("interfaces.supersample", (1..=8).contains(&i.supersample), i.supersample.to_string(), "1..=8"),
             ("interfaces.k_r", (1..=i.k_rlf).contains(&i.k_r), i.k_r.to_string(), "1..=k_rlf"),
             ("interfaces.k_rlf", (1..=512).contains(&i.k_rlf), i.k_rlf.to_string(), "1..=512"),
+            ("interfaces.bands", i.bands <= i.positions, i.bands.to_string(), "0..=positions"),
         ];
         match checks.into_iter().find(|c| !c.1) {
             Some((name, _, value, range)) => Err(DictionaryError::Param { name, value, range }),
@@ -155,7 +156,8 @@ impl Dictionary {
 
 /// Parameters small enough for debug-build tests (3x3 texels, 2x2 x 4x4 light fields).
 pub fn test_params() -> DictionaryParams {
-    let interfaces = InterfaceParams { positions: 2, directions: 4, supersample: 1, k_rlf: 24, k_r: 8, enrichment: 1 };
+    let interfaces =
+        InterfaceParams { positions: 2, directions: 4, supersample: 1, k_rlf: 24, k_r: 8, enrichment: 1, bands: 0 };
     DictionaryParams { res: 3, k_d: 16, k_b: 8, rays: 64, enrichment: 1, seed: 2, interfaces }
 }
 
@@ -187,7 +189,7 @@ mod tests {
 
     fn tiny() -> DictionaryParams {
         let interfaces =
-            InterfaceParams { positions: 2, directions: 4, supersample: 1, k_rlf: 24, k_r: 8, enrichment: 1 };
+            InterfaceParams { positions: 2, directions: 4, supersample: 1, k_rlf: 24, k_r: 8, enrichment: 1, bands: 0 };
         DictionaryParams { res: 3, k_d: 16, k_b: 8, rays: 64, enrichment: 1, seed: 2, interfaces }
     }
 

@@ -14,7 +14,7 @@ const MIN_STRIP: f32 = 0.3;
 
 /// Joins rooms through their doorways. A room with at most one doorway per side stays one block
 /// (its doorway sides open; the level passes only the doorway's share of each, see
-/// `geometry_image::transmissions`). A room with two doorways on one side is split into strips
+/// `geometry_image::openings`). A room with two doorways on one side is split into strips
 /// at its doorways' jambs, so that each doorway is a whole side of one strip (the 2D dictionary
 /// opens whole sides only, one neighbour per side), the sides between its strips open. Measured
 /// on the suite's rooms (one bounce per room against a brute force in the real level,

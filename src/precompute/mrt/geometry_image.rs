@@ -10,6 +10,7 @@
 use glam::Vec3;
 
 use super::level::{Block, Level};
+use super::opening::Opening;
 use super::shape::Face;
 use super::shape::Layout;
 use crate::precompute::bvh::SceneBvh;
@@ -63,35 +64,87 @@ pub fn geometry_image(scene: &Scene, bvh: &SceneBvh, block: &Block, res: usize) 
         .collect()
 }
 
-/// The share of each linked block side that the real geometry leaves open: the points of an
-/// 8 x 8 grid on the side whose segment across it (`SEARCH` either way, at most 45% of the
-/// block's depth across the side) meets no surface. A room's doorway side passes only the
-/// doorway's share (lintel included); a side between two parts of one room passes all.
-pub fn transmissions(bvh: &SceneBvh, level: &Level) -> Vec<((usize, Face), f64)> {
-    const GRID: usize = 8;
+/// The frame of light leaving a block through one of its world sides (`lightfield::frame` in
+/// world space): opening coordinates (u across, v up, both 0..1) to world points on the side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SideFrame {
+    /// The side's centre on its plane.
+    pub centre: Vec3,
+    /// Unit normal out of the block.
+    pub n: Vec3,
+    /// Unit u direction (n x up).
+    pub u: Vec3,
+    /// The side's width along u and its bottom and top heights.
+    pub width: f32,
+    pub bottom: f32,
+    pub top: f32,
+}
+
+impl SideFrame {
+    /// The frame of block `i`'s world side `w`; `None` for a floor or ceiling (no up-aligned u).
+    pub fn new(level: &Level, i: usize, w: Face) -> Option<Self> {
+        let axis = w.axis();
+        if axis == 1 {
+            return None;
+        }
+        let mut n = Vec3::ZERO;
+        n[axis] = if w.positive() { 1.0 } else { -1.0 };
+        let u = n.cross(Vec3::Y);
+        let (plane, lo, hi) = level.side_rect(i, w);
+        let mut centre = 0.5 * (lo + hi);
+        centre[axis] = plane;
+        let width = level.blocks[i].size[u.abs().max_position()];
+        Some(Self { centre, n, u, width, bottom: lo.y, top: hi.y })
+    }
+
+    /// The world point at opening coordinates (`fu`, `fv`) in [0, 1]^2.
+    pub fn point(&self, fu: f32, fv: f32) -> Vec3 {
+        let mut q = self.centre + self.u * (self.width * (fu - 0.5));
+        q.y = self.bottom + (self.top - self.bottom) * fv;
+        q
+    }
+}
+
+/// What the real geometry leaves open of each linked block side, per light-field position
+/// (`positions`^2 cells in the frame of light leaving the block: u = n x up, v = up; see
+/// [`super::opening`]): 3 x 3 segments per cell across the side (`SEARCH` either way, at most
+/// 45% of the block's depth across it), the share that meets no surface, and the grey albedo of
+/// the surface that closes the rest as seen from inside the block. A room's doorway side is open
+/// only at the doorway (lintel closed); a side between two parts of one room is open everywhere.
+pub fn openings(scene: &Scene, bvh: &SceneBvh, level: &Level, positions: usize) -> Vec<((usize, Face), Opening)> {
+    const SUB: usize = 3;
+    let p = positions.max(1);
     level
         .linked_sides()
         .into_iter()
         .map(|(i, w)| {
-            let (plane, lo, hi) = level.side_rect(i, w);
-            let axis = w.axis();
-            let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
-            let reach = SEARCH.min(0.45 * level.blocks[i].size[axis]);
-            let mut n = Vec3::ZERO;
-            n[axis] = 1.0;
-            let mut open = 0;
-            for u in 0..GRID {
-                for v in 0..GRID {
-                    let mut p = Vec3::ZERO;
-                    p[axis] = plane;
-                    p[a] = lo[a] + (hi[a] - lo[a]) * (u as f32 + 0.5) / GRID as f32;
-                    p[b] = lo[b] + (hi[b] - lo[b]) * (v as f32 + 0.5) / GRID as f32;
-                    if !bvh.occluded(p - n * reach, n, 2.0 * reach) {
-                        open += 1;
+            let Some(frame) = SideFrame::new(level, i, w) else {
+                // A floor or ceiling opening has no up-aligned frame: counted open.
+                return ((i, w), Opening::uniform(p, 1.0, 0.0));
+            };
+            let n = frame.n;
+            let reach = SEARCH.min(0.45 * level.blocks[i].size[w.axis()]);
+            let mut open = vec![0.0; p * p];
+            let mut grey = vec![0.0; p * p];
+            for (cell, (o, a)) in open.iter_mut().zip(grey.iter_mut()).enumerate() {
+                let (ci, cj) = (cell % p, cell / p);
+                let (mut passed, mut closed_albedo) = (0usize, 0.0f32);
+                for sub in 0..SUB * SUB {
+                    let fu = ((ci * SUB + sub % SUB) as f32 + 0.5) / (p * SUB) as f32;
+                    let fv = ((cj * SUB + sub / SUB) as f32 + 0.5) / (p * SUB) as f32;
+                    match bvh.intersect(frame.point(fu, fv) - n * reach, n, 2.0 * reach) {
+                        None => passed += 1,
+                        Some(hit) => {
+                            let c = albedo(scene, bvh.tris[hit.tri as usize].material);
+                            closed_albedo += (c.x + c.y + c.z) / 3.0;
+                        }
                     }
                 }
+                let closed = SUB * SUB - passed;
+                *o = passed as f64 / (SUB * SUB) as f64;
+                *a = if closed > 0 { f64::from(closed_albedo) / closed as f64 } else { 0.0 };
             }
-            ((i, w), f64::from(open) / (GRID * GRID) as f64)
+            ((i, w), Opening { open, albedo: grey })
         })
         .collect()
 }

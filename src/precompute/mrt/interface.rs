@@ -93,12 +93,15 @@ fn balanced(blocks: &[(&[f64], usize)], s: usize) -> Mat<f64> {
 /// dissertation), then enriches it `enrichment` times (digest section 4.4, the dissertation's 3):
 /// the basis light fields H_rlf = U~ S pushed through the propagation operators (ahead, left,
 /// right) join H_rlf, balanced, and a new basis of k_rlf modes is taken, so that light carried
-/// one more block stays in span.
+/// one more block stays in span. With `bands` > 0 each pass also adds H_rlf masked to each of
+/// `bands` bands across the opening (along u): light that crosses a side only at a doorway
+/// ([`super::opening`]) then keeps its place instead of spreading over the side.
 pub fn build(
     elements: &[Element],
     res: &LightFieldRes,
     k_rlf: usize,
     enrichment: usize,
+    bands: usize,
 ) -> Result<InterfaceBasis, BasisError> {
     let s = res.len();
     // Each opening's light fields, s x k_b, and the element balancing of eq. 4.1.
@@ -136,8 +139,22 @@ pub fn build(
             u.chunks_exact(k.max(1)).flat_map(|row| row.iter().zip(&sigma).map(|(x, sg)| x * sg)).collect();
         let pushed: Vec<Vec<f64>> =
             propagate::Turn::ALL.iter().map(|&turn| propagate::resample(res, turn, &scaled, k)).collect();
+        let per_position = res.directions * res.directions;
+        let masked: Vec<Vec<f64>> = (0..bands)
+            .map(|band| {
+                let mut m = scaled.clone();
+                for (row, x) in m.chunks_exact_mut(k.max(1)).enumerate() {
+                    let i = (row / per_position) % res.positions;
+                    if i * bands / res.positions != band {
+                        x.iter_mut().for_each(|v| *v = 0.0);
+                    }
+                }
+                m
+            })
+            .collect();
         let mut blocks: Vec<(&[f64], usize)> = vec![(&scaled, k)];
         blocks.extend(pushed.iter().map(|p| (p.as_slice(), k)));
+        blocks.extend(masked.iter().map(|p| (p.as_slice(), k)));
         (u, sigma, k) = reduce(&balanced(&blocks, s), k_rlf)?;
     }
     let k_rlf = k;
@@ -171,11 +188,11 @@ mod tests {
     #[test]
     fn the_basis_is_orthonormal_and_carries_each_openings_light_fields() {
         let interfaces =
-            InterfaceParams { positions: 2, directions: 2, supersample: 1, k_rlf: 8, k_r: 4, enrichment: 0 };
+            InterfaceParams { positions: 2, directions: 2, supersample: 1, k_rlf: 8, k_r: 4, enrichment: 0, bands: 0 };
         let params = DictionaryParams { res: 3, k_d: 16, k_b: 6, rays: 64, enrichment: 1, seed: 3, interfaces };
         let dictionary = crate::precompute::mrt::dictionary::build(&params, &Progress::default()).expect("dictionary");
         let res = LightFieldRes { positions: 3, directions: 4, supersample: 2 };
-        let basis = build(&dictionary.elements, &res, 128, 0).expect("basis");
+        let basis = build(&dictionary.elements, &res, 128, 0, 0).expect("basis");
         assert_eq!(basis.exits.len(), 12, "every open side of the dictionary");
         // Orthonormal columns.
         for a in 0..basis.k_rlf {

@@ -13,6 +13,7 @@ use glam::Vec3;
 
 use super::dictionary::Dictionary;
 use super::gather::{cosine_rays, ray_count};
+use super::opening::Opening;
 use super::operators::Interfaces;
 use super::propagate::{ENTRY, Turn};
 use super::response;
@@ -96,9 +97,10 @@ pub struct Level {
     links: HashMap<(usize, Face), usize>,
     /// Per block, the flux correction of its stretch ([`super::warp`]).
     pub warps: Vec<Warp>,
-    /// (block, world side) -> the share of the linked side that is really open (1 unless set:
-    /// a doorway with a lintel in a side as tall as the room passes only its own share).
-    transmission: HashMap<(usize, Face), f64>,
+    /// (block, world side) -> what the real level leaves open of the linked side, per position
+    /// (fully open unless set: a doorway in a side as tall as the room passes light only where
+    /// it is, and the wall around it reflects).
+    openings: HashMap<(usize, Face), Opening>,
 }
 
 /// Whether block `a`'s world side `w` and block `b`'s opposite side lie on one plane (within
@@ -137,7 +139,7 @@ impl Level {
             let present: Vec<Face> = b.shape.present_faces().into_iter().map(|f| b.world_face(f)).collect();
             warps.push(same.map_or_else(|| Warp::new(b.size, &present), |j| warps[j]));
         }
-        Self { blocks, links, warps, transmission: HashMap::new() }
+        Self { blocks, links, warps, openings: HashMap::new() }
     }
 
     /// The level without the stretch correction: the dissertation's plain warp (for
@@ -147,14 +149,19 @@ impl Level {
         self
     }
 
-    /// Sets the share of linked side `w` of block `i` that is really open (clamped to 0..=1).
-    pub fn set_transmission(&mut self, i: usize, w: Face, share: f64) {
-        self.transmission.insert((i, w), share.clamp(0.0, 1.0));
+    /// Sets what the real level leaves open of linked side `w` of block `i`.
+    pub fn set_opening(&mut self, i: usize, w: Face, opening: Opening) {
+        self.openings.insert((i, w), opening);
+    }
+
+    /// What the real level leaves open of linked side `w` of block `i` (`None`: all of it).
+    pub fn opening(&self, i: usize, w: Face) -> Option<&Opening> {
+        self.openings.get(&(i, w))
     }
 
     /// The share of linked side `w` of block `i` that light passes.
     pub fn transmission(&self, i: usize, w: Face) -> f64 {
-        self.transmission.get(&(i, w)).copied().unwrap_or(1.0)
+        self.openings.get(&(i, w)).map_or(1.0, Opening::share)
     }
 
     /// Every linked (block, world side), in a fixed order.
@@ -250,6 +257,10 @@ pub struct Operators<'a> {
 pub struct Transfer {
     /// ((source, receiver, entry side), k_r x k_b row-major).
     pub blocks: HashMap<(usize, usize, Face), Vec<f64>>,
+    /// ((source, block, world side), P^2 x k_b row-major): the light (E / pi of a white
+    /// receiver) reaching each opening position of a partly open side from inside the block:
+    /// the wall around a doorway, which has no texels of its own.
+    pub sides: HashMap<(usize, usize, Face), Vec<f64>>,
 }
 
 /// a (r x k) += m (r x c) * x (c x k).
@@ -265,10 +276,87 @@ fn mul_add(out: &mut [f64], m: &[f64], x: &[f64], r: usize, c: usize, k: usize) 
     }
 }
 
-/// Assembles T_{b->r} by propagation up to `depth` blocks beyond each source's neighbours.
+/// The masks and reflections of every partly open linked side, built once per assembly.
+struct SideOps {
+    /// (block, world side) -> M (k_rlf x k_rlf): the light that crosses.
+    masks: HashMap<(usize, Face), Vec<f64>>,
+    /// (block, world side) -> S (k_rlf x k_rlf): the light the closed part sends back in.
+    reflections: HashMap<(usize, Face), Vec<f64>>,
+    /// E_p / pi per position (P^2 x k_rlf): a white receiver's light at each position.
+    receiver: Vec<f64>,
+}
+
+impl SideOps {
+    fn new(level: &Level, ops: &Operators<'_>) -> Self {
+        let positions = &ops.interfaces.positions;
+        let n = positions.positions * positions.positions;
+        let receiver = positions.irradiance.iter().map(|e| e / std::f64::consts::PI).collect();
+        let mut out = Self { masks: HashMap::new(), reflections: HashMap::new(), receiver };
+        for (key, o) in &level.openings {
+            if positions.k != ops.interfaces.k_rlf {
+                break;
+            }
+            // An opening sampled at another resolution counts at its mean share.
+            let uniform;
+            let o = if o.open.len() == n {
+                o
+            } else {
+                let grey = o.albedo.iter().sum::<f64>() / o.albedo.len().max(1) as f64;
+                uniform = Opening::uniform(positions.positions, o.share(), grey);
+                &uniform
+            };
+            if let Some(m) = positions.mask(&o.open) {
+                out.masks.insert(*key, m);
+            }
+            if let Some(r) = positions.reflection(&o.open, &o.albedo) {
+                out.reflections.insert(*key, r);
+            }
+        }
+        out
+    }
+
+    /// Light `a` (k_rlf x k_b, from source block `source`'s b) reaching block `x`'s linked side
+    /// `w` from inside, scaled by `scale`: what crosses into `y` through the opposite side, what
+    /// the closed part sends back into `x` through `w`, and (into `sides`) what the closed
+    /// part receives.
+    #[allow(clippy::too_many_arguments)]
+    fn split(
+        &self,
+        (source, x, w, y): (usize, usize, Face, usize),
+        a: &[f64],
+        scale: f64,
+        ops: &Operators<'_>,
+        k_b: usize,
+        into: &mut HashMap<(usize, Face), Vec<f64>>,
+        sides: &mut HashMap<(usize, usize, Face), Vec<f64>>,
+    ) {
+        let k_rlf = ops.interfaces.k_rlf;
+        let scaled: Vec<f64> = a.iter().map(|v| v * scale).collect();
+        if self.reflections.contains_key(&(x, w)) {
+            let n = self.receiver.len() / k_rlf.max(1);
+            let out = sides.entry((source, x, w)).or_insert_with(|| vec![0.0; n * k_b]);
+            mul_add(out, &self.receiver, &scaled, n, k_rlf, k_b);
+        }
+        let out = into.entry((y, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
+        match self.masks.get(&(x, w)) {
+            Some(m) => mul_add(out, m, &scaled, k_rlf, k_rlf, k_b),
+            None => out.iter_mut().zip(&scaled).for_each(|(o, s)| *o += s),
+        }
+        if let Some(r) = self.reflections.get(&(x, w)) {
+            let back = into.entry((x, w)).or_insert_with(|| vec![0.0; k_rlf * k_b]);
+            mul_add(back, r, &scaled, k_rlf, k_rlf, k_b);
+        }
+    }
+}
+
+/// Assembles T_{b->r} by propagation up to `depth` blocks beyond each source's neighbours. At a
+/// partly open side ([`Level::set_opening`]) the light crossing is masked position by position
+/// and the closed part reflects back into the block it came from ([`super::opening`]); what the
+/// closed part receives is kept for its own lookup ([`Transfer::sides`]).
 pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
     let k_rlf = ops.interfaces.k_rlf;
     let k_r = ops.interfaces.response.k_r;
+    let sides = SideOps::new(level, ops);
     let mut transfer = Transfer::default();
     for (x, bx) in level.blocks.iter().enumerate() {
         let Some(ex) = ops.dictionary.element(bx.shape) else { continue };
@@ -278,9 +366,8 @@ pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
         for &f in bx.shape.open_faces() {
             let w = bx.world_face(f);
             let (Some(y), Some(exit)) = (level.link(x, w), ops.interfaces.exit(bx.shape, f)) else { continue };
-            let a = frontier.entry((y, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
-            let scale = level.warps[x].walls[w as usize].min(super::warp::CAP) * level.transmission(x, w);
-            a.iter_mut().zip(&exit.r_b_rlf).for_each(|(a, r)| *a += scale * r);
+            let scale = level.warps[x].walls[w as usize].min(super::warp::CAP);
+            sides.split((x, x, w, y), &exit.r_b_rlf, scale, ops, k_b, &mut frontier, &mut transfer.sides);
         }
         for step in 0..=depth {
             let mut next: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
@@ -295,11 +382,10 @@ pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
                     let w = by.world_face(f);
                     let (Some(z), Some(turn)) = (level.link(*y, w), turn_between(*entry, w)) else { continue };
                     let Some(r) = ops.interfaces.turn(turn) else { continue };
-                    let out = next.entry((z, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
-                    let scale = level.warps[*y].through[*entry as usize][w as usize].min(super::warp::CAP)
-                        * level.transmission(*y, w);
-                    let scaled: Vec<f64> = a.iter().map(|v| v * scale).collect();
-                    mul_add(out, r, &scaled, k_rlf, k_rlf, k_b);
+                    let mut leaving = vec![0.0; k_rlf * k_b];
+                    mul_add(&mut leaving, r, a, k_rlf, k_rlf, k_b);
+                    let scale = level.warps[*y].through[*entry as usize][w as usize].min(super::warp::CAP);
+                    sides.split((x, *y, w, z), &leaving, scale, ops, k_b, &mut next, &mut transfer.sides);
                 }
             }
             frontier = next;
@@ -424,6 +510,35 @@ pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[
     out
 }
 
+/// A frame's light on the closed part of every partly open side ([`Transfer::sides`]) from the
+/// blocks' direct light `l_d`: ((block, world side), E / pi per opening position).
+pub fn side_light(
+    level: &Level,
+    ops: &Operators<'_>,
+    transfer: &Transfer,
+    l_d: &[Vec<f64>],
+) -> Vec<((usize, Face), Vec<f64>)> {
+    let b: Vec<Vec<f64>> = level
+        .blocks
+        .iter()
+        .zip(l_d)
+        .map(|(blk, l)| ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.project(l)))
+        .collect();
+    let mut out: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
+    for ((src, x, w), m) in &transfer.sides {
+        let bs = &b[*src];
+        let k_b = bs.len().max(1);
+        let n = m.len() / k_b;
+        let v = out.entry((*x, *w)).or_insert_with(|| vec![0.0; n]);
+        for (i, vi) in v.iter_mut().enumerate() {
+            *vi += m[i * k_b..(i + 1) * k_b].iter().zip(bs).map(|(a, c)| a * c).sum::<f64>();
+        }
+    }
+    let mut v: Vec<((usize, Face), Vec<f64>)> = out.into_iter().collect();
+    v.sort_by_key(|(k, _)| *k);
+    v
+}
+
 /// The same bounce by brute force: from every sample of every block, `rays` cosine rays traced
 /// through the level's linked openings to the wall they meet, which gives its direct light.
 /// Rays are cosine-distributed in each block's canonical (unit-cube) frame: exact for unit
@@ -533,8 +648,15 @@ mod tests {
     /// The dictionary with its interface operators at test sizes (4x4 texels, 6x6 x 10x10 x
     /// 2x2 light fields, one enrichment pass).
     fn built() -> Dictionary {
-        let interfaces =
-            InterfaceParams { positions: 6, directions: 10, supersample: 2, k_rlf: 128, k_r: 32, enrichment: 1 };
+        let interfaces = InterfaceParams {
+            positions: 6,
+            directions: 10,
+            supersample: 2,
+            k_rlf: 128,
+            k_r: 32,
+            enrichment: 1,
+            bands: 0,
+        };
         let params = DictionaryParams { res: 4, k_d: 48, k_b: 24, rays: 1024, enrichment: 1, seed: 9, interfaces };
         crate::precompute::mrt::dictionary::build(&params, &Progress::default()).expect("dictionary")
     }

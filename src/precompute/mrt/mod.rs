@@ -10,7 +10,8 @@
 //! T_{b->r} and a frame's indirect light in the reduced spaces ([`level`]); the real surface
 //! behind each block texel ([`geometry_image`]); the flux correction of stretched blocks
 //! ([`warp`]); proxy blocks fitted to a bare level ([`fit`], joined through their doorways by
-//! [`doorways`]). The GPU runtime (`render::gi::mrt`) builds on these.
+//! [`doorways`]); sides the level leaves only partly open, masked and reflecting position by
+//! position ([`opening`]). The GPU runtime (`render::gi::mrt`) builds on these.
 
 pub mod basis;
 pub mod cache;
@@ -22,6 +23,7 @@ pub mod geometry_image;
 pub mod interface;
 pub mod level;
 pub mod lightfield;
+pub mod opening;
 pub mod operators;
 pub mod prior;
 pub mod propagate;

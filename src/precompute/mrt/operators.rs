@@ -1,6 +1,7 @@
 //! The level-independent interface operators a level's assembly needs, built once from the
 //! dictionary (Loos 2015 §4.2, digest sections 4.2-4.4): each opening's R_{b->rlf}, the
-//! propagation R ahead / left / right and the surface response U_r, T_{rlf->r}. The light-field
+//! propagation R ahead / left / right, the surface response U_r, T_{rlf->r} and the per-position
+//! operators of partly open sides ([`super::opening`]). The light-field
 //! basis U~ itself (s x k_rlf, 85 MB at the dissertation's resolution) is only needed to build
 //! them and is not kept.
 
@@ -10,6 +11,7 @@ use super::basis::{BasisError, Element};
 use super::dictionary::DictionaryParams;
 use super::interface::{self, Exit};
 use super::lightfield::LightFieldRes;
+use super::opening::PositionOps;
 use super::propagate::{self, Turn};
 use super::response::{self, Response};
 
@@ -29,11 +31,15 @@ pub struct InterfaceParams {
     pub k_r: usize,
     /// Enrichment passes of the light-field basis (the dissertation's 3).
     pub enrichment: usize,
+    /// Bands across an opening (along u) whose masked copies of the basis join each enrichment
+    /// pass, so that light crossing only part of a side (a doorway in a room's wall) keeps its
+    /// place (0: the dissertation's basis, whose fields are smooth across a side).
+    pub bands: usize,
 }
 
 impl Default for InterfaceParams {
     fn default() -> Self {
-        Self { positions: 12, directions: 24, supersample: 5, k_rlf: 128, k_r: 32, enrichment: 3 }
+        Self { positions: 12, directions: 24, supersample: 5, k_rlf: 128, k_r: 32, enrichment: 3, bands: 6 }
     }
 }
 
@@ -57,6 +63,8 @@ pub struct Interfaces {
     pub turns: Vec<(Turn, Vec<f64>)>,
     /// The surface response.
     pub response: Response,
+    /// The per-position masks and reflections of partly open sides.
+    pub positions: PositionOps,
 }
 
 impl Interfaces {
@@ -75,9 +83,10 @@ impl Interfaces {
 /// resolution, rays and seed).
 pub fn build(elements: &[Element], d: &DictionaryParams, params: &InterfaceParams) -> Result<Interfaces, BasisError> {
     let lf = params.light_field();
-    let basis = interface::build(elements, &lf, params.k_rlf, params.enrichment)?;
+    let basis = interface::build(elements, &lf, params.k_rlf, params.enrichment, params.bands)?;
     let turns = Turn::ALL.iter().map(|&t| (t, propagate::reduced(&lf, t, &basis.u, basis.k_rlf))).collect();
     let kept = &basis.sigma[..basis.k_rlf];
     let response = response::build(d.res, &lf, &basis.u, kept, basis.k_rlf, params.k_r, d.rays, d.seed)?;
-    Ok(Interfaces { k_rlf: basis.k_rlf, sigma: basis.sigma, exits: basis.exits, turns, response })
+    let positions = PositionOps::build(&lf, &basis.u, basis.k_rlf);
+    Ok(Interfaces { k_rlf: basis.k_rlf, sigma: basis.sigma, exits: basis.exits, turns, response, positions })
 }

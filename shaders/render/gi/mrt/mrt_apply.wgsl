@@ -3,8 +3,9 @@
 // normal; or the block an artist assigned its object to) and to that block's present face whose inward normal is closest to the pixel's normal
 // (a floor to the floor, a wall to the wall behind it); its lightmap coordinate is the
 // orthographic projection of the point onto that face in the block's canonical frame, read
-// bilinearly between texel centres, clamped at the face's border. A surface in an open side
-// blends its neighbouring faces; near a side open over its whole area the block beyond is
+// bilinearly between texel centres, clamped at the face's border. A surface in a partly open
+// side (the wall around a doorway) reads that side's own texels (pass E); one in a side open
+// over its whole area blends its neighbouring faces; near a side open over its whole area the block beyond is
 // blended in (padding). Writes E / pi (the composite multiplies by the albedo);
 // `assignment` holds the block and face for the inspector.
 #import common/frame.wgsl
@@ -89,6 +90,31 @@ fn open_side_lookup(blk: Block, face: u32, lp: vec3<f32>) -> vec3<f32> {
     return sum / max(weight, 1.0e-6);
 }
 
+// The light on the closed part of partly open world side `side` of `blk` at world point `p`:
+// bilinear between the P x P side texels from `start` (u = n x up across the side, v up; the
+// frame of `precompute::mrt::geometry_image::SideFrame`), clamped at the border.
+fn side_lookup(blk: Block, side: u32, start: u32, p: vec3<f32>) -> vec3<f32> {
+    let axis = side / 2u;
+    var n = vec3<f32>(0.0);
+    n[axis] = select(-1.0, 1.0, side % 2u == 1u);
+    let u = cross(n, vec3<f32>(0.0, 1.0, 0.0));
+    let centre = blk.origin.xyz + 0.5 * blk.size.xyz;
+    let width = select(blk.size.x, blk.size.z, abs(u.z) > 0.5);
+    let fu = dot(p - centre, u) / width + 0.5;
+    let fv = (p.y - blk.origin.y) / blk.size.y;
+    let res = f32(mp.sides.x);
+    let c = clamp(vec2<f32>(fu, fv) * res - 0.5, vec2<f32>(0.0), vec2<f32>(res - 1.0));
+    let i0 = vec2<u32>(floor(c));
+    let i1 = min(i0 + 1u, vec2<u32>(mp.sides.x - 1u));
+    let f = c - floor(c);
+    let at = start + vec4<u32>(i0.y, i0.y, i1.y, i1.y) * mp.sides.x + vec4<u32>(i0.x, i1.x, i0.x, i1.x);
+    let a = max(indirect[at.x].rgb, vec3<f32>(0.0));
+    let b = max(indirect[at.y].rgb, vec3<f32>(0.0));
+    let c0 = max(indirect[at.z].rgb, vec3<f32>(0.0));
+    let d = max(indirect[at.w].rgb, vec3<f32>(0.0));
+    return mix(mix(a, b, f.x), mix(c0, d, f.x), f.y);
+}
+
 // The light of block `x` at world point `p` with normal `n` (rgb) and the canonical face read (w).
 fn block_light(x: u32, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     let blk = blocks[x];
@@ -109,6 +135,10 @@ fn block_light(x: u32, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     let face = block_local(blk, side);
     let start = block_start(blk, face);
     if start == MRT_NONE {
+        let side_start = block_side(blk, side);
+        if side_start != MRT_NONE {
+            return vec4<f32>(side_lookup(blk, side, side_start, p), f32(face));
+        }
         return vec4<f32>(open_side_lookup(blk, face, lp), f32(face));
     }
     return vec4<f32>(face_lookup(start, face, lp), f32(face));

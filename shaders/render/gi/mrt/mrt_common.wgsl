@@ -31,6 +31,10 @@ struct Block {
     // MRT_NONE (the lookup pads across such sides).
     across_a: vec4<u32>,
     across_b: vec4<u32>,
+    // Per world side: the first of its P^2 side texels (in the indirect buffer) where it is
+    // partly open (the wall around a doorway), else MRT_NONE.
+    sides_a: vec4<u32>,
+    sides_b: vec4<u32>,
 }
 
 struct MrtParams {
@@ -40,6 +44,8 @@ struct MrtParams {
     sizes: vec4<u32>,
     // feedback gain, unused x3.
     gains: vec4<f32>,
+    // opening positions per side P, partly open sides, side texels, unused.
+    sides: vec4<u32>,
 }
 
 // The first texel of canonical face `face`, MRT_NONE where it is open.
@@ -55,6 +61,14 @@ fn block_across(b: Block, face: u32) -> u32 {
         return b.across_a[face];
     }
     return b.across_b[face - 4u];
+}
+
+// The first side texel of world side `side`, MRT_NONE where it is not partly open.
+fn block_side(b: Block, side: u32) -> u32 {
+    if side < 4u {
+        return b.sides_a[side];
+    }
+    return b.sides_b[side - 4u];
 }
 
 fn block_local(b: Block, side: u32) -> u32 {

@@ -143,8 +143,9 @@ pub fn build_level(
     }
     .map_err(|e| e.to_string())?;
     let mut openings = Vec::new();
-    for ((i, w), share) in geometry_image::transmissions(&bvh, &level) {
-        level.set_transmission(i, w, share);
+    for ((i, w), opening) in geometry_image::openings(scene, &bvh, &level, dictionary.interfaces.positions.positions) {
+        let share = opening.share();
+        level.set_opening(i, w, opening);
         let (plane, lo, hi) = level.side_rect(i, w);
         let mut centre = 0.5 * (lo + hi);
         centre[w.axis()] = plane;

@@ -53,9 +53,12 @@ pub struct GpuBlock {
     /// Per canonical face: the block beyond it where it is an opening open over its whole area
     /// (the lookup pads across it), else [`NONE`].
     pub across: [u32; 8],
+    /// Per world side: the first of its P^2 side texels (in the indirect buffer) where it is
+    /// partly open (the wall around a doorway), else [`NONE`].
+    pub sides: [u32; 8],
 }
 
-const _: () = assert!(std::mem::size_of::<GpuBlock>() == 160);
+const _: () = assert!(std::mem::size_of::<GpuBlock>() == 192);
 
 /// The share of a linked side that must be open for the lookup to pad across it: a doorway in
 /// a room's whole side is not, and padding there would carry light through the wall beside it.
@@ -66,7 +69,12 @@ pub const PAD_OPEN: f64 = 0.95;
 pub type GpuSlot = [u32; 4];
 
 /// One T_{b->r} matrix (`Entry`): source block, offset of its k_r x k_b matrix, unused x2.
+/// The side matrices' entries are laid out alike (P^2 x k_b).
 pub type GpuEntry = [u32; 4];
+
+/// One partly open side's record: its first side entry, entry count, first side texel (in the
+/// indirect buffer, after the block texels), block.
+pub type GpuSide = [u32; 4];
 
 /// Everything the runtime uploads.
 #[derive(Clone, Debug, Default)]
@@ -95,6 +103,14 @@ pub struct Packed {
     /// Per scene object, the block its surfaces read (an artist's override), or [`NONE`]
     /// (the nearest block to each point).
     pub object_block: Vec<u32>,
+    /// Per partly open side ([`level::Transfer::sides`]).
+    pub sides: Vec<GpuSide>,
+    /// Per side matrix, grouped by side.
+    pub side_entries: Vec<GpuEntry>,
+    /// The side matrices (P^2 x k_b each).
+    pub side_matrices: Vec<f32>,
+    /// Opening positions per side P (a side's P^2 texels, u across, v up).
+    pub positions: u32,
     /// Modes per block k_b, response modes k_r, texels per face side, texels with a surface.
     pub k_b: u32,
     pub k_r: u32,
@@ -110,10 +126,11 @@ impl Packed {
             + self.transfer.len()
             + self.rows.len()
             + self.row_scales.len()
-            + self.own_scales.len();
+            + self.own_scales.len()
+            + self.side_matrices.len();
         (std::mem::size_of_val(self.texels.as_slice())
             + std::mem::size_of_val(self.blocks.as_slice())
-            + 16 * (self.entries.len() + self.slots.len())
+            + 16 * (self.entries.len() + self.slots.len() + self.sides.len() + self.side_entries.len())
             + 4 * words) as u64
     }
 }
@@ -172,6 +189,29 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
             p.transfer.extend((0..k_b).map(|j| if j < source { m[i * source + j] as f32 } else { 0.0 }));
         }
     }
+    // Partly open sides: their P^2 texels follow the block texels in the indirect buffer.
+    p.positions = dictionary.interfaces.positions.positions as u32;
+    let per_side = (p.positions * p.positions) as usize;
+    let block_texels: usize = level.blocks.iter().map(|b| Layout::new(b.shape, res).len()).sum();
+    let mut side_keys: Vec<(usize, Face, usize)> = transfer.sides.keys().map(|(src, x, w)| (*x, *w, *src)).collect();
+    side_keys.sort_by_key(|(x, w, src)| (*x, *w as usize, *src));
+    let mut side_first: Vec<((usize, Face), u32)> = Vec::new();
+    for (x, w, src) in side_keys {
+        let Some(m) = transfer.sides.get(&(src, x, w)) else { continue };
+        if side_first.last().is_none_or(|(k, _)| *k != (x, w)) {
+            let first = (block_texels + p.sides.len() * per_side) as u32;
+            side_first.push(((x, w), first));
+            p.sides.push([p.side_entries.len() as u32, 0, first, x as u32]);
+        }
+        if let Some(side) = p.sides.last_mut() {
+            side[1] += 1;
+        }
+        p.side_entries.push([src as u32, p.side_matrices.len() as u32, 0, 0]);
+        let source = m.len() / per_side.max(1);
+        for i in 0..per_side {
+            p.side_matrices.extend((0..k_b).map(|j| if j < source { m[i * source + j] as f32 } else { 0.0 }));
+        }
+    }
     for (bi, b) in level.blocks.iter().enumerate() {
         let layout = Layout::new(b.shape, res);
         let first = p.texels.len() as u32;
@@ -202,6 +242,12 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
                 across[*f as usize] = j as u32;
             }
         }
+        let mut sides = [NONE; 8];
+        for ((x, w), first) in &side_first {
+            if *x == bi {
+                sides[*w as usize] = *first;
+            }
+        }
         let mut slots = [NONE; 4];
         for (k, (_, s)) in slot_of.iter().filter(|((y, _), _)| *y == bi).take(4).enumerate() {
             slots[k] = *s;
@@ -214,6 +260,7 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
             local,
             slots,
             across,
+            sides,
         });
     }
     // wgpu refuses empty bindings and the upload pads short ones with zeros, which an index

@@ -1,7 +1,8 @@
 //! MRT's GPU passes (Loos 2015 §3.6.3; digest section 7.3's wgpu mapping): A direct light at the
 //! texels (`mrt_direct.wgsl`), B b = T_{d->b} l_d (`mrt_reduce.wgsl`), C r = T_{b->r} b
 //! (`mrt_interface.wgsl`), D the texels' indirect light U_b b + U_r r (`mrt_reconstruct.wgsl`),
-//! F the lightmap on the view (`mrt_apply.wgsl`). Each is its own timed compute pass. The
+//! E the light on the closed part of partly open sides (`mrt_sides.wgsl`), F the lightmap on
+//! the view (`mrt_apply.wgsl`). Each is its own timed compute pass. The
 //! level's buffers are uploaded when the level changes; the per-frame ones (l_d, b, r, the
 //! texels' indirect light) live with them, so the texels' light of the last frame is there for
 //! the feedback and the inspector.
@@ -25,9 +26,11 @@ pub struct MrtParams {
     pub sizes: [u32; 4],
     /// Feedback gain, unused x3.
     pub gains: [f32; 4],
+    /// Opening positions per side P, partly open sides, side texels, unused.
+    pub sides: [u32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<MrtParams>() == 48);
+const _: () = assert!(std::mem::size_of::<MrtParams>() == 64);
 
 /// What a binding is (each maps to one of `render::layouts`' entries).
 #[derive(Clone, Copy)]
@@ -109,6 +112,9 @@ struct LevelBuffers {
     row_scales: wgpu::Buffer,
     own_scales: wgpu::Buffer,
     object_block: wgpu::Buffer,
+    sides: wgpu::Buffer,
+    side_entries: wgpu::Buffer,
+    side_matrices: wgpu::Buffer,
     l_d: wgpu::Buffer,
     b: wgpu::Buffer,
     r: wgpu::Buffer,
@@ -118,7 +124,7 @@ struct LevelBuffers {
 }
 
 impl LevelBuffers {
-    fn all(&self) -> [&wgpu::Buffer; 17] {
+    fn all(&self) -> [&wgpu::Buffer; 20] {
         [
             &self.params,
             &self.texels,
@@ -132,6 +138,9 @@ impl LevelBuffers {
             &self.row_scales,
             &self.own_scales,
             &self.object_block,
+            &self.sides,
+            &self.side_entries,
+            &self.side_matrices,
             &self.l_d,
             &self.b,
             &self.r,
@@ -167,6 +176,7 @@ struct LevelGroups {
     reduce: wgpu::BindGroup,
     interface: wgpu::BindGroup,
     reconstruct: wgpu::BindGroup,
+    sides: wgpu::BindGroup,
 }
 
 /// A whole buffer as a binding.
@@ -180,6 +190,7 @@ pub struct MrtPasses {
     reduce: Pass,
     interface: Pass,
     reconstruct: Pass,
+    sides: Pass,
     apply: Pass,
     shadow_sampler: wgpu::Sampler,
     level: Option<LevelBuffers>,
@@ -205,6 +216,7 @@ impl MrtPasses {
                 "mrt_reconstruct",
                 &[Uniform, Read, Read, Read, Read, Read, Read, Read, Read, Write, Write, Read, Read],
             )?,
+            sides: Pass::new(device, "mrt_sides", &[Uniform, Read, Read, Read, Read, Write])?,
             apply: Pass::new(
                 device,
                 "mrt_apply",
@@ -220,10 +232,12 @@ impl MrtPasses {
     /// Uploads a level (replacing the previous one; its texels' light starts at zero).
     pub fn upload(&mut self, device: &wgpu::Device, p: &Packed) {
         let texels = p.texels.len();
+        let side_texels = p.sides.len() * (p.positions * p.positions) as usize;
         let counts = MrtParams {
             counts: [p.blocks.len() as u32, texels as u32, p.slots.len() as u32, p.k_b],
             sizes: [p.k_r, p.res, 0, 0],
             gains: [0.0; 4],
+            sides: [p.positions, p.sides.len() as u32, side_texels as u32, 0],
         };
         self.level = Some(LevelBuffers {
             params: device.create_buffer(&wgpu::BufferDescriptor {
@@ -243,10 +257,13 @@ impl MrtPasses {
             row_scales: upload(device, "mrt response stretch corrections", &p.row_scales),
             own_scales: upload(device, "mrt own-light stretch corrections", &p.own_scales),
             object_block: upload(device, "mrt object block overrides", &p.object_block),
+            sides: upload(device, "mrt partly open sides", &p.sides),
+            side_entries: upload(device, "mrt side matrix entries", &p.side_entries),
+            side_matrices: upload(device, "mrt side matrices", &p.side_matrices),
             l_d: vec4s(device, "mrt l_d", texels),
             b: vec4s(device, "mrt b per face", p.blocks.len() * 6 * p.k_b as usize),
             r: vec4s(device, "mrt r", p.slots.len() * p.k_r as usize),
-            indirect: vec4s(device, "mrt texel indirect", texels),
+            indirect: vec4s(device, "mrt texel indirect (block texels, then side texels)", texels + side_texels),
             within: vec4s(device, "mrt texel within-block indirect", texels),
             counts,
         });
@@ -285,7 +302,12 @@ impl MrtPasses {
                 buf(&l.own_scales),
             ],
         );
-        LevelGroups { reduce, interface, reconstruct }
+        let sides = self.sides.bind(
+            device,
+            "mrt_sides",
+            &[buf(&l.params), buf(&l.sides), buf(&l.side_entries), buf(&l.side_matrices), buf(&l.b), buf(&l.indirect)],
+        );
+        LevelGroups { reduce, interface, reconstruct, sides }
     }
 
     /// Whether a level is uploaded.
@@ -344,11 +366,13 @@ impl MrtPasses {
             ],
         );
         let k_r = l.counts.sizes[0];
-        let steps: [(&str, &Pass, &wgpu::BindGroup, [u32; 3]); 5] = [
+        let [positions, sides, _, _] = l.counts.sides;
+        let steps: [(&str, &Pass, &wgpu::BindGroup, [u32; 3]); 6] = [
             ("mrt direct texels", &self.direct, &direct, [texels.div_ceil(64), 1, 1]),
             ("mrt b", &self.reduce, &g.reduce, [k_b, blocks, 6]),
             ("mrt interfaces r", &self.interface, &g.interface, [(slots * k_r).div_ceil(64), 1, 1]),
             ("mrt reconstruct", &self.reconstruct, &g.reconstruct, [texels.div_ceil(64), 1, 1]),
+            ("mrt sides", &self.sides, &g.sides, [(positions * positions).div_ceil(64), sides, 1]),
             ("mrt apply", &self.apply, &apply, [size.0.div_ceil(8), size.1.div_ceil(8), 1]),
         ];
         for (name, pass, group, [x, y, z]) in steps {
@@ -363,7 +387,8 @@ impl MrtPasses {
         true
     }
 
-    /// Reads a per-texel buffer ("l_d", "indirect", "within") as RGBA floats.
+    /// Reads a per-texel buffer ("l_d", "indirect", "within") as RGBA floats, or "sides": the
+    /// side texels (P^2 per partly open side, in the order of the level's side records).
     pub fn read_texels(
         &self,
         device: &wgpu::Device,
@@ -371,17 +396,17 @@ impl MrtPasses {
         which: &str,
     ) -> Option<Result<Vec<[f32; 4]>, readback::ReadbackError>> {
         let l = self.level.as_ref()?;
-        let buffer = match which {
-            "l_d" => &l.l_d,
-            "indirect" => &l.indirect,
-            "within" => &l.within,
+        let (buffer, skip) = match which {
+            "l_d" => (&l.l_d, 0),
+            "indirect" => (&l.indirect, 0),
+            "within" => (&l.within, 0),
+            "sides" => (&l.indirect, l.counts.counts[1] as usize),
             _ => return None,
         };
-        let texels = l.counts.counts[1] as usize;
-        Some(
-            readback::read_buffer(device, queue, buffer)
-                .map(|bytes| bytemuck::pod_collect_to_vec::<u8, [f32; 4]>(&bytes).into_iter().take(texels).collect()),
-        )
+        let count = if which == "sides" { l.counts.sides[2] as usize } else { l.counts.counts[1] as usize };
+        Some(readback::read_buffer(device, queue, buffer).map(|bytes| {
+            bytemuck::pod_collect_to_vec::<u8, [f32; 4]>(&bytes).into_iter().skip(skip).take(count).collect()
+        }))
     }
 
     /// Reads the b coefficients (blocks x 6 face slots x k_b, rgb) or r (interfaces x k_r).
