@@ -52,7 +52,12 @@ fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().collect();
     let name = args.get(1).map_or("rooms", String::as_str);
     let rays: usize = args.get(2).map_or(Ok(1024), |s| s.parse())?;
-    let mut project = suite::scene(name)?.load(Path::new("."))?;
+    // A name ending in .gltf is a level outside the suite (e.g. `tools/dev_levels.py`'s).
+    let mut project = if name.ends_with(".gltf") {
+        bouncelab::project_file::Project::from_gltf(Path::new(name))?
+    } else {
+        suite::scene(name)?.load(Path::new("."))?
+    };
     if !project.scene.objects().iter().any(|o| o.role == ObjectRole::ProxyBlock) {
         let fitted = proxy::fitted_objects(&project.scene)?;
         println!("{name}: fitted {} proxy blocks", fitted.len());
@@ -71,6 +76,11 @@ fn main() -> anyhow::Result<()> {
     }
     let scene = &project.scene;
     let (mut lvl, _) = proxy::level(scene)?;
+    if std::env::var_os("MRT_BOXES").is_some() {
+        for b in &lvl.blocks {
+            println!("box {:.2?} .. {:.2?}", b.origin, b.origin + b.size);
+        }
+    }
     // MRT_PLAIN_WARP=1: the dissertation's plain warp (no stretch correction);
     // MRT_FULL_SIDES=1: linked sides pass light over their whole area (no lintels).
     if std::env::var_os("MRT_PLAIN_WARP").is_some() {
@@ -81,6 +91,10 @@ fn main() -> anyhow::Result<()> {
     let mut params = DictionaryParams::default();
     if let Some(b) = std::env::var("MRT_BANDS").ok().and_then(|v| v.parse().ok()) {
         params.interfaces.bands = b;
+    }
+    // MRT_KB=n: the blocks' indirect modes k_b.
+    if let Some(k) = std::env::var("MRT_KB").ok().and_then(|v| v.parse().ok()) {
+        params.k_b = k;
     }
     let (dictionary, source) = cache::load_or_build(&cache::default_dir(), &params, &Progress::default())?;
     // MRT_SHARE_ONLY=1: each linked side passes its open share everywhere and reflects nothing
@@ -147,6 +161,40 @@ fn main() -> anyhow::Result<()> {
                     (0..np).map(|i| format!("{:5.1}", (0..np).map(|j| at(&mq, j * np + i)).sum::<f64>())).collect();
                 println!("  exact   {}\n  reduced {}", exact.join(" "), reduced.join(" "));
             }
+            // Where the passed light lands: the receiving block's walls (response rows and their
+            // stretch corrections, area-weighted, E = pi x the white receiver's light) against
+            // the flux entering (irradiance x the side's area / P^2).
+            if let Some(y) = lvl.link(x, w) {
+                let passed_q = pos.mask(&o.open).map_or(q.clone(), |m| apply(&m, &q));
+                let resp = &dictionary.interfaces.response;
+                let walls = resp.walls(&passed_q);
+                let by = lvl.blocks[y];
+                let rows = level::response_rows(&by, w.opposite(), params.res);
+                let scales = level::response_scales(&lvl, y, w.opposite(), params.res);
+                let layout = Layout::new(by.shape, params.res);
+                let per = (params.res * params.res) as f64;
+                let mut landed = 0.0;
+                for (i, (row, sc)) in rows.iter().zip(&scales).enumerate() {
+                    let Some(row) = row else { continue };
+                    let face = by.world_face(layout.sample(i).0);
+                    let sz = by.size;
+                    let area = f64::from(match face.axis() {
+                        0 => sz.y * sz.z,
+                        1 => sz.x * sz.z,
+                        _ => sz.x * sz.y,
+                    }) / per;
+                    landed += area * std::f64::consts::PI * sc * walls[*row];
+                }
+                let b = lvl.blocks[x];
+                let side_area = f64::from(if w.axis() == 0 { b.size.y * b.size.z } else { b.size.x * b.size.y });
+                let entering = flux(&passed_q, &|_| 1.0) * side_area / (np * np) as f64;
+                let canonical_in = flux(&passed_q, &|_| 1.0) / (np * np) as f64;
+                let canonical_out: f64 =
+                    rows.iter().flatten().map(|row| std::f64::consts::PI * walls[*row] / per).sum::<f64>();
+                println!(
+                    "  into block {y}: flux entering {entering:.3}, landing on its walls {landed:.3}; unit cube {canonical_in:.4} -> {canonical_out:.4}"
+                );
+            }
         }
     }
     if std::env::var_os("MRT_WARPS").is_some() {
@@ -174,15 +222,22 @@ fn main() -> anyhow::Result<()> {
     // MRT's direct light (luminance-like mean of rgb) and its transfer.
     let lum = |v: Vec3| f64::from((v.x + v.y + v.z) / 3.0);
     // MRT_SOURCE=k: only block k's direct light (and, in the brute force, only light from
-    // points inside block k's box, grown by 0.15 m) takes part: one bounce's sources one by one.
+    // points inside block k's box, grown by 0.15 m up to its linked sides) takes part: one bounce's sources one by one.
     let source: Option<usize> = std::env::var("MRT_SOURCE").ok().and_then(|v| v.parse().ok());
-    // MRT_UNIFORM=1: every texel (and every real surface facing along y or z in the brute force)
-    // emits 1 in place of the direct light.
+    // MRT_UNIFORM=1: every texel (and every real surface but those of linked sides in the brute
+    // force) emits 1 in place of the direct light.
     let uniform = std::env::var_os("MRT_UNIFORM").is_some();
     let inside = |p: Vec3| {
         source.is_none_or(|k| {
             let b = &lvl.blocks[k];
-            (p - b.origin).cmpge(Vec3::splat(-0.15)).all() && (b.origin + b.size - p).cmpge(Vec3::splat(-0.15)).all()
+            // Grown by 0.15 m (fitted boxes stop short of the outer walls), but never past a
+            // linked side (the rooms beyond start there).
+            (p - b.origin).cmpge(Vec3::splat(-0.15)).all()
+                && (b.origin + b.size - p).cmpge(Vec3::splat(-0.15)).all()
+                && lvl.linked_sides().iter().filter(|(i, _)| *i == k).all(|(_, w)| {
+                    let (plane, _, _) = lvl.side_rect(k, *w);
+                    if w.positive() { p[w.axis()] <= plane } else { p[w.axis()] >= plane }
+                })
         })
     };
     let l_d: Vec<Vec<f64>> = texels
@@ -198,10 +253,92 @@ fn main() -> anyhow::Result<()> {
                 .collect()
         })
         .collect();
+    // MRT_EXIT=1: per partly open side, the light leaving through its open positions (the
+    // doorway) from the block's direct light: traced from the exact texels (in the unit cube)
+    // against MRT's R_{b->rlf} b, and over the whole side.
+    if std::env::var_os("MRT_EXIT").is_some() {
+        let pos = &dictionary.interfaces.positions;
+        let k = pos.k;
+        let lf = params.interfaces.light_field();
+        let np = lf.positions;
+        let dirs = lf.directions * lf.directions;
+        for (x, w) in lvl.linked_sides() {
+            let Some(o) = lvl.opening(x, w) else { continue };
+            let b = lvl.blocks[x];
+            let (Some(e), Some(exit)) =
+                (dictionary.element(b.shape), dictionary.interfaces.exit(b.shape, b.local_face(w)))
+            else {
+                continue;
+            };
+            let layout = Layout::new(b.shape, params.res);
+            let exact = bouncelab::precompute::mrt::lightfield::trace(&layout, b.local_face(w), &l_d[x], 1, &lf);
+            // Irradiance per position of the exact field (cell cosines as PositionOps::build).
+            let cos: Vec<f64> = (0..dirs)
+                .map(|c| {
+                    let (a, bb) = (c % lf.directions, c / lf.directions);
+                    let sq = glam::Vec2::new(
+                        (a as f32 + 0.5) / lf.directions as f32 * 2.0 - 1.0,
+                        (bb as f32 + 0.5) / lf.directions as f32 * 2.0 - 1.0,
+                    );
+                    f64::from(bouncelab::precompute::mrt::lightfield::square_to_hemisphere(sq).z)
+                        * std::f64::consts::TAU
+                        / dirs as f64
+                })
+                .collect();
+            let exact_e: Vec<f64> = (0..np * np)
+                .map(|p| {
+                    let (i, j) = (p % np, p / np);
+                    (0..dirs)
+                        .map(|c| {
+                            let at = bouncelab::precompute::mrt::lightfield::index(
+                                &lf,
+                                (i, j),
+                                (c % lf.directions, c / lf.directions),
+                            );
+                            exact[at] * cos[c]
+                        })
+                        .sum()
+                })
+                .collect();
+            let bb = e.project(&l_d[x]);
+            let q: Vec<f64> = (0..k).map(|i| (0..e.k_b).map(|j| exit.r_b_rlf[i * e.k_b + j] * bb[j]).sum()).collect();
+            let red_e: Vec<f64> = (0..np * np)
+                .map(|p| pos.irradiance[p * k..(p + 1) * k].iter().zip(&q).map(|(a, c)| a * c).sum())
+                .collect();
+            let sum = |v: &[f64], f: &dyn Fn(usize) -> f64| (0..np * np).map(|p| f(p) * v[p]).sum::<f64>();
+            println!(
+                "exit {x} {w:?}: whole side exact {:.4} / MRT {:.4}; doorway exact {:.4} / MRT {:.4}",
+                sum(&exact_e, &|_| 1.0),
+                sum(&red_e, &|_| 1.0),
+                sum(&exact_e, &|p| o.open[p]),
+                sum(&red_e, &|p| o.open[p])
+            );
+        }
+    }
     // MRT_MULTI=n: n bounces on both sides (MRT's feedback iterated n times: albedo x the last
     // indirect added to the direct texels; the brute force a path of n diffuse bounces).
     let bounces: usize = std::env::var("MRT_MULTI").ok().and_then(|v| v.parse().ok()).unwrap_or(1).max(1);
-    let mut mrt = level::indirect(&lvl, &ops, &transfer, &l_d);
+    // MRT_PER_FACE=1: light leaving through openings scaled per emitting face (six transfers,
+    // one per face slot, each applied to that face's direct light).
+    let per_face: Option<Vec<level::Transfer>> = std::env::var_os("MRT_PER_FACE")
+        .is_some()
+        .then(|| (0..6).map(|g| level::assemble_face(&lvl, &ops, 6, g)).collect());
+    let per = params.res * params.res;
+    let run = |l: &[Vec<f64>]| -> Vec<Vec<f64>> {
+        let Some(faces) = &per_face else { return level::indirect(&lvl, &ops, &transfer, l) };
+        let mut out: Vec<Vec<f64>> = l.iter().map(|v| vec![0.0; v.len()]).collect();
+        for (g, t) in faces.iter().enumerate() {
+            let only: Vec<Vec<f64>> = l
+                .iter()
+                .map(|v| v.iter().enumerate().map(|(i, x)| if i / per == g { *x } else { 0.0 }).collect())
+                .collect();
+            for (o, part) in out.iter_mut().zip(level::indirect(&lvl, &ops, t, &only)) {
+                o.iter_mut().zip(part).for_each(|(a, b)| *a += b);
+            }
+        }
+        out
+    };
+    let mut mrt = run(&l_d);
     let mut last_input = l_d.clone();
     for _ in 1..bounces {
         let fed: Vec<Vec<f64>> = l_d
@@ -212,7 +349,7 @@ fn main() -> anyhow::Result<()> {
                 d.iter().zip(m).zip(t).map(|((d, m), s)| d + m.max(0.0) * s.map_or(0.0, |(_, _, a)| lum(a))).collect()
             })
             .collect();
-        mrt = level::indirect(&lvl, &ops, &transfer, &fed);
+        mrt = run(&fed);
         last_input = fed;
     }
     // MRT_BOUNCES=n: the feedback's bounces (albedo x indirect fed back), each's total light and
@@ -279,7 +416,7 @@ fn main() -> anyhow::Result<()> {
                         // MRT's closed part of a linked side: no direct light, a
                         // reflection within the same bounce.
                     } else if uniform {
-                        if inside(p) && ng.x.abs() < 0.5 {
+                        if inside(p) && !on_side(p, ng) {
                             sum += throughput;
                         }
                     } else if inside(p) {

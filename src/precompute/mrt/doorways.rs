@@ -49,6 +49,26 @@ pub(super) fn split_at_doors(rooms: Vec<FittedBlock>, doors: &[(usize, usize, (V
         }
         crossings.push((a, b, axis, lo[along], hi[along]));
     }
+    // Long rooms (Loos 2015 §3.7.1: one stretched cube carries light too far along its long
+    // axis; the dissertation's fix is more blocks): a room not split at its doorways is cut into
+    // near-cubic parts along a horizontal axis whose two sides have no doorway (such a side would
+    // face its neighbour with several blocks, and a side links to one), each part about as long
+    // as the mean of the room's other two extents.
+    for (r, room) in rooms.iter().enumerate() {
+        if split[r] {
+            continue;
+        }
+        for (k, axis) in [(0usize, 0usize), (1, 2)] {
+            let other = 2 - axis;
+            if per_side.keys().any(|(i, ax, _)| *i == r && *ax == other) {
+                continue;
+            }
+            let size = room.max - room.min;
+            let target = 0.5 * (size[other] + size.y);
+            let n = (size[axis] / target).round().max(1.0) as usize;
+            cuts[r][k].extend((1..n).map(|i| room.min[axis] + size[axis] * i as f32 / n as f32));
+        }
+    }
     // Each room's strips: a grid of x intervals by z intervals, open to each other.
     let intervals = |lo: f32, hi: f32, cuts: &[f32]| {
         let mut edges = vec![lo];

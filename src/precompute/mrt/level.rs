@@ -354,6 +354,17 @@ impl SideOps {
 /// and the closed part reflects back into the block it came from ([`super::opening`]); what the
 /// closed part receives is kept for its own lookup ([`Transfer::sides`]).
 pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
+    assemble_with(level, ops, depth, None)
+}
+
+/// [`assemble`] for the light of one face slot (in each block's layout order) of every block:
+/// the light leaving through an opening scaled by that face's own stretch correction
+/// ([`Warp::through`]) instead of all the walls' ([`Warp::walls`]).
+pub fn assemble_face(level: &Level, ops: &Operators<'_>, depth: usize, slot: usize) -> Transfer {
+    assemble_with(level, ops, depth, Some(slot))
+}
+
+fn assemble_with(level: &Level, ops: &Operators<'_>, depth: usize, slot: Option<usize>) -> Transfer {
     let k_rlf = ops.interfaces.k_rlf;
     let k_r = ops.interfaces.response.k_r;
     let sides = SideOps::new(level, ops);
@@ -366,7 +377,14 @@ pub fn assemble(level: &Level, ops: &Operators<'_>, depth: usize) -> Transfer {
         for &f in bx.shape.open_faces() {
             let w = bx.world_face(f);
             let (Some(y), Some(exit)) = (level.link(x, w), ops.interfaces.exit(bx.shape, f)) else { continue };
-            let scale = level.warps[x].walls[w as usize].min(super::warp::CAP);
+            let scale = match slot {
+                None => level.warps[x].walls[w as usize],
+                Some(g) => {
+                    let Some(face) = bx.shape.present_faces().get(g).map(|f| bx.world_face(*f)) else { continue };
+                    level.warps[x].through[face as usize][w as usize]
+                }
+            }
+            .min(super::warp::CAP);
             sides.split((x, x, w, y), &exit.r_b_rlf, scale, ops, k_b, &mut frontier, &mut transfer.sides);
         }
         for step in 0..=depth {
