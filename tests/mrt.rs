@@ -314,7 +314,7 @@ fn an_objects_block_override_makes_its_surfaces_read_that_block_and_a_bad_name_i
 }
 
 #[test]
-fn the_gpu_runtime_computes_what_the_cpu_reference_computes_in_the_reduced_spaces() {
+fn the_gpu_runtime_computes_what_the_cpu_reference_computes_in_the_reduced_spaces_side_texels_included() {
     use bouncelab::precompute::mrt::{cache, dictionary::Progress, geometry_image, level, proxy};
     use bouncelab::render::gi::mrt::technique::MrtTechnique;
     let Some(ctx) = common::gpu() else { return };
@@ -356,5 +356,17 @@ fn the_gpu_runtime_computes_what_the_cpu_reference_computes_in_the_reduced_space
         }
     }
     eprintln!("texel indirect, GPU against CPU: worst difference {worst:.3e} of a peak {peak:.3e}");
+    assert!(peak > 0.0 && worst < 1e-3 * peak, "{worst} of {peak}");
+    // The walls around the doorways (partly open sides) have their own texels (pass E): the
+    // same light as the CPU's, side after side in (block, world side) order.
+    let gpu_sides = technique.texels(&ctx.device, &ctx.queue, "sides").expect("a level").expect("readback");
+    let mut cpu_sides = level::side_light(&cpu_level, &ops, &transfer, &red);
+    cpu_sides.sort_by_key(|((x, w), _)| (*x, *w as usize));
+    assert_eq!(cpu_sides.len(), 4, "both partitions, seen from either side");
+    let cpu_flat: Vec<f64> = cpu_sides.into_iter().flat_map(|(_, v)| v).collect();
+    assert_eq!(gpu_sides.len(), cpu_flat.len());
+    let peak = cpu_flat.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = gpu_sides.iter().zip(&cpu_flat).map(|(g, c)| (f64::from(g[0]) - c).abs()).fold(0.0, f64::max);
+    eprintln!("side texels, GPU against CPU: worst difference {worst:.3e} of a peak {peak:.3e}");
     assert!(peak > 0.0 && worst < 1e-3 * peak, "{worst} of {peak}");
 }

@@ -524,6 +524,36 @@ mod tests {
     }
 
     #[test]
+    fn a_long_room_is_cut_into_near_cubic_parts_along_its_length_and_its_doorway_stays_whole() {
+        // A 9 x 3 x 3 m hall whose east end has a doorway into a 3 x 3 x 3 m room.
+        let (h, t, d) = (3.0, 0.2, 3.0);
+        let (x0, x1, x2) = (9.0, 9.2, 12.2);
+        let mut tris = Vec::new();
+        tris.extend(cuboid(Vec3::new(-t, -t, -t), Vec3::new(x2 + t, 0.0, d + t)));
+        tris.extend(cuboid(Vec3::new(-t, h, -t), Vec3::new(x2 + t, h + t, d + t)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, -t), Vec3::new(x2 + t, h, 0.0)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, d), Vec3::new(x2 + t, h, d + t)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, 0.0), Vec3::new(0.0, h, d)));
+        tris.extend(cuboid(Vec3::new(x2, 0.0, 0.0), Vec3::new(x2 + t, h, d)));
+        tris.extend(cuboid(Vec3::new(x0, 0.0, 0.0), Vec3::new(x1, h, 1.0)));
+        tris.extend(cuboid(Vec3::new(x0, 0.0, 2.0), Vec3::new(x1, h, d)));
+        tris.extend(cuboid(Vec3::new(x0, 2.1, 1.0), Vec3::new(x1, h, 2.0)));
+        let blocks = fit(&tris).expect("fits");
+        // The hall in three parts of about 3 m (the mean of its width and height), the room whole.
+        let hall: Vec<&FittedBlock> = blocks.iter().filter(|b| 0.5 * (b.min.x + b.max.x) < x0).collect();
+        assert_eq!((hall.len(), blocks.len() - hall.len()), (3, 1), "{blocks:?}");
+        for b in &hall {
+            let length = b.max.x - b.min.x;
+            assert!((2.6..3.4).contains(&length), "{b:?}");
+            assert!(b.max.z - b.min.z > 2.5, "cut across its length only: {b:?}");
+        }
+        // Parts open to each other (2 sides) and the doorway: 3 sides, linked both ways.
+        let level = level_of(&blocks);
+        assert_eq!(level.link_count(), 6);
+        assert!(level.unlinked().is_empty(), "{:?}", level.unlinked());
+    }
+
+    #[test]
     fn solids_are_not_rooms_and_a_closed_room_is_one_closed_block() {
         // One closed 4 x 3 x 4 m room of 0.2 m slabs with a 1.5 m solid cube standing in it.
         let (w, h, t) = (4.0, 3.0, 0.2);

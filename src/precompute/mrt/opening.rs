@@ -204,7 +204,7 @@ mod tests {
     fn a_closed_white_side_reflects_the_irradiance_it_receives() {
         // A field of unit radiance everywhere (in span: the first basis vector made uniform) has
         // irradiance pi at every position; a closed white side sends back unit radiance.
-        let res = LightFieldRes { positions: 2, directions: 4, supersample: 3 };
+        let res = LightFieldRes { positions: 2, directions: 12, supersample: 3 };
         let s = res.len();
         let k = 1;
         let u = vec![1.0 / (s as f64).sqrt(); s];

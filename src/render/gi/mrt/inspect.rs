@@ -32,6 +32,24 @@ pub fn atlas(p: &Packed, values: &[[f32; 4]]) -> HdrImage {
     HdrImage { width: width.max(1) as u32, height: height.max(1) as u32, pixels }
 }
 
+/// The side texels `values` of every partly open side as P x P tiles side by side (u across,
+/// up up).
+pub fn side_tiles(p: &Packed, values: &[[f32; 4]]) -> HdrImage {
+    let n = p.positions as usize;
+    let width = (n * p.sides.len()).max(1);
+    let height = n.max(1);
+    let mut pixels = vec![[0.0, 0.0, 0.0, 1.0]; width * height];
+    for k in 0..p.sides.len() {
+        for j in 0..n {
+            for i in 0..n {
+                let Some(v) = values.get(k * n * n + j * n + i) else { continue };
+                pixels[(n - 1 - j) * width + k * n + i] = [v[0], v[1], v[2], 1.0];
+            }
+        }
+    }
+    HdrImage { width: width as u32, height: height as u32, pixels }
+}
+
 /// `rows` rows of `cols` values.
 pub fn coefficients(values: &[[f32; 4]], rows: usize, cols: usize) -> HdrImage {
     let pixels =

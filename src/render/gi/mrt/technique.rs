@@ -45,6 +45,12 @@ pub const BUFFERS: &[BufferInfo] = &[
     atlas("mrt_inter_block", "U_r r: indirect light that entered through the interfaces (zero in closed blocks)"),
     atlas("mrt_lightmap", "the texels' indirect light (E / pi), within plus inter-block, before clamping at zero"),
     BufferInfo {
+        name: "mrt_side_texels",
+        description: "the light (E / pi) on the walls around doorways: one P x P tile per partly open block side (u across, up up), in (block, side) order; the doorway's positions read the light passing through it",
+        format: "rgba32f, P^2 per side",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
         name: "mrt_b",
         description: "b = T_d->b l_d per emitting face: six rows per block (its face slots), one column per mode (rgb); energy falls off to the right",
         format: "rgb f32 per mode",
@@ -374,6 +380,11 @@ impl GiTechnique for MrtTechnique {
             "mrt_direct_texels" => self.texel_atlas(device, queue, "l_d"),
             "mrt_within_block" => self.texel_atlas(device, queue, "within"),
             "mrt_lightmap" => self.texel_atlas(device, queue, "indirect"),
+            "mrt_side_texels" => (|| {
+                let s = shown.ok_or_else(|| not_yet(name))?;
+                let values = self.passes.read_texels(device, queue, "sides").ok_or_else(|| not_yet(name))??;
+                Ok(super::inspect::side_tiles(&s.packed, &values))
+            })(),
             "mrt_inter_block" => (|| {
                 let all = self.passes.read_texels(device, queue, "indirect").ok_or_else(|| not_yet(name))??;
                 let own = self.passes.read_texels(device, queue, "within").ok_or_else(|| not_yet(name))??;
