@@ -39,6 +39,10 @@ pub struct MrtArgs {
     /// Enrichment passes of the light-field basis.
     #[arg(long, default_value_t = InterfaceParams::default().enrichment)]
     pub lf_enrichment: usize,
+    /// Position bands across an opening whose masked copies enrich the light-field basis (at
+    /// most the positions; more is taken as the positions).
+    #[arg(long, default_value_t = InterfaceParams::default().bands)]
+    pub lf_bands: usize,
     /// Build even when a cached file exists (and replace it).
     #[arg(long)]
     pub rebuild: bool,
@@ -126,6 +130,7 @@ pub fn run(args: &MrtArgs) -> anyhow::Result<String> {
             directions: args.lf_directions,
             supersample: args.lf_supersample,
             enrichment: args.lf_enrichment,
+            bands: args.lf_bands.min(args.lf_positions),
             ..InterfaceParams::default()
         },
         ..DictionaryParams::default()

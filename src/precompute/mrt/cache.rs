@@ -276,7 +276,8 @@ fn read_interfaces(r: &mut Reader<'_>, params: &DictionaryParams, elements: &[El
         return Err(format!("k_rlf {k_rlf} is outside 1..={}", params.interfaces.k_rlf));
     }
     let cols: usize = elements.iter().map(|e| e.k_b * e.shape.open_faces().len()).sum();
-    let sigma = r.spectrum(cols.max(4 * k_rlf))?;
+    // The last enrichment pass reduces the basis, its three turns and its `bands` masked copies.
+    let sigma = r.spectrum(cols.max((4 + params.interfaces.bands) * k_rlf))?;
     let count = r.u32()? as usize;
     if count != Shape::ALL.iter().map(|s| s.open_faces().len()).sum::<usize>() {
         return Err(format!("{count} openings"));

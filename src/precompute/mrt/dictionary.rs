@@ -157,7 +157,7 @@ impl Dictionary {
 /// Parameters small enough for debug-build tests (3x3 texels, 2x2 x 4x4 light fields).
 pub fn test_params() -> DictionaryParams {
     let interfaces =
-        InterfaceParams { positions: 2, directions: 4, supersample: 1, k_rlf: 24, k_r: 8, enrichment: 1, bands: 0 };
+        InterfaceParams { positions: 2, directions: 4, supersample: 1, k_rlf: 24, k_r: 8, enrichment: 1, bands: 2 };
     DictionaryParams { res: 3, k_d: 16, k_b: 8, rays: 64, enrichment: 1, seed: 2, interfaces }
 }
 

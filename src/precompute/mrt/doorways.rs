@@ -13,7 +13,8 @@ use super::fit::{FittedBlock, MAX_WALL};
 const MIN_STRIP: f32 = 0.3;
 
 /// Joins rooms through their doorways. A room with at most one doorway per side stays one block
-/// (its doorway sides open; the level passes only the doorway's share of each, see
+/// (its doorway sides open; the level passes light only where the doorway is and the wall
+/// around it reflects, see
 /// `geometry_image::openings`). A room with two doorways on one side is split into strips
 /// at its doorways' jambs, so that each doorway is a whole side of one strip (the 2D dictionary
 /// opens whole sides only, one neighbour per side), the sides between its strips open. Measured
@@ -34,8 +35,8 @@ pub(super) fn split_at_doors(rooms: Vec<FittedBlock>, doors: &[(usize, usize, (V
     let mut cuts: Vec<[Vec<f32>; 2]> = vec![[Vec::new(), Vec::new()]; rooms.len()];
     let mut crossings = Vec::new();
     // Doorways per room side (axis, the side's sign): a room whose every side has at most one
-    // stays whole, its doorway side open and passing only the doorway's share of it (the
-    // level's transmission); a side with two needs strips, one per doorway.
+    // stays whole, its doorway side open and masked to the doorway (the level's openings); a
+    // side with two needs strips, one per doorway.
     let mut per_side: HashMap<(usize, usize, bool), usize> = HashMap::new();
     for &(a, b, _) in doors {
         let Some(axis) = crossing(&rooms[a], &rooms[b]) else { continue };
