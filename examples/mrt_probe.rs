@@ -1,4 +1,4 @@
-//! A probe of MRT on a real level before its GPU runtime exists: fits proxy blocks to a suite
+//! A probe of MRT on a real level on the CPU (the GPU runtime computes the same, `tests/mrt.rs`): fits proxy blocks to a suite
 //! level (or uses its own), builds (or loads) the dictionary, lights every block texel with the
 //! scene's lights through the real geometry (shadow rays on the scene BVH, the lit wall's albedo:
 //! MRT's l_d), runs the reduced-space transfer on the CPU, and compares each block's one-bounce
@@ -8,7 +8,13 @@
 //! `cargo run --release --example mrt_probe -- rooms 1024` (`MRT_CLOSED=1`: every block closed)
 //!
 //! Prints per block its mean direct and indirect light, MRT's over the brute force's, and the
-//! texel rms error. The dictionary comes from the cache (`bouncelab mrt-dictionary`).
+//! texel rms error. The dictionary comes from the cache (`bouncelab mrt-dictionary`). A level
+//! name ending in `.gltf` is read from that file (`tools/dev_levels.py` writes development
+//! levels). Environment switches, each documented where it is read: MRT_MULTI (n bounces),
+//! MRT_MIMIC (the brute force treats doorway walls as MRT does), MRT_SOURCE / MRT_UNIFORM (one
+//! block's light, or uniform emission), MRT_FACES / MRT_SIDES (per face, the walls around
+//! doorways), MRT_FLUX / MRT_EXIT (flux through partly open sides), MRT_SHARE_ONLY /
+//! MRT_NO_REFLECT / MRT_PER_FACE / MRT_BANDS / MRT_KB (variants), MRT_ROOMS_X (rooms by x).
 
 use std::path::Path;
 

@@ -27,7 +27,7 @@ pub fn mrt_ui(m: &mut MrtSettings, ui: &mut egui::Ui, objects: &[String], blocks
                 }
             })
             .response
-            .on_hover_text("The dissertation's 16. A new value builds a new dictionary (18 s at 16 on two cores, then cached): the gather grows with its square, the SVDs up to its fourth power.");
+            .on_hover_text("The dissertation's 16. A new value builds a new dictionary (27 s at 16 on two cores, then cached): the gather grows with its square, the SVDs up to its fourth power.");
             ui.add(egui::Slider::new(&mut d.k_b, 4..=d.k_d.max(4)).text("modes k_b"))
                 .on_hover_text("Indirect modes per block (32 on desktop, 12 on the iPad). Per frame: k_b x texels multiply-adds per block for b and again for U_b b.");
             ui.add(egui::Slider::new(&mut d.rays, 64..=16384).logarithmic(true).text("gather rays per texel"))

@@ -12,7 +12,7 @@ use crate::precompute::mrt::dictionary::DictionaryParams;
 #[serde(deny_unknown_fields, default)]
 pub struct MrtSettings {
     /// The dictionary: texels per face (16), modes k_b (32), gather rays, the interface light
-    /// fields. A new parameter set builds a new dictionary (18 s on two cores at the
+    /// fields. A new parameter set builds a new dictionary (27 s on two cores at the
     /// defaults, release build; then cached in `~/.cache/bouncelab`). Per frame, every block costs
     /// k_b x n multiply-adds for b (n = 6 x texels^2) and k_b more per texel for U_b b.
     pub dictionary: DictionaryParams,

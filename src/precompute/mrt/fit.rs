@@ -431,18 +431,26 @@ mod tests {
         quads.iter().flat_map(|q| [[c(q[0]), c(q[2]), c(q[1])], [c(q[0]), c(q[3]), c(q[2])]]).collect()
     }
 
+    /// The slabs (thickness `t`) enclosing the space x in [0, `x`], y in [0, `h`], z in [0, `z`]:
+    /// floor, ceiling and four walls.
+    fn shell(x: f32, z: f32, h: f32, t: f32) -> Vec<[Vec3; 3]> {
+        let mut tris = Vec::new();
+        tris.extend(cuboid(Vec3::new(-t, -t, -t), Vec3::new(x + t, 0.0, z + t)));
+        tris.extend(cuboid(Vec3::new(-t, h, -t), Vec3::new(x + t, h + t, z + t)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, -t), Vec3::new(x + t, h, 0.0)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, z), Vec3::new(x + t, h, z + t)));
+        tris.extend(cuboid(Vec3::new(-t, 0.0, 0.0), Vec3::new(0.0, h, z)));
+        tris.extend(cuboid(Vec3::new(x, 0.0, 0.0), Vec3::new(x + t, h, z)));
+        tris
+    }
+
     /// Three 5 x 3 x 4 m rooms along +x, 0.2 m slabs, a 1 x 2.1 m doorway in each partition
     /// (the offset doorways of the suite's multi-room level).
     fn three_rooms() -> Vec<[Vec3; 3]> {
         let (w, h, d, t) = (5.0, 3.0, 4.0, 0.2);
         let length = 3.0 * w + 2.0 * t;
         let mut tris = Vec::new();
-        tris.extend(cuboid(Vec3::new(-t, -t, -t), Vec3::new(length + t, 0.0, d + t)));
-        tris.extend(cuboid(Vec3::new(-t, h, -t), Vec3::new(length + t, h + t, d + t)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, -t), Vec3::new(length + t, h, 0.0)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, d), Vec3::new(length + t, h, d + t)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, 0.0), Vec3::new(0.0, h, d)));
-        tris.extend(cuboid(Vec3::new(length, 0.0, 0.0), Vec3::new(length + t, h, d)));
+        tris.extend(shell(length, d, h, t));
         for (k, door_z) in [(1.0, 0.5), (2.0, 2.5)] {
             let x = k * w + (k - 1.0) * t;
             // The partition with a doorway from door_z to door_z + 1, 2.1 m high.
@@ -494,12 +502,7 @@ mod tests {
         let (h, t) = (3.0, 0.2);
         let (x0, x1, x2, d) = (5.0, 5.2, 10.0, 8.0);
         let mut tris = Vec::new();
-        tris.extend(cuboid(Vec3::new(-t, -t, -t), Vec3::new(x2 + t, 0.0, d + t)));
-        tris.extend(cuboid(Vec3::new(-t, h, -t), Vec3::new(x2 + t, h + t, d + t)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, -t), Vec3::new(x2 + t, h, 0.0)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, d), Vec3::new(x2 + t, h, d + t)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, 0.0), Vec3::new(0.0, h, d)));
-        tris.extend(cuboid(Vec3::new(x2, 0.0, 0.0), Vec3::new(x2 + t, h, d)));
+        tris.extend(shell(x2, d, h, t));
         tris.extend(cuboid(Vec3::new(x1, 0.0, 3.9), Vec3::new(x2, h, 4.1)));
         for (z0, z1) in [(0.0, 1.0), (2.0, 5.5), (6.5, d)] {
             tris.extend(cuboid(Vec3::new(x0, 0.0, z0), Vec3::new(x1, h, z1)));
@@ -529,12 +532,7 @@ mod tests {
         let (h, t, d) = (3.0, 0.2, 3.0);
         let (x0, x1, x2) = (9.0, 9.2, 12.2);
         let mut tris = Vec::new();
-        tris.extend(cuboid(Vec3::new(-t, -t, -t), Vec3::new(x2 + t, 0.0, d + t)));
-        tris.extend(cuboid(Vec3::new(-t, h, -t), Vec3::new(x2 + t, h + t, d + t)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, -t), Vec3::new(x2 + t, h, 0.0)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, d), Vec3::new(x2 + t, h, d + t)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, 0.0), Vec3::new(0.0, h, d)));
-        tris.extend(cuboid(Vec3::new(x2, 0.0, 0.0), Vec3::new(x2 + t, h, d)));
+        tris.extend(shell(x2, d, h, t));
         tris.extend(cuboid(Vec3::new(x0, 0.0, 0.0), Vec3::new(x1, h, 1.0)));
         tris.extend(cuboid(Vec3::new(x0, 0.0, 2.0), Vec3::new(x1, h, d)));
         tris.extend(cuboid(Vec3::new(x0, 2.1, 1.0), Vec3::new(x1, h, 2.0)));
@@ -558,12 +556,7 @@ mod tests {
         // One closed 4 x 3 x 4 m room of 0.2 m slabs with a 1.5 m solid cube standing in it.
         let (w, h, t) = (4.0, 3.0, 0.2);
         let mut tris = Vec::new();
-        tris.extend(cuboid(Vec3::new(-t, -t, -t), Vec3::new(w + t, 0.0, w + t)));
-        tris.extend(cuboid(Vec3::new(-t, h, -t), Vec3::new(w + t, h + t, w + t)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, -t), Vec3::new(w + t, h, 0.0)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, w), Vec3::new(w + t, h, w + t)));
-        tris.extend(cuboid(Vec3::new(-t, 0.0, 0.0), Vec3::new(0.0, h, w)));
-        tris.extend(cuboid(Vec3::new(w, 0.0, 0.0), Vec3::new(w + t, h, w)));
+        tris.extend(shell(w, w, h, t));
         tris.extend(cuboid(Vec3::new(1.0, 0.0, 1.0), Vec3::new(2.5, 1.5, 2.5)));
         let blocks = fit(&tris).expect("fits");
         assert_eq!(blocks.len(), 1, "{blocks:?}");

@@ -481,17 +481,21 @@ pub fn response_scales(level: &Level, y: usize, entry: Face, res: usize) -> Vec<
         .collect()
 }
 
-/// A frame's one-bounce indirect light per block (each in its element's layout) from the
-/// blocks' direct light `l_d` (the same layouts): the block's own U_b b plus the surface
-/// response to every directed interface's r.
-pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    // b of each block's whole direct light (what leaves through its openings).
-    let b: Vec<Vec<f64>> = level
+/// b of each block's whole direct light `l_d` (what leaves through its openings).
+fn block_b(level: &Level, ops: &Operators<'_>, l_d: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    level
         .blocks
         .iter()
         .zip(l_d)
         .map(|(blk, l)| ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.project(l)))
-        .collect();
+        .collect()
+}
+
+/// A frame's one-bounce indirect light per block (each in its element's layout) from the
+/// blocks' direct light `l_d` (the same layouts): the block's own U_b b plus the surface
+/// response to every directed interface's r.
+pub fn indirect(level: &Level, ops: &Operators<'_>, transfer: &Transfer, l_d: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let b = block_b(level, ops, l_d);
     let res = ops.dictionary.params.res;
     let mut out: Vec<Vec<f64>> = level
         .blocks
@@ -536,12 +540,7 @@ pub fn side_light(
     transfer: &Transfer,
     l_d: &[Vec<f64>],
 ) -> Vec<((usize, Face), Vec<f64>)> {
-    let b: Vec<Vec<f64>> = level
-        .blocks
-        .iter()
-        .zip(l_d)
-        .map(|(blk, l)| ops.dictionary.element(blk.shape).map_or(Vec::new(), |e| e.project(l)))
-        .collect();
+    let b = block_b(level, ops, l_d);
     let mut out: HashMap<(usize, Face), Vec<f64>> = HashMap::new();
     for ((src, x, w), m) in &transfer.sides {
         let bs = &b[*src];
