@@ -34,8 +34,9 @@ pub struct InterfaceParams {
     /// Bands across an opening (along u) whose masked copies of the basis join each enrichment
     /// pass, so that light crossing only part of a side (a doorway in a room's wall) keeps its
     /// place (0: the dissertation's basis, whose fields are smooth across a side). Cost: only
-    /// the dictionary build (the enrichment SVDs grow with (4 + bands)^2; 18 s at 0, 27 s at 6
-    /// on two cores); measured on the suite's rooms (`MRT_MIMIC=1 MRT_MULTI=4 mrt_probe rooms`:
+    /// the dictionary build (the enrichment SVDs grow with (4 + bands)^2; 27.1 s at 6, 18.1 s
+    /// before bands and the per-position operators, two cores); on the suite's rooms
+    /// (`MRT_MIMIC=1 MRT_MULTI=4 mrt_probe rooms`:
     /// the third room 1.12 / 1.06 / 1.04 of a brute force at 4 / 6 / 12 bands).
     pub bands: usize,
 }
