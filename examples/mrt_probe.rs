@@ -14,7 +14,7 @@
 //! MRT_MIMIC (the brute force treats doorway walls as MRT does), MRT_SOURCE / MRT_UNIFORM (one
 //! block's light, or uniform emission), MRT_FACES / MRT_SIDES (per face, the walls around
 //! doorways), MRT_FLUX / MRT_EXIT (flux through partly open sides), MRT_SHARE_ONLY /
-//! MRT_NO_REFLECT / MRT_PER_FACE / MRT_BANDS / MRT_KB (variants), MRT_ROOMS_X (rooms by x).
+//! MRT_NO_REFLECT / MRT_BANDS / MRT_KB (variants), MRT_ROOMS_X (rooms by x).
 
 use std::path::Path;
 
@@ -233,6 +233,10 @@ fn main() -> anyhow::Result<()> {
     // MRT_UNIFORM=1: every texel (and every real surface but those of linked sides in the brute
     // force) emits 1 in place of the direct light.
     let uniform = std::env::var_os("MRT_UNIFORM").is_some();
+    // The source's linked sides (world side, plane), once.
+    let source_sides: Vec<(bouncelab::precompute::mrt::shape::Face, f32)> = source.map_or(Vec::new(), |k| {
+        lvl.linked_sides().into_iter().filter(|(i, _)| *i == k).map(|(_, w)| (w, lvl.side_rect(k, w).0)).collect()
+    });
     let inside = |p: Vec3| {
         source.is_none_or(|k| {
             let b = &lvl.blocks[k];
@@ -240,10 +244,9 @@ fn main() -> anyhow::Result<()> {
             // linked side (the rooms beyond start there).
             (p - b.origin).cmpge(Vec3::splat(-0.15)).all()
                 && (b.origin + b.size - p).cmpge(Vec3::splat(-0.15)).all()
-                && lvl.linked_sides().iter().filter(|(i, _)| *i == k).all(|(_, w)| {
-                    let (plane, _, _) = lvl.side_rect(k, *w);
-                    if w.positive() { p[w.axis()] <= plane } else { p[w.axis()] >= plane }
-                })
+                && source_sides
+                    .iter()
+                    .all(|(w, plane)| if w.positive() { p[w.axis()] <= *plane } else { p[w.axis()] >= *plane })
         })
     };
     let l_d: Vec<Vec<f64>> = texels
@@ -324,26 +327,7 @@ fn main() -> anyhow::Result<()> {
     // MRT_MULTI=n: n bounces on both sides (MRT's feedback iterated n times: albedo x the last
     // indirect added to the direct texels; the brute force a path of n diffuse bounces).
     let bounces: usize = std::env::var("MRT_MULTI").ok().and_then(|v| v.parse().ok()).unwrap_or(1).max(1);
-    // MRT_PER_FACE=1: light leaving through openings scaled per emitting face (six transfers,
-    // one per face slot, each applied to that face's direct light).
-    let per_face: Option<Vec<level::Transfer>> = std::env::var_os("MRT_PER_FACE")
-        .is_some()
-        .then(|| (0..6).map(|g| level::assemble_face(&lvl, &ops, 6, g)).collect());
-    let per = params.res * params.res;
-    let run = |l: &[Vec<f64>]| -> Vec<Vec<f64>> {
-        let Some(faces) = &per_face else { return level::indirect(&lvl, &ops, &transfer, l) };
-        let mut out: Vec<Vec<f64>> = l.iter().map(|v| vec![0.0; v.len()]).collect();
-        for (g, t) in faces.iter().enumerate() {
-            let only: Vec<Vec<f64>> = l
-                .iter()
-                .map(|v| v.iter().enumerate().map(|(i, x)| if i / per == g { *x } else { 0.0 }).collect())
-                .collect();
-            for (o, part) in out.iter_mut().zip(level::indirect(&lvl, &ops, t, &only)) {
-                o.iter_mut().zip(part).for_each(|(a, b)| *a += b);
-            }
-        }
-        out
-    };
+    let run = |l: &[Vec<f64>]| level::indirect(&lvl, &ops, &transfer, l);
     let mut mrt = run(&l_d);
     let mut last_input = l_d.clone();
     for _ in 1..bounces {

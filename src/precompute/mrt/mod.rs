@@ -7,7 +7,7 @@
 //! R_{b->rlf} ([`interface`]), the propagation through a block ahead, left or right
 //! ([`propagate`]) and a block's surface response to entering light ([`response`]: U_r,
 //! T_{rlf->r}); a level of blocks from the scene's proxy boxes ([`proxy`]) with its links,
-//! T_{b->r} and a frame's indirect light in the reduced spaces ([`level`]); the real surface
+//! a frame's indirect light in the reduced spaces ([`level`]) from its T_{b->r} ([`transfer`]); the real surface
 //! behind each block texel ([`geometry_image`]); the flux correction of stretched blocks
 //! ([`warp`]); proxy blocks fitted to a bare level ([`fit`], joined through their doorways by
 //! [`doorways`]); sides the level leaves only partly open, masked and reflecting position by
@@ -30,4 +30,5 @@ pub mod propagate;
 pub mod proxy;
 pub mod response;
 pub mod shape;
+pub mod transfer;
 pub mod warp;
