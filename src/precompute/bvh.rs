@@ -75,8 +75,17 @@ fn positive_zeros(d: Vec3) -> Vec3 {
 impl SceneBvh {
     /// Collects visible objects' triangles in world space and builds the BVH.
     pub fn build(scene: &Scene) -> Self {
+        Self::build_where(scene, |_| true)
+    }
+
+    /// [`Self::build`] of the objects for which `keep(object index)` holds (MRT's geometry
+    /// images leave clutter out).
+    pub fn build_where(scene: &Scene, keep: impl Fn(usize) -> bool) -> Self {
         let mut tris = Vec::new();
         for (oi, object) in scene.objects().iter().enumerate() {
+            if !keep(oi) {
+                continue;
+            }
             let Some(mesh) = scene.resources().meshes.get(object.mesh).filter(|_| object.is_rendered()) else {
                 continue;
             };

@@ -4,6 +4,7 @@
 
 pub mod brdf;
 pub mod bvh;
+pub mod drt;
 pub mod facing;
 pub mod mrt;
 pub mod open_edges;

@@ -12,7 +12,7 @@ mod preview;
 mod sshgi;
 
 pub use ism::{BouncePick, IsmSettings, MAX_ATLAS_SIDE};
-pub use mrt::{BlockOverride, MrtSettings};
+pub use mrt::{BlockOverride, DrtSettings, MrtSettings};
 pub use sshgi::SshgiSettings;
 
 /// The GI technique that produces indirect light.

@@ -38,6 +38,58 @@ pub struct MrtSettings {
     /// two rooms). Names of scene objects and of proxy blocks; a name that matches nothing is
     /// reported in the GI panel. Free.
     pub block_overrides: Vec<BlockOverride>,
+    /// Delta radiance transfer for clutter (Loos 2015 ch. 5): its indirect shadows and bounce on
+    /// the blocks and the blocks' light on it.
+    pub drt: DrtSettings,
+}
+
+/// Settings of delta radiance transfer inside `mrt`. Changing any rebuilds the level's DRT.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DrtSettings {
+    /// On: clutter is left out of the blocks' geometry images, shadows and reflects their light,
+    /// and gathers its own. Off: MRT as without DRT (the comparison). Cost measured in
+    /// `docs/BENCHMARKS.md` (DRT rows).
+    pub enabled: bool,
+    /// Rays per block texel near clutter for the delta operators (the dissertation's 1024).
+    /// Rebuild time grows linearly; only rays that meet a clutter box are traced.
+    pub rays: u32,
+    /// Rays per clutter texel for the gather (C_b). Rebuild time grows linearly with it times
+    /// the clutter texels (6 x res^2 per object).
+    pub gather_rays: u32,
+    /// Texels per clutter face side (the dissertation's 16).
+    pub clutter_res: u32,
+    /// Static objects that are small and inside a block count as clutter (a bare glTF has no
+    /// roles). Objects marked clutter always are.
+    pub automatic: bool,
+    /// Objects never treated as clutter automatically (names): the artist's override.
+    pub not_clutter: Vec<String>,
+}
+
+impl Default for DrtSettings {
+    fn default() -> Self {
+        let p = crate::precompute::drt::DrtParams::default();
+        Self {
+            enabled: true,
+            rays: p.rays as u32,
+            gather_rays: p.gather_rays as u32,
+            clutter_res: p.clutter_res as u32,
+            automatic: true,
+            not_clutter: Vec::new(),
+        }
+    }
+}
+
+impl DrtSettings {
+    /// The build parameters.
+    pub fn params(&self) -> crate::precompute::drt::DrtParams {
+        crate::precompute::drt::DrtParams {
+            rays: self.rays as usize,
+            gather_rays: self.gather_rays as usize,
+            clutter_res: self.clutter_res as usize,
+            ..Default::default()
+        }
+    }
 }
 
 /// One object assigned to one proxy block.
@@ -58,6 +110,7 @@ impl Default for MrtSettings {
             feedback: 1.0,
             padding: true,
             block_overrides: Vec::new(),
+            drt: DrtSettings::default(),
         }
     }
 }
@@ -75,6 +128,24 @@ impl MrtSettings {
         }
         if !(0.0..=1.0).contains(&self.feedback) {
             return Err(SettingsError { name: "mrt.feedback", value: self.feedback.to_string(), range: "0..=1" });
+        }
+        let d = &self.drt;
+        if !(16..=16384).contains(&d.rays) {
+            return Err(SettingsError { name: "mrt.drt.rays", value: d.rays.to_string(), range: "16..=16384" });
+        }
+        if !(16..=16384).contains(&d.gather_rays) {
+            return Err(SettingsError {
+                name: "mrt.drt.gather_rays",
+                value: d.gather_rays.to_string(),
+                range: "16..=16384",
+            });
+        }
+        if !(2..=64).contains(&d.clutter_res) {
+            return Err(SettingsError {
+                name: "mrt.drt.clutter_res",
+                value: d.clutter_res.to_string(),
+                range: "2..=64",
+            });
         }
         Ok(())
     }

@@ -118,8 +118,19 @@ impl Progress {
         (fraction, left)
     }
 
+    /// Starts counting `total` units of work (the clock starts now).
+    pub(crate) fn begin(&self, total: usize) {
+        self.total.store(total, Ordering::Relaxed);
+        let _ = self.started.set(Instant::now());
+    }
+
+    /// Whether the work was asked to stop.
+    pub fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed)
+    }
+
     /// Counts one texel and says whether to stop.
-    fn tick(&self) -> bool {
+    pub(crate) fn tick(&self) -> bool {
         self.done.fetch_add(1, Ordering::Relaxed);
         self.cancel.load(Ordering::Relaxed)
     }

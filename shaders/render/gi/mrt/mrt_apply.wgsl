@@ -6,7 +6,8 @@
 // bilinearly between texel centres, clamped at the face's border. A surface in a partly open
 // side (the wall around a doorway) reads that side's own texels (pass E); one in a side open
 // over its whole area blends its neighbouring faces; near a side open over its whole area the block beyond is
-// blended in (padding). Writes E / pi (the composite multiplies by the albedo);
+// blended in (padding). A clutter object's pixel reads its own texels (DRT's gather C_b).
+// Writes E / pi (the composite multiplies by the albedo);
 // `assignment` holds the block and face for the inspector.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
@@ -23,6 +24,44 @@
 // The G-buffer's object id (scene index + 1, 0 where none) and each object's overridden block.
 @group(0) @binding(8) var object_tex: texture_2d<u32>;
 @group(0) @binding(9) var<storage, read> object_block: array<u32>;
+// DRT (`render::gi::mrt::drt_pack`): the clutter boxes, each object's clutter record (MRT_NONE
+// where it is none) and the clutter texels' gathered light (E / pi).
+struct Clutter {
+    lo: vec4<f32>,
+    hi: vec4<f32>,
+    // First texel, texels per face side, unused x2.
+    texels: vec4<u32>,
+}
+@group(0) @binding(10) var<storage, read> clutter: array<Clutter>;
+@group(0) @binding(11) var<storage, read> object_clutter: array<u32>;
+@group(0) @binding(12) var<storage, read> clutter_gather: array<vec4<f32>>;
+
+// A clutter object's light at world point `p` with normal `n`: the face of its box its normal
+// points out of (dominant axis), bilinear between texel centres (`precompute::drt::clutter::taps`).
+fn clutter_lookup(c: Clutter, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let a = abs(n);
+    var axis = 0u;
+    if a.y > a.x && a.y >= a.z {
+        axis = 1u;
+    } else if a.z > a.x && a.z > a.y {
+        axis = 2u;
+    }
+    let face = axis * 2u + select(0u, 1u, n[axis] > 0.0);
+    let extent = max(c.hi.xyz - c.lo.xyz, vec3<f32>(1.0e-6));
+    let u = clamp((p - c.lo.xyz) / extent, vec3<f32>(0.0), vec3<f32>(1.0));
+    let res = c.texels.y;
+    let r = f32(res);
+    let st = clamp(plane_st(face, u) * r - 0.5, vec2<f32>(0.0), vec2<f32>(r - 1.0));
+    let i0 = min(vec2<u32>(floor(st)), vec2<u32>(res - 1u));
+    let i1 = min(i0 + 1u, vec2<u32>(res - 1u));
+    let f = st - vec2<f32>(i0);
+    let base = c.texels.x + face * res * res;
+    let v00 = clutter_gather[base + i0.y * res + i0.x].rgb;
+    let v10 = clutter_gather[base + i0.y * res + i1.x].rgb;
+    let v01 = clutter_gather[base + i1.y * res + i0.x].rgb;
+    let v11 = clutter_gather[base + i1.y * res + i1.x].rgb;
+    return max(mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y), vec3<f32>(0.0));
+}
 
 fn box_distance(b: Block, q: vec3<f32>) -> f32 {
     let lo = b.origin.xyz;
@@ -163,6 +202,15 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     var best = 0u;
     var best_d = 1.0e30;
     let object = textureLoad(object_tex, pixel, 0).x;
+    if object > 0u && object - 1u < arrayLength(&object_clutter) {
+        let k = object_clutter[object - 1u];
+        if k != MRT_NONE && k < arrayLength(&clutter) {
+            // Clutter reads its own gathered light (C_b); face 6 marks it in the assignment.
+            textureStore(out_indirect, pixel, vec4<f32>(clutter_lookup(clutter[k], p, n), 1.0));
+            textureStore(assignment, pixel, vec4<f32>(-2.0 - f32(k), 6.0, 0.0, 1.0));
+            return;
+        }
+    }
     var forced = MRT_NONE;
     if object > 0u && object - 1u < arrayLength(&object_block) {
         forced = object_block[object - 1u];

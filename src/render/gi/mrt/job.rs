@@ -7,13 +7,16 @@
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
+use super::drt_pack::DrtPacked;
 use super::pack::{Packed, pack};
 use crate::precompute::bvh::SceneBvh;
+use crate::precompute::drt::SceneTexel;
 use crate::precompute::mrt::dictionary::{Dictionary, DictionaryParams, Progress};
 use crate::precompute::mrt::proxy;
 use crate::precompute::mrt::{cache, geometry_image};
 use crate::scene::{ObjectRole, Scene};
 use crate::settings::BlockOverride;
+use crate::settings::DrtSettings;
 
 /// A result slot a worker thread fills.
 type Slot<T> = Arc<Mutex<Option<Result<T, String>>>>;
@@ -124,26 +127,38 @@ fn overrides(scene: &Scene, block_objects: &[usize], list: &[BlockOverride]) -> 
 }
 
 /// Builds the level of `scene` (its proxy blocks, or fitted ones) with `dictionary`, `depth`
-/// blocks of propagation and the artist's block `overrides`.
+/// blocks of propagation, the artist's block `overrides` and delta radiance transfer for its
+/// clutter as `drt` says; `progress` counts the DRT rays' texels and cancels them.
 pub fn build_level(
     scene: &Scene,
     dictionary: &Dictionary,
     depth: usize,
     block_overrides: &[BlockOverride],
+    drt: &DrtSettings,
+    progress: &Progress,
 ) -> Result<BuiltLevel, String> {
     let started = Instant::now();
     let has_blocks = scene.objects().iter().any(|o| o.role == ObjectRole::ProxyBlock);
-    let bvh = SceneBvh::build(scene);
+    let full_bvh = SceneBvh::build(scene);
     let (mut level, block_objects) = if has_blocks {
         proxy::level(scene)
     } else {
-        let fitted = proxy::fitted_objects_in(scene, &bvh)
+        let fitted = proxy::fitted_objects_in(scene, &full_bvh)
             .map_err(|e| format!("the scene has no proxy blocks and none could be fitted: {e}"))?;
         proxy::level_of(&fitted)
     }
     .map_err(|e| e.to_string())?;
+    // With DRT the blocks' geometry images and openings see the level without its clutter (a
+    // crate's top is not the floor's texel); DRT adds what the clutter changes.
+    let found = if drt.enabled {
+        crate::precompute::drt::find_clutter(scene, &full_bvh, &level, drt.automatic, &drt.not_clutter)
+    } else {
+        Vec::new()
+    };
+    let static_bvh = (!found.is_empty()).then(|| SceneBvh::build_where(scene, |i| !found.iter().any(|(o, _)| *o == i)));
+    let bvh = static_bvh.as_ref().unwrap_or(&full_bvh);
     let mut openings = Vec::new();
-    for ((i, w), opening) in geometry_image::openings(scene, &bvh, &level, dictionary.interfaces.positions.positions) {
+    for ((i, w), opening) in geometry_image::openings(scene, bvh, &level, dictionary.interfaces.positions.positions) {
         let share = opening.share();
         level.set_opening(i, w, opening);
         let (plane, lo, hi) = level.side_rect(i, w);
@@ -151,7 +166,29 @@ pub fn build_level(
         centre[w.axis()] = plane;
         openings.push((centre, share as f32));
     }
-    let mut packed = pack(scene, &bvh, &level, dictionary, depth);
+    let mut packed = pack(scene, bvh, &level, dictionary, depth);
+    if !found.is_empty() {
+        let texels: Vec<SceneTexel> = packed
+            .texels
+            .iter()
+            .map(|t| SceneTexel {
+                position: glam::Vec3::from_slice(&t.position[..3]),
+                normal: glam::Vec3::from_slice(&t.normal[..3]),
+                found: t.position[3] > 0.5,
+            })
+            .collect();
+        let built = crate::precompute::drt::build(
+            scene,
+            &full_bvh,
+            &level,
+            &found,
+            crate::precompute::drt::BlockTexels { texels: &texels, res: packed.res as usize },
+            &drt.params(),
+            progress,
+        )
+        .ok_or_else(|| CANCELLED.to_owned())?;
+        packed.drt = Some(DrtPacked::new(&built));
+    }
     let (mut table, warnings) = overrides(scene, if has_blocks { &block_objects } else { &[] }, block_overrides);
     // One NONE past the objects (see `pack`: never an empty or zero-padded table).
     table.push(super::pack::NONE);
@@ -168,22 +205,46 @@ pub fn build_level(
     })
 }
 
-/// A level being built.
+/// What a cancelled level build says (never shown: a newer build replaces it).
+pub const CANCELLED: &str = "cancelled by a newer edit";
+
+/// A level being built (dropping it cancels the DRT rays in flight).
 pub struct LevelJob {
     slot: Slot<BuiltLevel>,
+    progress: Arc<Progress>,
 }
 
 impl LevelJob {
     /// Starts building `scene`'s level.
-    pub fn start(scene: &Scene, dictionary: Arc<Dictionary>, depth: usize, overrides: &[BlockOverride]) -> Self {
+    pub fn start(
+        scene: &Scene,
+        dictionary: Arc<Dictionary>,
+        depth: usize,
+        overrides: &[BlockOverride],
+        drt: &DrtSettings,
+    ) -> Self {
         let scene_copy = scene.clone();
         let overrides = overrides.to_vec();
-        let slot = spawn("mrt level", move || build_level(&scene_copy, &dictionary, depth, &overrides));
-        Self { slot }
+        let drt = drt.clone();
+        let progress = Arc::new(Progress::default());
+        let p = progress.clone();
+        let slot = spawn("mrt level", move || build_level(&scene_copy, &dictionary, depth, &overrides, &drt, &p));
+        Self { slot, progress }
     }
 
     /// The finished level, once.
     pub fn finished(&self) -> Option<Result<BuiltLevel, String>> {
         take(&self.slot)
+    }
+
+    /// The share of the DRT rays traced and the seconds left.
+    pub fn progress(&self) -> (f64, Option<f64>) {
+        self.progress.fraction_and_left()
+    }
+}
+
+impl Drop for LevelJob {
+    fn drop(&mut self) {
+        self.progress.cancel();
     }
 }

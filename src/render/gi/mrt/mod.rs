@@ -4,6 +4,8 @@
 //! per-frame passes ([`passes`]), draws its inspector images ([`inspect`]) and plugs into the
 //! GI seam ([`technique`]).
 
+pub mod drt_pack;
+pub mod drt_passes;
 pub mod inspect;
 pub mod job;
 pub mod pack;
@@ -16,4 +18,6 @@ pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/gi/mrt/mrt_direct.wgsl", "MrtParams", std::mem::size_of::<passes::MrtParams>()),
     ("render/gi/mrt/mrt_direct.wgsl", "Texel", std::mem::size_of::<pack::GpuTexel>()),
     ("render/gi/mrt/mrt_apply.wgsl", "Block", std::mem::size_of::<pack::GpuBlock>()),
+    ("render/gi/mrt/mrt_apply.wgsl", "Clutter", std::mem::size_of::<drt_pack::GpuClutter>()),
+    ("render/gi/mrt/drt_rows.wgsl", "DrtParams", std::mem::size_of::<drt_pack::DrtGpuParams>()),
 ];

@@ -116,6 +116,8 @@ pub struct Packed {
     pub k_r: u32,
     pub res: u32,
     pub surfaces_found: u32,
+    /// Delta radiance transfer for the level's clutter (none when off or without clutter).
+    pub drt: Option<super::drt_pack::DrtPacked>,
 }
 
 impl Packed {
@@ -132,6 +134,7 @@ impl Packed {
             + std::mem::size_of_val(self.blocks.as_slice())
             + 16 * (self.entries.len() + self.slots.len() + self.sides.len() + self.side_entries.len())
             + 4 * words) as u64
+            + self.drt.as_ref().map_or(0, |d| d.bytes())
     }
 }
 

@@ -10,6 +10,7 @@
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
+use super::drt_passes::DrtBuffers;
 use super::pack::Packed;
 use crate::render::gi::inputs::GiInputs;
 use crate::render::readback;
@@ -120,6 +121,7 @@ struct LevelBuffers {
     r: wgpu::Buffer,
     indirect: wgpu::Buffer,
     within: wgpu::Buffer,
+    drt: DrtBuffers,
     counts: MrtParams,
 }
 
@@ -151,7 +153,7 @@ impl LevelBuffers {
 }
 
 /// A storage buffer holding `data` (at least 16 bytes: wgpu refuses empty bindings).
-fn upload<T: Pod>(device: &wgpu::Device, label: &str, data: &[T]) -> wgpu::Buffer {
+pub(super) fn upload<T: Pod>(device: &wgpu::Device, label: &str, data: &[T]) -> wgpu::Buffer {
     let mut bytes = bytemuck::cast_slice::<T, u8>(data).to_vec();
     bytes.resize(bytes.len().max(16), 0);
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -162,7 +164,7 @@ fn upload<T: Pod>(device: &wgpu::Device, label: &str, data: &[T]) -> wgpu::Buffe
 }
 
 /// A zeroed per-frame storage buffer of `count` vec4s.
-fn vec4s(device: &wgpu::Device, label: &str, count: usize) -> wgpu::Buffer {
+pub(super) fn vec4s(device: &wgpu::Device, label: &str, count: usize) -> wgpu::Buffer {
     device.create_buffer(&wgpu::BufferDescriptor {
         label: Some(label),
         size: (16 * count.max(1)) as u64,
@@ -177,6 +179,9 @@ struct LevelGroups {
     interface: wgpu::BindGroup,
     reconstruct: wgpu::BindGroup,
     sides: wgpu::BindGroup,
+    drt_patches: wgpu::BindGroup,
+    drt_rows: wgpu::BindGroup,
+    drt_inpaint: wgpu::BindGroup,
 }
 
 /// A whole buffer as a binding.
@@ -191,6 +196,8 @@ pub struct MrtPasses {
     interface: Pass,
     reconstruct: Pass,
     sides: Pass,
+    drt_patches: Pass,
+    drt_rows: Pass,
     apply: Pass,
     shadow_sampler: wgpu::Sampler,
     level: Option<LevelBuffers>,
@@ -217,10 +224,26 @@ impl MrtPasses {
                 &[Uniform, Read, Read, Read, Read, Read, Read, Read, Read, Write, Write, Read, Read],
             )?,
             sides: Pass::new(device, "mrt_sides", &[Uniform, Read, Read, Read, Read, Write])?,
+            drt_patches: Pass::new(device, "drt_patches", &[Uniform, Read, Read, Read, Write])?,
+            drt_rows: Pass::new(device, "drt_rows", &[Uniform, Read, Read, Read, Write, Write])?,
             apply: Pass::new(
                 device,
                 "mrt_apply",
-                &[Uniform, Uniform, Read, Read, Depth, Float, StorageTexture, StorageTexture, Uint, Read],
+                &[
+                    Uniform,
+                    Uniform,
+                    Read,
+                    Read,
+                    Depth,
+                    Float,
+                    StorageTexture,
+                    StorageTexture,
+                    Uint,
+                    Read,
+                    Read,
+                    Read,
+                    Read,
+                ],
             )?,
             shadow_sampler: crate::render::layouts::shadow_sampler(device, "mrt shadow comparison sampler"),
             level: None,
@@ -265,6 +288,7 @@ impl MrtPasses {
             r: vec4s(device, "mrt r", p.slots.len() * p.k_r as usize),
             indirect: vec4s(device, "mrt texel indirect (block texels, then side texels)", texels + side_texels),
             within: vec4s(device, "mrt texel within-block indirect", texels),
+            drt: DrtBuffers::new(device, p.drt.as_ref(), p.object_block.len().saturating_sub(1)),
             counts,
         });
         self.level_groups = self.level.as_ref().map(|l| self.level_groups_of(device, l));
@@ -307,7 +331,22 @@ impl MrtPasses {
             "mrt_sides",
             &[buf(&l.params), buf(&l.sides), buf(&l.side_entries), buf(&l.side_matrices), buf(&l.b), buf(&l.indirect)],
         );
-        LevelGroups { reduce, interface, reconstruct, sides }
+        let d = &l.drt;
+        let drt_patches = self.drt_patches.bind(
+            device,
+            "drt_patches",
+            &[buf(&d.patch_params), buf(&d.patches), buf(&l.l_d), buf(&d.radiance), buf(&d.patch_light)],
+        );
+        let rows = |params: &wgpu::Buffer, name: &str| {
+            self.drt_rows.bind(
+                device,
+                name,
+                &[buf(params), buf(&d.rows), buf(&d.entries), buf(&d.patch_light), buf(&l.indirect), buf(&d.gather)],
+            )
+        };
+        let drt_rows = rows(&d.row_params, "drt_rows");
+        let drt_inpaint = rows(&d.inpaint_params, "drt_rows inpainting");
+        LevelGroups { reduce, interface, reconstruct, sides, drt_patches, drt_rows, drt_inpaint }
     }
 
     /// Whether a level is uploaded.
@@ -363,18 +402,53 @@ impl MrtPasses {
                 wgpu::BindingResource::TextureView(&assignment.view),
                 wgpu::BindingResource::TextureView(&t.object_id.view),
                 buf(&l.object_block),
+                buf(&l.drt.clutter),
+                buf(&l.drt.object_clutter),
+                buf(&l.drt.gather),
             ],
         );
+        // G0: the clutter texels' radiance, pass A's shader over the clutter texels.
+        let d = &l.drt;
+        let drt_direct = (d.counts[0] > 0).then(|| {
+            let params = MrtParams { gains: [feedback, 0.0, 0.0, 0.0], ..d.direct };
+            inputs.queue.write_buffer(&d.direct_params, 0, bytemuck::bytes_of(&params));
+            self.direct.bind(
+                device,
+                "mrt_direct clutter",
+                &[
+                    buf(inputs.frame_buffer),
+                    buf(lights.buffer),
+                    buf(lights.shadow_views),
+                    wgpu::BindingResource::TextureView(lights.shadow_maps),
+                    wgpu::BindingResource::Sampler(&self.shadow_sampler),
+                    buf(&d.direct_params),
+                    buf(&d.texels),
+                    buf(&d.gather),
+                    buf(&d.radiance),
+                ],
+            )
+        });
         let k_r = l.counts.sizes[0];
         let [positions, sides, _, _] = l.counts.sides;
-        let steps: [(&str, &Pass, &wgpu::BindGroup, [u32; 3]); 6] = [
+        let [clutter_texels, patches, inpaint_from, rows] = d.counts;
+        let mut steps: Vec<(&str, &Pass, &wgpu::BindGroup, [u32; 3])> = vec![
             ("mrt direct texels", &self.direct, &direct, [texels.div_ceil(64), 1, 1]),
             ("mrt b", &self.reduce, &g.reduce, [k_b, blocks, 6]),
             ("mrt interfaces r", &self.interface, &g.interface, [(slots * k_r).div_ceil(64), 1, 1]),
             ("mrt reconstruct", &self.reconstruct, &g.reconstruct, [texels.div_ceil(64), 1, 1]),
+        ];
+        if let Some(group) = &drt_direct {
+            steps.extend([
+                ("drt clutter direct", &self.direct, group, [clutter_texels.div_ceil(64), 1, 1]),
+                ("drt patches", &self.drt_patches, &g.drt_patches, [patches.div_ceil(64), 1, 1]),
+                ("drt deltas and gather", &self.drt_rows, &g.drt_rows, [inpaint_from.div_ceil(64), 1, 1]),
+                ("drt inpainting", &self.drt_rows, &g.drt_inpaint, [(rows - inpaint_from).div_ceil(64), 1, 1]),
+            ]);
+        }
+        steps.extend([
             ("mrt sides", &self.sides, &g.sides, [(positions * positions).div_ceil(64), sides, 1]),
             ("mrt apply", &self.apply, &apply, [size.0.div_ceil(8), size.1.div_ceil(8), 1]),
-        ];
+        ]);
         for (name, pass, group, [x, y, z]) in steps {
             if x == 0 || y == 0 {
                 continue;
@@ -387,8 +461,9 @@ impl MrtPasses {
         true
     }
 
-    /// Reads a per-texel buffer ("l_d", "indirect", "within") as RGBA floats, or "sides": the
-    /// side texels (P^2 per partly open side, in the order of the level's side records).
+    /// Reads a per-texel buffer ("l_d", "indirect", "within") as RGBA floats, "sides": the
+    /// side texels (P^2 per partly open side, in the order of the level's side records), or the
+    /// clutter texels' "clutter_radiance" or "clutter_gather" (E / pi).
     pub fn read_texels(
         &self,
         device: &wgpu::Device,
@@ -401,9 +476,15 @@ impl MrtPasses {
             "indirect" => (&l.indirect, 0),
             "within" => (&l.within, 0),
             "sides" => (&l.indirect, l.counts.counts[1] as usize),
+            "clutter_radiance" => (&l.drt.radiance, 0),
+            "clutter_gather" => (&l.drt.gather, 0),
             _ => return None,
         };
-        let count = if which == "sides" { l.counts.sides[2] as usize } else { l.counts.counts[1] as usize };
+        let count = match which {
+            "sides" => l.counts.sides[2] as usize,
+            "clutter_radiance" | "clutter_gather" => l.drt.counts[0] as usize,
+            _ => l.counts.counts[1] as usize,
+        };
         Some(readback::read_buffer(device, queue, buffer).map(|bytes| {
             bytemuck::pod_collect_to_vec::<u8, [f32; 4]>(&bytes).into_iter().skip(skip).take(count).collect()
         }))
@@ -435,7 +516,8 @@ impl MrtPasses {
 
     /// Bytes of GPU memory held.
     pub fn gpu_bytes(&self) -> u64 {
-        let level: u64 = self.level.as_ref().map_or(0, |l| l.all().iter().map(|b| b.size()).sum());
+        let level: u64 =
+            self.level.as_ref().map_or(0, |l| l.all().iter().chain(l.drt.all().iter()).map(|b| b.size()).sum());
         level + self.assignment.as_ref().map_or(0, |t| crate::render::gi::technique::texture_bytes(&t.texture))
     }
 }

@@ -118,6 +118,7 @@ pub struct MrtTechnique {
     level_dirty: bool,
     depth: usize,
     overrides: Vec<crate::settings::BlockOverride>,
+    drt: crate::settings::DrtSettings,
     shown: Option<Shown>,
     /// The dictionary parameters that failed to build, and why (not retried until they change).
     dictionary_error: Option<(DictionaryParams, String)>,
@@ -140,6 +141,7 @@ impl MrtTechnique {
             level_dirty: true,
             depth: 0,
             overrides: Vec::new(),
+            drt: crate::settings::DrtSettings::default(),
             shown: None,
             dictionary_error: None,
             level_error: None,
@@ -272,9 +274,10 @@ impl GiTechnique for MrtTechnique {
             return pending;
         }
         let depth = s.depth as usize;
-        if depth != self.depth || s.block_overrides != self.overrides {
+        if depth != self.depth || s.block_overrides != self.overrides || s.drt != self.drt {
             self.depth = depth;
             self.overrides = s.block_overrides.clone();
+            self.drt = s.drt.clone();
             self.level_dirty = true;
         }
         if let Some(job) = &self.level_job
@@ -283,6 +286,7 @@ impl GiTechnique for MrtTechnique {
             self.level_job = None;
             match result {
                 Ok(level) => self.accept(level),
+                Err(e) if e == super::job::CANCELLED => {}
                 Err(e) => {
                     // Show nothing rather than the previous level beside the message.
                     self.level_error = Some(format!("mrt: {e}"));
@@ -291,11 +295,15 @@ impl GiTechnique for MrtTechnique {
                 }
             }
         }
+        // A new edit cancels the build in flight (its DRT rays stop at the next texel) rather
+        // than queueing behind it: a drag ends with one build of where the object stopped.
         if self.level_dirty
-            && self.level_job.is_none()
-            && let Some((_, d)) = &self.dictionary
+            && let Some((_, d)) = self.dictionary.clone()
         {
-            self.level_job = Some(LevelJob::start(scene, d.clone(), depth, &self.overrides));
+            if self.level_job.take().is_some() {
+                self.count("level builds cancelled");
+            }
+            self.level_job = Some(LevelJob::start(scene, d, depth, &self.overrides, &self.drt));
             self.level_dirty = false;
         }
         let building = self.level_job.is_some();
@@ -312,9 +320,19 @@ impl GiTechnique for MrtTechnique {
         match &self.shown {
             Some(shown) => {
                 let fitted = if shown.fitted { ", fitted (the scene has none)" } else { "" };
-                let rebuilding = if building { ", rebuilding" } else { "" };
+                let rebuilding = match &self.level_job {
+                    Some(job) => {
+                        let (fraction, left) = job.progress();
+                        let left = left.map_or(String::new(), |s| format!(", {s:.1} s left"));
+                        format!(", rebuilding ({:.0}% of the DRT rays{left})", 100.0 * fraction)
+                    }
+                    None => String::new(),
+                };
+                let drt = shown.packed.drt.as_ref().map_or(String::new(), |d| {
+                    format!(", {} clutter objects (DRT built in {:.0} ms)", d.clutter.len(), d.millis)
+                });
                 self.status.progress =
-                    Some(format!("mrt: {} blocks{fitted}, {} links{rebuilding}", shown.blocks.len(), shown.links));
+                    Some(format!("mrt: {} blocks{fitted}, {} links{drt}{rebuilding}", shown.blocks.len(), shown.links));
                 Readiness::Ready
             }
             None => {
@@ -463,7 +481,7 @@ impl GiTechnique for MrtTechnique {
 
     fn limitations(&self, _scene: &Scene, settings: &RenderSettings) -> Vec<String> {
         let mut out = vec![
-            "indirect light is diffuse and reaches only the level's walls, floors and ceilings: objects inside blocks neither shadow nor reflect it (delta radiance transfer is not built yet)".to_owned(),
+            "indirect light is diffuse; objects inside blocks shadow and reflect it only as clutter (delta radiance transfer: small objects found automatically or marked clutter)".to_owned(),
             "geometry images read materials' base colour factors, not their textures".to_owned(),
         ];
         if let Some(e) = self.error(&settings.mrt.dictionary) {
@@ -484,6 +502,21 @@ impl GiTechnique for MrtTechnique {
                 out.push(format!(
                     "{} open block sides lead to no other block: light leaving there is lost",
                     s.unlinked
+                ));
+            }
+            if let Some(d) = &s.packed.drt {
+                out.push(format!(
+                    "drt: {} clutter objects ({} found automatically, {} marked), {} clutter texels, {} covered block texels inpainted, {} operator rows with {} entries ({:.1} MB), {:.2} M rays traced, built in {:.0} ms",
+                    d.clutter.len(),
+                    d.automatic,
+                    d.marked,
+                    d.texels.len(),
+                    d.covered.iter().filter(|c| **c).count(),
+                    d.rows.len(),
+                    d.entries.len(),
+                    d.bytes() as f64 / 1e6,
+                    d.traced as f64 / 1e6,
+                    d.millis
                 ));
             }
             out.push(format!(

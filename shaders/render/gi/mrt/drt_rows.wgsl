@@ -1,0 +1,46 @@
+// DRT pass G2 (Loos 2015 §5.4, digest sections 8.2-8.5 and 8.7): the delta operators' sparse rows.
+// A delta row adds to a block texel's indirect light (E / pi) the light of the clutter its rays
+// meet (ΔU_c c, weights > 0) less the light the clutter hides (ΔU_b, weights < 0); a gather row
+// writes a clutter texel's indirect light (C_b) from the patches its rays reach; an inpainting
+// row (the second dispatch, after the deltas) replaces a texel that clutter covers with the mean
+// of its valid neighbours. Rows `counts.y .. counts.z`; one thread per row.
+
+struct DrtParams {
+    // patches, first row, end row, clutter texels.
+    counts: vec4<u32>,
+}
+
+@group(0) @binding(0) var<uniform> dp: DrtParams;
+// Per row: target texel, first entry, entry count, kind (0 delta, 1 inpaint, 2 gather).
+@group(0) @binding(1) var<storage, read> rows: array<vec4<u32>>;
+// Per entry: source (patch; block texel for inpainting), weight's bits.
+@group(0) @binding(2) var<storage, read> entries: array<vec2<u32>>;
+@group(0) @binding(3) var<storage, read> patch_light: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read_write> indirect: array<vec4<f32>>;
+@group(0) @binding(5) var<storage, read_write> clutter_gather: array<vec4<f32>>;
+
+@compute @workgroup_size(64, 1, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let r = dp.counts.y + id.x;
+    if r >= dp.counts.z {
+        return;
+    }
+    let row = rows[r];
+    var sum = vec3<f32>(0.0);
+    for (var e = row.y; e < row.y + row.z; e = e + 1u) {
+        let entry = entries[e];
+        let w = bitcast<f32>(entry.y);
+        if row.w == 1u {
+            sum = sum + w * indirect[entry.x].rgb;
+        } else {
+            sum = sum + w * patch_light[entry.x].rgb;
+        }
+    }
+    if row.w == 0u {
+        indirect[row.x] = vec4<f32>(indirect[row.x].rgb + sum, 1.0);
+    } else if row.w == 1u {
+        indirect[row.x] = vec4<f32>(sum, 1.0);
+    } else {
+        clutter_gather[row.x] = vec4<f32>(max(sum, vec3<f32>(0.0)), 1.0);
+    }
+}
