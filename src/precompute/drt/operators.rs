@@ -17,7 +17,7 @@
 //!
 //! Deviation from the text (measured in the closing note of #13): the sources are not the
 //! implicit lights L_imp driven by the blocks' b (32 values per texel and source block) but
-//! patches of the runtime's own per-texel light (4 x 4 texels of a block face or clutter face,
+//! patches of the runtime's own per-texel light (a block face or clutter face in 4 x 4 patches,
 //! averaged every frame). The dissertation reduces l_d to b and reconstructs it with L_imp; the
 //! patches keep l_d unreduced at a quarter of the texel resolution, so a delta row holds the
 //! patches its rays reach (tens), not 32 values per source block.
@@ -117,15 +117,10 @@ fn hits_box(o: Vec3, d: Vec3, lo: Vec3, hi: Vec3) -> bool {
     far.partial_cmp(&near.max(0.0)) != Some(std::cmp::Ordering::Less)
 }
 
-/// Patch side for `res` texels per face side.
+/// Patch side for `res` texels per face side: a face is 4 x 4 patches where `res` allows (4 x 4
+/// texels each at the dissertation's 16).
 fn patch_side(res: usize) -> usize {
-    if res.is_multiple_of(4) {
-        4
-    } else if res.is_multiple_of(2) {
-        2
-    } else {
-        1
-    }
+    if res.is_multiple_of(4) { res / 4 } else { 1 }
 }
 
 /// The scene's surfaces as the operators see them.
