@@ -3,6 +3,7 @@
 //! The binary's `main.rs` only parses arguments and calls these.
 
 pub mod bench;
+pub mod bench_drt;
 pub mod bench_mrt;
 pub mod bench_sshgi;
 pub mod compare;
