@@ -87,6 +87,10 @@ fn main() -> anyhow::Result<()> {
             project.render.sshgi = ron::from_str(&ron_text)?;
             project.render.mode = GiMode::Sshgi;
         }
+        // PROBE_VO: volumetric obscurance settings (RON), e.g. "(mrt: false)".
+        if let Ok(ron_text) = std::env::var("PROBE_VO") {
+            project.render.vo = ron::from_str(&ron_text)?;
+        }
         // PROBE_MRT: render `mrt` with these settings (RON) instead of `ism`.
         if let Ok(ron_text) = std::env::var("PROBE_MRT") {
             project.render.mrt = ron::from_str(&ron_text)?;

@@ -46,6 +46,7 @@ fn every_parameter_block_matches_its_wgsl_struct() {
         .iter()
         .chain(bouncelab::render::gi::sshgi::PARAM_BLOCKS)
         .chain(bouncelab::render::gi::mrt::PARAM_BLOCKS)
+        .chain(bouncelab::render::obscurance::PARAM_BLOCKS)
     {
         let text = assemble(path).expect("assembles");
         let module =

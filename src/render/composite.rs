@@ -1,5 +1,6 @@
 //! The composite pass (`shaders/render/composite.wgsl`): adds the active technique's indirect
-//! term to the direct term as its [`GiOutput`] says, into the HDR target.
+//! term to the direct term as its [`GiOutput`] says, into the HDR target, the indirect term
+//! times the volumetric obscurance factor where it applies ([`super::obscurance`]).
 
 use super::gi::GiOutput;
 use super::layouts::{compute_pipeline, storage_texture_entry, texture_entry, uniform_entry};
@@ -7,6 +8,15 @@ use super::shaders::{self, ShaderError};
 use super::targets::{ViewTargets, formats};
 use super::timing::TimestampPair;
 use super::uniforms::CompositeUniforms;
+
+/// What a frame's composite adds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Composite {
+    /// What the technique wrote into `indirect`.
+    pub output: GiOutput,
+    /// Multiply the indirect term by the volumetric obscurance factor.
+    pub obscurance: bool,
+}
 
 /// The composite pipeline and its parameter block.
 pub struct CompositePass {
@@ -40,6 +50,7 @@ impl CompositePass {
                 texture_entry(4, c, unfilterable),
                 texture_entry(5, c, unfilterable),
                 storage_texture_entry(6, formats::HDR),
+                texture_entry(7, c, unfilterable),
             ],
         });
         let module = shaders::module(device, "render/composite.wgsl")?;
@@ -69,6 +80,7 @@ impl CompositePass {
                 view(4, &t.direct.view),
                 view(5, &t.indirect.view),
                 view(6, &t.hdr.view),
+                view(7, &t.vo.view),
             ],
         })
     }
@@ -79,11 +91,12 @@ impl CompositePass {
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         group: &wgpu::BindGroup,
-        output: GiOutput,
+        what: Composite,
         size: (u32, u32),
         timestamps: Option<TimestampPair<'_>>,
     ) {
-        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&CompositeUniforms { output: [code(output), 0, 0, 0] }));
+        let params = CompositeUniforms { output: [code(what.output), u32::from(what.obscurance), 0, 0] };
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("composite pass"),
             timestamp_writes: timestamps.as_ref().map(TimestampPair::compute_writes),

@@ -74,6 +74,8 @@ pub struct Renderer {
     shadows: ShadowPass,
     lighting: LightingPass,
     composite: CompositePass,
+    /// Volumetric obscurance on the indirect term.
+    vo: super::obscurance::VoPass,
     tonemap: TonemapPass,
     pyramid: ViewPyramid,
     frame_buffer: wgpu::Buffer,
@@ -129,6 +131,7 @@ impl Renderer {
             shadows: ShadowPass::new(device, &layouts)?,
             lighting: LightingPass::new(device)?,
             composite: CompositePass::new(device)?,
+            vo: super::obscurance::VoPass::new(device)?,
             tonemap: TonemapPass::new(device)?,
             pyramid: ViewPyramid::new(device)?,
             lights_buffer: storage_buffer(device, "lights", bytemuck::bytes_of(&GpuLight::default())),
@@ -339,7 +342,16 @@ impl Renderer {
             // Keep the inspector honest: nothing was written, so `indirect` shows black.
             clear(&mut encoder, &sized.targets.indirect.view);
         }
-        self.composite.record(queue, &mut encoder, &sized.composite, self.output, size, self.timer.scope("composite"));
+        let obscurance = self.output != GiOutput::Nothing
+            && self.output != GiOutput::Complete
+            && super::obscurance::applies(settings.mode, &settings.vo);
+        if obscurance {
+            self.vo.set(queue, &settings.vo);
+            self.vo.record(device, &mut encoder, &self.frame_buffer, &sized.targets, &mut self.timer);
+        }
+        let ts = self.timer.scope("composite");
+        let what = super::composite::Composite { output: self.output, obscurance };
+        self.composite.record(queue, &mut encoder, &sized.composite, what, size, ts);
         self.tonemap.record(queue, &mut encoder, &sized.tonemap, &settings.view, size, self.timer.scope("tonemap"));
         if let Some(previous) = &self.previous {
             encoder.copy_texture_to_texture(

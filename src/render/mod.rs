@@ -12,6 +12,7 @@ mod gbuffer;
 pub mod gi;
 pub(crate) mod layouts;
 mod lighting;
+pub mod obscurance;
 pub mod pyramid;
 pub mod readback;
 pub(crate) mod scene_gpu;

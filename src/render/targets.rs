@@ -71,6 +71,10 @@ pub struct ViewTargets {
     pub hdr: Target,
     /// Tonemapped, gamma-encoded display image (the PNG output and the egui texture).
     pub ldr: Target,
+    /// Volumetric obscurance before the blur (r: the factor, g: the obscurance V).
+    pub vo_raw: Target,
+    /// Volumetric obscurance after the bilateral blur (r: the factor the composite applies).
+    pub vo: Target,
 }
 
 impl ViewTargets {
@@ -91,6 +95,8 @@ impl ViewTargets {
             indirect: Target::new(device, "indirect radiance", size, formats::HDR, storage | U::RENDER_ATTACHMENT),
             hdr: Target::new(device, "hdr radiance", size, formats::HDR, storage),
             ldr: Target::new(device, "ldr display", size, formats::LDR, storage | U::RENDER_ATTACHMENT),
+            vo_raw: Target::new(device, "volumetric obscurance raw", size, formats::HDR, storage),
+            vo: Target::new(device, "volumetric obscurance", size, formats::HDR, storage),
         }
     }
 }

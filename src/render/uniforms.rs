@@ -103,7 +103,7 @@ impl MaterialUniforms {
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct CompositeUniforms {
     /// What `indirect` holds: 0 nothing, 1 E / pi, 2 outgoing radiance, 3 the whole image;
-    /// unused x3.
+    /// volumetric obscurance multiplies the indirect term (1) or not; unused x2.
     pub output: [u32; 4],
 }
 

@@ -10,10 +10,12 @@ mod ism;
 mod mrt;
 mod preview;
 mod sshgi;
+mod vo;
 
 pub use ism::{BouncePick, IsmSettings, MAX_ATLAS_SIDE};
 pub use mrt::{BlockOverride, DrtSettings, MrtSettings};
 pub use sshgi::SshgiSettings;
+pub use vo::VoSettings;
 
 /// The GI technique that produces indirect light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
@@ -147,6 +149,8 @@ pub struct RenderSettings {
     pub sshgi: SshgiSettings,
     /// Modular radiance transfer over proxy blocks.
     pub mrt: MrtSettings,
+    /// Volumetric obscurance on the indirect term.
+    pub vo: VoSettings,
 }
 
 /// A settings value outside its valid range.
@@ -199,6 +203,7 @@ impl RenderSettings {
         self.ism.validate()?;
         self.sshgi.validate()?;
         self.mrt.validate()?;
+        self.vo.validate()?;
         if !(-32.0..=32.0).contains(&self.view.exposure_ev) {
             return Err(SettingsError {
                 name: "view.exposure_ev",

@@ -55,6 +55,18 @@ pub const FRAME_BUFFERS: &[BufferInfo] = &[
     },
     BufferInfo { name: "hdr", description: "Final linear radiance.", format: "rgba32f", view: BufferView::Colour },
     BufferInfo {
+        name: "vo_raw",
+        description: "Volumetric obscurance before the blur: r = the factor, g = V (written where it applies: mrt by default, the VO settings).",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "vo",
+        description: "Volumetric obscurance after the bilateral blur: r = the factor the indirect term is multiplied by, g = before the blur.",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
         name: "ldr",
         description: "Tonemapped display image (gamma-encoded).",
         format: "rgba8",
@@ -113,6 +125,8 @@ impl Renderer {
             "direct" => &t.direct.texture,
             "indirect" => &t.indirect.texture,
             "hdr" => &t.hdr.texture,
+            "vo_raw" => &t.vo_raw.texture,
+            "vo" => &t.vo.texture,
             "ldr" => &t.ldr.texture,
             "shadow_map" => &self.shadows.texture,
             _ if pyramid_level.is_some() => {

@@ -1,0 +1,62 @@
+// Volumetric obscurance's edge-aware blur (digest section 9.3: line samples need a bilateral
+// blur): a 5 x 5 window (it covers the 4 x 4 rotation tile) weighted by a Gaussian in pixels,
+// by depth (taps farther than about 1% of the camera distance from the centre's tangent plane
+// count little) and by normal agreement, so obscurance does not bleed across silhouettes or
+// creases. Writes (blurred factor, raw factor, 0, 1); `counts.x == 0` copies.
+#import common/frame.wgsl
+#import common/octahedral.wgsl
+
+struct BlurParams {
+    // Blur on (1) or off (0), unused x3.
+    counts: vec4<u32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> bp: BlurParams;
+@group(0) @binding(2) var depth_tex: texture_depth_2d;
+@group(0) @binding(3) var normal_tex: texture_2d<f32>;
+@group(0) @binding(4) var raw_tex: texture_2d<f32>;
+@group(0) @binding(5) var out_vo: texture_storage_2d<rgba32float, write>;
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = vec2<u32>(frame.size.xy);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let pixel = id.xy;
+    let raw = textureLoad(raw_tex, pixel, 0).r;
+    let depth = textureLoad(depth_tex, pixel, 0);
+    if bp.counts.x == 0u || depth <= 0.0 {
+        textureStore(out_vo, pixel, vec4<f32>(raw, raw, 0.0, 1.0));
+        return;
+    }
+    let cam = frame.camera_position.xyz;
+    let p = world_from_pixel(frame, pixel, depth);
+    let dist = length(p - cam);
+    let n = oct_decode(textureLoad(normal_tex, pixel, 0).zw);
+    var sum = 0.0;
+    var weight = 0.0;
+    for (var dy = -2; dy <= 2; dy = dy + 1) {
+        for (var dx = -2; dx <= 2; dx = dx + 1) {
+            let q = vec2<i32>(pixel) + vec2<i32>(dx, dy);
+            if any(q < vec2<i32>(0)) || any(q >= vec2<i32>(size)) {
+                continue;
+            }
+            let qp = vec2<u32>(q);
+            let dq = textureLoad(depth_tex, qp, 0);
+            if dq <= 0.0 {
+                continue;
+            }
+            // Distance from the centre's tangent plane, so a plane seen at a grazing angle (whose
+            // neighbours differ much in distance from the camera) still blurs along itself.
+            let rel = dot(world_from_pixel(frame, qp, dq) - p, n) / (0.01 * dist);
+            let agree = max(dot(n, oct_decode(textureLoad(normal_tex, qp, 0).zw)), 0.0);
+            let w = exp(-f32(dx * dx + dy * dy) / 4.5) * exp(-rel * rel) * pow(agree, 8.0);
+            sum = sum + w * textureLoad(raw_tex, qp, 0).r;
+            weight = weight + w;
+        }
+    }
+    let blurred = select(raw, sum / weight, weight > 1.0e-6);
+    textureStore(out_vo, pixel, vec4<f32>(blurred, raw, 0.0, 1.0));
+}
