@@ -64,6 +64,9 @@ pub struct DrtSettings {
     pub automatic: bool,
     /// Objects never treated as clutter automatically (names): the artist's override.
     pub not_clutter: Vec<String>,
+    /// Block texels that clutter covers take their neighbours' light (Loos 2015 §5.4.2). Off
+    /// shows the rim their own deltas leave at footprints (the comparison). Free.
+    pub inpaint: bool,
 }
 
 impl Default for DrtSettings {
@@ -76,6 +79,7 @@ impl Default for DrtSettings {
             clutter_res: p.clutter_res as u32,
             automatic: true,
             not_clutter: Vec::new(),
+            inpaint: true,
         }
     }
 }
@@ -87,6 +91,7 @@ impl DrtSettings {
             rays: self.rays as usize,
             gather_rays: self.gather_rays as usize,
             clutter_res: self.clutter_res as usize,
+            inpaint: self.inpaint,
             ..Default::default()
         }
     }

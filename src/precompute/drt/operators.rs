@@ -44,11 +44,14 @@ pub struct DrtParams {
     /// Block texels farther from a clutter box than this many times its radius get no delta
     /// (at 16 radii a box covers under 0.4% of the cosine-weighted hemisphere).
     pub reach: f32,
+    /// Texels clutter covers take their neighbours' light (§5.4.2); off, they keep their own
+    /// (meaningless) deltas: the comparison of the dissertation's Fig. 5.3.
+    pub inpaint: bool,
 }
 
 impl Default for DrtParams {
     fn default() -> Self {
-        Self { rays: 1024, gather_rays: 256, clutter_res: 16, reach: 16.0 }
+        Self { rays: 1024, gather_rays: 256, clutter_res: 16, reach: 16.0, inpaint: true }
     }
 }
 
@@ -268,8 +271,14 @@ fn delta_row(inp: &Inputs<'_>, pat: &Patches, params: &DrtParams, i: usize) -> (
             break;
         }
     }
-    let covered = blocked as f32 * w > 0.95;
-    (if covered { Vec::new() } else { merged(list) }, covered, traced)
+    // Covered: the texel's point lies inside a clutter box (a floor texel under a crate), or
+    // clutter takes more than 95% of its rays (digest section 8.5).
+    let inside = near.iter().any(|c| {
+        let m = Vec3::splat(1e-3);
+        t.position.cmpge(c.lo - m).all() && t.position.cmple(c.hi + m).all()
+    });
+    let covered = inside || blocked as f32 * w > 0.95;
+    (if covered && params.inpaint { Vec::new() } else { merged(list) }, covered, traced)
 }
 
 /// One clutter texel's gather row.
@@ -364,7 +373,7 @@ pub fn build(inp: &Inputs<'_>, params: &DrtParams, progress: &Progress) -> Optio
     }
     ops.inpaint_from = ops.rows.len();
     for i in 0..n_scene {
-        if ops.covered[i] {
+        if ops.covered[i] && params.inpaint {
             let sources = inpaint_sources(inp.map, &ops.covered, inp.texels, i);
             if !sources.is_empty() {
                 let w = 1.0 / sources.len() as f32;

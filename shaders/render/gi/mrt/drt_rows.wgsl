@@ -18,6 +18,10 @@ struct DrtParams {
 @group(0) @binding(3) var<storage, read> patch_light: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read_write> indirect: array<vec4<f32>>;
 @group(0) @binding(5) var<storage, read_write> clutter_gather: array<vec4<f32>>;
+// The inspector's split of a delta row: the light the clutter hides (ΔU_b b, as a positive
+// amount; the scene patches' weights are the negative ones) and the light it adds (ΔU_c c).
+@group(0) @binding(6) var<storage, read_write> occlusion: array<vec4<f32>>;
+@group(0) @binding(7) var<storage, read_write> reflection: array<vec4<f32>>;
 
 @compute @workgroup_size(64, 1, 1)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -27,17 +31,24 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let row = rows[r];
     var sum = vec3<f32>(0.0);
+    var hidden = vec3<f32>(0.0);
     for (var e = row.y; e < row.y + row.z; e = e + 1u) {
         let entry = entries[e];
         let w = bitcast<f32>(entry.y);
         if row.w == 1u {
             sum = sum + w * indirect[entry.x].rgb;
         } else {
-            sum = sum + w * patch_light[entry.x].rgb;
+            let v = w * patch_light[entry.x].rgb;
+            sum = sum + v;
+            if w < 0.0 {
+                hidden = hidden - v;
+            }
         }
     }
     if row.w == 0u {
         indirect[row.x] = vec4<f32>(indirect[row.x].rgb + sum, 1.0);
+        occlusion[row.x] = vec4<f32>(hidden, 1.0);
+        reflection[row.x] = vec4<f32>(sum + hidden, 1.0);
     } else if row.w == 1u {
         indirect[row.x] = vec4<f32>(sum, 1.0);
     } else {

@@ -38,6 +38,9 @@ pub struct DrtBuffers {
     pub radiance: wgpu::Buffer,
     pub gather: wgpu::Buffer,
     pub patch_light: wgpu::Buffer,
+    /// Per block texel, the inspector's ΔU_b b (as the light hidden) and ΔU_c c.
+    pub occlusion: wgpu::Buffer,
+    pub reflection: wgpu::Buffer,
     /// Clutter texels, patches, rows before inpainting, all rows.
     pub counts: [u32; 4],
     /// The direct pass's parameters without the per-frame gain.
@@ -45,8 +48,9 @@ pub struct DrtBuffers {
 }
 
 impl DrtBuffers {
-    /// Uploads `drt` (or the empty placeholders).
-    pub fn new(device: &wgpu::Device, drt: Option<&DrtPacked>, objects: usize) -> Self {
+    /// Uploads `drt` (or the empty placeholders) for a level of `objects` scene objects and
+    /// `block_texels` block texels.
+    pub fn new(device: &wgpu::Device, drt: Option<&DrtPacked>, objects: usize, block_texels: usize) -> Self {
         let empty = DrtPacked { object_clutter: vec![super::pack::NONE; objects + 1], ..DrtPacked::default() };
         let d = drt.unwrap_or(&empty);
         let texels = d.texels.len() as u32;
@@ -80,13 +84,19 @@ impl DrtBuffers {
             radiance: vec4s(device, "drt clutter radiance", d.texels.len()),
             gather: vec4s(device, "drt clutter gathered light", d.texels.len()),
             patch_light: vec4s(device, "drt patch light", d.patches.len()),
+            occlusion: vec4s(device, "drt hidden light per block texel", if drt.is_some() { block_texels } else { 1 }),
+            reflection: vec4s(
+                device,
+                "drt reflected light per block texel",
+                if drt.is_some() { block_texels } else { 1 },
+            ),
             counts: [texels, patches, d.inpaint_from, rows],
             direct,
         }
     }
 
     /// The buffers (GPU memory accounting).
-    pub fn all(&self) -> [&wgpu::Buffer; 13] {
+    pub fn all(&self) -> [&wgpu::Buffer; 15] {
         [
             &self.direct_params,
             &self.patch_params,
@@ -101,6 +111,8 @@ impl DrtBuffers {
             &self.radiance,
             &self.gather,
             &self.patch_light,
+            &self.occlusion,
+            &self.reflection,
         ]
     }
 }

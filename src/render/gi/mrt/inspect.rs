@@ -32,6 +32,26 @@ pub fn atlas(p: &Packed, values: &[[f32; 4]]) -> HdrImage {
     HdrImage { width: width.max(1) as u32, height: height.max(1) as u32, pixels }
 }
 
+/// Per-clutter-texel `values` as one row of six face tiles (-x +x -y +y -z +z of its box, t
+/// up) per clutter object.
+pub fn clutter_tiles(d: &super::drt_pack::DrtPacked, values: &[[f32; 4]]) -> HdrImage {
+    let res = d.clutter.first().map_or(1, |c| c.texels[1] as usize).max(1);
+    let (width, height) = (6 * res, d.clutter.len().max(1) * res);
+    let mut pixels = vec![[0.0, 0.0, 0.0, 1.0]; width * height];
+    for (ci, c) in d.clutter.iter().enumerate() {
+        for face in 0..6 {
+            for t in 0..res {
+                for s in 0..res {
+                    let at = c.texels[0] as usize + (face * res + t) * res + s;
+                    let Some(v) = values.get(at) else { continue };
+                    pixels[(ci * res + res - 1 - t) * width + face * res + s] = [v[0], v[1], v[2], 1.0];
+                }
+            }
+        }
+    }
+    HdrImage { width: width as u32, height: height as u32, pixels }
+}
+
 /// The side texels `values` of every partly open side as P x P tiles side by side (u across,
 /// up up).
 pub fn side_tiles(p: &Packed, values: &[[f32; 4]]) -> HdrImage {

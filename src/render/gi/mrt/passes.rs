@@ -225,7 +225,7 @@ impl MrtPasses {
             )?,
             sides: Pass::new(device, "mrt_sides", &[Uniform, Read, Read, Read, Read, Write])?,
             drt_patches: Pass::new(device, "drt_patches", &[Uniform, Read, Read, Read, Write])?,
-            drt_rows: Pass::new(device, "drt_rows", &[Uniform, Read, Read, Read, Write, Write])?,
+            drt_rows: Pass::new(device, "drt_rows", &[Uniform, Read, Read, Read, Write, Write, Write, Write])?,
             apply: Pass::new(
                 device,
                 "mrt_apply",
@@ -288,7 +288,7 @@ impl MrtPasses {
             r: vec4s(device, "mrt r", p.slots.len() * p.k_r as usize),
             indirect: vec4s(device, "mrt texel indirect (block texels, then side texels)", texels + side_texels),
             within: vec4s(device, "mrt texel within-block indirect", texels),
-            drt: DrtBuffers::new(device, p.drt.as_ref(), p.object_block.len().saturating_sub(1)),
+            drt: DrtBuffers::new(device, p.drt.as_ref(), p.object_block.len().saturating_sub(1), texels),
             counts,
         });
         self.level_groups = self.level.as_ref().map(|l| self.level_groups_of(device, l));
@@ -341,7 +341,16 @@ impl MrtPasses {
             self.drt_rows.bind(
                 device,
                 name,
-                &[buf(params), buf(&d.rows), buf(&d.entries), buf(&d.patch_light), buf(&l.indirect), buf(&d.gather)],
+                &[
+                    buf(params),
+                    buf(&d.rows),
+                    buf(&d.entries),
+                    buf(&d.patch_light),
+                    buf(&l.indirect),
+                    buf(&d.gather),
+                    buf(&d.occlusion),
+                    buf(&d.reflection),
+                ],
             )
         };
         let drt_rows = rows(&d.row_params, "drt_rows");
@@ -478,6 +487,8 @@ impl MrtPasses {
             "sides" => (&l.indirect, l.counts.counts[1] as usize),
             "clutter_radiance" => (&l.drt.radiance, 0),
             "clutter_gather" => (&l.drt.gather, 0),
+            "drt_occlusion" => (&l.drt.occlusion, 0),
+            "drt_reflection" => (&l.drt.reflection, 0),
             _ => return None,
         };
         let count = match which {

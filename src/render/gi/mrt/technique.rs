@@ -84,6 +84,30 @@ pub const BUFFERS: &[BufferInfo] = &[
         format: "bar plot",
         view: BufferView::Colour,
     },
+    atlas(
+        "drt_occlusion",
+        "DRT's ΔU_b b as the light it hides: per block texel, the indirect light the clutter blocks (same atlas); bright under and beside clutter, black far from it",
+    ),
+    atlas(
+        "drt_reflection",
+        "DRT's ΔU_c c: per block texel, the light the clutter's faces bounce onto it (same atlas); bright beside lit clutter faces",
+    ),
+    atlas(
+        "drt_covered",
+        "DRT's inpainting mask: block texels that clutter covers (white), which take their neighbours' light",
+    ),
+    BufferInfo {
+        name: "drt_clutter_radiance",
+        description: "clutter texels' outgoing radiance (albedo x (direct + gathered), the light DRT's ΔU_c and the other clutter read): one row of six box-face tiles (-x +x -y +y -z +z) per clutter object",
+        format: "rgba32f, res^2 per face",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "drt_clutter_gather",
+        description: "C_b b: the indirect light (E / pi) each clutter texel gathers from the level and the other clutter, what its pixels show; same tiles",
+        format: "rgba32f, res^2 per face",
+        view: BufferView::Colour,
+    },
     BufferInfo {
         name: "mrt_assignment",
         description: "per pixel: r = the block it reads, g = the canonical face, b = its distance outside the block (m); a surface outside every block shows b > 0",
@@ -398,6 +422,22 @@ impl GiTechnique for MrtTechnique {
             "mrt_direct_texels" => self.texel_atlas(device, queue, "l_d"),
             "mrt_within_block" => self.texel_atlas(device, queue, "within"),
             "mrt_lightmap" => self.texel_atlas(device, queue, "indirect"),
+            "drt_occlusion" | "drt_reflection" => self.texel_atlas(device, queue, name),
+            "drt_covered" => (|| {
+                // A level without clutter shows black.
+                let empty = super::drt_pack::DrtPacked::default();
+                let d = shown.ok_or_else(|| not_yet(name))?.packed.drt.as_ref().unwrap_or(&empty);
+                let mask: Vec<[f32; 4]> =
+                    d.covered.iter().map(|c| if *c { [1.0, 1.0, 1.0, 1.0] } else { [0.0, 0.0, 0.0, 1.0] }).collect();
+                self.atlas(&mask).ok_or_else(|| not_yet(name))
+            })(),
+            "drt_clutter_radiance" | "drt_clutter_gather" => (|| {
+                let empty = super::drt_pack::DrtPacked::default();
+                let d = shown.ok_or_else(|| not_yet(name))?.packed.drt.as_ref().unwrap_or(&empty);
+                let which = if name == "drt_clutter_radiance" { "clutter_radiance" } else { "clutter_gather" };
+                let values = self.passes.read_texels(device, queue, which).ok_or_else(|| not_yet(name))??;
+                Ok(super::inspect::clutter_tiles(d, &values))
+            })(),
             "mrt_side_texels" => (|| {
                 let s = shown.ok_or_else(|| not_yet(name))?;
                 let values = self.passes.read_texels(device, queue, "sides").ok_or_else(|| not_yet(name))??;
