@@ -19,6 +19,7 @@ pub fn mrt_ui(m: &mut MrtSettings, ui: &mut egui::Ui, objects: &[String], blocks
         ui.add(egui::Slider::new(&mut m.depth, 0..=16).text("depth"))
             .on_hover_text("Blocks beyond a source's neighbours its light is carried through the interfaces. Cost: T_b->r grows with the blocks reached (level rebuild and per-frame r).");
         overrides_ui(&mut m.block_overrides, ui, objects, blocks);
+        drt_ui(&mut m.drt, ui, objects);
         egui::CollapsingHeader::new("Dictionary (precomputed, cached)").default_open(false).show(ui, |ui| {
             let d = &mut m.dictionary;
             egui::ComboBox::from_label("texels per face side").selected_text(d.res.to_string()).show_ui(ui, |ui| {
@@ -35,6 +36,56 @@ pub fn mrt_ui(m: &mut MrtSettings, ui: &mut egui::Ui, objects: &[String], blocks
         });
     });
     fit
+}
+
+/// Delta radiance transfer: the toggle to compare, what counts as clutter and the rebuild's
+/// cost.
+fn drt_ui(d: &mut crate::settings::DrtSettings, ui: &mut egui::Ui, objects: &[String]) {
+    egui::CollapsingHeader::new("Clutter (delta radiance transfer)").default_open(true).show(ui, |ui| {
+        ui.checkbox(&mut d.enabled, "DRT")
+            .on_hover_text("Clutter shadows and reflects the blocks' indirect light and gathers its own (off: mrt as without DRT, to compare). Rebuilt off the frame when clutter moves (bench: 29 objects 1.4 s, one 53 ms on two cores).");
+        ui.checkbox(&mut d.automatic, "find clutter automatically")
+            .on_hover_text("Static objects lower than 90% of their block and narrower than half of it count as clutter (a bare glTF has no roles). Objects whose role is Clutter always do.");
+        ui.add(egui::Slider::new(&mut d.rays, 16..=4096).logarithmic(true).text("rays per texel"))
+            .on_hover_text("Rays per block texel near clutter for the delta operators (the dissertation: 1024). Rebuild time linear in it; only rays meeting a clutter box are traced.");
+        ui.add(egui::Slider::new(&mut d.gather_rays, 16..=4096).logarithmic(true).text("gather rays"))
+            .on_hover_text("Rays per clutter texel for its gathered light: most of the rebuild (x 6 x res² texels per object).");
+        egui::ComboBox::from_label("clutter texels per face").selected_text(d.clutter_res.to_string()).show_ui(ui, |ui| {
+            for r in [4, 8, 16, 32] {
+                ui.selectable_value(&mut d.clutter_res, r, r.to_string());
+            }
+        })
+        .response
+        .on_hover_text("The dissertation's 16. The gather's cost grows with its square.");
+        ui.checkbox(&mut d.inpaint, "inpaint covered texels")
+            .on_hover_text("Texels under clutter take their neighbours' light (off: the rim their own deltas leave, for comparison). Free.");
+        // The artist's override of the automatic choice: static objects never treated as clutter.
+        let mut remove = None;
+        for (i, name) in d.not_clutter.iter().enumerate() {
+            ui.horizontal(|ui| {
+                ui.label(format!("never clutter: {name}"));
+                if ui.small_button("x").on_hover_text("Let the automatic choice decide again").clicked() {
+                    remove = Some(i);
+                }
+            });
+        }
+        if let Some(i) = remove {
+            d.not_clutter.remove(i);
+        }
+        let mut add = None;
+        egui::ComboBox::from_id_salt("drt never clutter").selected_text("never clutter...").show_ui(ui, |ui| {
+            for name in objects.iter().filter(|n| !d.not_clutter.contains(n)) {
+                if ui.selectable_label(false, name).clicked() {
+                    add = Some(name.clone());
+                }
+            }
+        })
+        .response
+        .on_hover_text("Keep a static object out of the automatic clutter (a counter that is structure). Objects whose role is Clutter are clutter regardless.");
+        if let Some(name) = add {
+            d.not_clutter.push(name);
+        }
+    });
 }
 
 /// The artist's object-to-block assignments: a row per override (object, block, remove) and an

@@ -77,6 +77,7 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
         let (objects, blocks) = (names(crate::scene::ObjectRole::Static), names(crate::scene::ObjectRole::ProxyBlock));
         super::gi_mrt::mrt_ui(&mut render.mrt, ui, &objects, &blocks)
     };
+    super::gi_vo::vo_ui(&mut render.vo, render.mode, ui);
     if fit {
         match super::edits::fit_proxy_blocks(&mut state.project, &mut state.history) {
             Ok((selection, n)) => {

@@ -13,6 +13,7 @@ mod gi_ism;
 mod gi_mrt;
 mod gi_panel;
 mod gi_sshgi;
+mod gi_vo;
 pub mod gizmo;
 pub mod history;
 mod inspector;
