@@ -14,6 +14,8 @@ geometry is modelled. Four scenes, the kinds issue 10's "done when" names:
   and a spot and a lamp.
 - offices: a corridor with a lamp and three offices behind 0.15 m partitions, a spot in the
   first; the camera in the unlit third (added later, see `offices`).
+- cluttered: a 6.5 x 3.2 x 5.5 m room with thirty boxes and cylinders and a spot (issue 13's
+  "done when" room for DRT, written after its parameters were fixed).
 - three_rooms_b / three_rooms_c: three box rooms in a row joined by doorways, a spot in the
   first; the camera in the second / third room (issue 12's "done when" level for MRT).
 
@@ -103,6 +105,39 @@ class Writer:
         )
         self.box_meshes[key] = len(self.doc["meshes"]) - 1
         return self.box_meshes[key]
+
+    def cylinder_mesh(self, radius, height, material, sides=16):
+        """A closed cylinder of `radius` and `height` standing on the origin (y up), flat
+        normals on the caps, smooth on the side."""
+        pos, nrm, idx = [], [], []
+        ring = [(math.cos(2 * math.pi * k / sides), math.sin(2 * math.pi * k / sides)) for k in range(sides)]
+        for k, (c, s) in enumerate(ring):  # side: two vertices per ring point
+            pos += [[radius * c, 0.0, radius * s], [radius * c, height, radius * s]]
+            nrm += [[c, 0.0, s], [c, 0.0, s]]
+        for k in range(sides):
+            a, b = 2 * k, 2 * ((k + 1) % sides)
+            # Counter-clockwise seen from outside.
+            idx += [a, a + 1, b + 1, a, b + 1, b]
+        for y, ny in ((height, 1.0), (0.0, -1.0)):
+            centre = len(pos)
+            pos.append([0.0, y, 0.0])
+            nrm.append([0.0, ny, 0.0])
+            for c, s in ring:
+                pos.append([radius * c, y, radius * s])
+                nrm.append([0.0, ny, 0.0])
+            for k in range(sides):
+                a, b = centre + 1 + k, centre + 1 + (k + 1) % sides
+                idx += [centre, b, a] if ny > 0 else [centre, a, b]
+        pv = self._view(b"".join(struct.pack("<3f", *p) for p in pos), 34962)
+        nv = self._view(b"".join(struct.pack("<3f", *n) for n in nrm), 34962)
+        iv = self._view(b"".join(struct.pack("<H", i) for i in idx), 34963)
+        pa = self._accessor(pv, 5126, len(pos), "VEC3", [-radius, 0.0, -radius], [radius, height, radius])
+        na = self._accessor(nv, 5126, len(nrm), "VEC3")
+        ia = self._accessor(iv, 5123, len(idx), "SCALAR")
+        self.doc["meshes"].append(
+            {"name": f"cylinder{len(self.doc['meshes'])}", "primitives": [{"attributes": {"POSITION": pa, "NORMAL": na}, "indices": ia, "material": material}]}
+        )
+        return len(self.doc["meshes"]) - 1
 
     def node(self, node):
         self.doc["nodes"].append(node)
@@ -272,6 +307,34 @@ def storeroom():
     return w
 
 
+def cluttered():
+    """Issue 13's "done when" room: 6.5 x 3.2 x 5.5 m, thirty boxes and cylinders, a spot."""
+    w = Writer()
+    wall, floor, ceil = w.material("plaster", (0.72, 0.7, 0.66)), w.material("boards", (0.45, 0.35, 0.25)), w.material("ceiling", CEILING)
+    colours = [(0.8, 0.3, 0.2), (0.25, 0.45, 0.7), (0.8, 0.75, 0.35), (0.35, 0.6, 0.35), (0.7, 0.7, 0.7)]
+    stuff = [w.material(f"thing_{i}", c) for i, c in enumerate(colours)]
+    t, h, X, Z = 0.2, 3.2, 6.5, 5.5
+    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
+    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
+    w.slab("south", [0, 0, -t], [X, h, 0], wall)
+    w.slab("north", [0, 0, Z], [X, h, Z + t], wall)
+    w.slab("west", [-t, 0, -t], [0, h, Z + t], wall)
+    w.slab("east", [X, 0, -t], [X + t, h, Z + t], wall)
+    rng = random.Random(13131313)
+    for i in range(30):
+        size = 0.25 + 0.45 * rng.random()
+        x, z = 0.4 + rng.random() * (X - 0.8 - size), 0.4 + rng.random() * (Z - 0.8 - size)
+        material = stuff[rng.randrange(len(stuff))]
+        if i % 5 in (1, 3):
+            r, hh = size / 2, size * (0.8 + 0.8 * rng.random())
+            w.node({"name": f"cylinder_{i}", "mesh": w.cylinder_mesh(r, hh, material), "translation": [x + r, 0.0, z + r]})
+        else:
+            w.slab(f"box_{i}", [x, 0, z], [x + size, size * (0.5 + rng.random()), z + size], material)
+    w.light("spot", "spot", 70.0, [0.6, 3.0, 0.6], [1.0, -0.9, 0.8], cone=(0.45, 0.75))
+    w.camera([6.1, 2.4, 5.1], [2.6, 0.2, 2.0], 1.1, 0.05)
+    return w
+
+
 def offices():
     """Added at stop 15, after the apartment had been used to diagnose ISM's holes: a second
     held-out multi-room level, never used for tuning. Thin (0.15 m) partitions, a 12 m corridor
@@ -352,6 +415,7 @@ def main():
     out = Path(sys.argv[1] if len(sys.argv) > 1 else "unseen")
     out.mkdir(parents=True, exist_ok=True)
     levels = [("apartment", apartment), ("sunroom", sunroom), ("storeroom", storeroom), ("offices", offices)]
+    levels += [("cluttered", cluttered)]
     levels += [("three_rooms_b", lambda: three_rooms("b")), ("three_rooms_c", lambda: three_rooms("c"))]
     for name, make in levels:
         make().write(out / f"{name}.gltf")

@@ -32,7 +32,7 @@ pub struct VoSettings {
 
 impl Default for VoSettings {
     fn default() -> Self {
-        Self { mrt: true, other_modes: false, radius: 0.25, samples: 9, thickness: 0.5, normal_clamp: true, blur: true }
+        Self { mrt: true, other_modes: false, radius: 0.1, samples: 9, thickness: 0.5, normal_clamp: true, blur: true }
     }
 }
 
