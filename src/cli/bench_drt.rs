@@ -1,7 +1,8 @@
 //! `bouncelab bench`'s DRT rows (issue #13): on the suite's cluttered room, the rebuild time of
 //! the delta operators for one, ten and all of its clutter objects (the level job's CPU work,
-//! release build), and the per-frame GPU cost of `mrt` with and without DRT as ratios to
-//! `direct` on the same view.
+//! release build), the per-frame GPU cost of `mrt` with and without DRT and volumetric
+//! obscurance as ratios to `direct` on the same view, and their error against the room's
+//! path-traced reference with and without each.
 
 use std::fmt::Write as _;
 
@@ -67,21 +68,31 @@ pub fn drt_rows(md: &mut String, ctx: &GpuContext, quick: bool) -> anyhow::Resul
     let size = (640, 360);
     let frames = if quick { 5 } else { 20 };
     let direct = super::bench::measure(ctx, &project, GiMode::Direct, size, frames)?;
-    let mut off = project.clone();
-    off.render.mrt.drt.enabled = false;
+    let variant = |drt: bool, vo: bool| {
+        let mut p = project.clone();
+        p.render.mrt.drt.enabled = drt;
+        p.render.vo.mrt = vo;
+        p
+    };
     let _ = writeln!(
         md,
         "\nPer frame, {}x{}, `direct` {:.2} ms on the same view (GPU timestamps, median of {frames} frames):\n",
         size.0, size.1, direct.frame_ms
     );
-    let _ = writeln!(md, "| mrt | frame ms | frame / direct | DRT passes, GPU ms (/ direct) |");
+    let _ = writeln!(md, "| mrt | frame ms | frame / direct | DRT and VO passes, GPU ms (/ direct) |");
     let _ = writeln!(md, "|---|---|---|---|");
-    for (name, p) in [("with DRT", &project), ("without DRT", &off)] {
+    let variants = [
+        ("DRT and VO (defaults)", variant(true, true)),
+        ("DRT, no VO", variant(true, false)),
+        ("no DRT, VO", variant(false, true)),
+        ("neither", variant(false, false)),
+    ];
+    for (name, p) in &variants {
         let row = super::bench::measure(ctx, p, GiMode::Mrt, size, frames)?;
         let stages: Vec<String> = row
             .passes
             .iter()
-            .filter(|x| x.name.starts_with("drt"))
+            .filter(|x| x.name.starts_with("drt") || x.name.starts_with("vo"))
             .map(|x| format!("{} {:.2} ({:.2})", x.name, x.ms, x.ms / direct.frame_ms.max(1e-9)))
             .collect();
         let _ = writeln!(
@@ -91,6 +102,20 @@ pub fn drt_rows(md: &mut String, ctx: &GpuContext, quick: bool) -> anyhow::Resul
             row.frame_ms / direct.frame_ms.max(1e-9),
             if stages.is_empty() { "none".to_owned() } else { stages.join(", ") }
         );
+    }
+    let reference = crate::suite::scene("clutter")?.reference(std::path::Path::new("."))?;
+    let ev = super::quality::exposure(&reference);
+    let _ = writeln!(
+        md,
+        "\nError against the room's path-traced reference ({}x{}, as in `docs/QUALITY.md`):\n",
+        reference.width, reference.height
+    );
+    let _ = writeln!(md, "| mrt | energy | FLIP | relMSE |");
+    let _ = writeln!(md, "|---|---|---|---|");
+    for (name, p) in variants {
+        let (image, _) = super::quality::render_project(ctx, p, GiMode::Mrt)?;
+        let m = crate::metrics::compare(&image, &reference, ev)?;
+        let _ = writeln!(md, "| {name} | {:.3} | {:.4} | {:.4} |", m.luminance_ratio, m.flip, m.relmse);
     }
     Ok(())
 }

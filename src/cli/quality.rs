@@ -35,7 +35,15 @@ struct Cell {
 /// Renders `scene` in `mode`: the last of [`FRAMES`] frames, box-filtered to the reference's
 /// size, and the median wall-clock frame time of the last eight.
 fn render(ctx: &GpuContext, scene: &SuiteScene, root: &Path, mode: GiMode) -> anyhow::Result<(HdrImage, f64)> {
-    let mut project = scene.load(root)?;
+    render_project(ctx, scene.load(root)?, mode)
+}
+
+/// [`render`] of a loaded suite `project` (its settings as they are) in `mode`.
+pub(crate) fn render_project(
+    ctx: &GpuContext,
+    mut project: crate::project_file::Project,
+    mode: GiMode,
+) -> anyhow::Result<(HdrImage, f64)> {
     project.render.mode = mode;
     let size = (REFERENCE_SIZE.0 * SSAA, REFERENCE_SIZE.1 * SSAA);
     let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
