@@ -70,7 +70,8 @@ fn an_open_floor_reads_one_everywhere_and_the_crease_at_a_wall_is_darker() {
     let s = scene(false);
     let camera = s.desc().camera;
     for clamp in [true, false] {
-        let img = obscurance(&ctx, &s, VoSettings { normal_clamp: clamp, ..VoSettings::default() });
+        // A 0.5 m sphere: the crease within 0.1 m of the wall has it a quarter full of wall.
+        let img = obscurance(&ctx, &s, VoSettings { normal_clamp: clamp, radius: 0.5, ..VoSettings::default() });
         let open = floor_factors(&img, &camera, |p| p.z > 1.0 && p.x.abs() < 1.5);
         let crease = floor_factors(&img, &camera, |p| (0.1..0.2).contains(&p.z) && p.x.abs() < 1.5);
         let (lo, hi) = open.iter().fold((f32::MAX, 0.0f32), |(a, b), v| (a.min(*v), b.max(*v)));

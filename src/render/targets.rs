@@ -73,6 +73,8 @@ pub struct ViewTargets {
     pub ldr: Target,
     /// Volumetric obscurance before the blur (r: the factor, g: the obscurance V).
     pub vo_raw: Target,
+    /// Volumetric obscurance after the blur's first (row) pass.
+    pub vo_rows: Target,
     /// Volumetric obscurance after the bilateral blur (r: the factor the composite applies).
     pub vo: Target,
 }
@@ -96,6 +98,7 @@ impl ViewTargets {
             hdr: Target::new(device, "hdr radiance", size, formats::HDR, storage),
             ldr: Target::new(device, "ldr display", size, formats::LDR, storage | U::RENDER_ATTACHMENT),
             vo_raw: Target::new(device, "volumetric obscurance raw", size, formats::HDR, storage),
+            vo_rows: Target::new(device, "volumetric obscurance blurred along rows", size, formats::HDR, storage),
             vo: Target::new(device, "volumetric obscurance", size, formats::HDR, storage),
         }
     }

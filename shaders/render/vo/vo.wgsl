@@ -52,8 +52,7 @@ fn surface_behind(q: vec3<f32>, z: vec3<f32>, radius: f32, p: vec3<f32>, n: vec3
         return FAR;
     }
     let b = world_from_pixel(frame, pixel, d);
-    let pixel_size = 2.0 * length(b - frame.camera_position.xyz) * frame.size.w;
-    if vp.counts.y == 1u && dot(b - p, n) < 0.02 * radius + pixel_size {
+    if vp.counts.y == 1u && dot(b - p, n) < 0.05 * radius {
         return FAR;
     }
     return dot(b - q, z) / radius;

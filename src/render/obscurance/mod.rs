@@ -2,8 +2,9 @@
 //! obscurance that the composite multiplies into the indirect term of the techniques it is on
 //! for (`settings::VoSettings`). It exists because `mrt`'s lightmap (16 x 16 texels per block
 //! face) and DRT's clutter operators cannot hold contact detail finer than a texel; the
-//! dissertation pairs them the same way. Two passes: line sampling (`vo/vo.wgsl`) and the
-//! bilateral blur (`vo/vo_blur.wgsl`), into the view targets `vo_raw` and `vo`.
+//! dissertation pairs them the same way. Line sampling (`vo/vo.wgsl`) into the view target
+//! `vo_raw`, then the separable bilateral blur (`vo/vo_blur.wgsl`, rows into `vo_rows`, columns
+//! into `vo`).
 
 pub mod samples;
 
@@ -34,7 +35,7 @@ const _: () = assert!(std::mem::size_of::<VoParams>() == 224);
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct BlurParams {
-    /// Blur on (1) or off, unused x3.
+    /// Blur on (1) or off, direction (0 rows, 1 columns), unused x2.
     pub counts: [u32; 4],
 }
 
@@ -73,7 +74,8 @@ pub struct VoPass {
     vo: (wgpu::BindGroupLayout, wgpu::ComputePipeline),
     blur: (wgpu::BindGroupLayout, wgpu::ComputePipeline),
     params: wgpu::Buffer,
-    blur_params: wgpu::Buffer,
+    /// The blur's row and column passes.
+    blur_params: [wgpu::Buffer; 2],
     /// The settings the parameter block holds (sample sets are relaxed only when they change).
     uploaded: Option<VoSettings>,
 }
@@ -121,7 +123,10 @@ impl VoPass {
             })
         };
         let params = uniform("vo params", bytemuck::bytes_of(&self::params(&VoSettings::default())));
-        let blur_params = uniform("vo blur params", bytemuck::bytes_of(&BlurParams::default()));
+        let blur_params = [
+            uniform("vo blur rows params", bytemuck::bytes_of(&BlurParams::default())),
+            uniform("vo blur columns params", bytemuck::bytes_of(&BlurParams { counts: [0, 1, 0, 0] })),
+        ];
         Ok(Self { vo, blur, params, blur_params, uploaded: None })
     }
 
@@ -129,8 +134,10 @@ impl VoPass {
     pub fn set(&mut self, queue: &wgpu::Queue, settings: &VoSettings) {
         if self.uploaded.as_ref() != Some(settings) {
             queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params(settings)));
-            let blur = BlurParams { counts: [u32::from(settings.blur), 0, 0, 0] };
-            queue.write_buffer(&self.blur_params, 0, bytemuck::bytes_of(&blur));
+            for (k, buffer) in self.blur_params.iter().enumerate() {
+                let blur = BlurParams { counts: [u32::from(settings.blur), k as u32, 0, 0] };
+                queue.write_buffer(buffer, 0, bytemuck::bytes_of(&blur));
+            }
             self.uploaded = Some(settings.clone());
         }
     }
@@ -163,19 +170,27 @@ impl VoPass {
                 view_entry(4, &t.vo_raw.view),
             ],
         );
-        let blur = group(
-            &self.blur.0,
-            "vo_blur",
-            &[
-                wgpu::BindGroupEntry { binding: 0, resource: frame.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: self.blur_params.as_entire_binding() },
-                view_entry(2, &t.depth.view),
-                view_entry(3, &t.normal.view),
-                view_entry(4, &t.vo_raw.view),
-                view_entry(5, &t.vo.view),
-            ],
-        );
-        for (name, pipeline, bind) in [("vo", &self.vo.1, &vo), ("vo blur", &self.blur.1, &blur)] {
+        let blur = |k: usize, from: &wgpu::TextureView, to: &wgpu::TextureView| {
+            group(
+                &self.blur.0,
+                "vo_blur",
+                &[
+                    wgpu::BindGroupEntry { binding: 0, resource: frame.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: self.blur_params[k].as_entire_binding() },
+                    view_entry(2, &t.depth.view),
+                    view_entry(3, &t.normal.view),
+                    view_entry(4, from),
+                    view_entry(5, to),
+                ],
+            )
+        };
+        let rows = blur(0, &t.vo_raw.view, &t.vo_rows.view);
+        let columns = blur(1, &t.vo_rows.view, &t.vo.view);
+        for (name, pipeline, bind) in [
+            ("vo", &self.vo.1, &vo),
+            ("vo blur rows", &self.blur.1, &rows),
+            ("vo blur columns", &self.blur.1, &columns),
+        ] {
             let ts = timer.scope(name);
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(name),
