@@ -267,6 +267,16 @@ def sunroom():
     return w
 
 
+def closed_room(w, t, h, X, Z, wall, floor, ceil):
+    """A closed X x h x Z m room of t m slabs (floor, ceiling, four walls) from the origin."""
+    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
+    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
+    w.slab("south", [0, 0, -t], [X, h, 0], wall)
+    w.slab("north", [0, 0, Z], [X, h, Z + t], wall)
+    w.slab("west", [-t, 0, -t], [0, h, Z + t], wall)
+    w.slab("east", [X, 0, -t], [X + t, h, Z + t], wall)
+
+
 def storeroom():
     w = Writer()
     wall, floor, ceil = w.material("concrete", (0.55, 0.55, 0.52)), w.material("floor", (0.4, 0.4, 0.42)), w.material("ceiling", CEILING)
@@ -274,12 +284,7 @@ def storeroom():
     colours = [(0.7, 0.55, 0.35), (0.6, 0.2, 0.15), (0.2, 0.35, 0.6), (0.75, 0.75, 0.7)]
     stuff = [w.material(f"crate_{i}", c) for i, c in enumerate(colours)]
     t, h, X, Z = 0.2, 3.0, 7.0, 9.0
-    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
-    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
-    w.slab("south", [0, 0, -t], [X, h, 0], wall)
-    w.slab("north", [0, 0, Z], [X, h, Z + t], wall)
-    w.slab("west", [-t, 0, -t], [0, h, Z + t], wall)
-    w.slab("east", [X, 0, -t], [X + t, h, Z + t], wall)
+    closed_room(w, t, h, X, Z, wall, floor, ceil)
     for s, x in enumerate([1.5, 4.5]):
         for k, y in enumerate([0.1, 0.9, 1.7]):
             w.slab(f"shelf_{s}_{k}", [x, y, 2.0], [x + 1.0, y + 0.04, 7.0], metal)
@@ -314,12 +319,7 @@ def cluttered():
     colours = [(0.8, 0.3, 0.2), (0.25, 0.45, 0.7), (0.8, 0.75, 0.35), (0.35, 0.6, 0.35), (0.7, 0.7, 0.7)]
     stuff = [w.material(f"thing_{i}", c) for i, c in enumerate(colours)]
     t, h, X, Z = 0.2, 3.2, 6.5, 5.5
-    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
-    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
-    w.slab("south", [0, 0, -t], [X, h, 0], wall)
-    w.slab("north", [0, 0, Z], [X, h, Z + t], wall)
-    w.slab("west", [-t, 0, -t], [0, h, Z + t], wall)
-    w.slab("east", [X, 0, -t], [X + t, h, Z + t], wall)
+    closed_room(w, t, h, X, Z, wall, floor, ceil)
     rng = random.Random(13131313)
     for i in range(30):
         size = 0.25 + 0.45 * rng.random()

@@ -89,19 +89,7 @@ pub fn drt_rows(md: &mut String, ctx: &GpuContext, quick: bool) -> anyhow::Resul
     ];
     for (name, p) in &variants {
         let row = super::bench::measure(ctx, p, GiMode::Mrt, size, frames)?;
-        let stages: Vec<String> = row
-            .passes
-            .iter()
-            .filter(|x| x.name.starts_with("drt") || x.name.starts_with("vo"))
-            .map(|x| format!("{} {:.2} ({:.2})", x.name, x.ms, x.ms / direct.frame_ms.max(1e-9)))
-            .collect();
-        let _ = writeln!(
-            md,
-            "| {name} | {:.2} | {:.2} | {} |",
-            row.frame_ms,
-            row.frame_ms / direct.frame_ms.max(1e-9),
-            if stages.is_empty() { "none".to_owned() } else { stages.join(", ") }
-        );
+        super::bench_mrt::stage_row(md, name, &row, direct.frame_ms, &["drt", "vo"]);
     }
     let reference = crate::suite::scene("clutter")?.reference(std::path::Path::new("."))?;
     let ev = super::quality::exposure(&reference);

@@ -160,25 +160,27 @@ pub fn mrt_runtime_rows(md: &mut String, ctx: &crate::render::GpuContext, quick:
         "640x360, default settings (16² texels per face, k_b 32, k_r 32, depth 6, feedback on). `direct` on the same view: {:.2} ms per frame. Pass times are GPU timestamps (median of {frames} frames).\n",
         direct.frame_ms
     );
-    let _ = writeln!(md, "| level | frame ms | frame / direct | MRT passes, GPU ms |");
+    let _ = writeln!(md, "| level | frame ms | frame / direct | MRT passes, GPU ms (/ direct) |");
     let _ = writeln!(md, "|---|---|---|---|");
     for (name, project) in &levels {
         let row = super::bench::measure(ctx, project, GiMode::Mrt, size, frames)?;
-        let stages: Vec<String> = row
-            .passes
-            .iter()
-            .filter(|p| p.name.starts_with("mrt"))
-            .map(|p| format!("{} {:.2}", p.name, p.ms))
-            .collect();
-        let _ = writeln!(
-            md,
-            "| {name} | {:.2} | {:.2} | {} |",
-            row.frame_ms,
-            row.frame_ms / direct.frame_ms.max(1e-9),
-            if stages.is_empty() { "(no timestamp queries)".to_owned() } else { stages.join(", ") }
-        );
+        stage_row(md, name, &row, direct.frame_ms, &["mrt"]);
     }
     Ok(())
+}
+
+/// One table row: `name`, the frame time and its ratio to `direct_ms`, and the GPU time of each
+/// pass whose name starts with one of `prefixes` (with its ratio to `direct_ms`).
+pub(super) fn stage_row(md: &mut String, name: &str, row: &super::bench::Row, direct_ms: f64, prefixes: &[&str]) {
+    let direct_ms = direct_ms.max(1e-9);
+    let stages: Vec<String> = row
+        .passes
+        .iter()
+        .filter(|p| prefixes.iter().any(|x| p.name.starts_with(x)))
+        .map(|p| format!("{} {:.2} ({:.2})", p.name, p.ms, p.ms / direct_ms))
+        .collect();
+    let stages = if stages.is_empty() { "none (or no timestamp queries)".to_owned() } else { stages.join(", ") };
+    let _ = writeln!(md, "| {name} | {:.2} | {:.2} | {stages} |", row.frame_ms, row.frame_ms / direct_ms);
 }
 
 #[cfg(test)]
