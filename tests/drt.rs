@@ -54,6 +54,16 @@ const M: f32 = 0.5;
 /// A closed 4 x 3 x 4 unit room of 0.2 unit slabs, a spot aimed at the +x face of (with
 /// `with_box`) a white 0.8 unit clutter box standing against the back (-z) wall; units of [`M`].
 fn room(with_box: bool) -> Scene {
+    // A spot from the +x side at the box's height, aimed at its +x face.
+    let (from, to) = (Vec3::new(3.6, 0.6, 0.6) * M, Vec3::new(1.3, 0.4, 0.4) * M);
+    let light = Light::spot("spot", from, to - from, 5.0, 0.2, 0.45);
+    let camera = Camera::look_at(Vec3::new(3.4, 1.6, 3.4) * M, Vec3::new(1.2, 0.4, 0.4) * M, 1.0);
+    room_with(with_box.then_some(Vec3::new(0.9, 0.4, 0.4)), 0.85, light, camera)
+}
+
+/// The same room with the box (if any) centred at `crate_at` (units of [`M`]) with albedo
+/// `crate_albedo`, lit by `light` and seen by `camera`.
+fn room_with(crate_at: Option<Vec3>, crate_albedo: f32, light: Light, camera: Camera) -> Scene {
     let slab = |name: &str, centre: Vec3, size: Vec3| {
         common::object(
             name,
@@ -70,18 +80,14 @@ fn room(with_box: bool) -> Scene {
         slab("wall -z", Vec3::new(2.0, 1.5, -0.1), Vec3::new(4.4, 3.0, 0.2)),
         slab("wall +z", Vec3::new(2.0, 1.5, 4.1), Vec3::new(4.4, 3.0, 0.2)),
     ];
-    if with_box {
-        let mut b = slab("crate", Vec3::new(0.9, 0.4, 0.4), Vec3::splat(0.8));
+    if let Some(at) = crate_at {
+        let mut b = slab("crate", at, Vec3::splat(0.8));
         b.material = 1;
         b.role = ObjectRole::Clutter;
         objects.push(b);
     }
-    let materials = vec![Material::diffuse("wall", [0.7; 3]), Material::diffuse("crate", [0.85; 3])];
-    // A spot from the +x side at the box's height, aimed at its +x face.
-    let (from, to) = (Vec3::new(3.6, 0.6, 0.6) * M, Vec3::new(1.3, 0.4, 0.4) * M);
-    let lights = vec![Light::spot("spot", from, to - from, 5.0, 0.2, 0.45)];
-    let camera = Camera::look_at(Vec3::new(3.4, 1.6, 3.4) * M, Vec3::new(1.2, 0.4, 0.4) * M, 1.0);
-    common::scene(objects, materials, lights, camera)
+    let materials = vec![Material::diffuse("wall", [0.7; 3]), Material::diffuse("crate", [crate_albedo; 3])];
+    common::scene(objects, materials, vec![light], camera)
 }
 
 /// Mean luminance over the pixels whose camera ray first meets the axis-aligned plane
@@ -260,5 +266,52 @@ fn inpainting_leaves_no_rim_at_the_crates_footprint_and_the_drt_buffers_show_it(
     assert!(
         err(&with) < err(&without),
         "inpainting brings the edge band closer: {with:.4?} / {without:.4?} vs {truth:.4?}"
+    );
+}
+
+#[test]
+fn a_dark_clutter_box_under_a_ceiling_spot_darkens_the_floor_around_it_as_the_reference_does() {
+    let Some(ctx) = common::gpu() else { return };
+    let size = (96, 64);
+    // A wide spot under the ceiling lights the floor round a dark crate in the middle of the room
+    // (a white one lit from above brightens the floor beside it as much as it shades it: the
+    // reference's +8%).
+    let light = Light::spot("spot", Vec3::new(2.0, 2.9, 2.0) * M, -Vec3::Y, 5.0, 0.6, 1.0);
+    let camera = Camera::look_at(Vec3::new(3.6, 2.4, 3.6) * M, Vec3::new(2.0, 0.2, 2.0) * M, 1.0);
+    let (with, without) =
+        (room_with(Some(Vec3::new(2.0, 0.4, 2.0)), 0.1, light.clone(), camera), room_with(None, 0.1, light, camera));
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let no_vo = bouncelab::settings::VoSettings { mrt: false, ..Default::default() };
+    let mrt =
+        |on: bool| RenderSettings { mode: GiMode::Mrt, mrt: small(on), vo: no_vo.clone(), ..RenderSettings::default() };
+    let direct = RenderSettings { mode: GiMode::Direct, ..RenderSettings::default() };
+    let mut indirect = |scene: &Scene, s: &RenderSettings| {
+        let full = render(&mut r, scene, s, size, 16);
+        let d = render(&mut r, scene, &direct, size, 1);
+        let pixels = full.pixels.iter().zip(&d.pixels).map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2], 1.0]);
+        HdrImage { width: size.0, height: size.1, pixels: pixels.collect() }
+    };
+    let (on, off, bare) = (indirect(&with, &mrt(true)), indirect(&with, &mrt(false)), indirect(&without, &mrt(true)));
+    let refs = |scene: &Scene| {
+        let settings = ReferenceSettings { spp: 256, seed: 11, ..Default::default() };
+        let full = common::reference(scene, size, settings.clone());
+        let d = common::reference(scene, size, ReferenceSettings { max_bounces: 1, ..settings });
+        let pixels = full.pixels.iter().zip(&d.pixels).map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2], 1.0]);
+        HdrImage { width: size.0, height: size.1, pixels: pixels.collect() }
+    };
+    let (ref_with, ref_without) = (refs(&with), refs(&without));
+    // The floor along the crate's +z side, 0.05 .. 0.45 units out (the crate spans 1.6 .. 2.4).
+    let ring = |img: &HdrImage| region(img, &camera, 1, 0.0, [1.6 * M, 2.45 * M], [2.4 * M, 2.85 * M]);
+    let change = |a: f64, b: f64| a / b.max(1e-9) - 1.0;
+    let (truth, drt, plain) =
+        (change(ring(&ref_with), ring(&ref_without)), change(ring(&on), ring(&bare)), change(ring(&off), ring(&bare)));
+    eprintln!(
+        "floor beside a crate under a ceiling spot, indirect change: reference {truth:.3}, drt {drt:.3}, mrt without drt {plain:.3}"
+    );
+    assert!(truth < -0.05, "the reference's floor beside the crate darkens: {truth:.3}");
+    assert!(drt < 0.0 && (drt - truth).abs() < 0.5 * truth.abs(), "drt {drt:.3} against the reference's {truth:.3}");
+    assert!(
+        (drt - truth).abs() < (plain - truth).abs(),
+        "drt {drt:.3} is closer to {truth:.3} than mrt alone {plain:.3}"
     );
 }
