@@ -90,6 +90,27 @@ fn room_with(crate_at: Option<Vec3>, crate_albedo: f32, light: Light, camera: Ca
     common::scene(objects, materials, vec![light], camera)
 }
 
+/// `a` less `b`, pixel by pixel (rgb; alpha 1).
+fn minus(a: &HdrImage, b: &HdrImage) -> HdrImage {
+    let pixels = a.pixels.iter().zip(&b.pixels).map(|(x, y)| [x[0] - y[0], x[1] - y[1], x[2] - y[2], 1.0]).collect();
+    HdrImage { width: a.width, height: a.height, pixels }
+}
+
+/// The indirect light `settings` show of `scene`: its image (16 frames) less the raster direct
+/// light it was composed with.
+fn indirect(r: &mut Renderer, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> HdrImage {
+    let full = render(r, scene, settings, size, 16);
+    let direct = render(r, scene, &RenderSettings { mode: GiMode::Direct, ..RenderSettings::default() }, size, 1);
+    minus(&full, &direct)
+}
+
+/// The reference's indirect light: all bounces less the first (its own direct light), 256 spp.
+fn reference_indirect(scene: &Scene, size: (u32, u32), seed: u64) -> HdrImage {
+    let settings = ReferenceSettings { spp: 256, seed, ..Default::default() };
+    let full = common::reference(scene, size, settings.clone());
+    minus(&full, &common::reference(scene, size, ReferenceSettings { max_bounces: 1, ..settings }))
+}
+
 /// Mean luminance over the pixels whose camera ray first meets the axis-aligned plane
 /// `axis = value` inside `lo .. hi` (the other two coordinates).
 fn region(img: &HdrImage, camera: &Camera, axis: usize, value: f32, lo: [f32; 2], hi: [f32; 2]) -> f64 {
@@ -122,26 +143,13 @@ fn a_clutter_box_lights_the_wall_beside_its_lit_face_and_changes_the_floor_befor
     let camera = with.desc().camera;
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let mrt = |on: bool| RenderSettings { mode: GiMode::Mrt, mrt: small(on), ..RenderSettings::default() };
-    let direct = RenderSettings { mode: GiMode::Direct, ..RenderSettings::default() };
-    // Indirect light alone: each image less the raster direct light it was composed with.
-    let mut indirect = |scene: &Scene, s: &RenderSettings| {
-        let full = render(&mut r, scene, s, size, 16);
-        let d = render(&mut r, scene, &direct, size, 1);
-        let pixels = full.pixels.iter().zip(&d.pixels).map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2], 1.0]);
-        HdrImage { width: size.0, height: size.1, pixels: pixels.collect() }
-    };
-    let (on, off, bare) = (indirect(&with, &mrt(true)), indirect(&with, &mrt(false)), indirect(&without, &mrt(true)));
-    // The reference's indirect light: all bounces less the first (its own direct light).
-    let refs = |scene: &Scene| {
-        let settings = ReferenceSettings { spp: 256, seed: 5, ..Default::default() };
-        let full = common::reference(scene, size, settings.clone());
-        let d = common::reference(scene, size, ReferenceSettings { max_bounces: 1, ..settings });
-        let pixels = full.pixels.iter().zip(&d.pixels).map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2], 1.0]);
-        HdrImage { width: size.0, height: size.1, pixels: pixels.collect() }
-    };
-    let (ref_with, ref_without) = (refs(&with), refs(&without));
-    // The floor in front of the box's unlit +z face (x 0.6..1.2, z 0.85..1.25) and the back
-    // wall beside its lit +x face (x 1.35..1.9, y 0.05..0.75).
+    let on = indirect(&mut r, &with, &mrt(true), size);
+    let off = indirect(&mut r, &with, &mrt(false), size);
+    let bare = indirect(&mut r, &without, &mrt(true), size);
+    let (ref_with, ref_without) = (reference_indirect(&with, size, 5), reference_indirect(&without, size, 5));
+    // In metres (the box spans x 0.25..0.65, z 0..0.4): the floor 0.45..0.85 m in front of its
+    // unlit +z face (x 0.6..1.2, z 0.85..1.25) and the back wall 0.7..1.25 m to the side of its
+    // lit +x face (x 1.35..1.9, y 0.05..0.75).
     let floor = |img: &HdrImage| region(img, &camera, 1, 0.0, [0.6, 0.85], [1.2, 1.25]);
     let wall = |img: &HdrImage| region(img, &camera, 2, 0.0, [1.35, 0.05], [1.9, 0.75]);
     let change = |a: f64, b: f64| a / b.max(1e-9) - 1.0;
@@ -230,11 +238,6 @@ fn inpainting_leaves_no_rim_at_the_crates_footprint_and_the_drt_buffers_show_it(
         m.drt.inpaint = inpaint;
         RenderSettings { mode: GiMode::Mrt, mrt: m, vo: no_vo.clone(), ..RenderSettings::default() }
     };
-    let minus = |a: &HdrImage, b: &HdrImage| HdrImage {
-        width: a.width,
-        height: a.height,
-        pixels: a.pixels.iter().zip(&b.pixels).map(|(x, y)| [x[0] - y[0], x[1] - y[1], x[2] - y[2], 1.0]).collect(),
-    };
     let on = minus(&render(&mut r, &scene, &mrt(true), size, 16), &direct);
     let covered = r.read_buffer("drt_covered").expect("mask");
     let hidden = r.read_buffer("drt_occlusion").expect("occlusion");
@@ -246,11 +249,7 @@ fn inpainting_leaves_no_rim_at_the_crates_footprint_and_the_drt_buffers_show_it(
     assert!(lit(&covered) > 0, "the crate covers floor texels");
     assert!(lit(&hidden) > 0 && lit(&gathered) > 0, "the crate hides light and gathers some");
     let off = minus(&render(&mut r, &scene, &mrt(false), size, 16), &direct);
-    let settings = ReferenceSettings { spp: 256, seed: 9, ..Default::default() };
-    let reference = minus(
-        &common::reference(&scene, size, settings.clone()),
-        &common::reference(&scene, size, ReferenceSettings { max_bounces: 1, ..settings }),
-    );
+    let reference = reference_indirect(&scene, size, 9);
     // Bands of floor across the crate's front edge (z = 0.8) outwards, in units of M.
     let band = |img: &HdrImage, z0: f32| region(img, &camera, 1, 0.0, [0.6 * M, z0 * M], [1.2 * M, (z0 + 0.16) * M]);
     let starts = [0.82f32, 0.98, 1.14, 1.30];
@@ -284,22 +283,10 @@ fn a_dark_clutter_box_under_a_ceiling_spot_darkens_the_floor_around_it_as_the_re
     let no_vo = bouncelab::settings::VoSettings { mrt: false, ..Default::default() };
     let mrt =
         |on: bool| RenderSettings { mode: GiMode::Mrt, mrt: small(on), vo: no_vo.clone(), ..RenderSettings::default() };
-    let direct = RenderSettings { mode: GiMode::Direct, ..RenderSettings::default() };
-    let mut indirect = |scene: &Scene, s: &RenderSettings| {
-        let full = render(&mut r, scene, s, size, 16);
-        let d = render(&mut r, scene, &direct, size, 1);
-        let pixels = full.pixels.iter().zip(&d.pixels).map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2], 1.0]);
-        HdrImage { width: size.0, height: size.1, pixels: pixels.collect() }
-    };
-    let (on, off, bare) = (indirect(&with, &mrt(true)), indirect(&with, &mrt(false)), indirect(&without, &mrt(true)));
-    let refs = |scene: &Scene| {
-        let settings = ReferenceSettings { spp: 256, seed: 11, ..Default::default() };
-        let full = common::reference(scene, size, settings.clone());
-        let d = common::reference(scene, size, ReferenceSettings { max_bounces: 1, ..settings });
-        let pixels = full.pixels.iter().zip(&d.pixels).map(|(a, b)| [a[0] - b[0], a[1] - b[1], a[2] - b[2], 1.0]);
-        HdrImage { width: size.0, height: size.1, pixels: pixels.collect() }
-    };
-    let (ref_with, ref_without) = (refs(&with), refs(&without));
+    let on = indirect(&mut r, &with, &mrt(true), size);
+    let off = indirect(&mut r, &with, &mrt(false), size);
+    let bare = indirect(&mut r, &without, &mrt(true), size);
+    let (ref_with, ref_without) = (reference_indirect(&with, size, 11), reference_indirect(&without, size, 11));
     // The floor along the crate's +z side, 0.05 .. 0.45 units out (the crate spans 1.6 .. 2.4).
     let ring = |img: &HdrImage| region(img, &camera, 1, 0.0, [1.6 * M, 2.45 * M], [2.4 * M, 2.85 * M]);
     let change = |a: f64, b: f64| a / b.max(1e-9) - 1.0;

@@ -43,7 +43,7 @@ pub fn mrt_ui(m: &mut MrtSettings, ui: &mut egui::Ui, objects: &[String], blocks
 fn drt_ui(d: &mut crate::settings::DrtSettings, ui: &mut egui::Ui, objects: &[String]) {
     egui::CollapsingHeader::new("Clutter (delta radiance transfer)").default_open(true).show(ui, |ui| {
         ui.checkbox(&mut d.enabled, "DRT")
-            .on_hover_text("Clutter shadows and reflects the blocks' indirect light and gathers its own (off: mrt as without DRT, to compare). Rebuilt off the frame when clutter moves (bench: 29 objects 1.4 s, one 53 ms on two cores).");
+            .on_hover_text("Clutter shadows and reflects the blocks' indirect light and gathers its own (off: mrt as without DRT, to compare). Rebuilt off the frame when clutter moves (bench: 29 objects 1.5 s, one 58 ms on two cores).");
         ui.checkbox(&mut d.automatic, "find clutter automatically")
             .on_hover_text("Static objects lower than 90% of their block and narrower than half of it count as clutter (a bare glTF has no roles). Objects whose role is Clutter always do.");
         ui.add(egui::Slider::new(&mut d.rays, 16..=4096).logarithmic(true).text("rays per texel"))

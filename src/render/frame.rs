@@ -56,6 +56,7 @@ struct SizedResources {
     lighting_targets: wgpu::BindGroup,
     composite: wgpu::BindGroup,
     tonemap: wgpu::BindGroup,
+    vo: super::obscurance::VoGroups,
 }
 
 /// What one frame renders.
@@ -347,7 +348,7 @@ impl Renderer {
             && super::obscurance::applies(settings.mode, &settings.vo);
         if obscurance {
             self.vo.set(queue, &settings.vo);
-            self.vo.record(device, &mut encoder, &self.frame_buffer, &sized.targets, &mut self.timer);
+            self.vo.record(&mut encoder, &sized.vo, &mut self.timer);
         }
         let ts = self.timer.scope("composite");
         let what = super::composite::Composite { output: self.output, obscurance };
@@ -375,7 +376,8 @@ impl Renderer {
         let lighting_targets = self.lighting.targets_bind_group(&self.device, &targets);
         let composite = self.composite.bind_group(&self.device, &self.frame_buffer, &targets);
         let tonemap = self.tonemap.bind_group(&self.device, &targets.hdr.view, &targets.ldr.view);
-        self.sized = Some(SizedResources { targets, lighting_targets, composite, tonemap });
+        let vo = self.vo.bind_groups(&self.device, &self.frame_buffer, &targets);
+        self.sized = Some(SizedResources { targets, lighting_targets, composite, tonemap, vo });
         self.prev_clip_from_world = None;
     }
 

@@ -37,16 +37,32 @@ pub struct Drt {
     pub millis: f64,
 }
 
+/// A level's clutter as [`find_clutter`] found it, with every object's bounding box.
+#[derive(Clone, Debug, Default)]
+pub struct Found {
+    /// Clutter objects (scene index) and why each is clutter.
+    pub objects: Vec<(usize, Why)>,
+    /// Every scene object's world bounding box (`None`: no triangles).
+    pub bounds: Vec<Option<(Vec3, Vec3)>>,
+}
+
+impl Found {
+    /// No clutter.
+    pub fn is_empty(&self) -> bool {
+        self.objects.is_empty()
+    }
+
+    /// Whether scene object `i` is clutter.
+    pub fn contains(&self, i: usize) -> bool {
+        self.objects.iter().any(|(o, _)| *o == i)
+    }
+}
+
 /// The objects of `scene` that are clutter of `level` (see [`clutter::classify`]).
-pub fn find_clutter(
-    scene: &Scene,
-    bvh: &SceneBvh,
-    level: &Level,
-    automatic: bool,
-    exempt: &[String],
-) -> Vec<(usize, Why)> {
+pub fn find_clutter(scene: &Scene, bvh: &SceneBvh, level: &Level, automatic: bool, exempt: &[String]) -> Found {
     let bounds = clutter::object_bounds(bvh, scene.objects().len());
-    clutter::classify(scene, &bounds, &level.blocks, automatic, exempt)
+    let objects = clutter::classify(scene, &bounds, &level.blocks, automatic, exempt);
+    Found { objects, bounds }
 }
 
 /// A level's block texels: their surfaces, block after block, and texels per face side.
@@ -62,17 +78,17 @@ pub fn build(
     scene: &Scene,
     bvh: &SceneBvh,
     level: &Level,
-    found: &[(usize, Why)],
+    found: &Found,
     block: BlockTexels<'_>,
     params: &DrtParams,
     progress: &Progress,
 ) -> Option<Drt> {
     let BlockTexels { texels, res } = block;
     let started = std::time::Instant::now();
-    let bounds = clutter::object_bounds(bvh, scene.objects().len());
-    let objects: Vec<usize> = found.iter().map(|(i, _)| *i).collect();
-    let records = clutter::records(&objects, &bounds, params.clutter_res);
-    let why = records.iter().filter_map(|r| found.iter().find(|(i, _)| *i == r.object).map(|(_, w)| *w)).collect();
+    let objects: Vec<usize> = found.objects.iter().map(|(i, _)| *i).collect();
+    let records = clutter::records(&objects, &found.bounds, params.clutter_res);
+    let why =
+        records.iter().filter_map(|r| found.objects.iter().find(|(i, _)| *i == r.object).map(|(_, w)| *w)).collect();
     let mut clutter_of = vec![None; scene.objects().len()];
     for (k, r) in records.iter().enumerate() {
         clutter_of[r.object] = Some(k);

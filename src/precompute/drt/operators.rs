@@ -345,7 +345,7 @@ fn inpaint_sources(map: &TexelMap, covered: &[bool], texels: &[SceneTexel], i: u
 
 /// Builds the operators; `None` when `progress` is cancelled.
 pub fn build(inp: &Inputs<'_>, params: &DrtParams, progress: &Progress) -> Option<Operators> {
-    let pat = patches(inp, params.clutter_res);
+    let mut pat = patches(inp, params.clutter_res);
     let n_scene = inp.texels.len();
     let n_clutter = inp.clutter_texels.len();
     progress.begin(n_scene + n_clutter);
@@ -353,7 +353,8 @@ pub fn build(inp: &Inputs<'_>, params: &DrtParams, progress: &Progress) -> Optio
         (0..n_scene).into_par_iter().map(|i| (!progress.tick()).then(|| delta_row(inp, &pat, params, i))).collect();
     let gathers: Vec<Option<(Sources, u64)>> =
         (0..n_clutter).into_par_iter().map(|i| (!progress.tick()).then(|| gather_row(inp, &pat, params, i))).collect();
-    let mut ops = Operators { patches: pat.records.clone(), covered: vec![false; n_scene], ..Operators::default() };
+    let records = std::mem::take(&mut pat.records);
+    let mut ops = Operators { patches: records, covered: vec![false; n_scene], ..Operators::default() };
     let push = |ops: &mut Operators, target: usize, kind: RowKind, list: &[(u32, f32)]| {
         ops.rows.push([target as u32, ops.entries.len() as u32, list.len() as u32, kind as u32]);
         ops.entries.extend(list.iter().map(|(s, w)| [*s, w.to_bits()]));

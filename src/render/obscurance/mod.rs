@@ -69,6 +69,14 @@ pub fn params(settings: &VoSettings) -> VoParams {
     out
 }
 
+/// The bind groups of one set of view targets.
+pub struct VoGroups {
+    vo: wgpu::BindGroup,
+    rows: wgpu::BindGroup,
+    columns: wgpu::BindGroup,
+    size: (u32, u32),
+}
+
 /// The two pipelines and their parameter blocks.
 pub struct VoPass {
     vo: (wgpu::BindGroupLayout, wgpu::ComputePipeline),
@@ -142,16 +150,9 @@ impl VoPass {
         }
     }
 
-    /// Records both passes (with the settings last [`Self::set`]) into the view targets `vo_raw`
-    /// and `vo`.
-    pub fn record(
-        &self,
-        device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        frame: &wgpu::Buffer,
-        t: &ViewTargets,
-        timer: &mut GpuTimer,
-    ) {
+    /// The three passes' bind groups over the view targets `t` (made when the targets are,
+    /// like the composite's).
+    pub fn bind_groups(&self, device: &wgpu::Device, frame: &wgpu::Buffer, t: &ViewTargets) -> VoGroups {
         let group = |layout: &wgpu::BindGroupLayout, name: &str, entries: &[wgpu::BindGroupEntry<'_>]| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some(&format!("{name} bind group")),
@@ -186,10 +187,15 @@ impl VoPass {
         };
         let rows = blur(0, &t.vo_raw.view, &t.vo_rows.view);
         let columns = blur(1, &t.vo_rows.view, &t.vo.view);
+        VoGroups { vo, rows, columns, size: t.size }
+    }
+
+    /// Records the passes (with the settings last [`Self::set`]) over the targets `groups` bind.
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder, groups: &VoGroups, timer: &mut GpuTimer) {
         for (name, pipeline, bind) in [
-            ("vo", &self.vo.1, &vo),
-            ("vo blur rows", &self.blur.1, &rows),
-            ("vo blur columns", &self.blur.1, &columns),
+            ("vo", &self.vo.1, &groups.vo),
+            ("vo blur rows", &self.blur.1, &groups.rows),
+            ("vo blur columns", &self.blur.1, &groups.columns),
         ] {
             let ts = timer.scope(name);
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -198,7 +204,7 @@ impl VoPass {
             });
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, bind, &[]);
-            pass.dispatch_workgroups(t.size.0.div_ceil(8), t.size.1.div_ceil(8), 1);
+            pass.dispatch_workgroups(groups.size.0.div_ceil(8), groups.size.1.div_ceil(8), 1);
         }
     }
 }

@@ -153,9 +153,9 @@ pub fn build_level(
     let found = if drt.enabled {
         crate::precompute::drt::find_clutter(scene, &full_bvh, &level, drt.automatic, &drt.not_clutter)
     } else {
-        Vec::new()
+        crate::precompute::drt::Found::default()
     };
-    let static_bvh = (!found.is_empty()).then(|| SceneBvh::build_where(scene, |i| !found.iter().any(|(o, _)| *o == i)));
+    let static_bvh = (!found.is_empty()).then(|| SceneBvh::build_where(scene, |i| !found.contains(i)));
     let bvh = static_bvh.as_ref().unwrap_or(&full_bvh);
     let mut openings = Vec::new();
     for ((i, w), opening) in geometry_image::openings(scene, bvh, &level, dictionary.interfaces.positions.positions) {
