@@ -7,7 +7,7 @@
 //! `cargo run --release --example ism_probe -- rooms,clutter "(total_points: 524288)"`
 //!
 //! `PROBE_SSHGI="()"` renders `sshgi` with those settings in place of `ism` (the ISM settings
-//! argument is then ignored); `PROBE_MRT="()"` renders `mrt` likewise.
+//! argument is then ignored); `PROBE_MRT="()"` renders `mrt` likewise, `PROBE_RCS="()"` `rcs`.
 //!
 //! A name ending in `.gltf` is a scene outside the suite, compared with the `.exr` next to it
 //! (`tools/unseen_levels.py` writes the held-out levels; `bouncelab render --mode reference
@@ -95,6 +95,11 @@ fn main() -> anyhow::Result<()> {
         if let Ok(ron_text) = std::env::var("PROBE_MRT") {
             project.render.mrt = ron::from_str(&ron_text)?;
             project.render.mode = GiMode::Mrt;
+        }
+        // PROBE_RCS: render `rcs` with these settings (RON) instead of `ism`.
+        if let Ok(ron_text) = std::env::var("PROBE_RCS") {
+            project.render.rcs = ron::from_str(&ron_text)?;
+            project.render.mode = GiMode::Rcs;
         }
         let (img, r) = render(&ctx, &project, frames)?;
         let c = metrics::compare(&img, &reference, ev)?;

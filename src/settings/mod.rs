@@ -9,11 +9,13 @@ use serde::{Deserialize, Serialize};
 mod ism;
 mod mrt;
 mod preview;
+mod rcs;
 mod sshgi;
 mod vo;
 
 pub use ism::{BouncePick, IsmSettings, MAX_ATLAS_SIDE};
 pub use mrt::{BlockOverride, DrtSettings, MrtSettings};
+pub use rcs::RcsSettings;
 pub use sshgi::SshgiSettings;
 pub use vo::VoSettings;
 
@@ -149,6 +151,8 @@ pub struct RenderSettings {
     pub sshgi: SshgiSettings,
     /// Modular radiance transfer over proxy blocks.
     pub mrt: MrtSettings,
+    /// Radiance cache splatting.
+    pub rcs: RcsSettings,
     /// Volumetric obscurance on the indirect term.
     pub vo: VoSettings,
 }
@@ -203,6 +207,7 @@ impl RenderSettings {
         self.ism.validate()?;
         self.sshgi.validate()?;
         self.mrt.validate()?;
+        self.rcs.validate()?;
         self.vo.validate()?;
         if !(-32.0..=32.0).contains(&self.view.exposure_ev) {
             return Err(SettingsError {

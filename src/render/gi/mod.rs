@@ -9,13 +9,15 @@
 //! One folder or file per technique: `direct` (adds nothing), `ism/` (Knecht 2009: instant
 //! radiosity with imperfect shadow maps and temporal reuse; its pure math is written and tested
 //! first on the CPU and the WGSL passes mirror it), `sshgi/` (Soler 2010), `mrt/` (Loos 2015's
-//! modular radiance transfer on proxy blocks) and `reference/` (the CPU path tracer).
+//! modular radiance transfer on proxy blocks), `rcs/` (Gautron et al.'s radiance cache splatting)
+//! and `reference/` (the CPU path tracer).
 
 pub mod changes;
 pub mod direct;
 pub mod inputs;
 pub mod ism;
 pub mod mrt;
+pub mod rcs;
 pub mod reference;
 pub mod registry;
 pub mod sshgi;

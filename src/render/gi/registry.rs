@@ -7,6 +7,7 @@
 use super::direct::DirectTechnique;
 use super::ism::technique::IsmTechnique;
 use super::mrt::technique::MrtTechnique;
+use super::rcs::technique::RcsTechnique;
 use super::reference::ReferenceTechnique;
 use super::sshgi::technique::SshgiTechnique;
 use super::technique::{BufferInfo, GiTechnique, ResetReason, SupportQuery};
@@ -55,6 +56,12 @@ pub const TECHNIQUES: &[TechniqueEntry] = &[
         support: SshgiTechnique::support,
         buffers: super::sshgi::technique::BUFFERS,
         create: |device, layouts| Ok(Box::new(SshgiTechnique::new(device, layouts)?)),
+    },
+    TechniqueEntry {
+        modes: &[GiMode::Rcs],
+        support: RcsTechnique::support,
+        buffers: super::rcs::technique::BUFFERS,
+        create: |device, layouts| Ok(Box::new(RcsTechnique::new(device, layouts)?)),
     },
     TechniqueEntry {
         modes: &[GiMode::Reference],

@@ -1,0 +1,644 @@
+//! The `rcs` technique behind the GI seam: each frame splats the cache, then runs placement
+//! rounds (find uncovered pixels, compute their records by hemisphere rasterisation, splat them
+//! at once) within a per-frame record budget, renews records in place for later bounces and
+//! after edits, and writes E / pi. The cache is world-space and survives camera moves: a frame
+//! of a moved camera only adds records where newly visible surfaces are uncovered.
+
+use glam::{Vec3, Vec4Swizzles};
+
+use super::cache::{Cache, changed_boxes, object_boxes};
+use super::coverage::{CoveragePass, order, tiles};
+use super::grid::HashGrid;
+use super::hemisphere::{HemisphereInputs, HemispherePass};
+use super::light_check::{CheckMode, LightCheckPass};
+use super::record::{Candidate, GpuJob, GpuRecord, Site};
+use super::reduce::ReducePass;
+use super::splat::{Splat, SplatPass};
+use super::store::Store;
+use crate::image_io::HdrImage;
+use crate::render::gi::inputs::GiInputs;
+use crate::render::gi::technique::{
+    BufferInfo, BufferView, GiOutput, GiTechnique, Overlay, OverlayPoint, Readiness, ResetReason, SupportQuery,
+    TechniqueStatus, note_reset,
+};
+use crate::render::readback::ReadbackError;
+use crate::render::{RenderError, readback};
+use crate::scene::{Aabb, Scene};
+use crate::settings::{RcsSettings, RenderSettings};
+
+/// An inspector entry.
+const fn buffer(name: &'static str, description: &'static str, view: BufferView) -> BufferInfo {
+    BufferInfo { name, description, format: "rgba32f", view }
+}
+
+/// The inspector's buffers.
+pub const BUFFERS: &[BufferInfo] = &[
+    buffer(
+        "rcs_coverage",
+        "coverage after the frame's last round: r = uncovered (no record reaches it: none once the cache has filled), g = the round whose record this pixel got this frame, b = geometry",
+        BufferView::Colour,
+    ),
+    buffer(
+        "rcs_weight",
+        "summed Ward weight of the records reaching each pixel (false colour, log): peaks at record sites, smooth falloff, seams along creases where the normal term cuts zones",
+        BufferView::Scalar,
+    ),
+    buffer(
+        "rcs_record_count",
+        "how many records each pixel interpolates (overlapping zones; 0 = uncovered)",
+        BufferView::Scalar,
+    ),
+    buffer("rcs_irradiance", "interpolated irradiance E with the gradients: smooth", BufferView::Colour),
+    buffer(
+        "rcs_irradiance_plain",
+        "interpolated irradiance without the gradients: faint disc-shaped blotches are normal",
+        BufferView::Colour,
+    ),
+    buffer(
+        "rcs_gradient_difference",
+        "irradiance with gradients minus without (signed): structure near occluders and corners",
+        BufferView::Colour,
+    ),
+    buffer(
+        "rcs_records_added",
+        "records added this frame, coloured by the round that added them (black: reused from earlier frames)",
+        BufferView::Scalar,
+    ),
+    buffer(
+        "rcs_hemispheres",
+        "the last round's hemisphere planes (outgoing radiance the records saw; a = distance), one tile per record",
+        BufferView::Colour,
+    ),
+    buffer(
+        "rcs_hemisphere_surfaces",
+        "the surfaces the last round's planes saw: r = albedo luminance, g = 1 where the cache answered the bounce lookup, b = 1 where it had no record facing the same way, g = b = 0.5 where it extrapolated from records whose zones miss the point",
+        BufferView::Colour,
+    ),
+];
+
+/// What the last frame did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct FrameStats {
+    made: u64,
+    renewed: u64,
+    rounds: u64,
+    uncovered_tiles: u64,
+    light_renewals: u64,
+    reused: u64,
+}
+
+/// Radiance cache splatting.
+pub struct RcsTechnique {
+    hemisphere: HemispherePass,
+    reduce: ReducePass,
+    check: LightCheckPass,
+    splat: SplatPass,
+    coverage: CoveragePass,
+    store: Option<Store>,
+    cache: Cache,
+    grid: HashGrid,
+    grid_dirty: bool,
+    /// Object bounds and materials as the cache last saw them.
+    boxes: Option<Vec<(Aabb, usize)>>,
+    /// Bounds of objects changed since the last frame.
+    changed: Vec<Aabb>,
+    light_check: bool,
+    drop_all: bool,
+    /// The settings the records were computed with (a change of these drops the cache).
+    made_with: Option<RcsSettings>,
+    frame: u64,
+    last: FrameStats,
+    totals: FrameStats,
+    dropped: u64,
+    size: (u32, u32),
+    camera: Option<(Vec3, f32)>,
+    status: TechniqueStatus,
+}
+
+/// The settings whose change invalidates every record.
+fn cache_key(s: &RcsSettings) -> RcsSettings {
+    RcsSettings { records_per_frame: 0, rounds: 0, gradients: false, bounces: 0, light_tolerance: 0.0, ..s.clone() }
+}
+
+impl RcsTechnique {
+    /// Creates the pipelines.
+    pub fn new(device: &wgpu::Device, layouts: &crate::render::layouts::Layouts) -> Result<Self, RenderError> {
+        Ok(Self {
+            hemisphere: HemispherePass::new(device, layouts)?,
+            reduce: ReducePass::new(device)?,
+            check: LightCheckPass::new(device)?,
+            splat: SplatPass::new(device)?,
+            coverage: CoveragePass::new(device)?,
+            store: None,
+            cache: Cache::default(),
+            grid: HashGrid::default(),
+            grid_dirty: true,
+            boxes: None,
+            changed: Vec::new(),
+            light_check: false,
+            drop_all: true,
+            made_with: None,
+            frame: 0,
+            last: FrameStats::default(),
+            totals: FrameStats::default(),
+            dropped: 0,
+            size: (0, 0),
+            camera: None,
+            status: TechniqueStatus::default(),
+        })
+    }
+
+    /// Needs blending on 32-bit float targets (the splat accumulation).
+    pub fn support(query: &SupportQuery<'_>) -> Result<(), String> {
+        if query.features.contains(wgpu::Features::FLOAT32_BLENDABLE) {
+            Ok(())
+        } else {
+            Err("rcs needs blending on 32-bit float targets (FLOAT32_BLENDABLE), which this adapter lacks".into())
+        }
+    }
+
+    /// The live records (tests and tools).
+    pub fn cache(&self) -> &Cache {
+        &self.cache
+    }
+
+    /// Reads every record slot below the high-water mark.
+    pub fn read_records(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<GpuRecord>, ReadbackError> {
+        let Some(store) = &self.store else { return Ok(Vec::new()) };
+        let bytes = readback::read_buffer(device, queue, &store.records)?;
+        let n = self.cache.high_water() as usize;
+        Ok(bytemuck::pod_collect_to_vec::<u8, GpuRecord>(&bytes).into_iter().take(n).collect())
+    }
+
+    /// Swaps the frame's encoder for a fresh one, submits what it held and maps the staging
+    /// buffer: the bytes of the round's readback.
+    fn submit_and_read(inputs: &mut GiInputs<'_>, store: &Store) -> Result<Vec<u8>, RenderError> {
+        let fresh = inputs.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rcs round") });
+        let done = std::mem::replace(inputs.encoder, fresh);
+        inputs.queue.submit([done.finish()]);
+        let slice = store.staging.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        let map_err = |e: String| RenderError::from(ReadbackError::Map(e));
+        inputs.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| map_err(e.to_string()))?;
+        rx.recv().map_err(|e| map_err(e.to_string()))?.map_err(|e| map_err(e.to_string()))?;
+        let bytes = slice.get_mapped_range().map_err(|e| map_err(e.to_string()))?.to_vec();
+        store.staging.unmap();
+        Ok(bytes)
+    }
+
+    /// The candidates in a round's readback.
+    fn candidates(bytes: &[u8], store: &Store) -> (u32, Vec<Candidate>) {
+        let l = store.layout;
+        let Some(section) = bytes.get(l.candidates as usize..(l.candidates + l.candidates_len) as usize) else {
+            return (0, Vec::new());
+        };
+        let count = u32::from_le_bytes([section[0], section[1], section[2], section[3]]);
+        let items: Vec<Candidate> = bytemuck::pod_collect_to_vec(&section[16..]);
+        let n = (count as usize).min(items.len());
+        (count, items.into_iter().take(n).collect())
+    }
+
+    /// The slots listed by a light check in a round's readback.
+    fn changed_slots(bytes: &[u8], store: &Store) -> Vec<u32> {
+        let l = store.layout;
+        let Some(section) = bytes.get(l.changed as usize..(l.changed + l.changed_len) as usize) else {
+            return Vec::new();
+        };
+        let count = u32::from_le_bytes([section[0], section[1], section[2], section[3]]) as usize;
+        let slots: Vec<u32> = bytemuck::pod_collect_to_vec(&section[16..]);
+        slots.into_iter().take(count).collect()
+    }
+
+    /// The pixel footprint (m per pixel) at `distance` from the camera.
+    fn footprint(&self, distance: f32) -> f32 {
+        let Some((_, tan_half)) = self.camera else { return 1e-3 };
+        2.0 * tan_half * distance / self.size.1.max(1) as f32
+    }
+
+    /// Applies the pending invalidations before the frame's rounds.
+    fn invalidate(&mut self, inputs: &mut GiInputs<'_>, store: &Store, tolerance: f32) {
+        if self.drop_all {
+            self.dropped += self.cache.live() as u64;
+            self.cache = Cache::new(store.max_records);
+            inputs.encoder.clear_buffer(&store.records, 0, None);
+            self.grid_dirty = true;
+            self.drop_all = false;
+            self.changed.clear();
+        }
+        if !self.changed.is_empty() {
+            // A record within a few near planes of a changed object stood on it.
+            let margin = self.cache.iter().map(|(_, r)| r.site.near).fold(0.0f32, f32::max) * 4.0;
+            let inv = self.cache.invalidate_boxes(&self.changed, margin.max(1e-4), tolerance);
+            for &slot in &inv.dropped {
+                let offset = u64::from(slot) * std::mem::size_of::<GpuRecord>() as u64;
+                inputs.queue.write_buffer(&store.records, offset, bytemuck::bytes_of(&GpuRecord::default()));
+            }
+            self.dropped += inv.dropped.len() as u64;
+            self.grid_dirty |= !inv.dropped.is_empty();
+            self.changed.clear();
+        }
+    }
+
+    /// Makes this round's jobs: new records at `candidates` (up to `budget`), then queued
+    /// renewals; returns the jobs and how many of them are new.
+    fn jobs(
+        &mut self,
+        candidates: &[Candidate],
+        budget: u32,
+        settings: &RcsSettings,
+        lookup: bool,
+    ) -> (Vec<GpuJob>, usize) {
+        let mut sites = Vec::new();
+        let largest = self.largest_radius();
+        for c in candidates.iter().take(budget.min(self.cache.room()) as usize) {
+            let footprint = self.footprint(c.position[3]);
+            let site = Site::new(
+                c.point(),
+                c.direction(),
+                footprint,
+                settings.accuracy,
+                (settings.min_zone_pixels, settings.max_zone_pixels),
+                largest,
+            );
+            if let Some(slot) = self.cache.allocate(site, self.frame) {
+                sites.push((slot, site, 0));
+            }
+        }
+        let new = sites.len();
+        let renewals = self.cache.take_renewals(budget as usize - new);
+        for slot in renewals {
+            if let Some(r) = self.cache.get(slot) {
+                sites.push((slot, r.site, r.computed));
+            }
+        }
+        let atlas_origin = |i: u32| self.hemisphere.atlas().map_or((0, 0), |a| a.origin(i));
+        let jobs = sites
+            .iter()
+            .enumerate()
+            .map(|(i, (slot, site, computed))| {
+                site.job(*slot, atlas_origin(i as u32), settings.furnace, lookup, *computed)
+            })
+            .collect();
+        (jobs, new)
+    }
+
+    /// The largest R_k allowed when no pixel clamp applies: the scene's diagonal.
+    fn largest_radius(&self) -> f32 {
+        self.boxes
+            .as_ref()
+            .and_then(|b| b.iter().map(|x| x.0).reduce(|a, b| a.union(&b)))
+            .map_or(100.0, |b| (b.max - b.min).length().max(1e-3))
+    }
+
+    /// Rebuilds the bounce lookup grid from the computed records.
+    fn refresh_grid(&mut self, inputs: &GiInputs<'_>, store: &mut Store, accuracy: f32) {
+        if !self.grid_dirty {
+            return;
+        }
+        let listed: Vec<(u32, Vec3, f32)> = self
+            .cache
+            .iter()
+            .filter(|(_, r)| r.radius > 0.0)
+            .map(|(s, r)| (s, r.site.position, accuracy * r.radius))
+            .collect();
+        self.grid = HashGrid::build(&listed, accuracy);
+        store.upload_grid(inputs.device, inputs.queue, &self.grid);
+        self.grid_dirty = false;
+    }
+
+    /// The frame's rounds.
+    fn rounds(&mut self, inputs: &mut GiInputs<'_>, store: &mut Store) -> Result<FrameStats, RenderError> {
+        let settings = inputs.settings.rcs.clone();
+        let mut stats = FrameStats { reused: self.cache.live() as u64, ..FrameStats::default() };
+        let Some(accum) = self.splat.targets().map(|t| t.0.view.clone()) else { return Ok(stats) };
+        let check = self.light_check && self.cache.live() > 0;
+        if check {
+            self.check.record(inputs, store, CheckMode::Compare, self.cache.high_water(), settings.light_tolerance);
+            let l = store.layout;
+            inputs.encoder.copy_buffer_to_buffer(&store.changed, 0, &store.staging, l.changed, l.changed_len);
+        }
+        self.light_check = false;
+        self.splat.record(inputs, store, Splat::All(self.cache.high_water()), settings.accuracy);
+        self.coverage.record(inputs, store, &accum, 0);
+        let mut bytes = Self::submit_and_read(inputs, store)?;
+        if check {
+            let changed = Self::changed_slots(&bytes, store);
+            stats.light_renewals = changed.len() as u64;
+            changed.into_iter().for_each(|s| self.cache.queue_renewal(s));
+        }
+        let mut budget = settings.records_per_frame;
+        let capacity = store.jobs_capacity;
+        for round in 1..=settings.rounds {
+            let (count, candidates) = Self::candidates(&bytes, store);
+            stats.uncovered_tiles = u64::from(count);
+            if count == 0 && settings.bounces > 1 {
+                self.cache.queue_bounces(settings.bounces);
+            }
+            if budget == 0 || (candidates.is_empty() && self.cache.pending_renewals() == 0) {
+                break;
+            }
+            let lookup = settings.bounces > 1 && !settings.furnace && self.cache.live() > 0;
+            if lookup {
+                self.refresh_grid(inputs, store, settings.accuracy);
+            }
+            let ordered = order(candidates);
+            let (jobs, new) = self.jobs(&ordered, budget.min(capacity), &settings, lookup);
+            if jobs.is_empty() {
+                break;
+            }
+            let n = jobs.len() as u32;
+            budget = budget.saturating_sub(n);
+            stats.rounds += 1;
+            stats.made += new as u64;
+            stats.renewed += (jobs.len() - new) as u64;
+            inputs.queue.write_buffer(&store.jobs, 0, bytemuck::cast_slice(&jobs));
+            let slots: Vec<u32> = jobs.iter().map(|j| j.normal[3].to_bits()).collect();
+            inputs.queue.write_buffer(&store.splat_list, 0, bytemuck::cast_slice(&slots));
+            let background = if settings.furnace { 1.0 } else { 0.0 };
+            let buffers = HemisphereInputs {
+                jobs: &store.jobs,
+                records: &store.records,
+                grid_params: &store.grid_params,
+                grid_cells: &store.grid_cells,
+                grid_items: &store.grid_items,
+            };
+            self.hemisphere.record(inputs, &buffers, n, background);
+            if let Some(atlas) = self.hemisphere.atlas() {
+                self.reduce.record(inputs, atlas, store, n);
+            }
+            self.check.record(inputs, store, CheckMode::Store, n, settings.light_tolerance);
+            let l = store.layout;
+            inputs.encoder.copy_buffer_to_buffer(&store.results, 0, &store.staging, l.results, u64::from(n) * 16);
+            let which = if new == jobs.len() { Splat::New(n) } else { Splat::All(self.cache.high_water()) };
+            self.splat.record(inputs, store, which, settings.accuracy);
+            self.coverage.record(inputs, store, &accum, round);
+            bytes = Self::submit_and_read(inputs, store)?;
+            let results: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(
+                bytes.get(l.results as usize..(l.results + u64::from(n) * 16) as usize).unwrap_or(&[]),
+            );
+            for r in results {
+                self.cache.computed(r[2].to_bits(), r[0]);
+            }
+            self.grid_dirty = true;
+        }
+        let (count, _) = Self::candidates(&bytes, store);
+        stats.uncovered_tiles = u64::from(count);
+        Ok(stats)
+    }
+
+    /// Reads a texture as RGBA floats.
+    fn read(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture) -> Result<HdrImage, RenderError> {
+        let pixels = readback::read_as_rgba_f32(device, queue, texture)?;
+        Ok(HdrImage { width: texture.width(), height: texture.height(), pixels })
+    }
+
+    /// An inspector buffer computed from the accumulation targets.
+    fn accumulated(&self, device: &wgpu::Device, queue: &wgpu::Queue, name: &str) -> Result<HdrImage, RenderError> {
+        let Some((weighted, plain)) = self.splat.targets() else {
+            return Err(RenderError::UnknownBuffer { name: name.into(), known: "render rcs first".into() });
+        };
+        let mut w = Self::read(device, queue, &weighted.texture)?;
+        let p = Self::read(device, queue, &plain.texture)?;
+        for (a, b) in w.pixels.iter_mut().zip(&p.pixels) {
+            let sum = a[3];
+            let norm = |c: f32| if sum > 0.0 { c / sum } else { 0.0 };
+            let with = [norm(a[0]), norm(a[1]), norm(a[2])];
+            let plain = [norm(b[0]), norm(b[1]), norm(b[2])];
+            *a = match name {
+                "rcs_weight" => [sum, sum, sum, 1.0],
+                "rcs_record_count" => [b[3], b[3], b[3], 1.0],
+                "rcs_irradiance" => [with[0], with[1], with[2], 1.0],
+                "rcs_irradiance_plain" => [plain[0], plain[1], plain[2], 1.0],
+                _ => [with[0] - plain[0], with[1] - plain[1], with[2] - plain[2], 1.0],
+            };
+        }
+        Ok(w)
+    }
+}
+
+impl GiTechnique for RcsTechnique {
+    fn prepare(&mut self, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> Readiness {
+        let boxes = object_boxes(scene);
+        if let Some(old) = &self.boxes {
+            self.changed.extend(changed_boxes(old, &boxes));
+        }
+        self.boxes = Some(boxes);
+        let key = cache_key(&settings.rcs);
+        if self.made_with.as_ref() != Some(&key) {
+            self.drop_all = true;
+            self.made_with = Some(key);
+        }
+        self.size = size;
+        let camera = scene.camera();
+        self.camera = Some((camera.position, (camera.yfov * 0.5).tan()));
+        Readiness::Ready
+    }
+
+    fn render(&mut self, inputs: &mut GiInputs<'_>) -> Result<GiOutput, RenderError> {
+        let settings = inputs.settings.rcs.clone();
+        let size = inputs.targets.size;
+        let h = settings.hemisphere_resolution;
+        let jobs = settings.records_per_frame.min((4096 / h).pow(2));
+        let fits = self.store.as_ref().is_some_and(|s| {
+            s.max_records == settings.max_records && s.jobs_capacity == jobs && s.tiles >= tiles(size)
+        });
+        let mut store = match self.store.take() {
+            Some(s) if fits => s,
+            previous => {
+                if previous.as_ref().is_some_and(|s| s.max_records != settings.max_records) || previous.is_none() {
+                    self.drop_all = true;
+                }
+                let mut s = Store::new(inputs.device, settings.max_records, jobs, tiles(size));
+                if let Some(old) = previous.filter(|o| o.max_records == settings.max_records) {
+                    // Keep the records across a resize: copy them over.
+                    inputs.encoder.copy_buffer_to_buffer(&old.records, 0, &s.records, 0, old.records.size());
+                    inputs.encoder.copy_buffer_to_buffer(
+                        &old.check_strata,
+                        0,
+                        &s.check_strata,
+                        0,
+                        old.check_strata.size(),
+                    );
+                    self.grid_dirty = true;
+                }
+                s.weights_resolution = 0;
+                s
+            }
+        };
+        if self.cache.high_water() == 0 && self.cache.live() == 0 {
+            self.cache = Cache::new(settings.max_records);
+        }
+        store.ensure_weights(inputs.device, inputs.queue, h);
+        self.splat.ensure(inputs.device, size);
+        self.coverage.ensure(inputs.device, size, settings.rounds);
+        self.hemisphere.ensure(inputs.device, h, jobs);
+        self.invalidate(inputs, &store, settings.light_tolerance);
+        let result = self.rounds(inputs, &mut store);
+        self.splat.resolve(inputs, settings.gradients);
+        self.store = Some(store);
+        let stats = result?;
+        self.frame += 1;
+        self.last = stats;
+        self.totals.made += stats.made;
+        self.totals.renewed += stats.renewed;
+        self.totals.light_renewals += stats.light_renewals;
+        self.status.history_frames = self.status.history_frames.saturating_add(1);
+        let filling = stats.uncovered_tiles > 0 || self.cache.pending_renewals() > 0;
+        let short = self.cache.iter().any(|(_, r)| r.computed < settings.bounces);
+        self.status.refining = (filling || short) && self.cache.room() > 0;
+        self.status.refine_target = 0;
+        self.status.progress = Some(format!(
+            "rcs: {} records (+{} new, {} renewed this frame), {} uncovered tiles{}",
+            self.cache.live(),
+            stats.made,
+            stats.renewed,
+            stats.uncovered_tiles,
+            if self.cache.room() == 0 { ", cache full" } else { "" }
+        ));
+        Ok(GiOutput::IrradianceOverPi)
+    }
+
+    fn buffers(&self) -> &'static [BufferInfo] {
+        BUFFERS
+    }
+
+    fn read_buffer(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        name: &str,
+    ) -> Option<Result<HdrImage, RenderError>> {
+        if !BUFFERS.iter().any(|b| b.name == name) {
+            return None;
+        }
+        let missing = || RenderError::UnknownBuffer { name: name.into(), known: "render rcs first".into() };
+        Some(match name {
+            "rcs_coverage" => {
+                self.coverage.mask().ok_or_else(missing).and_then(|m| Self::read(device, queue, &m.texture))
+            }
+            "rcs_records_added" => {
+                self.coverage.mask().ok_or_else(missing).and_then(|m| Self::read(device, queue, &m.texture)).map(
+                    |mut img| {
+                        img.pixels.iter_mut().for_each(|p| *p = [p[1], p[1], p[1], 1.0]);
+                        img
+                    },
+                )
+            }
+            "rcs_hemispheres" => {
+                self.hemisphere.atlas().ok_or_else(missing).and_then(|a| Self::read(device, queue, &a.radiance.texture))
+            }
+            "rcs_hemisphere_surfaces" => self
+                .hemisphere
+                .atlas()
+                .ok_or_else(missing)
+                .and_then(|a| Self::read(device, queue, &a.surface.texture))
+                .map(|mut img| {
+                    img.pixels.iter_mut().for_each(|p| {
+                        let (hit, beyond, miss) = ((p[3] - 2.0).abs() < 0.1, p[3] > 2.5, (p[3] - 0.5).abs() < 0.1);
+                        let flag = |b: bool| f32::from(u8::from(b));
+                        *p = [p[2], flag(hit) + 0.5 * flag(beyond), flag(miss) + 0.5 * flag(beyond), 1.0];
+                    });
+                    img
+                }),
+            _ => self.accumulated(device, queue, name),
+        })
+    }
+
+    fn overlays(&self, _device: &wgpu::Device, _queue: &wgpu::Queue) -> Vec<Overlay> {
+        let Some((eye, tan_half)) = self.camera else { return Vec::new() };
+        let radii: Vec<f32> = self.cache.iter().map(|(_, r)| r.radius).filter(|r| *r > 0.0).collect();
+        let (lo, hi) = radii.iter().fold((f32::INFINITY, 0.0f32), |(a, b), &r| (a.min(r), b.max(r)));
+        let span = (hi / lo.max(1e-9)).ln().max(1e-6);
+        let accuracy = self.made_with.as_ref().map_or(0.25, |s| s.accuracy);
+        let pixels_per_radian = self.size.1.max(1) as f32 / (2.0 * tan_half);
+        let points = self
+            .cache
+            .iter()
+            .filter(|(_, r)| r.radius > 0.0)
+            .map(|(_, r)| {
+                let distance = (r.site.position - eye).length().max(1e-6);
+                OverlayPoint {
+                    position: r.site.position,
+                    tone: ((r.radius / lo.max(1e-9)).ln() / span).clamp(0.0, 1.0),
+                    radius: (accuracy * r.radius / distance * pixels_per_radian).clamp(1.5, 400.0),
+                }
+            })
+            .collect();
+        vec![Overlay { name: "rcs records", points }]
+    }
+
+    fn reset(&mut self, reason: ResetReason) {
+        note_reset(&mut self.status, reason);
+        match reason {
+            // Memory was released (or never held): start over.
+            ResetReason::ModeEntered => self.drop_all = true,
+            // Which records: `prepare` compares the objects' bounds.
+            ResetReason::SceneEdited => {}
+            ResetReason::LightEdited => self.light_check = true,
+            // World-space records survive camera moves and resizes; settings that change
+            // records are compared in `prepare`.
+            ResetReason::CameraCut | ResetReason::SettingsChanged | ResetReason::Resized => {}
+        }
+    }
+
+    fn release(&mut self) {
+        self.store = None;
+        self.hemisphere.release();
+        self.splat.release();
+        self.coverage.release();
+        self.cache = Cache::default();
+        self.boxes = None;
+        self.made_with = None;
+        self.drop_all = true;
+    }
+
+    fn gpu_bytes(&self) -> u64 {
+        self.store.as_ref().map_or(0, Store::gpu_bytes)
+            + self.hemisphere.gpu_bytes()
+            + self.splat.gpu_bytes()
+            + self.coverage.gpu_bytes()
+    }
+
+    fn limitations(&self, _scene: &Scene, settings: &RenderSettings) -> Vec<String> {
+        let mut out = vec![
+            "surfaces the records see send diffuse light only (glossy senders reflect as if matte)".to_owned(),
+            "later bounces come from the cache: surfaces no record reaches (never seen by the camera) send only their direct light".to_owned(),
+        ];
+        if settings.rcs.furnace {
+            out.push(
+                "white furnace on: every surface the records see emits 1 (a check of E = pi, not lighting)".into(),
+            );
+        }
+        out
+    }
+
+    fn status(&self) -> TechniqueStatus {
+        let mut s = self.status.clone();
+        s.counters = vec![
+            ("records", self.cache.live() as u64),
+            ("records made", self.totals.made),
+            ("records made last frame", self.last.made),
+            ("records renewed", self.totals.renewed),
+            ("records renewed last frame", self.last.renewed),
+            ("records reused last frame", self.last.reused),
+            ("records dropped", self.dropped),
+            ("light check renewals", self.totals.light_renewals),
+            ("light check renewals last frame", self.last.light_renewals),
+            ("rounds last frame", self.last.rounds),
+            ("uncovered tiles", self.last.uncovered_tiles),
+        ];
+        s
+    }
+
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+}
+
+/// The position of a record as a Vec3 (tests).
+pub fn record_position(r: &GpuRecord) -> Vec3 {
+    glam::Vec4::from_array(r.position).xyz()
+}

@@ -1,0 +1,103 @@
+//! Settings of `rcs`, GPU irradiance caching by radiance cache splatting (Gautron et al.,
+//! SIGGRAPH 2007 course notes; digest part A of `technique-rcs-shfilter-sshgi.md`), and their
+//! ranges. The notes give no values for `a` or the hemisphere resolution; the defaults are the
+//! digest's (Radiance-style accuracy, 32x32 planes are the cheaper half of its 64x64), with the
+//! costs `bouncelab bench` measures.
+
+use serde::{Deserialize, Serialize};
+
+use super::SettingsError;
+
+/// Settings of the `rcs` technique.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RcsSettings {
+    /// Accuracy a of Ward's weight: a record reaches every point within a x R of it (R its
+    /// harmonic mean distance) and contributes where w > 1 / a. Smaller: more records, each
+    /// computed by rendering the scene once; the record count grows about as 1 / a^2.
+    pub accuracy: f32,
+    /// Pixels per side of each record's hemisphere plane (tan of the half aperture 2, 126.87
+    /// degrees, with the border compensation for the rest). Cost: the record's render and its
+    /// reduction grow with the square.
+    pub hemisphere_resolution: u32,
+    /// Records the cache may hold; beyond it uncovered pixels stay without indirect light
+    /// (the coverage buffer shows them). Memory: 160 bytes each plus the bounce lookup grid.
+    pub max_records: u32,
+    /// New or renewed records computed per frame: the editor stays interactive while the cache
+    /// fills (the viewport shows the fill progressing). Each costs one render of the scene.
+    pub records_per_frame: u32,
+    /// Placement rounds per frame: splat, find uncovered pixels (one candidate per 8x8 tile),
+    /// compute their records, splat them, repeat. Each round waits for the GPU once.
+    pub rounds: u32,
+    /// Interpolate with Ward's rotational and translational gradients (on: the notes' final
+    /// quality; off: flat records, disc-shaped blotches).
+    pub gradients: bool,
+    /// Bounces: 1 lights the hemispheres with the shadowed direct light only; each further
+    /// bounce renews every record once in place with the cache's own irradiance added at the
+    /// surfaces its hemisphere sees (records-per-frame budget shared with new records).
+    pub bounces: u32,
+    /// Smallest zone of influence a x R on screen when a record is made, in pixels (Tabellion
+    /// and Lamorlette's clamp): keeps creases from getting a record per pixel.
+    pub min_zone_pixels: f32,
+    /// Largest zone of influence a x R on screen when a record is made, in pixels (0: none).
+    pub max_zone_pixels: f32,
+    /// A light edit renews the records whose irradiance from the directly lit surfaces their
+    /// hemisphere saw changes by more than this fraction (checked on the stored strata).
+    pub light_tolerance: f32,
+    /// Debug: every surface and the background the hemispheres see emit radiance 1 (a white
+    /// furnace): every record must read E = pi.
+    pub furnace: bool,
+}
+
+impl Default for RcsSettings {
+    fn default() -> Self {
+        Self {
+            accuracy: 0.25,
+            hemisphere_resolution: 32,
+            max_records: 16384,
+            records_per_frame: 2048,
+            rounds: 4,
+            gradients: true,
+            bounces: 3,
+            min_zone_pixels: 6.0,
+            max_zone_pixels: 0.0,
+            light_tolerance: 0.02,
+            furnace: false,
+        }
+    }
+}
+
+impl RcsSettings {
+    /// Checks ranges.
+    pub fn validate(&self) -> Result<(), SettingsError> {
+        let err = |name, value: String, range| Err(SettingsError { name, value, range });
+        if !(self.accuracy > 0.01 && self.accuracy <= 2.0) {
+            return err("rcs.accuracy", self.accuracy.to_string(), "(0.01, 2]");
+        }
+        if ![8, 16, 32, 64].contains(&self.hemisphere_resolution) {
+            return err("rcs.hemisphere_resolution", self.hemisphere_resolution.to_string(), "8, 16, 32 or 64");
+        }
+        if !(16..=262_144).contains(&self.max_records) {
+            return err("rcs.max_records", self.max_records.to_string(), "16..=262144");
+        }
+        if !(1..=16_384).contains(&self.records_per_frame) {
+            return err("rcs.records_per_frame", self.records_per_frame.to_string(), "1..=16384");
+        }
+        if !(1..=16).contains(&self.rounds) {
+            return err("rcs.rounds", self.rounds.to_string(), "1..=16");
+        }
+        if !(1..=8).contains(&self.bounces) {
+            return err("rcs.bounces", self.bounces.to_string(), "1..=8");
+        }
+        if !(self.min_zone_pixels >= 1.0 && self.min_zone_pixels <= 256.0) {
+            return err("rcs.min_zone_pixels", self.min_zone_pixels.to_string(), "1..=256");
+        }
+        if !(self.max_zone_pixels == 0.0 || self.max_zone_pixels >= self.min_zone_pixels) {
+            return err("rcs.max_zone_pixels", self.max_zone_pixels.to_string(), "0 or >= min_zone_pixels");
+        }
+        if !(self.light_tolerance > 0.0 && self.light_tolerance <= 1.0) {
+            return err("rcs.light_tolerance", self.light_tolerance.to_string(), "(0, 1]");
+        }
+        Ok(())
+    }
+}
