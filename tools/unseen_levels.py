@@ -335,6 +335,28 @@ def cluttered():
     return w
 
 
+def cornell_b():
+    """Issue 14's "done when" box, never used for tuning: a 2.4 x 2.2 x 2.6 m Cornell-style box
+    (open front, 5 cm slabs), blue and yellow side walls, a rotated tall box and a cylinder, a
+    point light under the ceiling and a spot on the back wall (the digest's record demo)."""
+    w = Writer()
+    white, blue, yellow = w.material("white", (0.73, 0.73, 0.7)), w.material("blue", (0.15, 0.3, 0.7)), w.material("yellow", (0.75, 0.65, 0.2))
+    t, X, h, Z = 0.05, 2.4, 2.2, 2.6
+    w.slab("floor", [-t, -t, -t], [X + t, 0, Z], white)
+    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z], white)
+    w.slab("back", [-t, 0, -t], [X + t, h, 0], white)
+    w.slab("left", [-t, 0, 0], [0, h, Z], blue)
+    w.slab("right", [X, 0, 0], [X + t, h, Z], yellow)
+    angle = math.radians(-20.0)
+    w.node({"name": "tall box", "mesh": w.box_mesh([0.6, 1.3, 0.6], white), "translation": [0.75, 0.65, 0.9],
+            "rotation": [0.0, math.sin(angle / 2), 0.0, math.cos(angle / 2)]})
+    w.node({"name": "drum", "mesh": w.cylinder_mesh(0.3, 0.6, white), "translation": [1.65, 0.0, 1.5]})
+    w.light("lamp", "point", 6.0, [1.2, 2.0, 1.4], [0, -1, 0])
+    w.light("spot", "spot", 25.0, [1.9, 1.8, 2.4], [-0.3, -0.2, -1.0], cone=(0.2, 0.35))
+    w.camera([1.2, 1.1, 4.4], [1.2, 1.0, 0.0], 0.75, 0.05)
+    return w
+
+
 def offices():
     """Added at stop 15, after the apartment had been used to diagnose ISM's holes: a second
     held-out multi-room level, never used for tuning. Thin (0.15 m) partitions, a 12 m corridor
@@ -415,7 +437,7 @@ def main():
     out = Path(sys.argv[1] if len(sys.argv) > 1 else "unseen")
     out.mkdir(parents=True, exist_ok=True)
     levels = [("apartment", apartment), ("sunroom", sunroom), ("storeroom", storeroom), ("offices", offices)]
-    levels += [("cluttered", cluttered)]
+    levels += [("cluttered", cluttered), ("cornell_b", cornell_b)]
     levels += [("three_rooms_b", lambda: three_rooms("b")), ("three_rooms_c", lambda: three_rooms("c"))]
     for name, make in levels:
         make().write(out / f"{name}.gltf")

@@ -32,10 +32,16 @@ pub struct RcsSettings {
     /// Interpolate with Ward's rotational and translational gradients (on: the notes' final
     /// quality; off: flat records, disc-shaped blotches).
     pub gradients: bool,
-    /// Bounces: 1 lights the hemispheres with the shadowed direct light only; each further
-    /// bounce renews every record once in place with the cache's own irradiance added at the
-    /// surfaces its hemisphere sees (records-per-frame budget shared with new records).
+    /// Most bounces: 1 lights the hemispheres with the shadowed direct light only; each
+    /// further bounce is a pass renewing every record in place with the cache's own irradiance
+    /// added at the surfaces its hemisphere sees (and records made where no record reaches).
+    /// Passes stop earlier once they converge. Cost: each pass recomputes every record (the
+    /// records-per-frame budget is shared with new records); light through two doorways needs
+    /// about 12.
     pub bounces: u32,
+    /// The bounce passes stop when one changes the records' luminance by less than this
+    /// fraction on average (each record relative to its own).
+    pub convergence: f32,
     /// Smallest zone of influence a x R on screen when a record is made, in pixels (Tabellion
     /// and Lamorlette's clamp): keeps creases from getting a record per pixel.
     pub min_zone_pixels: f32,
@@ -58,7 +64,8 @@ impl Default for RcsSettings {
             records_per_frame: 2048,
             rounds: 4,
             gradients: true,
-            bounces: 3,
+            bounces: 16,
+            convergence: 0.01,
             min_zone_pixels: 6.0,
             max_zone_pixels: 0.0,
             light_tolerance: 0.02,
@@ -86,14 +93,17 @@ impl RcsSettings {
         if !(1..=16).contains(&self.rounds) {
             return err("rcs.rounds", self.rounds.to_string(), "1..=16");
         }
-        if !(1..=8).contains(&self.bounces) {
-            return err("rcs.bounces", self.bounces.to_string(), "1..=8");
+        if !(1..=16).contains(&self.bounces) {
+            return err("rcs.bounces", self.bounces.to_string(), "1..=16");
         }
         if !(self.min_zone_pixels >= 1.0 && self.min_zone_pixels <= 256.0) {
             return err("rcs.min_zone_pixels", self.min_zone_pixels.to_string(), "1..=256");
         }
         if !(self.max_zone_pixels == 0.0 || self.max_zone_pixels >= self.min_zone_pixels) {
             return err("rcs.max_zone_pixels", self.max_zone_pixels.to_string(), "0 or >= min_zone_pixels");
+        }
+        if !(self.convergence > 0.0 && self.convergence <= 1.0) {
+            return err("rcs.convergence", self.convergence.to_string(), "(0, 1]");
         }
         if !(self.light_tolerance > 0.0 && self.light_tolerance <= 1.0) {
             return err("rcs.light_tolerance", self.light_tolerance.to_string(), "(0, 1]");

@@ -13,7 +13,8 @@ struct Job {
     // x = white furnace (1: every surface and the background emit 1), y = look the cache up at
     // the surfaces seen (later bounces), z, w = the plane's first atlas texel.
     params: vec4<f32>,
-    // x = the times this record has been computed before (0: new), yzw unused.
+    // x = the times this record has been computed before (0: new), y = 1: propose secondary
+    // records where its bounce lookups found nothing, zw unused.
     extra: vec4<f32>,
     pad: array<vec4<f32>, 10>,
 }

@@ -9,6 +9,9 @@
 //   (digest A.2).
 // - 64 check strata (4 x 16, one centre tap each) keep the surface each one sees (distance,
 //   normal, albedo) for the light check (`rcs_check.wgsl`).
+// - Secondary records (classical irradiance caching's recursion): where the bounce lookup found
+//   no record facing the surface's way (the camera never saw it), the texel of each plane
+//   quadrant with the largest weight is proposed as a new record's site.
 #import common/octahedral.wgsl
 #import common/color.wgsl
 #import render/gi/rcs/rcs_job.wgsl
@@ -28,6 +31,23 @@ struct ReduceParams {
 @group(0) @binding(6) var<storage, read_write> check_strata: array<vec4<f32>>;
 @group(0) @binding(7) var<storage, read_write> results: array<vec4<f32>>;
 
+struct Secondary {
+    // xyz site, w = the proposing record's slot as bits.
+    position: vec4<f32>,
+    // xyz normal of the surface, w unused.
+    normal: vec4<f32>,
+}
+
+struct Secondaries {
+    count: atomic<u32>,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+    items: array<Secondary>,
+}
+
+@group(0) @binding(8) var<storage, read_write> secondaries: Secondaries;
+
 const PI: f32 = 3.14159265358979;
 const ROWS: u32 = 8u;
 const COLUMNS: u32 = 32u;
@@ -42,6 +62,8 @@ var<workgroup> part_e: array<vec3<f32>, 64>;
 var<workgroup> part_inv: array<f32, 64>;
 var<workgroup> part_rot: array<array<vec3<f32>, 3>, 64>;
 var<workgroup> part_trans: array<array<vec3<f32>, 3>, 64>;
+// Per invocation and plane quadrant: the best lookup miss as (weight bits, texel index + 1).
+var<workgroup> part_miss: array<array<vec2<u32>, 4>, 64>;
 
 // The plane texel (in its tile) a direction in the record's frame (z = normal) falls on; beyond
 // the aperture the border texel along the same azimuth.
@@ -72,13 +94,24 @@ fn cs_main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_in
     let origin = vec2<u32>(job.params.zw);
     let slot = bitcast<u32>(job.normal.w);
 
-    // Irradiance over the plane with the border compensation.
+    // Irradiance over the plane with the border compensation; the best lookup miss per quadrant.
     var e = vec3<f32>(0.0);
+    var miss = array<vec2<u32>, 4>(vec2<u32>(0u), vec2<u32>(0u), vec2<u32>(0u), vec2<u32>(0u));
+    let propose = job.extra.y > 0.5;
     for (var i = t; i < h * h; i = i + 64u) {
         let texel = origin + vec2<u32>(i % h, i / h);
         e = e + textureLoad(atlas, texel, 0).rgb * weights[i];
+        if propose && abs(textureLoad(surfaces, texel, 0).a - 0.5) < 0.1 {
+            let q = u32((i % h) >= h / 2u) + 2u * u32((i / h) >= h / 2u);
+            // Positive floats order like their bits.
+            let key = bitcast<u32>(weights[i]);
+            if key > miss[q].x {
+                miss[q] = vec2<u32>(key, i + 1u);
+            }
+        }
     }
     part_e[t] = e;
+    part_miss[t] = miss;
 
     // Strata: mean radiance and nearest distance of 2 x 2 taps.
     var inv = 0.0;
@@ -154,6 +187,29 @@ fn cs_main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_in
     part_trans[t] = trans;
     workgroupBarrier();
 
+    if t < 4u && propose {
+        var best = vec2<u32>(0u);
+        for (var i = 0u; i < 64u; i = i + 1u) {
+            if part_miss[i][t].x > best.x {
+                best = part_miss[i][t];
+            }
+        }
+        if best.y > 0u {
+            let i = best.y - 1u;
+            let texel = origin + vec2<u32>(i % h, i / h);
+            let hit = textureLoad(atlas, texel, 0);
+            let surface = textureLoad(surfaces, texel, 0);
+            let uv = vec2<f32>((f32(i % h) + 0.5) / f32(h) * 4.0 - 2.0, 2.0 - (f32(i / h) + 0.5) / f32(h) * 4.0);
+            let dir = normalize(job.tangent.xyz * uv.x + job.bitangent.xyz * uv.y + job.normal.xyz);
+            let k = atomicAdd(&secondaries.count, 1u);
+            if k < arrayLength(&secondaries.items) {
+                secondaries.items[k] = Secondary(
+                    vec4<f32>(job.position.xyz + dir * hit.a, bitcast<f32>(slot)),
+                    vec4<f32>(oct_decode(surface.xy), 0.0),
+                );
+            }
+        }
+    }
     if t != 0u {
         return;
     }

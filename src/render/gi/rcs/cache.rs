@@ -18,8 +18,15 @@ pub struct CachedRecord {
     pub radius: f32,
     /// Times computed (1 after the first; each renewal adds one bounce).
     pub computed: u32,
+    /// Times it should be computed: renewals are queued until `computed` reaches it.
+    pub target: u32,
+    /// Luminance of its irradiance after the last computation.
+    pub luminance: f32,
     /// The frame it was made in.
     pub made: u64,
+    /// 0 for a record placed on screen, d + 1 for one proposed by a depth-d record's
+    /// hemisphere (a surface the camera did not see).
+    pub depth: u32,
 }
 
 /// The records by slot.
@@ -73,8 +80,8 @@ impl Cache {
     }
 
     /// Takes a slot for a new record at `site`; `None` when full.
-    pub fn allocate(&mut self, site: Site, frame: u64) -> Option<u32> {
-        let record = CachedRecord { site, radius: 0.0, computed: 0, made: frame };
+    pub fn allocate(&mut self, site: Site, frame: u64, depth: u32, target: u32) -> Option<u32> {
+        let record = CachedRecord { site, radius: 0.0, computed: 0, target, luminance: 0.0, made: frame, depth };
         if let Some(slot) = self.free.pop() {
             self.slots[slot as usize] = Some(record);
             return Some(slot);
@@ -96,11 +103,29 @@ impl Cache {
         }
     }
 
-    /// Records the result of a computation.
-    pub fn computed(&mut self, slot: u32, radius: f32) {
+    /// Records the result of a computation; returns how much the luminance changed (0 for a
+    /// new record).
+    pub fn computed(&mut self, slot: u32, radius: f32, luminance: f32) -> f32 {
+        let Some(Some(r)) = self.slots.get_mut(slot as usize) else { return 0.0 };
+        let change = if r.computed > 0 { (luminance - r.luminance).abs() } else { 0.0 };
+        r.radius = radius;
+        r.computed += 1;
+        r.luminance = luminance;
+        change
+    }
+
+    /// Renews `slot` in place now and once more after it (its neighbours' lookups change too).
+    pub fn invalidate(&mut self, slot: u32) {
         if let Some(Some(r)) = self.slots.get_mut(slot as usize) {
-            r.radius = radius;
-            r.computed += 1;
+            r.target = r.target.max(r.computed + 2);
+        }
+        self.queue_renewal(slot);
+    }
+
+    /// The bounce passes have converged: no record asks for more.
+    pub fn settle(&mut self) {
+        for r in self.slots.iter_mut().flatten() {
+            r.target = r.target.min(r.computed);
         }
     }
 
@@ -113,10 +138,18 @@ impl Cache {
         }
     }
 
-    /// Queues every record computed fewer than `bounces` times.
-    pub fn queue_bounces(&mut self, bounces: u32) {
-        let short: Vec<u32> = self.iter().filter(|(_, r)| r.computed < bounces).map(|(s, _)| s).collect();
+    /// Queues every record computed fewer times than its target (one bounce pass); returns
+    /// how many.
+    pub fn queue_bounces(&mut self) -> usize {
+        let short: Vec<u32> = self.iter().filter(|(_, r)| r.computed < r.target).map(|(s, _)| s).collect();
+        let n = short.len();
         short.into_iter().for_each(|s| self.queue_renewal(s));
+        n
+    }
+
+    /// Whether some record asks for more computations.
+    pub fn unsettled(&self) -> bool {
+        self.iter().any(|(_, r)| r.computed < r.target)
     }
 
     /// Records waiting for renewal.
@@ -179,7 +212,7 @@ impl Cache {
             self.free(slot);
         }
         out.renewed = renew.len();
-        renew.into_iter().for_each(|s| self.queue_renewal(s));
+        renew.into_iter().for_each(|s| self.invalidate(s));
         out
     }
 }
@@ -222,12 +255,12 @@ mod tests {
     #[test]
     fn slots_are_reused_and_renewals_are_queued_once() {
         let mut c = Cache::new(3);
-        let a = c.allocate(site(Vec3::ZERO), 0).expect("slot");
-        let b = c.allocate(site(Vec3::X), 0).expect("slot");
-        let _ = c.allocate(site(Vec3::Y), 0).expect("slot");
-        assert!(c.allocate(site(Vec3::Z), 0).is_none(), "capacity 3");
+        let a = c.allocate(site(Vec3::ZERO), 0, 0, 1).expect("slot");
+        let b = c.allocate(site(Vec3::X), 0, 0, 1).expect("slot");
+        let _ = c.allocate(site(Vec3::Y), 0, 0, 1).expect("slot");
+        assert!(c.allocate(site(Vec3::Z), 0, 0, 1).is_none(), "capacity 3");
         c.free(b);
-        assert_eq!(c.allocate(site(Vec3::Z), 1), Some(b));
+        assert_eq!(c.allocate(site(Vec3::Z), 1, 0, 1), Some(b));
         c.queue_renewal(a);
         c.queue_renewal(a);
         assert_eq!(c.take_renewals(10), vec![a]);
@@ -238,12 +271,12 @@ mod tests {
     #[test]
     fn a_moved_box_drops_its_records_renews_its_neighbours_and_keeps_the_rest() {
         let mut c = Cache::new(16);
-        let on = c.allocate(site(Vec3::new(0.0, 0.5, 0.0)), 0).expect("slot");
-        let near = c.allocate(site(Vec3::new(1.0, 0.0, 0.0)), 0).expect("slot");
-        let far = c.allocate(site(Vec3::new(40.0, 0.0, 0.0)), 0).expect("slot");
+        let on = c.allocate(site(Vec3::new(0.0, 0.5, 0.0)), 0, 0, 1).expect("slot");
+        let near = c.allocate(site(Vec3::new(1.0, 0.0, 0.0)), 0, 0, 1).expect("slot");
+        let far = c.allocate(site(Vec3::new(40.0, 0.0, 0.0)), 0, 0, 1).expect("slot");
         let mut below = site(Vec3::new(0.0, -3.0, 0.0));
         below.normal = Vec3::NEG_Y;
-        let below = c.allocate(below, 0).expect("slot");
+        let below = c.allocate(below, 0, 0, 1).expect("slot");
         let boxes = [Aabb { min: Vec3::splat(-0.5), max: Vec3::splat(0.5) }];
         let inv = c.invalidate_boxes(&boxes, 0.01, 0.02);
         assert_eq!(inv.dropped, vec![on]);

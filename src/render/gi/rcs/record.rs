@@ -76,6 +76,17 @@ impl Candidate {
     }
 }
 
+/// What a job does besides rendering the direct light.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct JobFlags {
+    /// Every surface and the background emit 1 (the white furnace).
+    pub furnace: bool,
+    /// Look the cache up at the surfaces seen (later bounces).
+    pub lookup: bool,
+    /// Propose secondary records where the lookup misses.
+    pub propose: bool,
+}
+
 /// A record's site and the bounds of its R, fixed when it is made (renewals reuse them).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Site {
@@ -105,8 +116,9 @@ impl Site {
         Self { position, normal, near: 0.25 * footprint, radius_bounds: (lo, hi.max(lo)) }
     }
 
-    /// The job computing this site into `slot`, its plane at atlas texel `origin`.
-    pub fn job(&self, slot: u32, origin: (u32, u32), furnace: bool, lookup: bool, computed: u32) -> GpuJob {
+    /// The job computing this site into `slot`, its plane at atlas texel `origin`; `propose`:
+    /// list secondary sites where its bounce lookups miss.
+    pub fn job(&self, slot: u32, origin: (u32, u32), flags: JobFlags, computed: u32) -> GpuJob {
         let (t, b) = crate::precompute::brdf::basis(self.normal);
         let v = |v: Vec3, w: f32| [v.x, v.y, v.z, w];
         GpuJob {
@@ -114,8 +126,13 @@ impl Site {
             normal: v(self.normal, f32::from_bits(slot)),
             tangent: v(t, self.radius_bounds.0),
             bitangent: v(b, self.radius_bounds.1),
-            params: [f32::from(u8::from(furnace)), f32::from(u8::from(lookup)), origin.0 as f32, origin.1 as f32],
-            extra: [computed as f32, 0.0, 0.0, 0.0],
+            params: [
+                f32::from(u8::from(flags.furnace)),
+                f32::from(u8::from(flags.lookup)),
+                origin.0 as f32,
+                origin.1 as f32,
+            ],
+            extra: [computed as f32, f32::from(u8::from(flags.propose)), 0.0, 0.0],
             pad: [[0.0; 4]; 10],
         }
     }

@@ -1,6 +1,6 @@
 //! Record computation, step 2: one workgroup per record reduces its hemisphere plane to the
 //! record (irradiance with the border compensation, harmonic mean distance, Ward and Heckbert's
-//! gradients, the light check's strata), `rcs_reduce.wgsl`.
+//! gradients, the light check's strata, secondary record sites), `rcs_reduce.wgsl`.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -44,6 +44,7 @@ impl ReducePass {
                 storage_rw_entry(5),
                 storage_rw_entry(6),
                 storage_rw_entry(7),
+                storage_rw_entry(8),
             ],
         });
         let module = shaders::module(device, "render/gi/rcs/rcs_reduce.wgsl")?;
@@ -70,8 +71,10 @@ impl ReducePass {
                 entry(5, &store.records),
                 entry(6, &store.check_strata),
                 entry(7, &store.results),
+                entry(8, &store.secondaries),
             ],
         });
+        inputs.encoder.clear_buffer(&store.secondaries, 0, Some(16));
         let mut pass = inputs.compute_pass("rcs reduce");
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &bind_group, &[]);

@@ -1,6 +1,7 @@
 //! The cache's GPU memory: the records, each record's check strata, the bounce lookup grid,
 //! this round's jobs and results, and the one staging buffer every round reads back (the
-//! coverage candidates, the computed records' radii, the light check's list).
+//! coverage candidates, the computed records' radii, the light check's list, the secondary
+//! sites).
 
 use super::grid::{GridParams, HashGrid};
 use super::record::{Candidate, GpuJob, GpuRecord};
@@ -8,6 +9,9 @@ use super::{storage, uniform};
 
 /// Check strata per record (`rcs_check.wgsl`).
 pub const CHECK_STRATA: u64 = 64;
+
+/// Secondary sites one job may propose (one per plane quadrant).
+pub const SECONDARIES_PER_JOB: u64 = 4;
 
 /// Bytes of the counter header before a list (`count` and padding).
 const HEADER: u64 = 16;
@@ -21,6 +25,8 @@ pub struct StagingLayout {
     pub results_len: u64,
     pub changed: u64,
     pub changed_len: u64,
+    pub secondaries: u64,
+    pub secondaries_len: u64,
 }
 
 /// Every buffer, sized for `max_records` records, rounds of `jobs` jobs and views of `tiles`
@@ -35,6 +41,8 @@ pub struct Store {
     pub results: wgpu::Buffer,
     pub candidates: wgpu::Buffer,
     pub changed: wgpu::Buffer,
+    /// Secondary record sites the reduction proposes (4 per job at most).
+    pub secondaries: wgpu::Buffer,
     pub splat_list: wgpu::Buffer,
     pub grid_params: wgpu::Buffer,
     pub grid_cells: wgpu::Buffer,
@@ -58,6 +66,7 @@ impl Store {
         let candidates_len = HEADER + u64::from(tiles.max(1)) * std::mem::size_of::<Candidate>() as u64;
         let results_len = u64::from(jobs_capacity.max(1)) * 16;
         let changed_len = HEADER + u64::from(max_records) * 4;
+        let secondaries_len = HEADER + u64::from(jobs_capacity.max(1)) * SECONDARIES_PER_JOB * 32;
         let layout = StagingLayout {
             candidates: 0,
             candidates_len,
@@ -65,10 +74,12 @@ impl Store {
             results_len,
             changed: candidates_len + results_len,
             changed_len,
+            secondaries: candidates_len + results_len + changed_len,
+            secondaries_len,
         };
         let staging = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("rcs readback staging"),
-            size: layout.changed + changed_len,
+            size: layout.secondaries + secondaries_len,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -82,6 +93,7 @@ impl Store {
             results: storage(device, "rcs job results", results_len),
             candidates: storage(device, "rcs candidates", candidates_len),
             changed: storage(device, "rcs changed records", changed_len),
+            secondaries: storage(device, "rcs secondary sites", secondaries_len),
             splat_list: storage(device, "rcs splat list", u64::from(jobs_capacity.max(1)) * 4),
             grid_params: uniform(device, "rcs grid params", std::mem::size_of::<GridParams>() as u64),
             grid_cells: storage(device, "rcs grid cells", 16),
@@ -133,6 +145,7 @@ impl Store {
             &self.results,
             &self.candidates,
             &self.changed,
+            &self.secondaries,
             &self.splat_list,
             &self.grid_params,
             &self.grid_cells,

@@ -11,7 +11,7 @@ use super::coverage::{CoveragePass, order, tiles};
 use super::grid::HashGrid;
 use super::hemisphere::{HemisphereInputs, HemispherePass};
 use super::light_check::{CheckMode, LightCheckPass};
-use super::record::{Candidate, GpuJob, GpuRecord, Site};
+use super::record::{Candidate, GpuJob, GpuRecord, JobFlags, Site};
 use super::reduce::ReducePass;
 use super::splat::{Splat, SplatPass};
 use super::store::Store;
@@ -80,6 +80,7 @@ pub const BUFFERS: &[BufferInfo] = &[
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct FrameStats {
     made: u64,
+    secondary: u64,
     renewed: u64,
     rounds: u64,
     uncovered_tiles: u64,
@@ -104,6 +105,15 @@ pub struct RcsTechnique {
     changed: Vec<Aabb>,
     light_check: bool,
     drop_all: bool,
+    /// Secondary record sites proposed by hemispheres and not made yet, with their depth.
+    secondary: Vec<(Site, u32)>,
+    /// The running bounce pass: summed relative luminance change of its renewals, and their
+    /// count.
+    pass: (f64, f64),
+    /// Bounce passes run so far since the cache last filled.
+    passes: u32,
+    /// The bounce passes converged: new records need one renewal, not a pass of everyone.
+    converged: bool,
     /// The settings the records were computed with (a change of these drops the cache).
     made_with: Option<RcsSettings>,
     frame: u64,
@@ -115,9 +125,10 @@ pub struct RcsTechnique {
     status: TechniqueStatus,
 }
 
-/// The settings whose change invalidates every record.
+/// The settings whose change invalidates every record (the bounce settings too: targets are
+/// fixed when records are made).
 fn cache_key(s: &RcsSettings) -> RcsSettings {
-    RcsSettings { records_per_frame: 0, rounds: 0, gradients: false, bounces: 0, light_tolerance: 0.0, ..s.clone() }
+    RcsSettings { records_per_frame: 0, rounds: 0, gradients: false, light_tolerance: 0.0, ..s.clone() }
 }
 
 impl RcsTechnique {
@@ -137,6 +148,10 @@ impl RcsTechnique {
             changed: Vec::new(),
             light_check: false,
             drop_all: true,
+            secondary: Vec::new(),
+            pass: (0.0, 0.0),
+            passes: 0,
+            converged: false,
             made_with: None,
             frame: 0,
             last: FrameStats::default(),
@@ -212,6 +227,60 @@ impl RcsTechnique {
         slots.into_iter().take(count).collect()
     }
 
+    /// Secondary sites in a round's readback, each with the slot that proposed it.
+    fn secondaries(bytes: &[u8], store: &Store) -> Vec<(Candidate, u32)> {
+        let l = store.layout;
+        let Some(section) = bytes.get(l.secondaries as usize..(l.secondaries + l.secondaries_len) as usize) else {
+            return Vec::new();
+        };
+        let count = u32::from_le_bytes([section[0], section[1], section[2], section[3]]) as usize;
+        let items: Vec<Candidate> = bytemuck::pod_collect_to_vec(&section[16..]);
+        items.into_iter().take(count).map(|c| (c, c.position[3].to_bits())).collect()
+    }
+
+    /// Queues secondary sites, dropping any within two smallest zones of one already queued
+    /// (many hemispheres see the same unseen wall).
+    fn queue_secondaries(&mut self, proposed: Vec<(Candidate, u32)>, settings: &RcsSettings) {
+        let mut proposed = proposed;
+        proposed.sort_by_key(|(c, parent)| (*parent, c.tile()));
+        for (c, parent) in proposed {
+            let Some(p) = self.cache.get(parent) else { continue };
+            let depth = p.depth + 1;
+            if depth >= settings.bounces {
+                continue;
+            }
+            let site = Site {
+                position: c.point(),
+                normal: c.direction(),
+                near: p.site.near,
+                radius_bounds: p.site.radius_bounds,
+            };
+            let spacing = 2.0 * settings.accuracy * site.radius_bounds.0;
+            let crowded = self.secondary.iter().any(|(s, _)| {
+                s.position.distance_squared(site.position) < spacing * spacing && s.normal.dot(site.normal) > 0.9
+            });
+            if !crowded && self.secondary.len() < self.cache.room() as usize {
+                self.secondary.push((site, depth));
+            }
+        }
+    }
+
+    /// Ends a finished bounce pass (converged when it changed the records' luminance by less
+    /// than `tolerance` on average, each relative to its own) and starts the next while records
+    /// ask for more.
+    fn next_pass(&mut self, tolerance: f32) {
+        let (change, total) = self.pass;
+        if total > 0.0 {
+            self.passes += 1;
+            if change < f64::from(tolerance) * total {
+                self.converged = true;
+                self.cache.settle();
+            }
+        }
+        self.pass = (0.0, 0.0);
+        self.cache.queue_bounces();
+    }
+
     /// The pixel footprint (m per pixel) at `distance` from the camera.
     fn footprint(&self, distance: f32) -> f32 {
         let Some((_, tan_half)) = self.camera else { return 1e-3 };
@@ -223,6 +292,10 @@ impl RcsTechnique {
         if self.drop_all {
             self.dropped += self.cache.live() as u64;
             self.cache = Cache::new(store.max_records);
+            self.secondary.clear();
+            self.pass = (0.0, 0.0);
+            self.passes = 0;
+            self.converged = false;
             inputs.encoder.clear_buffer(&store.records, 0, None);
             self.grid_dirty = true;
             self.drop_all = false;
@@ -243,7 +316,7 @@ impl RcsTechnique {
     }
 
     /// Makes this round's jobs: new records at `candidates` (up to `budget`), then queued
-    /// renewals; returns the jobs and how many of them are new.
+    /// secondary sites, then queued renewals; returns the jobs and how many of them are new.
     fn jobs(
         &mut self,
         candidates: &[Candidate],
@@ -253,7 +326,11 @@ impl RcsTechnique {
     ) -> (Vec<GpuJob>, usize) {
         let mut sites = Vec::new();
         let largest = self.largest_radius();
-        for c in candidates.iter().take(budget.min(self.cache.room()) as usize) {
+        // Once the passes converged, a new record's first computation already looks up the
+        // converged cache: one renewal settles it (its own secondary records are new as well).
+        let target = if self.converged { settings.bounces.min(2) } else { settings.bounces };
+        let room = budget.min(self.cache.room()) as usize;
+        for c in candidates.iter().take(room) {
             let footprint = self.footprint(c.position[3]);
             let site = Site::new(
                 c.point(),
@@ -263,23 +340,31 @@ impl RcsTechnique {
                 (settings.min_zone_pixels, settings.max_zone_pixels),
                 largest,
             );
-            if let Some(slot) = self.cache.allocate(site, self.frame) {
-                sites.push((slot, site, 0));
+            if let Some(slot) = self.cache.allocate(site, self.frame, 0, target) {
+                sites.push((slot, site, 0, 0));
+            }
+        }
+        let take = room.saturating_sub(sites.len()).min(self.secondary.len());
+        for (site, depth) in self.secondary.drain(..take).collect::<Vec<_>>() {
+            if let Some(slot) = self.cache.allocate(site, self.frame, depth, target) {
+                sites.push((slot, site, 0, depth));
             }
         }
         let new = sites.len();
         let renewals = self.cache.take_renewals(budget as usize - new);
         for slot in renewals {
             if let Some(r) = self.cache.get(slot) {
-                sites.push((slot, r.site, r.computed));
+                sites.push((slot, r.site, r.computed, r.depth));
             }
         }
         let atlas_origin = |i: u32| self.hemisphere.atlas().map_or((0, 0), |a| a.origin(i));
         let jobs = sites
             .iter()
             .enumerate()
-            .map(|(i, (slot, site, computed))| {
-                site.job(*slot, atlas_origin(i as u32), settings.furnace, lookup, *computed)
+            .map(|(i, (slot, site, computed, depth))| {
+                let flags =
+                    JobFlags { furnace: settings.furnace, lookup, propose: lookup && depth + 1 < settings.bounces };
+                site.job(*slot, atlas_origin(i as u32), flags, *computed)
             })
             .collect();
         (jobs, new)
@@ -327,17 +412,18 @@ impl RcsTechnique {
         if check {
             let changed = Self::changed_slots(&bytes, store);
             stats.light_renewals = changed.len() as u64;
-            changed.into_iter().for_each(|s| self.cache.queue_renewal(s));
+            changed.into_iter().for_each(|s| self.cache.invalidate(s));
         }
         let mut budget = settings.records_per_frame;
         let capacity = store.jobs_capacity;
         for round in 1..=settings.rounds {
             let (count, candidates) = Self::candidates(&bytes, store);
             stats.uncovered_tiles = u64::from(count);
-            if count == 0 && settings.bounces > 1 {
-                self.cache.queue_bounces(settings.bounces);
+            if count == 0 && self.secondary.is_empty() && self.cache.pending_renewals() == 0 {
+                self.next_pass(settings.convergence);
             }
-            if budget == 0 || (candidates.is_empty() && self.cache.pending_renewals() == 0) {
+            if budget == 0 || (candidates.is_empty() && self.secondary.is_empty() && self.cache.pending_renewals() == 0)
+            {
                 break;
             }
             let lookup = settings.bounces > 1 && !settings.furnace && self.cache.live() > 0;
@@ -372,6 +458,13 @@ impl RcsTechnique {
             self.check.record(inputs, store, CheckMode::Store, n, settings.light_tolerance);
             let l = store.layout;
             inputs.encoder.copy_buffer_to_buffer(&store.results, 0, &store.staging, l.results, u64::from(n) * 16);
+            inputs.encoder.copy_buffer_to_buffer(
+                &store.secondaries,
+                0,
+                &store.staging,
+                l.secondaries,
+                l.secondaries_len,
+            );
             let which = if new == jobs.len() { Splat::New(n) } else { Splat::All(self.cache.high_water()) };
             self.splat.record(inputs, store, which, settings.accuracy);
             self.coverage.record(inputs, store, &accum, round);
@@ -380,8 +473,18 @@ impl RcsTechnique {
                 bytes.get(l.results as usize..(l.results + u64::from(n) * 16) as usize).unwrap_or(&[]),
             );
             for r in results {
-                self.cache.computed(r[2].to_bits(), r[0]);
+                let change = self.cache.computed(r[2].to_bits(), r[0], r[1]);
+                if self.cache.get(r[2].to_bits()).is_some_and(|c| c.computed > 1) {
+                    // Relative to the record's own light: a dim room far down the light path
+                    // counts as much as the lit one.
+                    self.pass.0 += if change > 0.0 { f64::from(change / r[1].max(change)) } else { 0.0 };
+                    self.pass.1 += 1.0;
+                }
             }
+            let proposed = Self::secondaries(&bytes, store);
+            let before = self.secondary.len();
+            self.queue_secondaries(proposed, &settings);
+            stats.secondary += (self.secondary.len() - before) as u64;
             self.grid_dirty = true;
         }
         let (count, _) = Self::candidates(&bytes, store);
@@ -484,18 +587,20 @@ impl GiTechnique for RcsTechnique {
         self.last = stats;
         self.totals.made += stats.made;
         self.totals.renewed += stats.renewed;
+        self.totals.secondary += stats.secondary;
         self.totals.light_renewals += stats.light_renewals;
         self.status.history_frames = self.status.history_frames.saturating_add(1);
-        let filling = stats.uncovered_tiles > 0 || self.cache.pending_renewals() > 0;
-        let short = self.cache.iter().any(|(_, r)| r.computed < settings.bounces);
-        self.status.refining = (filling || short) && self.cache.room() > 0;
+        let filling = stats.uncovered_tiles > 0 || self.cache.pending_renewals() > 0 || !self.secondary.is_empty();
+        self.status.refining = (filling || self.cache.unsettled()) && self.cache.room() > 0;
         self.status.refine_target = 0;
         self.status.progress = Some(format!(
-            "rcs: {} records (+{} new, {} renewed this frame), {} uncovered tiles{}",
+            "rcs: {} records (+{} new, {} renewed this frame), {} uncovered tiles, bounce pass {}{}{}",
             self.cache.live(),
             stats.made,
             stats.renewed,
             stats.uncovered_tiles,
+            self.passes + 1,
+            if self.converged { " (converged)" } else { "" },
             if self.cache.room() == 0 { ", cache full" } else { "" }
         ));
         Ok(GiOutput::IrradianceOverPi)
@@ -590,6 +695,7 @@ impl GiTechnique for RcsTechnique {
         self.splat.release();
         self.coverage.release();
         self.cache = Cache::default();
+        self.secondary.clear();
         self.boxes = None;
         self.made_with = None;
         self.drop_all = true;
@@ -621,6 +727,8 @@ impl GiTechnique for RcsTechnique {
             ("records", self.cache.live() as u64),
             ("records made", self.totals.made),
             ("records made last frame", self.last.made),
+            ("secondary sites queued", self.totals.secondary),
+            ("secondary records", self.cache.iter().filter(|(_, r)| r.depth > 0).count() as u64),
             ("records renewed", self.totals.renewed),
             ("records renewed last frame", self.last.renewed),
             ("records reused last frame", self.last.reused),
@@ -628,6 +736,8 @@ impl GiTechnique for RcsTechnique {
             ("light check renewals", self.totals.light_renewals),
             ("light check renewals last frame", self.last.light_renewals),
             ("rounds last frame", self.last.rounds),
+            ("bounce passes", u64::from(self.passes)),
+            ("bounce passes converged", u64::from(self.converged)),
             ("uncovered tiles", self.last.uncovered_tiles),
         ];
         s
