@@ -1,7 +1,7 @@
 //! The GI panel: the live mode switch (modes this build or adapter cannot run are disabled
 //! with the reason), what the active technique leaves out, its history and GPU memory, and
 //! every setting with its cost/quality trade-off as a tooltip. Each technique's own section
-//! lives in its own file (`gi_ism.rs`, `gi_sshgi.rs`, `gi_mrt.rs`).
+//! lives in its own file (`gi_ism.rs`, `gi_sshgi.rs`, `gi_mrt.rs`, `gi_rcs.rs`).
 
 use super::state::EditorState;
 use crate::render::Renderer;
@@ -69,6 +69,9 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
     }
     if render.mode == GiMode::Sshgi {
         super::gi_sshgi::sshgi_ui(&mut render.sshgi, ui);
+    }
+    if render.mode == GiMode::Rcs {
+        super::gi_rcs::rcs_ui(&mut render.rcs, ui);
     }
     let names = |role: crate::scene::ObjectRole| -> Vec<String> {
         state.project.scene.objects().iter().filter(|o| o.role == role).map(|o| o.name.clone()).collect()

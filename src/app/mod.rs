@@ -12,6 +12,7 @@ pub mod edits;
 mod gi_ism;
 mod gi_mrt;
 mod gi_panel;
+mod gi_rcs;
 mod gi_sshgi;
 mod gi_vo;
 pub mod gizmo;

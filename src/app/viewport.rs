@@ -81,6 +81,8 @@ pub struct Viewport {
     /// Screen rectangle of the last drawn image (egui points).
     pub rect: Option<egui::Rect>,
     overlays: Vec<crate::render::gi::Overlay>,
+    /// The overlays were read since they were turned on.
+    overlays_read: bool,
     /// The full view size of the last UI frame (physical pixels).
     size: (u32, u32),
     /// Frame budget and adaptive scale (editor preferences).
@@ -141,6 +143,7 @@ impl Viewport {
             points: None,
             rect: None,
             overlays: Vec::new(),
+            overlays_read: false,
             size: (1, 1),
             preview,
             controller: ScaleController::new(),
@@ -561,14 +564,28 @@ impl Viewport {
             self.draw_points(&painter, rect, &view, state);
         }
         if self.gizmo.show_overlays {
+            // Turned on over an idle view (a converged cache renders no more frames): read the
+            // markers once now.
+            if !self.overlays_read
+                && let Some(view) = self.view.as_ref().filter(|v| !v.busy())
+            {
+                self.overlays = view.renderer().overlays();
+                self.overlays_read = true;
+            }
             for p in self.overlays.iter().flat_map(|o| &o.points) {
                 if let Some(s) = view.project(p.position) {
                     let [r, g, b] = super::inspector::false_colour(p.tone);
-                    painter.circle_filled(rect.min + egui::vec2(s.x, s.y), p.radius, egui::Color32::from_rgb(r, g, b));
+                    let (centre, colour) = (rect.min + egui::vec2(s.x, s.y), egui::Color32::from_rgb(r, g, b));
+                    painter.circle_filled(centre, p.radius, colour);
+                    if p.ring > 0.0 {
+                        let pixels = p.ring / view.world_size(p.position, 1.0).max(1e-9);
+                        painter.circle_stroke(centre, pixels.min(4096.0), egui::Stroke::new(1.0, colour.gamma_multiply(0.6)));
+                    }
                 }
             }
         } else {
             self.overlays.clear();
+            self.overlays_read = false;
         }
         if let Some((origin, rotation)) = Self::target(state) {
             let len = view.world_size(origin, 70.0);

@@ -118,6 +118,9 @@ pub struct OverlayPoint {
     pub tone: f32,
     /// Radius in screen points.
     pub radius: f32,
+    /// An outline circle of this world radius in metres around it (a cache record's zone of
+    /// influence); 0 for none.
+    pub ring: f32,
 }
 
 /// A named set of overlay markers.

@@ -459,6 +459,7 @@ impl GiTechnique for IsmTechnique {
                 position: glam::Vec3::new(v.position[0], v.position[1], v.position[2]),
                 tone: (i / per_set) as f32 / 5.0,
                 radius: 2.5,
+                ring: 0.0,
             })
             .collect();
         vec![Overlay { name: "VPLs", points }]

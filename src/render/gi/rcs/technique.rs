@@ -121,7 +121,8 @@ pub struct RcsTechnique {
     totals: FrameStats,
     dropped: u64,
     size: (u32, u32),
-    camera: Option<(Vec3, f32)>,
+    /// tan of the camera's half vertical field of view.
+    tan_half_fov: Option<f32>,
     status: TechniqueStatus,
 }
 
@@ -158,7 +159,7 @@ impl RcsTechnique {
             totals: FrameStats::default(),
             dropped: 0,
             size: (0, 0),
-            camera: None,
+            tan_half_fov: None,
             status: TechniqueStatus::default(),
         })
     }
@@ -283,7 +284,7 @@ impl RcsTechnique {
 
     /// The pixel footprint (m per pixel) at `distance` from the camera.
     fn footprint(&self, distance: f32) -> f32 {
-        let Some((_, tan_half)) = self.camera else { return 1e-3 };
+        let Some(tan_half) = self.tan_half_fov else { return 1e-3 };
         2.0 * tan_half * distance / self.size.1.max(1) as f32
     }
 
@@ -535,8 +536,7 @@ impl GiTechnique for RcsTechnique {
             self.made_with = Some(key);
         }
         self.size = size;
-        let camera = scene.camera();
-        self.camera = Some((camera.position, (camera.yfov * 0.5).tan()));
+        self.tan_half_fov = Some((scene.camera().yfov * 0.5).tan());
         Readiness::Ready
     }
 
@@ -653,23 +653,21 @@ impl GiTechnique for RcsTechnique {
     }
 
     fn overlays(&self, _device: &wgpu::Device, _queue: &wgpu::Queue) -> Vec<Overlay> {
-        let Some((eye, tan_half)) = self.camera else { return Vec::new() };
         let radii: Vec<f32> = self.cache.iter().map(|(_, r)| r.radius).filter(|r| *r > 0.0).collect();
         let (lo, hi) = radii.iter().fold((f32::INFINITY, 0.0f32), |(a, b), &r| (a.min(r), b.max(r)));
         let span = (hi / lo.max(1e-9)).ln().max(1e-6);
         let accuracy = self.made_with.as_ref().map_or(0.25, |s| s.accuracy);
-        let pixels_per_radian = self.size.1.max(1) as f32 / (2.0 * tan_half);
+        // Dots coloured by R_k (log scale, small = blue), circles of the zone a R_k; records
+        // the camera never saw (secondary) are smaller dots.
         let points = self
             .cache
             .iter()
             .filter(|(_, r)| r.radius > 0.0)
-            .map(|(_, r)| {
-                let distance = (r.site.position - eye).length().max(1e-6);
-                OverlayPoint {
-                    position: r.site.position,
-                    tone: ((r.radius / lo.max(1e-9)).ln() / span).clamp(0.0, 1.0),
-                    radius: (accuracy * r.radius / distance * pixels_per_radian).clamp(1.5, 400.0),
-                }
+            .map(|(_, r)| OverlayPoint {
+                position: r.site.position,
+                tone: ((r.radius / lo.max(1e-9)).ln() / span).clamp(0.0, 1.0),
+                radius: if r.depth == 0 { 2.5 } else { 1.5 },
+                ring: if r.depth == 0 { accuracy * r.radius } else { 0.0 },
             })
             .collect();
         vec![Overlay { name: "rcs records", points }]
