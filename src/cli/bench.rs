@@ -121,6 +121,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
     super::bench_mrt::mrt_rows(&mut md, quick)?;
     super::bench_mrt::mrt_runtime_rows(&mut md, &ctx, quick)?;
     super::bench_drt::drt_rows(&mut md, &ctx, quick)?;
+    super::bench_rcs::rcs_rows(&mut md, &ctx, &project, quick)?;
     // Anything after the manual marker (hand-run external comparisons) survives a rerun.
     if let Ok(old) = std::fs::read_to_string(out)
         && let Some(i) = old.find(MANUAL_MARKER)

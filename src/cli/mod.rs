@@ -5,6 +5,7 @@
 pub mod bench;
 pub mod bench_drt;
 pub mod bench_mrt;
+pub mod bench_rcs;
 pub mod bench_sshgi;
 pub mod compare;
 pub mod generate;
