@@ -244,3 +244,47 @@ fn moving_an_object_drops_its_records_and_keeps_the_far_half() {
     assert!(renewed > 0, "no neighbour of the box was renewed");
     assert_eq!(renewed_east, 0, "records beyond the wall changed");
 }
+
+#[test]
+fn the_inspector_buffers_show_the_fill_and_a_covered_converged_cache() {
+    let Some(ctx) = common::gpu() else { return };
+    let (project, _) = cornell();
+    let settings = with(&project, GiMode::Rcs, RcsSettings::default());
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    r.render(&project.scene, &settings, SIZE).expect("render");
+    let added = |r: &Renderer| {
+        let img = r.read_buffer("rcs_records_added").expect("records added");
+        img.pixels.iter().filter(|p| p[0] > 0.0).count()
+    };
+    let first = added(&r);
+    converge(&mut r, &project, &settings, SIZE, 16);
+    r.render(&project.scene, &settings, SIZE).expect("render");
+    let coverage = r.read_buffer("rcs_coverage").expect("coverage");
+    let geometry = coverage.pixels.iter().filter(|p| p[2] > 0.5).count();
+    let uncovered = coverage.pixels.iter().filter(|p| p[0] > 0.5).count();
+    let weight = r.read_buffer("rcs_weight").expect("weight");
+    let weighted = weight.pixels.iter().zip(&coverage.pixels).filter(|(w, c)| c[2] > 0.5 && w[0] > 0.0).count();
+    let count = r.read_buffer("rcs_record_count").expect("count");
+    let most = count.pixels.iter().map(|p| p[0]).fold(0.0f32, f32::max);
+    let with = r.read_buffer("rcs_irradiance").expect("irradiance");
+    let plain = r.read_buffer("rcs_irradiance_plain").expect("plain");
+    let difference = r.read_buffer("rcs_gradient_difference").expect("difference");
+    let mut worst = 0.0f32;
+    for ((a, b), d) in with.pixels.iter().zip(&plain.pixels).zip(&difference.pixels) {
+        worst = worst.max((a[0] - b[0] - d[0]).abs());
+    }
+    let planes = r.read_buffer("rcs_hemispheres").expect("planes");
+    eprintln!(
+        "first frame added records at {first} pixels, after convergence {}; {geometry} geometry pixels, {uncovered} uncovered, {weighted} weighted, up to {most} records a pixel; planes {}x{}",
+        added(&r),
+        planes.width,
+        planes.height
+    );
+    assert!(first > 50, "the first frame placed records at {first} pixels");
+    assert_eq!(added(&r), 0, "a converged cache of an unchanged view adds no record");
+    assert!(geometry > (SIZE.0 * SIZE.1 / 2) as usize);
+    assert_eq!(uncovered, 0, "pixels uncovered after the cache filled");
+    assert_eq!(weighted, geometry, "every geometry pixel has some weight");
+    assert!(most >= 2.0, "zones overlap: at most {most} records reach a pixel");
+    assert!(worst < 1e-4, "the gradient difference is not with minus without ({worst})");
+}

@@ -579,7 +579,11 @@ impl Viewport {
                     painter.circle_filled(centre, p.radius, colour);
                     if p.ring > 0.0 {
                         let pixels = p.ring / view.world_size(p.position, 1.0).max(1e-9);
-                        painter.circle_stroke(centre, pixels.min(4096.0), egui::Stroke::new(1.0, colour.gamma_multiply(0.6)));
+                        painter.circle_stroke(
+                            centre,
+                            pixels.min(4096.0),
+                            egui::Stroke::new(1.0, colour.gamma_multiply(0.6)),
+                        );
                     }
                 }
             }

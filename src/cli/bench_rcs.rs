@@ -35,7 +35,13 @@ fn counter(r: &Renderer, name: &str) -> u64 {
 }
 
 /// Renders until the cache is converged, then eight warm frames.
-fn fill(ctx: &GpuContext, r: &mut Renderer, project: &Project, settings: &RenderSettings, size: (u32, u32)) -> anyhow::Result<Fill> {
+fn fill(
+    ctx: &GpuContext,
+    r: &mut Renderer,
+    project: &Project,
+    settings: &RenderSettings,
+    size: (u32, u32),
+) -> anyhow::Result<Fill> {
     let start = Instant::now();
     let mut first_full = None;
     let mut frames = 0;

@@ -137,6 +137,21 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
             .map_err(|e| anyhow::anyhow!("waiting for the GPU: {e}"))?;
         progress.tick(u64::from(done));
     }
+    // `rcs` first fills its cache and converges its bounce passes (a budget of records per
+    // frame): the written frame is the converged one, however few frames were asked for.
+    if project.render.mode == GiMode::Rcs {
+        let mut extra = 0;
+        while extra < RCS_FILL_LIMIT && renderer.technique_status().is_some_and(|s| s.refining) {
+            renderer.render(&project.scene, &project.render, render_size)?;
+            ctx.device
+                .poll(wgpu::PollType::wait_indefinitely())
+                .map_err(|e| anyhow::anyhow!("waiting for the GPU: {e}"))?;
+            extra += 1;
+        }
+        if let Some(p) = renderer.technique_status().and_then(|s| s.progress) {
+            eprintln!("{p} after {} frames", frames + extra);
+        }
+    }
     // Say what the technique leaves out (a light type, a feature), so nobody mistakes it for error.
     for note in renderer.limitations(&project.scene, &project.render) {
         eprintln!("note: {} {note}", project.render.mode.name());
@@ -178,6 +193,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
         ctx.describe()
     ))
 }
+
+/// Most extra frames `render` gives `rcs` to fill and converge its cache.
+const RCS_FILL_LIMIT: u32 = 2000;
 
 /// Renders frames of `project` at `size` until its technique is no longer preparing on the CPU
 /// (MRT's dictionary and level: the frame meanwhile shows direct light), saying what it waits

@@ -483,14 +483,22 @@ impl GiTechnique for MrtTechnique {
 
     fn overlays(&self, _device: &wgpu::Device, _queue: &wgpu::Queue) -> Vec<Overlay> {
         let Some(s) = &self.shown else { return Vec::new() };
-        let openings =
-            s.openings.iter().map(|(p, share)| OverlayPoint { position: *p, tone: *share, radius: 7.0, ring: 0.0 }).collect();
+        let openings = s
+            .openings
+            .iter()
+            .map(|(p, share)| OverlayPoint { position: *p, tone: *share, radius: 7.0, ring: 0.0 })
+            .collect();
         let texels = s
             .packed
             .texels
             .iter()
             .filter(|t| t.position[3] > 0.5)
-            .map(|t| OverlayPoint { position: glam::Vec3::from_slice(&t.position[..3]), tone: 0.0, radius: 1.5, ring: 0.0 })
+            .map(|t| OverlayPoint {
+                position: glam::Vec3::from_slice(&t.position[..3]),
+                tone: 0.0,
+                radius: 1.5,
+                ring: 0.0,
+            })
             .collect();
         vec![
             Overlay { name: "MRT openings (tone: open share)", points: openings },

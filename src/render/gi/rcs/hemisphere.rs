@@ -13,8 +13,14 @@ use crate::render::scene_gpu::Vertex;
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::Target;
 
-/// Largest atlas side in texels.
-const ATLAS_LIMIT: u32 = 4096;
+/// Largest atlas side in texels (2048: 112 MiB of planes and depth at most).
+const ATLAS_LIMIT: u32 = 2048;
+
+/// Records one round can compute with planes of `resolution` texels and a frame budget of
+/// `budget` records.
+pub fn round_capacity(resolution: u32, budget: u32) -> u32 {
+    budget.min((ATLAS_LIMIT / resolution).pow(2)).max(1)
+}
 
 /// Format of the radiance/distance plane and of the surface plane.
 pub const RADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;

@@ -544,7 +544,7 @@ impl GiTechnique for RcsTechnique {
         let settings = inputs.settings.rcs.clone();
         let size = inputs.targets.size;
         let h = settings.hemisphere_resolution;
-        let jobs = settings.records_per_frame.min((4096 / h).pow(2));
+        let jobs = super::hemisphere::round_capacity(h, settings.records_per_frame);
         let fits = self.store.as_ref().is_some_and(|s| {
             s.max_records == settings.max_records && s.jobs_capacity == jobs && s.tiles >= tiles(size)
         });
