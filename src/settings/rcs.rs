@@ -14,7 +14,11 @@ use super::SettingsError;
 pub struct RcsSettings {
     /// Accuracy a of Ward's weight: a record reaches every point within a x R of it (R its
     /// harmonic mean distance) and contributes where w > 1 / a. Smaller: more records, each
-    /// computed by rendering the scene once; the record count grows about as 1 / a^2.
+    /// computed by rendering the scene once (1 / a^2 where zones are not clamped). Measured
+    /// (`bouncelab bench`, default project at 640x360, llvmpipe): a = 0.5 / 0.25 / 0.125 made
+    /// 2048 / 2784 / 3924 records (most zones there are set by the gradient limit and the pixel
+    /// clamp), FLIP 0.080 / 0.078 / 0.077, and a warm frame of 15.3 / 5.6 / 3.8 x `direct`:
+    /// larger zones overlap more, and the splat dominates a warm frame.
     pub accuracy: f32,
     /// Pixels per side of each record's hemisphere plane (tan of the half aperture 2, 126.87
     /// degrees, with the border compensation for the rest). Cost: the record's render and its
@@ -24,7 +28,9 @@ pub struct RcsSettings {
     /// (the coverage buffer shows them). Memory: 160 bytes each plus the bounce lookup grid.
     pub max_records: u32,
     /// New or renewed records computed per frame: the editor stays interactive while the cache
-    /// fills (the viewport shows the fill progressing). Each costs one render of the scene.
+    /// fills (the viewport shows the fill progressing). Each costs one render of the scene. At
+    /// 2048 the default project (640x360, llvmpipe) was covered after 1.9 s (3 frames) and its
+    /// bounce passes converged after 8.3 s (9 frames).
     pub records_per_frame: u32,
     /// Placement rounds per frame: splat, find uncovered pixels (one candidate per 8x8 tile),
     /// compute their records, splat them, repeat. Each round waits for the GPU once.

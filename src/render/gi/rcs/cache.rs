@@ -217,22 +217,34 @@ impl Cache {
     }
 }
 
-/// Every rendered object's world bounds and material, to tell which objects an edit changed.
-pub fn object_boxes(scene: &Scene) -> Vec<(Aabb, usize)> {
+/// Every rendered object's world bounds and a fingerprint of its material, to tell which
+/// objects an edit changed (moved, resized, recoloured).
+pub fn object_boxes(scene: &Scene) -> Vec<(Aabb, u64)> {
+    use std::hash::{Hash, Hasher};
+    let materials: Vec<u64> = scene
+        .materials()
+        .iter()
+        .map(|m| {
+            let mut h = std::collections::hash_map::DefaultHasher::new();
+            format!("{m:?}").hash(&mut h);
+            h.finish()
+        })
+        .collect();
     scene
         .objects()
         .iter()
         .filter(|o| o.is_rendered())
         .filter_map(|o| {
             let mesh = scene.resources().meshes.get(o.mesh)?;
-            Some((mesh.bounds()?.transformed(&o.transform.matrix()), o.material))
+            let material = materials.get(o.material).copied().unwrap_or_default() ^ o.material as u64;
+            Some((mesh.bounds()?.transformed(&o.transform.matrix()), material))
         })
         .collect()
 }
 
 /// The bounds of what differs between two snapshots of [`object_boxes`] (old and new boxes
 /// of changed objects; every box of the longer list beyond the shorter's length).
-pub fn changed_boxes(old: &[(Aabb, usize)], new: &[(Aabb, usize)]) -> Vec<Aabb> {
+pub fn changed_boxes(old: &[(Aabb, u64)], new: &[(Aabb, u64)]) -> Vec<Aabb> {
     let mut out = Vec::new();
     for i in 0..old.len().max(new.len()) {
         match (old.get(i), new.get(i)) {

@@ -175,30 +175,23 @@ impl HemispherePass {
         Ok(Self { pipeline, layout, sampler: shadow_sampler(device, "rcs hemisphere shadow sampler"), sized: None })
     }
 
-    /// The atlas for planes of `resolution` texels and rounds of up to `jobs` records.
-    pub fn ensure(&mut self, device: &wgpu::Device, resolution: u32, jobs: u32) -> &Atlas {
+    /// Makes the atlas hold planes of `resolution` texels for rounds of up to `jobs` records.
+    pub fn ensure(&mut self, device: &wgpu::Device, resolution: u32, jobs: u32) {
         let per_row = (jobs.max(1) as f32).sqrt().ceil() as u32;
         let per_row = per_row.min(ATLAS_LIMIT / resolution).max(1);
-        let fits = self.sized.as_ref().is_some_and(|a| a.resolution == resolution && a.per_row == per_row);
-        if !fits {
-            use wgpu::TextureUsages as U;
-            let side = per_row * resolution;
-            let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
-            self.sized = Some(Atlas {
-                resolution,
-                per_row,
-                radiance: Target::new(device, "rcs hemisphere radiance", (side, side), RADIANCE_FORMAT, usage),
-                surface: Target::new(device, "rcs hemisphere surfaces", (side, side), SURFACE_FORMAT, usage),
-                depth: Target::new(
-                    device,
-                    "rcs hemisphere depth",
-                    (side, side),
-                    wgpu::TextureFormat::Depth32Float,
-                    usage,
-                ),
-            });
+        if self.sized.as_ref().is_some_and(|a| a.resolution == resolution && a.per_row == per_row) {
+            return;
         }
-        self.sized.as_ref().unwrap_or_else(|| unreachable!("atlas created above"))
+        use wgpu::TextureUsages as U;
+        let side = per_row * resolution;
+        let usage = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
+        self.sized = Some(Atlas {
+            resolution,
+            per_row,
+            radiance: Target::new(device, "rcs hemisphere radiance", (side, side), RADIANCE_FORMAT, usage),
+            surface: Target::new(device, "rcs hemisphere surfaces", (side, side), SURFACE_FORMAT, usage),
+            depth: Target::new(device, "rcs hemisphere depth", (side, side), wgpu::TextureFormat::Depth32Float, usage),
+        });
     }
 
     /// The atlas of the last round.

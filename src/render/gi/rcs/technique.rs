@@ -100,7 +100,7 @@ pub struct RcsTechnique {
     grid: HashGrid,
     grid_dirty: bool,
     /// Object bounds and materials as the cache last saw them.
-    boxes: Option<Vec<(Aabb, usize)>>,
+    boxes: Option<Vec<(Aabb, u64)>>,
     /// Bounds of objects changed since the last frame.
     changed: Vec<Aabb>,
     light_check: bool,
