@@ -709,7 +709,7 @@ impl GiTechnique for RcsTechnique {
     fn limitations(&self, _scene: &Scene, settings: &RenderSettings) -> Vec<String> {
         let mut out = vec![
             "surfaces the records see send diffuse light only (glossy senders reflect as if matte)".to_owned(),
-            "later bounces come from the cache: surfaces no record reaches (never seen by the camera) send only their direct light".to_owned(),
+            "later bounces come from the cache: where it has no record yet (a surface the camera never saw) a secondary record is made, and until then the renewed record's own irradiance stands in".to_owned(),
         ];
         if settings.rcs.furnace {
             out.push(
