@@ -176,14 +176,21 @@ fn computed(r: &Renderer) -> Vec<(Vec3, u32)> {
         .collect()
 }
 
-#[test]
-fn moving_one_light_renews_only_the_records_it_changes() {
-    let Some(ctx) = common::gpu() else { return };
-    let mut project = two_rooms();
+/// The two rooms with a converged cache: the project, its settings, the renderer and each
+/// slot's record before an edit.
+fn warm_two_rooms(ctx: &bouncelab::render::GpuContext) -> (Project, RenderSettings, Renderer, Vec<(Vec3, u32)>) {
+    let project = two_rooms();
     let settings = with(&project, GiMode::Rcs, RcsSettings::default());
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     converge(&mut r, &project, &settings, SIZE, 16);
     let before = computed(&r);
+    (project, settings, r, before)
+}
+
+#[test]
+fn moving_one_light_renews_only_the_records_it_changes() {
+    let Some(ctx) = common::gpu() else { return };
+    let (mut project, settings, mut r, before) = warm_two_rooms(&ctx);
     project.scene.desc_mut().lights[0].position += Vec3::new(0.4, 0.0, 0.3);
     converge(&mut r, &project, &settings, SIZE, 16);
     let after = computed(&r);
@@ -224,11 +231,7 @@ fn moving_one_light_renews_only_the_records_it_changes() {
 #[test]
 fn moving_an_object_drops_its_records_and_keeps_the_far_half() {
     let Some(ctx) = common::gpu() else { return };
-    let mut project = two_rooms();
-    let settings = with(&project, GiMode::Rcs, RcsSettings::default());
-    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
-    converge(&mut r, &project, &settings, SIZE, 16);
-    let before = computed(&r);
+    let (mut project, settings, mut r, before) = warm_two_rooms(&ctx);
     let on_box = before
         .iter()
         .filter(|(p, c)| *c > 0 && p.x < -1.85 && p.x > -2.55 && p.z > 0.15 && p.z < 0.85 && p.y > 0.01)

@@ -20,6 +20,19 @@ pub(crate) struct Row {
 }
 
 /// The median of `v` (0 when empty).
+/// The reference path tracer's image of `project` at `size` (64 spp, 16 quick) and its spp:
+/// what the technique sections measure their error against.
+pub(crate) fn traced_reference(project: &Project, size: (u32, u32), quick: bool) -> (crate::image_io::HdrImage, u32) {
+    let mut tracer = PathTracer::new(
+        &project.scene,
+        size,
+        ReferenceSettings { spp: if quick { 16 } else { 64 }, ..Default::default() },
+    );
+    let spp = tracer.settings_spp();
+    tracer.render(spp, &std::sync::atomic::AtomicBool::new(false), |_| {});
+    (crate::image_io::HdrImage { width: size.0, height: size.1, pixels: tracer.image() }, spp)
+}
+
 pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v.get(v.len() / 2).copied().unwrap_or(0.0)

@@ -11,10 +11,9 @@ use glam::Vec3;
 use super::bench::median;
 use crate::image_io::HdrImage;
 use crate::metrics;
-use crate::precompute::pathtracer::PathTracer;
 use crate::project_file::Project;
 use crate::render::{GpuContext, Renderer};
-use crate::settings::{GiMode, RcsSettings, ReferenceSettings, RenderSettings};
+use crate::settings::{GiMode, RcsSettings, RenderSettings};
 
 /// Most frames a fill may take.
 const FILL_LIMIT: usize = 400;
@@ -98,14 +97,7 @@ fn error(r: &Renderer, size: (u32, u32), reference: &HdrImage) -> anyhow::Result
 /// Appends the rcs section to `md`.
 pub fn rcs_rows(md: &mut String, ctx: &GpuContext, project: &Project, quick: bool) -> anyhow::Result<()> {
     let size = if quick { (320, 180) } else { (640, 360) };
-    let mut tracer = PathTracer::new(
-        &project.scene,
-        size,
-        ReferenceSettings { spp: if quick { 16 } else { 64 }, ..Default::default() },
-    );
-    let spp = tracer.settings_spp();
-    tracer.render(spp, &std::sync::atomic::AtomicBool::new(false), |_| {});
-    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let (reference, spp) = super::bench::traced_reference(project, size, quick);
     let direct_settings = RenderSettings { mode: GiMode::Direct, ..project.render.clone() };
     let mut d = Renderer::new(&ctx.device, &ctx.queue)?;
     let mut times = Vec::new();

@@ -12,11 +12,10 @@ use glam::Vec3;
 use super::bench::median;
 use crate::image_io::HdrImage;
 use crate::metrics;
-use crate::precompute::pathtracer::PathTracer;
 use crate::project_file::Project;
 use crate::render::{GpuContext, Renderer};
 use crate::scene::{MeshSource, Object, ObjectRole, Transform};
-use crate::settings::{GiMode, ReferenceSettings, SshgiSettings};
+use crate::settings::{GiMode, SshgiSettings};
 
 /// One configuration's figures.
 struct Measured {
@@ -102,14 +101,7 @@ fn with_clutter(project: &Project, count: usize) -> anyhow::Result<Project> {
 /// Appends the sshgi section to `md`.
 pub fn sshgi_rows(md: &mut String, ctx: &GpuContext, project: &Project, quick: bool) -> anyhow::Result<()> {
     let size = if quick { (320, 180) } else { (640, 360) };
-    let mut tracer = PathTracer::new(
-        &project.scene,
-        size,
-        ReferenceSettings { spp: if quick { 16 } else { 64 }, ..Default::default() },
-    );
-    let spp = tracer.settings_spp();
-    tracer.render(spp, &std::sync::atomic::AtomicBool::new(false), |_| {});
-    let reference = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
+    let (reference, spp) = super::bench::traced_reference(project, size, quick);
     let defaults = SshgiSettings::default();
     let direct = run(ctx, project, GiMode::Direct, &defaults, size, Some(&reference))?;
     let _ = writeln!(md, "\n## Screen-space hierarchical GI (Soler et al. 2010)\n");
