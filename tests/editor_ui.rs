@@ -77,10 +77,14 @@ fn switch_mode_and_inspect_buffers() {
     h.get_by_label("direct").click();
     h.run_steps(2);
     assert_eq!(h.state().state().project.render.mode, GiMode::Direct);
-    // Modes not built yet are shown but disabled.
+    // Radiance cache splatting fills its cache over the frames and says so.
     h.get_by_label("rcs").click();
-    h.run_steps(2);
-    assert_eq!(h.state().state().project.render.mode, GiMode::Direct, "a disabled mode cannot be chosen");
+    h.run_steps(3);
+    settle(&mut h);
+    assert_eq!(h.state().state().project.render.mode, GiMode::Rcs);
+    assert!(!h.state().state().status.contains("failed"), "{}", h.state().state().status);
+    let progress = h.state().renderer().and_then(|r| r.technique_status()).and_then(|s| s.progress);
+    assert!(progress.as_deref().is_some_and(|p| p.starts_with("rcs: ")), "rcs progress line: {progress:?}");
     h.get_by_label("ism").click();
     h.run_steps(3);
     settle(&mut h);
