@@ -291,3 +291,34 @@ fn the_inspector_buffers_show_the_fill_and_a_covered_converged_cache() {
     assert!(most >= 2.0, "zones overlap: at most {most} records reach a pixel");
     assert!(worst < 1e-4, "the gradient difference is not with minus without ({worst})");
 }
+
+#[test]
+fn a_cache_larger_than_the_adapter_allows_is_refused_with_the_setting_to_change() {
+    use bouncelab::render::gi::SupportQuery;
+    // WebGPU's default 128 MiB storage binding holds 131072 records' check strata.
+    let limits = wgpu::Limits::default();
+    let query = |max_records| {
+        let settings = RenderSettings {
+            mode: GiMode::Rcs,
+            rcs: RcsSettings { max_records, ..RcsSettings::default() },
+            ..RenderSettings::default()
+        };
+        RcsTechnique::support(&SupportQuery {
+            limits: &limits,
+            features: wgpu::Features::FLOAT32_BLENDABLE,
+            size: SIZE,
+            settings: &settings,
+        })
+    };
+    assert_eq!(query(16384), Ok(()));
+    let e = query(262_144).expect_err("256 MiB of strata");
+    assert!(e.contains("rcs.max_records") && e.contains("131072"), "{e}");
+    let e = RcsTechnique::support(&SupportQuery {
+        limits: &limits,
+        features: wgpu::Features::empty(),
+        size: SIZE,
+        settings: &RenderSettings::default(),
+    })
+    .expect_err("no float blending");
+    assert!(e.contains("FLOAT32_BLENDABLE"), "{e}");
+}

@@ -164,13 +164,26 @@ impl RcsTechnique {
         })
     }
 
-    /// Needs blending on 32-bit float targets (the splat accumulation).
+    /// Needs blending on 32-bit float targets (the splat accumulation), and storage bindings
+    /// large enough for `max_records` records' check strata.
     pub fn support(query: &SupportQuery<'_>) -> Result<(), String> {
-        if query.features.contains(wgpu::Features::FLOAT32_BLENDABLE) {
-            Ok(())
-        } else {
-            Err("rcs needs blending on 32-bit float targets (FLOAT32_BLENDABLE), which this adapter lacks".into())
+        if !query.features.contains(wgpu::Features::FLOAT32_BLENDABLE) {
+            return Err(
+                "rcs needs blending on 32-bit float targets (FLOAT32_BLENDABLE), which this adapter lacks".into()
+            );
         }
+        let records = u64::from(query.settings.rcs.max_records);
+        let strata = records * super::store::CHECK_STRATA * 16;
+        let limit = u64::from(query.limits.max_storage_buffer_binding_size).min(query.limits.max_buffer_size);
+        if strata > limit {
+            return Err(format!(
+                "rcs.max_records = {records} needs {} MiB of check strata in one buffer, over this adapter's {} MiB: lower max_records to {} or fewer",
+                strata >> 20,
+                limit >> 20,
+                limit / (super::store::CHECK_STRATA * 16)
+            ));
+        }
+        Ok(())
     }
 
     /// The live records (tests and tools).
