@@ -174,7 +174,7 @@ impl RcsTechnique {
         }
         let records = u64::from(query.settings.rcs.max_records);
         let strata = records * super::store::CHECK_STRATA * 16;
-        let limit = u64::from(query.limits.max_storage_buffer_binding_size).min(query.limits.max_buffer_size);
+        let limit = query.limits.max_storage_buffer_binding_size.min(query.limits.max_buffer_size);
         if strata > limit {
             return Err(format!(
                 "rcs.max_records = {records} needs {} MiB of check strata in one buffer, over this adapter's {} MiB: lower max_records to {} or fewer",
