@@ -120,7 +120,10 @@ pub struct RcsTechnique {
     last: FrameStats,
     totals: FrameStats,
     dropped: u64,
-    size: (u32, u32),
+    /// The tallest view rendered since the technique last held memory (pixels): the zone
+    /// clamp's pixels are that view's, so records made in a reduced-resolution preview are as
+    /// fine as the full view's.
+    tallest_view: u32,
     /// tan of the camera's half vertical field of view.
     tan_half_fov: Option<f32>,
     status: TechniqueStatus,
@@ -158,7 +161,7 @@ impl RcsTechnique {
             last: FrameStats::default(),
             totals: FrameStats::default(),
             dropped: 0,
-            size: (0, 0),
+            tallest_view: 0,
             tan_half_fov: None,
             status: TechniqueStatus::default(),
         })
@@ -298,7 +301,7 @@ impl RcsTechnique {
     /// The pixel footprint (m per pixel) at `distance` from the camera.
     fn footprint(&self, distance: f32) -> f32 {
         let Some(tan_half) = self.tan_half_fov else { return 1e-3 };
-        2.0 * tan_half * distance / self.size.1.max(1) as f32
+        2.0 * tan_half * distance / self.tallest_view.max(1) as f32
     }
 
     /// Applies the pending invalidations before the frame's rounds.
@@ -548,7 +551,7 @@ impl GiTechnique for RcsTechnique {
             self.drop_all = true;
             self.made_with = Some(key);
         }
-        self.size = size;
+        self.tallest_view = self.tallest_view.max(size.1);
         self.tan_half_fov = Some((scene.camera().yfov * 0.5).tan());
         Readiness::Ready
     }
@@ -707,6 +710,7 @@ impl GiTechnique for RcsTechnique {
         self.coverage.release();
         self.cache = Cache::default();
         self.secondary.clear();
+        self.tallest_view = 0;
         self.boxes = None;
         self.made_with = None;
         self.drop_all = true;
