@@ -147,3 +147,18 @@ pub fn draw(painter: &egui::Painter, rect: egui::Rect, view: &View, scene: &Scen
         }
     }
 }
+
+/// Draws a technique's markers (ISM's VPLs, rcs records with the rings of their zones): a dot
+/// coloured by the marker's tone, and a circle of its world radius where it has one.
+pub fn draw_markers(painter: &egui::Painter, rect: egui::Rect, view: &View, markers: &[crate::render::gi::Overlay]) {
+    for p in markers.iter().flat_map(|o| &o.points) {
+        let Some(s) = view.project(p.position) else { continue };
+        let [r, g, b] = super::inspector::false_colour(p.tone);
+        let (centre, colour) = (rect.min + egui::vec2(s.x, s.y), egui::Color32::from_rgb(r, g, b));
+        painter.circle_filled(centre, p.radius, colour);
+        if p.ring > 0.0 {
+            let pixels = p.ring / view.world_size(p.position, 1.0).max(1e-9);
+            painter.circle_stroke(centre, pixels.min(4096.0), egui::Stroke::new(1.0, colour.gamma_multiply(0.6)));
+        }
+    }
+}

@@ -572,21 +572,7 @@ impl Viewport {
                 self.overlays = view.renderer().overlays();
                 self.overlays_read = true;
             }
-            for p in self.overlays.iter().flat_map(|o| &o.points) {
-                if let Some(s) = view.project(p.position) {
-                    let [r, g, b] = super::inspector::false_colour(p.tone);
-                    let (centre, colour) = (rect.min + egui::vec2(s.x, s.y), egui::Color32::from_rgb(r, g, b));
-                    painter.circle_filled(centre, p.radius, colour);
-                    if p.ring > 0.0 {
-                        let pixels = p.ring / view.world_size(p.position, 1.0).max(1e-9);
-                        painter.circle_stroke(
-                            centre,
-                            pixels.min(4096.0),
-                            egui::Stroke::new(1.0, colour.gamma_multiply(0.6)),
-                        );
-                    }
-                }
-            }
+            overlays::draw_markers(&painter, rect, &view, &self.overlays);
         } else {
             self.overlays.clear();
             self.overlays_read = false;

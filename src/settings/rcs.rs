@@ -16,9 +16,9 @@ pub struct RcsSettings {
     /// harmonic mean distance) and contributes where w > 1 / a. Smaller: more records, each
     /// computed by rendering the scene once (1 / a^2 where zones are not clamped). Measured
     /// (`bouncelab bench`, default project at 640x360, llvmpipe): a = 0.5 / 0.25 / 0.125 made
-    /// 2048 / 2784 / 3924 records (most zones there are set by the gradient limit and the pixel
-    /// clamp), FLIP 0.080 / 0.078 / 0.077, and a warm frame of 15.3 / 5.6 / 3.8 x `direct`:
-    /// larger zones overlap more, and the splat dominates a warm frame.
+    /// 2048 / 2784 / 3924 records (far from 1 / a^2: the gradient limit and the pixel clamp
+    /// bound many zones there), FLIP 0.080 / 0.078 / 0.077, and a warm frame of 15.3 / 5.6 /
+    /// 3.8 x `direct`, almost all of it the splat (larger zones overlap more).
     pub accuracy: f32,
     /// Pixels per side of each record's hemisphere plane (tan of the half aperture 2, 126.87
     /// degrees, with the border compensation for the rest). Cost: the record's render and its

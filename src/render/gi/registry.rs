@@ -60,7 +60,7 @@ pub const TECHNIQUES: &[TechniqueEntry] = &[
     TechniqueEntry {
         modes: &[GiMode::Rcs],
         support: RcsTechnique::support,
-        buffers: super::rcs::technique::BUFFERS,
+        buffers: super::rcs::inspect::BUFFERS,
         create: |device, layouts| Ok(Box::new(RcsTechnique::new(device, layouts)?)),
     },
     TechniqueEntry {

@@ -11,10 +11,12 @@ pub mod cache;
 pub mod coverage;
 pub mod grid;
 pub mod hemisphere;
+pub mod inspect;
 pub mod light_check;
 pub mod record;
 pub mod reduce;
 pub mod splat;
+pub mod staging;
 pub mod store;
 pub mod technique;
 

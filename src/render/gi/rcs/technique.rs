@@ -4,77 +4,29 @@
 //! after edits, and writes E / pi. The cache is world-space and survives camera moves: a frame
 //! of a moved camera only adds records where newly visible surfaces are uncovered.
 
-use glam::{Vec3, Vec4Swizzles};
+use glam::Vec3;
 
 use super::cache::{Cache, changed_boxes, object_boxes};
 use super::coverage::{CoveragePass, order, tiles};
 use super::grid::HashGrid;
 use super::hemisphere::{HemisphereInputs, HemispherePass};
+use super::inspect::{BUFFERS, Inspected};
 use super::light_check::{CheckMode, LightCheckPass};
 use super::record::{Candidate, GpuJob, GpuRecord, JobFlags, Site};
 use super::reduce::ReducePass;
 use super::splat::{Splat, SplatPass};
+use super::staging;
 use super::store::Store;
 use crate::image_io::HdrImage;
 use crate::render::gi::inputs::GiInputs;
 use crate::render::gi::technique::{
-    BufferInfo, BufferView, GiOutput, GiTechnique, Overlay, OverlayPoint, Readiness, ResetReason, SupportQuery,
-    TechniqueStatus, note_reset,
+    BufferInfo, GiOutput, GiTechnique, Overlay, OverlayPoint, Readiness, ResetReason, SupportQuery, TechniqueStatus,
+    note_reset,
 };
 use crate::render::readback::ReadbackError;
 use crate::render::{RenderError, readback};
 use crate::scene::{Aabb, Scene};
 use crate::settings::{RcsSettings, RenderSettings};
-
-/// An inspector entry.
-const fn buffer(name: &'static str, description: &'static str, view: BufferView) -> BufferInfo {
-    BufferInfo { name, description, format: "rgba32f", view }
-}
-
-/// The inspector's buffers.
-pub const BUFFERS: &[BufferInfo] = &[
-    buffer(
-        "rcs_coverage",
-        "coverage after the frame's last round: r = uncovered (no record reaches it: none once the cache has filled), g = the round whose record this pixel got this frame, b = geometry",
-        BufferView::Colour,
-    ),
-    buffer(
-        "rcs_weight",
-        "summed Ward weight of the records reaching each pixel (false colour, log): peaks at record sites, smooth falloff, seams along creases where the normal term cuts zones",
-        BufferView::Scalar,
-    ),
-    buffer(
-        "rcs_record_count",
-        "how many records each pixel interpolates (overlapping zones; 0 = uncovered)",
-        BufferView::Scalar,
-    ),
-    buffer("rcs_irradiance", "interpolated irradiance E with the gradients: smooth", BufferView::Colour),
-    buffer(
-        "rcs_irradiance_plain",
-        "interpolated irradiance without the gradients: faint disc-shaped blotches are normal",
-        BufferView::Colour,
-    ),
-    buffer(
-        "rcs_gradient_difference",
-        "irradiance with gradients minus without (signed): structure near occluders and corners",
-        BufferView::Colour,
-    ),
-    buffer(
-        "rcs_records_added",
-        "records added this frame, coloured by the round that added them (black: reused from earlier frames)",
-        BufferView::Scalar,
-    ),
-    buffer(
-        "rcs_hemispheres",
-        "the last round's hemisphere planes (outgoing radiance the records saw; a = distance), one tile per record",
-        BufferView::Colour,
-    ),
-    buffer(
-        "rcs_hemisphere_surfaces",
-        "the surfaces the last round's planes saw: r = albedo luminance, g = 1 where the cache answered the bounce lookup, b = 1 where it had no record facing the same way, g = b = 0.5 where it extrapolated from records whose zones miss the point",
-        BufferView::Colour,
-    ),
-];
 
 /// What the last frame did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -97,7 +49,6 @@ pub struct RcsTechnique {
     coverage: CoveragePass,
     store: Option<Store>,
     cache: Cache,
-    grid: HashGrid,
     grid_dirty: bool,
     /// Object bounds and materials as the cache last saw them.
     boxes: Option<Vec<(Aabb, u64)>>,
@@ -146,7 +97,6 @@ impl RcsTechnique {
             coverage: CoveragePass::new(device)?,
             store: None,
             cache: Cache::default(),
-            grid: HashGrid::default(),
             grid_dirty: true,
             boxes: None,
             changed: Vec::new(),
@@ -200,59 +150,6 @@ impl RcsTechnique {
         let bytes = readback::read_buffer(device, queue, &store.records)?;
         let n = self.cache.high_water() as usize;
         Ok(bytemuck::pod_collect_to_vec::<u8, GpuRecord>(&bytes).into_iter().take(n).collect())
-    }
-
-    /// Swaps the frame's encoder for a fresh one, submits what it held and maps the staging
-    /// buffer: the bytes of the round's readback.
-    fn submit_and_read(inputs: &mut GiInputs<'_>, store: &Store) -> Result<Vec<u8>, RenderError> {
-        let fresh = inputs.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rcs round") });
-        let done = std::mem::replace(inputs.encoder, fresh);
-        inputs.queue.submit([done.finish()]);
-        let slice = store.staging.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        let map_err = |e: String| RenderError::from(ReadbackError::Map(e));
-        inputs.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| map_err(e.to_string()))?;
-        rx.recv().map_err(|e| map_err(e.to_string()))?.map_err(|e| map_err(e.to_string()))?;
-        let bytes = slice.get_mapped_range().map_err(|e| map_err(e.to_string()))?.to_vec();
-        store.staging.unmap();
-        Ok(bytes)
-    }
-
-    /// The candidates in a round's readback.
-    fn candidates(bytes: &[u8], store: &Store) -> (u32, Vec<Candidate>) {
-        let l = store.layout;
-        let Some(section) = bytes.get(l.candidates as usize..(l.candidates + l.candidates_len) as usize) else {
-            return (0, Vec::new());
-        };
-        let count = u32::from_le_bytes([section[0], section[1], section[2], section[3]]);
-        let items: Vec<Candidate> = bytemuck::pod_collect_to_vec(&section[16..]);
-        let n = (count as usize).min(items.len());
-        (count, items.into_iter().take(n).collect())
-    }
-
-    /// The slots listed by a light check in a round's readback.
-    fn changed_slots(bytes: &[u8], store: &Store) -> Vec<u32> {
-        let l = store.layout;
-        let Some(section) = bytes.get(l.changed as usize..(l.changed + l.changed_len) as usize) else {
-            return Vec::new();
-        };
-        let count = u32::from_le_bytes([section[0], section[1], section[2], section[3]]) as usize;
-        let slots: Vec<u32> = bytemuck::pod_collect_to_vec(&section[16..]);
-        slots.into_iter().take(count).collect()
-    }
-
-    /// Secondary sites in a round's readback, each with the slot that proposed it.
-    fn secondaries(bytes: &[u8], store: &Store) -> Vec<(Candidate, u32)> {
-        let l = store.layout;
-        let Some(section) = bytes.get(l.secondaries as usize..(l.secondaries + l.secondaries_len) as usize) else {
-            return Vec::new();
-        };
-        let count = u32::from_le_bytes([section[0], section[1], section[2], section[3]]) as usize;
-        let items: Vec<Candidate> = bytemuck::pod_collect_to_vec(&section[16..]);
-        items.into_iter().take(count).map(|c| (c, c.position[3].to_bits())).collect()
     }
 
     /// Queues secondary sites, dropping any within two smallest zones of one already queued
@@ -406,8 +303,7 @@ impl RcsTechnique {
             .filter(|(_, r)| r.radius > 0.0)
             .map(|(s, r)| (s, r.site.position, accuracy * r.radius))
             .collect();
-        self.grid = HashGrid::build(&listed, accuracy);
-        store.upload_grid(inputs.device, inputs.queue, &self.grid);
+        store.upload_grid(inputs.device, inputs.queue, &HashGrid::build(&listed, accuracy));
         self.grid_dirty = false;
     }
 
@@ -425,16 +321,16 @@ impl RcsTechnique {
         self.light_check = false;
         self.splat.record(inputs, store, Splat::All(self.cache.high_water()), settings.accuracy);
         self.coverage.record(inputs, store, &accum, 0);
-        let mut bytes = Self::submit_and_read(inputs, store)?;
+        let mut bytes = staging::submit_and_read(inputs, store)?;
         if check {
-            let changed = Self::changed_slots(&bytes, store);
+            let changed = staging::changed_slots(&bytes, store);
             stats.light_renewals = changed.len() as u64;
             changed.into_iter().for_each(|s| self.cache.invalidate(s));
         }
         let mut budget = settings.records_per_frame;
         let capacity = store.jobs_capacity;
         for round in 1..=settings.rounds {
-            let (count, candidates) = Self::candidates(&bytes, store);
+            let (count, candidates) = staging::candidates(&bytes, store);
             stats.uncovered_tiles = u64::from(count);
             if count == 0 && self.secondary.is_empty() && self.cache.pending_renewals() == 0 {
                 self.next_pass(settings.convergence);
@@ -485,7 +381,7 @@ impl RcsTechnique {
             let which = if new == jobs.len() { Splat::New(n) } else { Splat::All(self.cache.high_water()) };
             self.splat.record(inputs, store, which, settings.accuracy);
             self.coverage.record(inputs, store, &accum, round);
-            bytes = Self::submit_and_read(inputs, store)?;
+            bytes = staging::submit_and_read(inputs, store)?;
             let results: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(
                 bytes.get(l.results as usize..(l.results + u64::from(n) * 16) as usize).unwrap_or(&[]),
             );
@@ -498,44 +394,15 @@ impl RcsTechnique {
                     self.pass.1 += 1.0;
                 }
             }
-            let proposed = Self::secondaries(&bytes, store);
+            let proposed = staging::secondaries(&bytes, store);
             let before = self.secondary.len();
             self.queue_secondaries(proposed, &settings);
             stats.secondary += (self.secondary.len() - before) as u64;
             self.grid_dirty = true;
         }
-        let (count, _) = Self::candidates(&bytes, store);
+        let (count, _) = staging::candidates(&bytes, store);
         stats.uncovered_tiles = u64::from(count);
         Ok(stats)
-    }
-
-    /// Reads a texture as RGBA floats.
-    fn read(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture) -> Result<HdrImage, RenderError> {
-        let pixels = readback::read_as_rgba_f32(device, queue, texture)?;
-        Ok(HdrImage { width: texture.width(), height: texture.height(), pixels })
-    }
-
-    /// An inspector buffer computed from the accumulation targets.
-    fn accumulated(&self, device: &wgpu::Device, queue: &wgpu::Queue, name: &str) -> Result<HdrImage, RenderError> {
-        let Some((weighted, plain)) = self.splat.targets() else {
-            return Err(RenderError::UnknownBuffer { name: name.into(), known: "render rcs first".into() });
-        };
-        let mut w = Self::read(device, queue, &weighted.texture)?;
-        let p = Self::read(device, queue, &plain.texture)?;
-        for (a, b) in w.pixels.iter_mut().zip(&p.pixels) {
-            let sum = a[3];
-            let norm = |c: f32| if sum > 0.0 { c / sum } else { 0.0 };
-            let with = [norm(a[0]), norm(a[1]), norm(a[2])];
-            let plain = [norm(b[0]), norm(b[1]), norm(b[2])];
-            *a = match name {
-                "rcs_weight" => [sum, sum, sum, 1.0],
-                "rcs_record_count" => [b[3], b[3], b[3], 1.0],
-                "rcs_irradiance" => [with[0], with[1], with[2], 1.0],
-                "rcs_irradiance_plain" => [plain[0], plain[1], plain[2], 1.0],
-                _ => [with[0] - plain[0], with[1] - plain[1], with[2] - plain[2], 1.0],
-            };
-        }
-        Ok(w)
     }
 }
 
@@ -632,40 +499,8 @@ impl GiTechnique for RcsTechnique {
         queue: &wgpu::Queue,
         name: &str,
     ) -> Option<Result<HdrImage, RenderError>> {
-        if !BUFFERS.iter().any(|b| b.name == name) {
-            return None;
-        }
-        let missing = || RenderError::UnknownBuffer { name: name.into(), known: "render rcs first".into() };
-        Some(match name {
-            "rcs_coverage" => {
-                self.coverage.mask().ok_or_else(missing).and_then(|m| Self::read(device, queue, &m.texture))
-            }
-            "rcs_records_added" => {
-                self.coverage.mask().ok_or_else(missing).and_then(|m| Self::read(device, queue, &m.texture)).map(
-                    |mut img| {
-                        img.pixels.iter_mut().for_each(|p| *p = [p[1], p[1], p[1], 1.0]);
-                        img
-                    },
-                )
-            }
-            "rcs_hemispheres" => {
-                self.hemisphere.atlas().ok_or_else(missing).and_then(|a| Self::read(device, queue, &a.radiance.texture))
-            }
-            "rcs_hemisphere_surfaces" => self
-                .hemisphere
-                .atlas()
-                .ok_or_else(missing)
-                .and_then(|a| Self::read(device, queue, &a.surface.texture))
-                .map(|mut img| {
-                    img.pixels.iter_mut().for_each(|p| {
-                        let (hit, beyond, miss) = ((p[3] - 2.0).abs() < 0.1, p[3] > 2.5, (p[3] - 0.5).abs() < 0.1);
-                        let flag = |b: bool| f32::from(u8::from(b));
-                        *p = [p[2], flag(hit) + 0.5 * flag(beyond), flag(miss) + 0.5 * flag(beyond), 1.0];
-                    });
-                    img
-                }),
-            _ => self.accumulated(device, queue, name),
-        })
+        let views = Inspected { splat: &self.splat, coverage: &self.coverage, hemisphere: &self.hemisphere };
+        views.read(device, queue, name)
     }
 
     fn overlays(&self, _device: &wgpu::Device, _queue: &wgpu::Queue) -> Vec<Overlay> {
@@ -761,9 +596,4 @@ impl GiTechnique for RcsTechnique {
     fn as_any(&self) -> &dyn std::any::Any {
         self
     }
-}
-
-/// The position of a record as a Vec3 (tests).
-pub fn record_position(r: &GpuRecord) -> Vec3 {
-    glam::Vec4::from_array(r.position).xyz()
 }
