@@ -18,7 +18,7 @@
 //! `cargo run --release --example ism_oracle -- clutter "(bounces: 3)"`
 use bouncelab::precompute::bvh::SceneBvh;
 use bouncelab::precompute::open_edges::CLIPS_PER_POINT;
-use bouncelab::render::gi::ism::atlas_word;
+use bouncelab::render::gi::ism::atlas_word::{self, AtlasTexel};
 use bouncelab::render::gi::ism::technique::IsmTechnique;
 use bouncelab::render::gi::ism::vpl_pass::GpuVpl;
 use bouncelab::render::{GpuContext, Renderer};
@@ -376,8 +376,9 @@ fn main() -> anyhow::Result<()> {
                 let t = ((uv * res as f32).floor().max(glam::Vec2::ZERO)).min(glam::Vec2::splat(res as f32 - 1.0));
                 let at = (ty + t.y as usize) * side + tx + t.x as usize;
                 let stored = atlas_word::depth(words[at]);
-                // As `ism_lit`: the stored point's surface along q's own ray.
-                let vis_ism = lookup.lit(o, tile as u32, qq / qd, qd, qd / d_max, words[at], 8.0 / res as f32);
+                // As `ism_lit`: the stored point's surface along q's own ray, then its neighbours'.
+                let texel = AtlasTexel { words: &words, r: res as u32, c: c as u32, texel: (t.x as u32, t.y as u32) };
+                let vis_ism = lookup.lit(texel, o, sigma, tile as u32, qq / qd, qd, qd / d_max, 8.0 / res as f32);
                 w_pairs += w;
                 if vis_true {
                     w_true += w;

@@ -94,7 +94,7 @@ fn incident_power(i: u32) -> vec4<f32> {
     }
     let q = ism_offset_point(bp.bias, vpl.normal.w, vpl.position.xyz, p, n);
     let ism = ism_lookup(vpl, src, q, bp.counts.z, bp.counts.w, bp.params.x);
-    if !ism_lit(vpl, src, ism, atlas[ism.index], bp.counts.y, bp.bias.w) {
+    if !ism_lit(vpl, src, ism, bp.counts.z, bp.counts.w, bp.counts.y, bp.bias.w) {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     // The area this point stands for among its VPL's points.

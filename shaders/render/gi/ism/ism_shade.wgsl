@@ -64,7 +64,7 @@ fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
     }
     let q = ism_offset_point(sh.bias, vpl.normal.w, vpl.position.xyz, p, ng);
     let ism = ism_lookup(vpl, k, q, sh.counts.y, sh.counts.z, sh.params.x);
-    if !ism_lit(vpl, k, ism, atlas[ism.index], sh.sets.w, sh.bias.w) {
+    if !ism_lit(vpl, k, ism, sh.counts.y, sh.counts.z, sh.sets.w, sh.bias.w) {
         return out;
     }
     out.dir = -dir;

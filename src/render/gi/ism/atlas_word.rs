@@ -43,41 +43,150 @@ pub struct IsmLookupData {
     pub per_ism: u32,
 }
 
+/// What one atlas word's point says of a receiver's ray (`ism_point_test` in `ism_lookup.wgsl`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PointTest {
+    /// Not in front of the receiver: the point's plane lies beyond it or contains it, or only
+    /// a depth is stored and it is farther.
+    Clear,
+    /// The ray crosses the point's surface before the receiver.
+    Blocked,
+    /// The ray meets the point's plane before the receiver but past its open edges.
+    Unsure,
+}
+
+/// Where a lookup falls: the atlas (row-major words, tiles of side `r`, `c` per row) and the
+/// texel `(x, y)` within its tile.
+#[derive(Clone, Copy, Debug)]
+pub struct AtlasTexel<'a> {
+    /// The atlas words.
+    pub words: &'a [u32],
+    /// Tile side (texels).
+    pub r: u32,
+    /// Tiles per row.
+    pub c: u32,
+    /// The texel within the tile.
+    pub texel: (u32, u32),
+}
+
+impl AtlasTexel<'_> {
+    /// The word of texel `(x, y)` of tile `tile`, `None` outside the tile.
+    fn word(&self, tile: u32, x: i64, y: i64) -> Option<u32> {
+        let r = i64::from(self.r);
+        if x < 0 || y < 0 || x >= r || y >= r {
+            return None;
+        }
+        let side = i64::from(self.r) * i64::from(self.c);
+        let (x0, y0) = (i64::from((tile % self.c.max(1)) * self.r), i64::from((tile / self.c.max(1)) * self.r));
+        self.words.get(((y0 + y) * side + x0 + x) as usize).copied()
+    }
+}
+
+/// A neighbouring texel's point blocks a ray only within this many of the VPL's angular point
+/// spacings (times the distance) of itself (`reach` in `ism_lit`).
+pub const NEIGHBOUR_REACH: f32 = 0.75;
+
 impl IsmLookupData {
-    /// Whether a receiver at `dist` from the VPL at `o` along unit `dir` is lit by the VPL of
-    /// atlas tile `tile`, given the atlas word `stored` its ray falls in and its normalised
-    /// depth `depth`; the twin of `ism_lit` (`margin`: the relative depth margin of texels
-    /// without a point).
+    /// What atlas word `stored` of tile `tile` says of the receiver at `dist` from the VPL at `o`
+    /// along unit `dir` (normalised depth `depth_norm`). `reach` 0: the texel's own word (a word
+    /// without a point shadows by its depth, relative `margin`); > 0: a neighbour's, whose depth
+    /// never shadows and whose surface blocks only within its seams and within `reach` x t of
+    /// its point. The twin of `ism_point_test`.
     #[allow(clippy::too_many_arguments)]
-    pub fn lit(&self, o: Vec3, tile: u32, dir: Vec3, dist: f32, depth_norm: f32, stored: u32, margin: f32) -> bool {
+    pub fn point_test(
+        &self,
+        o: Vec3,
+        tile: u32,
+        dir: Vec3,
+        dist: f32,
+        depth_norm: f32,
+        stored: u32,
+        margin: f32,
+        reach: f32,
+    ) -> PointTest {
         if stored == u32::MAX {
-            return true;
+            return PointTest::Clear;
         }
         let point = slot(stored)
             .filter(|s| *s < self.per_ism)
             .and_then(|s| self.chosen_all.get((tile * self.per_ism + s) as usize))
             .filter(|j| (**j as usize) < self.points.len());
-        let Some(&j) = point else { return depth_norm <= depth(stored) * (1.0 + margin) };
-        let j = j as usize;
-        let n = Vec3::from_slice(&self.normals[j][..3]);
+        let Some(&j) = point else {
+            return if reach <= 0.0 && depth_norm > depth(stored) * (1.0 + margin) {
+                PointTest::Blocked
+            } else {
+                PointTest::Clear
+            };
+        };
+        let p = Vec3::from_slice(&self.points[j as usize][..3]);
+        let n = Vec3::from_slice(&self.normals[j as usize][..3]);
         let den = dir.dot(n);
         if den.abs() <= 1e-6 {
-            return true;
+            return PointTest::Clear;
         }
-        let t = (Vec3::from_slice(&self.points[j][..3]) - o).dot(n) / den;
+        let t = (p - o).dot(n) / den;
         if t <= 0.0 || t >= dist * (1.0 - 1e-4) {
-            return true;
+            return PointTest::Clear;
         }
-        !self.on_surface(j as u32, o + dir * t, 0.0)
+        let h = o + dir * t;
+        if !self.on_surface(j, h, 0.0) {
+            PointTest::Unsure
+        } else if reach <= 0.0 || (self.within_edges(j, h, 0.0, true) && h.distance(p) <= reach * t) {
+            PointTest::Blocked
+        } else {
+            PointTest::Clear
+        }
     }
 
-    /// Whether `h` (on pool point `j`'s plane) lies inside all of its clip lines, less `margin`:
-    /// the twin of `on_surface` in `ism_clips.wgsl`.
+    /// Whether a receiver at `dist` from the VPL at `o` (angular point spacing `sigma`, its
+    /// normal.w) along unit `dir` (normalised depth `depth_norm`) is lit by the VPL of atlas tile
+    /// `tile`, whose map it falls in at `at`: the texel's own word decides, or where the ray
+    /// passes its point's open edges, any of the four neighbouring words whose surface it
+    /// crosses (`margin`: the relative depth margin of texels without a point). The twin of
+    /// `ism_lit`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn lit(
+        &self,
+        at: AtlasTexel<'_>,
+        o: Vec3,
+        sigma: f32,
+        tile: u32,
+        dir: Vec3,
+        dist: f32,
+        depth_norm: f32,
+        margin: f32,
+    ) -> bool {
+        let (x, y) = (i64::from(at.texel.0), i64::from(at.texel.1));
+        let stored = at.word(tile, x, y).unwrap_or(u32::MAX);
+        match self.point_test(o, tile, dir, dist, depth_norm, stored, margin, 0.0) {
+            PointTest::Clear => true,
+            PointTest::Blocked => false,
+            PointTest::Unsure => ![(-1, 0), (1, 0), (0, -1), (0, 1)].iter().any(|(dx, dy)| {
+                at.word(tile, x + dx, y + dy).is_some_and(|w| {
+                    let test = self.point_test(o, tile, dir, dist, depth_norm, w, margin, NEIGHBOUR_REACH * sigma);
+                    test == PointTest::Blocked
+                })
+            }),
+        }
+    }
+
+    /// Whether `h` (on pool point `j`'s plane) lies inside all of its open edges' clip lines,
+    /// less `margin` (seam lines skipped): the twin of `on_surface` in `ism_clips.wgsl`.
     pub fn on_surface(&self, j: u32, h: Vec3, margin: f32) -> bool {
+        self.within_edges(j, h, margin, false)
+    }
+
+    /// Whether `h` lies inside pool point `j`'s open edges' clip lines, less `margin`, and with
+    /// `seams` inside its seams' lines too (stored scaled by
+    /// [`crate::precompute::open_edges::SEAM_SCALE`]): the twin of `within_edges`.
+    pub fn within_edges(&self, j: u32, h: Vec3, margin: f32, seams: bool) -> bool {
         let j = j as usize;
-        self.clips
-            .get(j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT)
-            .is_none_or(|lines| lines.iter().all(|c| Vec3::from_slice(&c[..3]).dot(h) >= c[3] - margin))
+        self.clips.get(j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT).is_none_or(|lines| {
+            lines.iter().all(|c| {
+                let d = Vec3::from_slice(&c[..3]);
+                (!seams && d.length_squared() > 2.0) || d.dot(h) >= c[3] - margin
+            })
+        })
     }
 }
 
@@ -103,6 +212,12 @@ mod tests {
         ((depth * DEPTH_MAX).round() as u32) << 15 | slot1 << 1
     }
 
+    /// `lit` for a one-texel map holding `stored` (no neighbours to ask).
+    fn lit_alone(data: &IsmLookupData, dir: Vec3, dist: f32, depth_norm: f32, stored: u32) -> bool {
+        let at = AtlasTexel { words: &[stored], r: 1, c: 1, texel: (0, 0) };
+        data.lit(at, Vec3::ZERO, 0.1, 0, dir, dist, depth_norm, 0.06)
+    }
+
     #[test]
     fn the_words_fields_round_trip() {
         let w = word(0.25, 7) | 1;
@@ -116,26 +231,75 @@ mod tests {
     #[test]
     fn a_ray_past_the_walls_open_edge_is_lit_and_one_through_the_wall_is_not() {
         let data = wall_with_a_jamb();
-        let o = Vec3::ZERO;
         let stored = word(0.1, 1);
         // Receivers 4 m away behind the wall plane: one whose ray crosses z = 2 at x = 0.8
         // (on the wall), one at x = 1.2 (past the jamb, in the doorway).
         for (x, lit) in [(0.8f32, false), (1.2, true)] {
             let dir = Vec3::new(x, 0.0, 2.0).normalize();
             let dist = 4.0;
-            assert_eq!(data.lit(o, 0, dir, dist, 0.2, stored, 0.06), lit, "ray through x = {x}");
+            assert_eq!(lit_alone(&data, dir, dist, 0.2, stored), lit, "ray through x = {x}");
         }
         // A receiver in front of the wall (its ray meets the receiver before the plane).
         let dir = Vec3::new(0.8, 0.0, 2.0).normalize();
-        assert!(data.lit(o, 0, dir, 1.5, 0.05, stored, 0.06));
+        assert!(lit_alone(&data, dir, 1.5, 0.05, stored));
         // The receiver on the wall itself is not shadowed by its own plane, even at a grazing ray.
         let on_wall = Vec3::new(0.9, 0.0, 2.0);
-        assert!(data.lit(o, 0, on_wall.normalize(), on_wall.length(), 0.1, stored, 0.06));
+        assert!(lit_alone(&data, on_wall.normalize(), on_wall.length(), 0.1, stored));
         let grazing = Vec3::new(0.95, 30.0, 2.0);
-        assert!(data.lit(o, 0, grazing.normalize(), grazing.length(), 0.1, stored, 0.06));
+        assert!(lit_alone(&data, grazing.normalize(), grazing.length(), 0.1, stored));
         // Without a point (pull-push filled the texel), the depth and its margin decide.
         let filled = word(0.1, 0) | 1;
-        assert!(!data.lit(o, 0, dir, 4.0, 0.2, filled, 0.06));
-        assert!(data.lit(o, 0, dir, 0.4, 0.105, filled, 0.06));
+        assert!(!lit_alone(&data, dir, 4.0, 0.2, filled));
+        assert!(lit_alone(&data, dir, 0.4, 0.105, filled));
+    }
+
+    /// A door's jamb (plane x = 1 facing the VPL at the origin, the wall's thickness z in 2..2.2)
+    /// in the lookup's texel and the wall's front face beside the door (z = 2, x >= 1) in the
+    /// texel to its right; the doorway is x < 1. The wall's point has a seam at y = 0.5 (it
+    /// runs on into solid geometry above).
+    fn jamb_and_wall() -> (IsmLookupData, [u32; 9]) {
+        let none = [0.0, 0.0, 0.0, -1.0];
+        let data = IsmLookupData {
+            chosen_all: vec![0, 1],
+            points: vec![[1.0, 0.0, 2.1, 1.0], [1.1, 0.0, 2.0, 1.0]],
+            normals: vec![[-1.0, 0.0, 0.0, 1.0], [0.0, 0.0, -1.0, 1.0]],
+            clips: vec![
+                // The jamb: z >= 2 and z <= 2.2.
+                [0.0, 0.0, 1.0, 2.0],
+                [0.0, 0.0, -1.0, -2.2],
+                none,
+                none,
+                // The wall: x >= 1 (open), y <= 0.5 (a seam, stored doubled).
+                [1.0, 0.0, 0.0, 1.0],
+                [0.0, -2.0, 0.0, -1.0],
+                none,
+                none,
+            ],
+            per_ism: 2,
+        };
+        let mut words = [u32::MAX; 9];
+        words[4] = word(0.1, 1);
+        words[5] = word(0.1, 2);
+        (data, words)
+    }
+
+    #[test]
+    fn a_ray_past_the_jambs_edge_is_shadowed_by_the_wall_in_the_next_texel_but_not_past_its_seam() {
+        let (data, words) = jamb_and_wall();
+        let at = AtlasTexel { words: &words, r: 3, c: 1, texel: (1, 1) };
+        let lit = |dir: Vec3| data.lit(at, Vec3::ZERO, 1.0, 0, dir.normalize(), 4.0, 0.2, 0.06);
+        // Past the jamb's plane in front of the wall (x = 1 at z = 1.9), into the wall's face at
+        // x = 1.05: the texel's own point cannot decide, the neighbour's wall blocks it.
+        assert!(!lit(Vec3::new(1.0, 0.0, 1.9)));
+        assert!(lit_alone(&data, Vec3::new(1.0, 0.0, 1.9).normalize(), 4.0, 0.2, words[4]), "alone it was lit");
+        // Through the doorway (z = 2 at x = 0.9, z = 2.2 at x = 0.99): lit.
+        assert!(lit(Vec3::new(0.9, 0.0, 2.0)));
+        // Into the wall's plane above its seam (y = 0.53): the neighbour does not vouch for it.
+        assert!(lit(Vec3::new(1.0, 0.5, 1.9)));
+        // The same ray with the jamb's point in the texel to the left instead: still blocked.
+        let mut left = words;
+        left.swap(3, 5);
+        let at_left = AtlasTexel { words: &left, ..at };
+        assert!(!data.lit(at_left, Vec3::ZERO, 1.0, 0, Vec3::new(1.0, 0.0, 1.9).normalize(), 4.0, 0.2, 0.06));
     }
 }
