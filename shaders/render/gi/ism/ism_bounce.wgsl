@@ -23,7 +23,7 @@ struct BounceParams {
     params: vec4<f32>,
     // sum over the scene of area x weight, unused x3.
     area: vec4<f32>,
-    // ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    // ISM lookup: neighbour reach (`ism_lit`), normal-offset constant and slope factors (`ism_offset_point`), the
     // relative depth margin of texels without a point (`ism_lit`).
     bias: vec4<f32>,
 }
@@ -94,7 +94,7 @@ fn incident_power(i: u32) -> vec4<f32> {
     }
     let q = ism_offset_point(bp.bias, vpl.normal.w, vpl.position.xyz, p, n);
     let ism = ism_lookup(vpl, src, q, bp.counts.z, bp.counts.w, bp.params.x);
-    if !ism_lit(vpl, src, ism, bp.counts.z, bp.counts.w, bp.counts.y, bp.bias.w) {
+    if !ism_lit(vpl, src, ism, bp.counts.z, bp.counts.w, bp.counts.y, bp.bias) {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
     // The area this point stands for among its VPL's points.

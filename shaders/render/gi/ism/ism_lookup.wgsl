@@ -71,17 +71,17 @@ fn ism_point_test(vpl: Vpl, tile: u32, l: IsmLookup, stored: u32, per_ism: u32, 
 }
 
 // Whether the receiver of lookup `l` sees the VPL of atlas tile `tile` (tiles of side r, c per
-// row).
-fn ism_lit(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, margin: f32) -> bool {
+// row); `bias`: x the neighbours' reach in point spacings (`NEIGHBOUR_REACH` in
+// `atlas_word.rs`), w the relative depth margin of texels without a point.
+fn ism_lit(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, bias: vec4<f32>) -> bool {
+    let margin = bias.w;
     let own = ism_point_test(vpl, tile, l, atlas[l.index], per_ism, margin, 0.0);
     if own != UNSURE {
         return own != BLOCKED;
     }
     // A neighbour's point vouches for about its own disk only (the VPL's angular point spacing
-    // sigma times the distance across, radius 0.75 of it): with 2 sigma the held-out offices,
-    // lit through a door 11 m down a corridor, kept 0.70 of the reference's energy against 0.84
-    // (the flat 1.07 against 1.13; `PROBE_AVG=1 ism_probe`, 32 frames).
-    let reach = 0.75 * vpl.normal.w;
+    // sigma times the distance across, radius 0.75 of it).
+    let reach = bias.x * vpl.normal.w;
     let side = r * c;
     let x = l.index % side;
     let y = l.index / side;

@@ -18,7 +18,7 @@ struct ShadeParams {
     params: vec4<f32>,
     // VPL sets (bounces), view width, view height, points per ISM.
     sets: vec4<u32>,
-    // ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    // ISM lookup: neighbour reach (`ism_lit`), normal-offset constant and slope factors (`ism_offset_point`), the
     // relative depth margin of texels without a point (`ism_lit`).
     bias: vec4<f32>,
 }
@@ -64,7 +64,7 @@ fn incident(k: u32, p: vec3<f32>, ng: vec3<f32>) -> Incident {
     }
     let q = ism_offset_point(sh.bias, vpl.normal.w, vpl.position.xyz, p, ng);
     let ism = ism_lookup(vpl, k, q, sh.counts.y, sh.counts.z, sh.params.x);
-    if !ism_lit(vpl, k, ism, sh.counts.y, sh.counts.z, sh.sets.w, sh.bias.w) {
+    if !ism_lit(vpl, k, ism, sh.counts.y, sh.counts.z, sh.sets.w, sh.bias) {
         return out;
     }
     out.dir = -dir;

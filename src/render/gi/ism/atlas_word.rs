@@ -83,7 +83,10 @@ impl AtlasTexel<'_> {
 }
 
 /// A neighbouring texel's point blocks a ray only within this many of the VPL's angular point
-/// spacings (times the distance) of itself (`reach` in `ism_lit`).
+/// spacings (times the distance) of itself (`ism_lit` reads it from the lookup's bias.x). At 2
+/// the held-out offices, lit through a door 11 m down a corridor, kept 0.70 of the reference's
+/// energy against 0.84 at 0.75, the held-out flat 1.07 against 1.13 (before seam lines;
+/// `PROBE_AVG=1 ism_probe /tmp/unseen/offices.gltf,/tmp/unseen/apartment.gltf "()" 32`).
 pub const NEIGHBOUR_REACH: f32 = 0.75;
 
 impl IsmLookupData {

@@ -99,7 +99,7 @@ struct Sized {
 pub struct MapScale {
     /// Distance normalisation of the ISM depths (metres).
     pub d_max: f32,
-    /// ISM lookup (`common/vpl.wgsl`): unused, the normal offset's constant and slope factors
+    /// ISM lookup (`common/vpl.wgsl`): the neighbours' reach (`ism_lit`), the normal offset's constant and slope factors
     /// (`ism_offset_point`), the relative depth margin of texels without a point (`ism_lit`).
     pub bias: [f32; 4],
     /// Pull-push threshold at the finest level as a fraction of the depth compared.

@@ -62,7 +62,7 @@ pub struct BounceParams {
     pub params: [f32; 4],
     /// Sum over the scene of area x weight, unused x3.
     pub area: [f32; 4],
-    /// ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    /// ISM lookup: neighbour reach (`ism_lit`), normal-offset constant and slope factors (`ism_offset_point`), the
     /// relative depth margin of texels without a point (`ism_lit`).
     pub bias: [f32; 4],
 }
@@ -96,7 +96,7 @@ pub struct ShadeParams {
     pub params: [f32; 4],
     /// VPL sets (bounces), view width, view height, points per ISM.
     pub sets: [u32; 4],
-    /// ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    /// ISM lookup: neighbour reach (`ism_lit`), normal-offset constant and slope factors (`ism_offset_point`), the
     /// relative depth margin of texels without a point (`ism_lit`).
     pub bias: [f32; 4],
 }

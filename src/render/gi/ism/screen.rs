@@ -42,7 +42,7 @@ pub struct IsmInputs<'a> {
     pub tiles_per_row: u32,
     /// Scene diameter (the ISM depth normalisation and the filters' depth range), metres.
     pub d_max: f32,
-    /// ISM lookup: unused, normal-offset constant and slope factors (`ism_offset_point`), the
+    /// ISM lookup: neighbour reach (`ism_lit`), normal-offset constant and slope factors (`ism_offset_point`), the
     /// relative depth margin of texels without a point (`ism_lookup.wgsl`).
     pub bias: [f32; 4],
 }

@@ -358,7 +358,12 @@ impl GiTechnique for IsmTechnique {
             d_max: diameter,
             // A texel without a point (pull-push filled it) is compared by depth with a margin
             // of two texels' angle at the paraboloid's centre (4 / r each) as a share of it.
-            bias: [0.0, settings.bias_constant, settings.bias_slope, 8.0 / settings.ism_resolution as f32],
+            bias: [
+                super::atlas_word::NEIGHBOUR_REACH,
+                settings.bias_constant,
+                settings.bias_slope,
+                8.0 / settings.ism_resolution as f32,
+            ],
             // Two depths more than 15% apart are two surfaces, not one to average, when a coarse
             // level is pulled (a 2x2 block of one surface spans that much only beyond ~67
             // degrees of incidence). It replaces Ritschel's 5% of the scene extent, which no fixed
