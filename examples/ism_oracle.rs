@@ -36,7 +36,7 @@ fn onb(n: Vec3) -> (Vec3, Vec3) {
 
 /// Which (VPL, receiver) pairs the lookup oracle counts, from the environment (read once):
 /// `GRID=x,z` splits the plan into rooms at x and z (room = [x >] + 2 [z >], otherwise the three
-/// rooms' x / 5.2); `CROSS=1` keeps pairs in different rooms; `PAIR=a,b` VPLs in room a and
+/// rooms' x / 5.2); `CROSS=1` keeps pairs in different rooms; `PAIR=a,b` VPLs in room a (any: -1) and
 /// receivers in room b.
 struct PairFilter {
     grid: Option<(f32, f32)>,
@@ -65,8 +65,14 @@ impl PairFilter {
     /// Whether the pair of a VPL at `o` and a receiver at `p` counts.
     fn keeps(&self, o: Vec3, p: Vec3) -> bool {
         let (a, b) = (self.room(o), self.room(p));
-        !(self.cross && a == b) && self.pair.is_none_or(|pair| pair == (a, b))
+        !(self.cross && a == b) && self.pair.is_none_or(|(pa, pb)| (pa < 0.0 || pa == a) && pb == b)
     }
+}
+
+/// Whether the surface point `p` (normal `n`) lies inside solid geometry: the first surface
+/// above it faces away (a floor's face running on under a wall).
+fn buried(bvh: &SceneBvh, p: Vec3, n: Vec3) -> bool {
+    bvh.intersect(p + n * 1e-3, n, 1e30).is_some_and(|h| bvh.tris[h.tri as usize].ng.dot(n) > 0.0)
 }
 
 /// Every fourth live VPL of set `set`: its atlas tile, the VPL, its position and normal.
@@ -344,6 +350,10 @@ fn main() -> anyhow::Result<()> {
             println!("{name} set {set} VPLs by room (count, luminance power): {by_room:?}");
         }
     }
+    // POWER=1: pairs weighted by the VPL's power too (what the screen sees).
+    let power_weighted = std::env::var_os("POWER").is_some();
+    // UNBURIED=1: only receivers on surfaces open to the air (not a floor under a wall).
+    let unburied = std::env::var_os("UNBURIED").is_some();
     for set in 0..ism.bounces as usize {
         let (mut w_true, mut w_ism, mut w_fs, mut w_fl) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
         let mut shown = 0;
@@ -362,10 +372,13 @@ fn main() -> anyhow::Result<()> {
                 if cos_s <= 0.0 || cos_r <= 0.0 || d < 1e-3 {
                     continue;
                 }
-                if !filter.keeps(o, *p) {
+                if !filter.keeps(o, *p) || (unburied && buried(&bvh, *p, *pn)) {
                     continue;
                 }
-                let w = f64::from(cos_s * cos_r / (d * d).max(0.01));
+                let mut w = f64::from(cos_s * cos_r / (d * d).max(0.01));
+                if power_weighted {
+                    w *= f64::from(0.2126 * v.power[0] + 0.7152 * v.power[1] + 0.0722 * v.power[2]);
+                }
                 let vis_true = !bvh.occluded(*p + *pn * 1e-4, -dir, d - 2e-4 - 1e-4);
                 let sin_r = (1.0 - cos_r * cos_r).max(0.0).sqrt();
                 let delta = d * sigma * (ism.bias_constant + ism.bias_slope * sin_r);
@@ -434,11 +447,13 @@ fn main() -> anyhow::Result<()> {
             }
         }
         println!(
-            "{name} set {set} lookups: ism/true {:.3}  false shadow {:.3}  false light {:.3} (of true; of all pairs {:.4})",
+            "{name} set {set} lookups: ism/true {:.3}  false shadow {:.3}  false light {:.3} (of true; of all pairs {:.4})  true {:.4e} ism {:.4e}",
             w_ism / w_true,
             w_fs / w_true,
             w_fl / w_true,
-            w_fl / w_pairs
+            w_fl / w_pairs,
+            w_true,
+            w_ism
         );
     }
     // Bounce oracle over FRAMES frames (default 1): power each set's VPLs reflect (true

@@ -27,7 +27,7 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut m.w_illumination, 0.0..=100.0).text("w illumination"))
             .on_hover_text("Higher: reacts faster to lighting changes, but lets VPL resampling noise through.");
         ui.checkbox(&mut m.bounce_tail, "bounces beyond the last (geometric tail)").on_hover_text(
-            "Scale the last bounce's VPLs by 1 / (1 - r), r = its power over the previous bounce's: the light of the bounces the limit cuts off. Free.",
+            "Scale the last bounce's VPLs by 1 / (1 - r), r = the light it gives the screen over the previous bounce's: the light of the bounces the limit cuts off. Free.",
         );
         ui.horizontal(|ui| {
             ui.label("bounce VPL pick");

@@ -30,6 +30,25 @@
 // its open edges) or CLEAR (anything else: its plane lies beyond the receiver or contains it,
 // or only a depth is stored and it is farther). `reach` > 0 (a neighbour's word): its depth
 // alone never shadows, and its surface only within its seams and within reach x t of its point.
+// `UNVOUCHED` and `MIN_COS` are `atlas_word.rs`'s constants of the same names (the CPU twin).
+const UNVOUCHED: f32 = 0.98;
+const MIN_COS: f32 = 0.05;
+
+// Whether offset `e` (in the plane of normal `n`) from a point lies within the disk the VPL
+// sees that point stand for along `dir`: `radius` across the ray, stretched by 1 / cos along
+// the ray's slope over the plane (a wall seen 60 degrees off its normal covers twice the
+// length per texel).
+fn within_disk(e: vec3<f32>, dir: vec3<f32>, n: vec3<f32>, radius: f32) -> bool {
+    let c = max(abs(dot(dir, n)), MIN_COS);
+    let slope = dir - n * dot(dir, n);
+    var along = 0.0;
+    if dot(slope, slope) > 1.0e-12 {
+        along = dot(e, normalize(slope));
+    }
+    let across2 = max(dot(e, e) - along * along, 0.0);
+    return across2 + (along * c) * (along * c) <= radius * radius;
+}
+
 const CLEAR: u32 = 0u;
 const BLOCKED: u32 = 1u;
 const UNSURE: u32 = 2u;
@@ -51,20 +70,26 @@ fn ism_point_test(vpl: Vpl, tile: u32, l: IsmLookup, stored: u32, per_ism: u32, 
     }
     let n = point_normals[j].xyz;
     let o = vpl.position.xyz;
+    // The ray does not cross the point's plane before the receiver: a point much nearer than the
+    // receiver still leaves the rest of the way unvouched for, and the neighbours are asked.
+    var not_crossed = CLEAR;
+    if reach <= 0.0 && distance(points[j].xyz, o) < l.dist * UNVOUCHED {
+        not_crossed = UNSURE;
+    }
     let den = dot(l.dir, n);
     if abs(den) <= 1.0e-6 {
-        return CLEAR;
+        return not_crossed;
     }
     let t = dot(points[j].xyz - o, n) / den;
     // The receiver's own surface meets its ray at its own distance: 1e-4 of it is float noise.
     if t <= 0.0 || t >= l.dist * (1.0 - 1.0e-4) {
-        return CLEAR;
+        return not_crossed;
     }
     let h = o + l.dir * t;
     if !on_surface(j, h, 0.0) {
         return UNSURE;
     }
-    if reach <= 0.0 || (within_edges(j, h, 0.0, true) && distance(h, points[j].xyz) <= reach * t) {
+    if reach <= 0.0 || (within_edges(j, h, 0.0, true) && within_disk(h - points[j].xyz, l.dir, n, reach * t)) {
         return BLOCKED;
     }
     return CLEAR;

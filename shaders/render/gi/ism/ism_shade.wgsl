@@ -5,6 +5,9 @@
 //   albedo): sum of V I(w) cos_r / (pi max(d^2, d_min^2)), with I the VPL's radiant intensity;
 // - `project_sh` (Segovia & Wald): the incident radiance projected on 9 SH coefficients per
 //   colour, sum of V I(w) / max(d^2, d_min^2) Y(w_to_vpl), packed as f16 (14 u32 per texel).
+// Both add, over the screen, the luminance the last and the previous set give (`tail_sums`): the
+// bounce tail's ratio for the next frame (`tail` in `ism_bounce.wgsl`).
+#import common/color.wgsl
 #import common/interleave.wgsl
 #import common/octahedral.wgsl
 #import common/sh9.wgsl
@@ -36,6 +39,9 @@ struct ShadeParams {
 @group(0) @binding(8) var<storage, read> point_normals: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> clips: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read> chosen_all: array<u32>;
+// [0] the last set's and [1] the previous set's luminance E cos / pi summed over the screen (f32
+// bits, added per workgroup by compare-and-swap); `tail` in `ism_bounce.wgsl` reads and zeroes them.
+@group(0) @binding(11) var<storage, read_write> tail_sums: array<atomic<u32>>;
 
 const PI: f32 = 3.14159265358979;
 const SH_WORDS: u32 = 14u;
@@ -102,33 +108,90 @@ fn in_split(s: vec2<u32>) -> bool {
     return all(s < split_block(sh.sets.yz, sh.counts.w) * sh.counts.w);
 }
 
-@compute @workgroup_size(8, 8, 1)
-fn shade(@builtin(global_invocation_id) id: vec3<u32>) {
-    if !in_split(id.xy) {
-        return;
+// Which of the tail's sums VPL number i of a texel's loop adds to: 0 the last set, 1 the
+// previous one, 2 neither.
+fn tail_slot(t: Texel, i: u32) -> u32 {
+    let set_index = i / t.per;
+    if set_index + 1u == sh.sets.x {
+        return 0u;
     }
-    let t = texel(id.xy);
-    var sum = vec3<f32>(0.0);
-    if t.position.w > 0.5 {
-        for (var i = 0u; i < t.per * sh.sets.x; i = i + 1u) {
-            let k = vpl_of(t, i);
-            if k < 0 {
-                continue;
-            }
-            let inc = incident(u32(k), t.position.xyz, t.geometric_normal);
-            sum = sum + inc.e * max(dot(t.shading_normal, inc.dir), 0.0) / PI;
+    if set_index + 2u == sh.sets.x {
+        return 1u;
+    }
+    return 2u;
+}
+
+fn atomic_add_f32(at: u32, v: f32) {
+    var old = atomicLoad(&tail_sums[at]);
+    loop {
+        let res = atomicCompareExchangeWeak(&tail_sums[at], old, bitcast<u32>(bitcast<f32>(old) + v));
+        if res.exchanged {
+            break;
+        }
+        old = res.old_value;
+    }
+}
+
+var<workgroup> group_sums: array<vec2<f32>, 64>;
+
+// Adds every thread's (last, previous) luminance to `tail_sums`; called by the whole workgroup.
+fn add_tail_sums(lid: u32, v: vec2<f32>) {
+    group_sums[lid] = v;
+    workgroupBarrier();
+    if lid == 0u {
+        var total = vec2<f32>(0.0);
+        for (var i = 0u; i < 64u; i = i + 1u) {
+            total = total + group_sums[i];
+        }
+        if total.x > 0.0 {
+            atomic_add_f32(0u, total.x);
+        }
+        if total.y > 0.0 {
+            atomic_add_f32(1u, total.y);
         }
     }
-    textureStore(out_indirect, id.xy, vec4<f32>(sum, 1.0));
 }
 
 @compute @workgroup_size(8, 8, 1)
-fn project_sh(@builtin(global_invocation_id) id: vec3<u32>) {
-    if !in_split(id.xy) {
-        return;
+fn shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    var sum = vec3<f32>(0.0);
+    var tail = vec3<f32>(0.0);
+    let inside = in_split(id.xy);
+    if inside {
+        let t = texel(id.xy);
+        if t.position.w > 0.5 {
+            for (var i = 0u; i < t.per * sh.sets.x; i = i + 1u) {
+                let k = vpl_of(t, i);
+                if k < 0 {
+                    continue;
+                }
+                let inc = incident(u32(k), t.position.xyz, t.geometric_normal);
+                let e = inc.e * max(dot(t.shading_normal, inc.dir), 0.0) / PI;
+                sum = sum + e;
+                tail[tail_slot(t, i)] += luminance(e);
+            }
+        }
+        textureStore(out_indirect, id.xy, vec4<f32>(sum, 1.0));
     }
+    add_tail_sums(lid, tail.xy);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn project_sh(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    let inside = in_split(id.xy);
+    var tail = vec3<f32>(0.0);
+    if inside {
+        tail = write_sh(id.xy);
+    }
+    add_tail_sums(lid, tail.xy);
+}
+
+// Projects split texel `s`'s incident light on SH and stores it; returns its tail sums.
+fn write_sh(s: vec2<u32>) -> vec3<f32> {
+    let id = vec3<u32>(s, 0u);
     let t = texel(id.xy);
     var c = array<vec3<f32>, 9>();
+    var tail = vec3<f32>(0.0);
     if t.position.w > 0.5 {
         for (var i = 0u; i < t.per * sh.sets.x; i = i + 1u) {
             let k = vpl_of(t, i);
@@ -139,6 +202,7 @@ fn project_sh(@builtin(global_invocation_id) id: vec3<u32>) {
             if all(inc.e <= vec3<f32>(0.0)) {
                 continue;
             }
+            tail[tail_slot(t, i)] += luminance(inc.e) * max(dot(t.shading_normal, inc.dir), 0.0) / PI;
             let y = sh9_basis(inc.dir);
             for (var b = 0u; b < 9u; b = b + 1u) {
                 c[b] = c[b] + inc.e * y[b];
@@ -159,4 +223,5 @@ fn project_sh(@builtin(global_invocation_id) id: vec3<u32>) {
         let pair = clamp(vec2<f32>(f[2u * w], f[2u * w + 1u]), vec2<f32>(-65000.0), vec2<f32>(65000.0));
         out_sh[base + w] = pack2x16float(pair);
     }
+    return tail;
 }

@@ -89,6 +89,26 @@ impl AtlasTexel<'_> {
 /// `PROBE_AVG=1 ism_probe /tmp/unseen/offices.gltf,/tmp/unseen/apartment.gltf "()" 32`).
 pub const NEIGHBOUR_REACH: f32 = 0.75;
 
+/// Whether offset `e` (in the plane of normal `n`) from a point lies within the disk a VPL
+/// sees that point stand for along direction `dir`: radius `radius` across the ray, stretched
+/// by 1 / cos along the ray's slope over the plane (a wall seen at 60 degrees off its normal
+/// covers twice the length per texel). `within_disk` in `ism_lookup.wgsl` is its twin.
+pub fn within_disk(e: Vec3, dir: Vec3, n: Vec3, radius: f32) -> bool {
+    let c = dir.dot(n).abs().max(MIN_COS);
+    let slope = dir - n * dir.dot(n);
+    let along = if slope.length_squared() > 1e-12 { e.dot(slope.normalize()) } else { 0.0 };
+    let across2 = (e.length_squared() - along * along).max(0.0);
+    across2 + (along * c) * (along * c) <= radius * radius
+}
+
+/// The least cosine [`within_disk`] stretches by.
+pub const MIN_COS: f32 = 0.05;
+
+/// A texel's own point nearer than this share of the receiver's distance, whose plane the
+/// receiver's ray does not cross, leaves the neighbours to be asked (`UNVOUCHED` in
+/// `ism_lookup.wgsl`, which must match).
+pub const UNVOUCHED: f32 = 0.98;
+
 impl IsmLookupData {
     /// What atlas word `stored` of tile `tile` says of the receiver at `dist` from the VPL at `o`
     /// along unit `dir` (normalised depth `depth_norm`). `reach` 0: the texel's own word (a word
@@ -123,18 +143,22 @@ impl IsmLookupData {
         };
         let p = Vec3::from_slice(&self.points[j as usize][..3]);
         let n = Vec3::from_slice(&self.normals[j as usize][..3]);
+        // The ray does not cross the point's plane before the receiver: a point much nearer
+        // than the receiver still leaves the rest of the way unvouched for (`ism_lookup.wgsl`).
+        let not_crossed =
+            if reach <= 0.0 && p.distance(o) < dist * UNVOUCHED { PointTest::Unsure } else { PointTest::Clear };
         let den = dir.dot(n);
         if den.abs() <= 1e-6 {
-            return PointTest::Clear;
+            return not_crossed;
         }
         let t = (p - o).dot(n) / den;
         if t <= 0.0 || t >= dist * (1.0 - 1e-4) {
-            return PointTest::Clear;
+            return not_crossed;
         }
         let h = o + dir * t;
         if !self.on_surface(j, h, 0.0) {
             PointTest::Unsure
-        } else if reach <= 0.0 || (self.within_edges(j, h, 0.0, true) && h.distance(p) <= reach * t) {
+        } else if reach <= 0.0 || (self.within_edges(j, h, 0.0, true) && within_disk(h - p, dir, n, reach * t)) {
             PointTest::Blocked
         } else {
             PointTest::Clear
@@ -304,5 +328,45 @@ mod tests {
         left.swap(3, 5);
         let at_left = AtlasTexel { words: &left, ..at };
         assert!(!data.lit(at_left, Vec3::ZERO, 1.0, 0, Vec3::new(1.0, 0.0, 1.9).normalize(), 4.0, 0.2, 0.06));
+    }
+
+    #[test]
+    fn a_points_disk_stretches_along_the_rays_slope_only() {
+        // A wall facing -z seen 60 degrees off its normal (the ray rises along y): its points'
+        // disks reach twice as far along y as across.
+        let n = Vec3::new(0.0, 0.0, -1.0);
+        let dir = Vec3::new(0.0, 60f32.to_radians().sin(), 60f32.to_radians().cos());
+        assert!(within_disk(Vec3::new(0.0, 0.3, 0.0), dir, n, 0.2));
+        assert!(!within_disk(Vec3::new(0.0, 0.45, 0.0), dir, n, 0.2));
+        assert!(!within_disk(Vec3::new(0.3, 0.0, 0.0), dir, n, 0.2));
+        // Face-on the disk is round.
+        assert!(!within_disk(Vec3::new(0.0, 0.3, 0.0), -n, n, 0.2));
+    }
+
+    /// A floor (y = -1) whose nearer point holds the receiver's texel, the receiver on the same
+    /// floor 4 m away behind a wall (z = 2, facing the VPL) whose point is in the next texel.
+    #[test]
+    fn a_nearer_point_on_the_receivers_own_plane_leaves_the_wall_beside_it_to_decide() {
+        let none = [0.0, 0.0, 0.0, -1.0];
+        let data = IsmLookupData {
+            chosen_all: vec![0, 1],
+            points: vec![[0.0, -1.0, 1.5, 1.0], [0.0, -0.6, 2.0, 1.0]],
+            normals: vec![[0.0, 1.0, 0.0, 1.0], [0.0, 0.0, -1.0, 1.0]],
+            clips: vec![none; 8],
+            per_ism: 2,
+        };
+        let receiver = Vec3::new(0.0, -1.0, 4.0);
+        let (dir, dist) = (receiver.normalize(), receiver.length());
+        let mut words = [u32::MAX; 9];
+        words[4] = word(0.1, 1);
+        assert!(lit_alone(&data, dir, dist, 0.4, words[4]), "the floor's own point does not shadow its floor");
+        let at = AtlasTexel { words: &words, r: 3, c: 1, texel: (1, 1) };
+        assert!(data.lit(at, Vec3::ZERO, 0.1, 0, dir, dist, 0.4, 0.06), "no neighbour, lit");
+        words[5] = word(0.1, 2);
+        let at = AtlasTexel { words: &words, ..at };
+        assert!(!data.lit(at, Vec3::ZERO, 0.1, 0, dir, dist, 0.4, 0.06), "the wall in the next texel shadows it");
+        // A receiver on the floor in front of the wall stays lit.
+        let near = Vec3::new(0.0, -1.0, 1.8);
+        assert!(data.lit(at, Vec3::ZERO, 0.1, 0, near.normalize(), near.length(), 0.2, 0.06));
     }
 }

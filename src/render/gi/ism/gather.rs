@@ -83,6 +83,8 @@ struct Sized {
     chosen: wgpu::Buffer,
     /// Per VPL of every set and slot: the chosen pool point alone (the lookups' `chosen_all`).
     chosen_all: wgpu::Buffer,
+    /// The bounce tail's screen sums, their running means and last scale (`ism_bounce.wgsl`).
+    tail: wgpu::Buffer,
     select_group: wgpu::BindGroup,
     /// The atlas before hole filling (inspector copy), when captured.
     splats: Option<wgpu::Buffer>,
@@ -186,6 +188,7 @@ impl IsmGather {
                 storage_entry(9, c),
                 storage_entry(10, c),
                 storage_entry(11, c),
+                storage_rw(12),
             ],
         });
         let bounce_module = shaders::module(device, "render/gi/ism/ism_bounce.wgsl")?;
@@ -272,6 +275,7 @@ impl IsmGather {
         let lit = storage("ism bounce lit points", slots * 32);
         let chosen = storage("ism chosen points", slots * 8);
         let chosen_all = storage("ism chosen points of every set", slots * u64::from(key.bounces) * 4);
+        let tail = storage("ism bounce tail state", 32);
         let clip_bytes = u64::from(key.points) * 16 * crate::precompute::open_edges::CLIPS_PER_POINT as u64;
         let clips = storage("ism sample point clip lines", clip_bytes);
         let cluster_count = key.points.div_ceil(super::clusters::CLUSTER_POINTS as u32);
@@ -328,6 +332,7 @@ impl IsmGather {
                 buf(9, &chosen),
                 buf(10, &clips),
                 buf(11, &chosen_all),
+                buf(12, &tail),
             ],
         });
         let pp = |fine: &wgpu::Buffer, coarse: &wgpu::Buffer| {
@@ -361,6 +366,7 @@ impl IsmGather {
             area_unit: 0.0,
             chosen,
             chosen_all,
+            tail,
             select_group,
             splats: None,
             bounce_group,
@@ -608,6 +614,7 @@ impl IsmGather {
             normals: &s.normals,
             clips: &s.clips,
             chosen_all: &s.chosen_all,
+            tail: &s.tail,
             per_ism: s.key.per_ism,
             generation: s.generation,
             vpl_count: s.key.vpls,

@@ -28,6 +28,8 @@ pub struct IsmInputs<'a> {
     pub normals: &'a wgpu::Buffer,
     pub clips: &'a wgpu::Buffer,
     pub chosen_all: &'a wgpu::Buffer,
+    /// The bounce tail's state, to which the shading adds the last two sets' screen sums.
+    pub tail: &'a wgpu::Buffer,
     /// Points per ISM.
     pub per_ism: u32,
     /// Changes whenever `vpls` or `atlas` were recreated.
@@ -146,6 +148,7 @@ impl IsmScreen {
                 storage_entry(8, c),
                 storage_entry(9, c),
                 storage_entry(10, c),
+                super::gather::storage_rw(11),
             ],
         });
         let shade_module = shaders::module(device, "render/gi/ism/ism_shade.wgsl")?;
@@ -258,6 +261,7 @@ impl IsmScreen {
                 buf(8, ism.normals),
                 buf(9, ism.clips),
                 buf(10, ism.chosen_all),
+                buf(11, ism.tail),
             ],
         });
         let history = [

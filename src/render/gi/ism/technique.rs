@@ -178,8 +178,19 @@ impl IsmTechnique {
         })
     }
 
-    /// The seam's support check: the SH filter's coefficients must fit one storage binding.
+    /// Storage buffers a pass binds at most (the bounce pass, `ism_bounce.wgsl`: 12).
+    pub const STORAGE_BUFFERS: u32 = 12;
+
+    /// The seam's support check: the bounce pass's storage buffers must be allowed, and the SH
+    /// filter's coefficients must fit one storage binding.
     pub fn support(query: &SupportQuery<'_>) -> Result<(), String> {
+        let have = query.limits.max_storage_buffers_per_shader_stage;
+        if have < Self::STORAGE_BUFFERS {
+            return Err(format!(
+                "ism binds {} storage buffers in one pass; this adapter allows {have}",
+                Self::STORAGE_BUFFERS
+            ));
+        }
         let s = &query.settings.ism;
         if s.sh_filter {
             let split = super::screen::split_size(query.size, s.interleave);
