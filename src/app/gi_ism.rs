@@ -1,7 +1,7 @@
 //! The GI panel's ISM section (`ism`, `ism-ritschel`): every IsmSettings field with its
 //! cost/quality trade-off as a tooltip.
 
-use crate::settings::{BouncePick, IsmSettings};
+use crate::settings::{BouncePick, IsmSettings, TailRatio};
 
 /// Draws the ISM settings.
 pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
@@ -27,8 +27,16 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut m.w_illumination, 0.0..=100.0).text("w illumination"))
             .on_hover_text("Higher: reacts faster to lighting changes, but lets VPL resampling noise through.");
         ui.checkbox(&mut m.bounce_tail, "bounces beyond the last (geometric tail)").on_hover_text(
-            "Scale the last bounce's VPLs by 1 / (1 - r), r = the light it gives the screen over the previous bounce's: the light of the bounces the limit cuts off. Free.",
+            "Scale the last bounce's VPLs by 1 / (1 - r), r from the ratio below: the light of the bounces the limit cuts off. Free.",
         );
+        ui.horizontal(|ui| {
+            ui.label("tail ratio");
+            ui.radio_value(&mut m.tail_ratio, TailRatio::Power, "scene power")
+                .on_hover_text("The last bounce's total power over the previous one's: right for a room lit directly.");
+            ui.radio_value(&mut m.tail_ratio, TailRatio::Screen, "screen").on_hover_text(
+                "The light the last bounce gives the screen over the previous one's: for a room that light reaches late, through other rooms.",
+            );
+        });
         ui.horizontal(|ui| {
             ui.label("bounce VPL pick");
             ui.radio_value(&mut m.bounce_pick, BouncePick::Proportional, "proportional").on_hover_text(

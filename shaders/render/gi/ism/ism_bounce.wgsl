@@ -21,7 +21,8 @@ struct BounceParams {
     sets: vec4<u32>,
     // 1 / d_max, clamp factor on the disks' radii squared, d_min^2, interleave n^2.
     params: vec4<f32>,
-    // sum over the scene of area x weight, unused x3.
+    // sum over the scene of area x weight, the tail's ratio (0: the sets' power, 1: the
+    // screen's, `TailRatio`), unused x2.
     area: vec4<f32>,
     // ISM lookup: neighbour reach (`ism_lit`), normal-offset constant and slope factors (`ism_offset_point`), the
     // relative depth margin of texels without a point (`ism_lit`).
@@ -187,11 +188,11 @@ const TAIL_BLEND: f32 = 0.25;
 // The bounces beyond the last set, as a geometric series (an extension of the thesis, which
 // stops at its last set): with r the ratio of the last set's light to the previous set's, later
 // bounces carry r + r^2 + ... of the last set's, so the last set is scaled by 1 / (1 - r), r
-// clamped to 0.9. r is what the screen saw of the two sets (last frame's shading, a running
-// mean): in a level lit from another room the light on screen grows for more bounces than the
-// light in the scene as a whole (held-out offices: 24% of the light on screen arrives after
-// the sixth bounce). Before the screen has seen both sets, r is the ratio of their total
-// power. One workgroup; runs after `write_winner` of the last set, which no later pass reads
+// clamped to 0.9. r is the ratio of the two sets' total power, or (`TailRatio::Screen`) of what
+// the screen saw of them (last frame's shading, a running mean): in a level lit from another
+// room the light on screen grows for more bounces than the light in the scene as a whole
+// (held-out offices: 24% of the light on screen arrives after the sixth bounce). Before the
+// screen has seen both sets, r is their power ratio. One workgroup; runs after `write_winner` of the last set, which no later pass reads
 // as a source.
 @compute @workgroup_size(64, 1, 1)
 fn tail(@builtin(local_invocation_index) lid: u32) {
@@ -215,7 +216,7 @@ fn tail(@builtin(local_invocation_index) lid: u32) {
         mean = select(fresh, mix(mean, fresh, TAIL_BLEND), mean.y > 0.0);
     }
     var r = 0.0;
-    if mean.y > 0.0 {
+    if mean.y > 0.0 && bp.area.y > 0.5 {
         r = mean.x / mean.y;
     } else if total.x > 0.0 {
         r = total.y / total.x;

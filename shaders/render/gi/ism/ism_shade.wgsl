@@ -104,6 +104,15 @@ fn vpl_of(t: Texel, i: u32) -> i32 {
     return select(i32((i / t.per) * sh.counts.x + j), -1, j >= sh.counts.x);
 }
 
+// The light the i-th VPL of texel t's loop sends it (none where its block runs past the set).
+fn gathered(t: Texel, i: u32) -> Incident {
+    let k = vpl_of(t, i);
+    if k < 0 {
+        return Incident(vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(0.0));
+    }
+    return incident(u32(k), t.position.xyz, t.geometric_normal);
+}
+
 fn in_split(s: vec2<u32>) -> bool {
     return all(s < split_block(sh.sets.yz, sh.counts.w) * sh.counts.w);
 }
@@ -161,11 +170,7 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation
         let t = texel(id.xy);
         if t.position.w > 0.5 {
             for (var i = 0u; i < t.per * sh.sets.x; i = i + 1u) {
-                let k = vpl_of(t, i);
-                if k < 0 {
-                    continue;
-                }
-                let inc = incident(u32(k), t.position.xyz, t.geometric_normal);
+                let inc = gathered(t, i);
                 let e = inc.e * max(dot(t.shading_normal, inc.dir), 0.0) / PI;
                 sum = sum + e;
                 tail[tail_slot(t, i)] += luminance(e);
@@ -194,11 +199,7 @@ fn write_sh(s: vec2<u32>) -> vec3<f32> {
     var tail = vec3<f32>(0.0);
     if t.position.w > 0.5 {
         for (var i = 0u; i < t.per * sh.sets.x; i = i + 1u) {
-            let k = vpl_of(t, i);
-            if k < 0 {
-                continue;
-            }
-            let inc = incident(u32(k), t.position.xyz, t.geometric_normal);
+            let inc = gathered(t, i);
             if all(inc.e <= vec3<f32>(0.0)) {
                 continue;
             }

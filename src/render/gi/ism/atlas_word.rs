@@ -360,7 +360,8 @@ mod tests {
         let mut words = [u32::MAX; 9];
         words[4] = word(0.1, 1);
         assert!(lit_alone(&data, dir, dist, 0.4, words[4]), "the floor's own point does not shadow its floor");
-        let at = AtlasTexel { words: &words, r: 3, c: 1, texel: (1, 1) };
+        let alone = words;
+        let at = AtlasTexel { words: &alone, r: 3, c: 1, texel: (1, 1) };
         assert!(data.lit(at, Vec3::ZERO, 0.1, 0, dir, dist, 0.4, 0.06), "no neighbour, lit");
         words[5] = word(0.1, 2);
         let at = AtlasTexel { words: &words, ..at };

@@ -7,7 +7,7 @@
 use crate::render::layouts::{compute_pipeline, storage_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::ViewTargets;
-use crate::settings::IsmSettings;
+use crate::settings::{IsmSettings, TailRatio};
 
 use super::params::{BounceParams, GpuCluster, PullPushParams, SelectParams, SplatParams};
 use super::screen::{IsmInputs, IsmScreen};
@@ -492,7 +492,7 @@ impl IsmGather {
                     // that: with 0.25 here a held-out four-room flat (tools/unseen_levels.py)
                     // read 5.0x the reference's energy, 4.3x with full disks (its walls leak).
                     params: [1.0 / d_max, 1.0, d_min * d_min, n2],
-                    area: [scale.total_area, 0.0, 0.0, 0.0],
+                    area: [scale.total_area, f32::from(u8::from(settings.tail_ratio == TailRatio::Screen)), 0.0, 0.0],
                     bias: scale.bias,
                 };
                 queue.write_buffer(&self.bounce_params, u64::from(b - 1) * SLOT, bytemuck::bytes_of(&bounce));
