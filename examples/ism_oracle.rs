@@ -69,10 +69,20 @@ impl PairFilter {
     }
 }
 
+/// Whether receiver `p` (normal `pn`) sees the VPL at `o` (normal `nn`): the ray between them,
+/// each end lifted off its surface by 1 mm (a first-bounce VPL comes from the light's G-buffer
+/// depth and may lie a fraction of a millimetre inside its surface, which a ray to the exact
+/// position would count as shadowing every receiver).
+fn sees(bvh: &SceneBvh, p: Vec3, pn: Vec3, o: Vec3, nn: Vec3) -> bool {
+    let (a, b) = (p + pn * 1e-3, o + nn * 1e-3);
+    let d = (b - a).length();
+    d <= 0.0 || !bvh.occluded(a, (b - a) / d, d)
+}
+
 /// Whether the surface point `p` (normal `n`) lies inside solid geometry: the first surface
 /// above it faces away (a floor's face running on under a wall).
 fn buried(bvh: &SceneBvh, p: Vec3, n: Vec3) -> bool {
-    bvh.intersect(p + n * 1e-3, n, 1e30).is_some_and(|h| bvh.tris[h.tri as usize].ng.dot(n) > 0.0)
+    bouncelab::precompute::facing::is_buried(bvh, p, n, 1e-4 * bvh.scale)
 }
 
 /// Every fourth live VPL of set `set`: its atlas tile, the VPL, its position and normal.
@@ -142,6 +152,20 @@ fn show_neighbours(words: &[u32], at: usize, side: usize, tile: usize, lookup: &
         let Some(&w) = words.get((at as i64 + dy * side as i64 + dx) as usize) else { continue };
         println!(
             "      ({dx},{dy}) depth {:.3} point {:.2?}",
+            atlas_word::depth(w) * d_max,
+            word_point(w, tile, lookup)
+        );
+    }
+    let (x, y) = ((at % side) as u32, (at / side) as u32);
+    let s = side as u32;
+    for level in 1..=atlas_word::HOLE_LEVELS {
+        let i = s * s
+            + bouncelab::render::gi::ism::gather::level_base(s, level)
+            + (y >> level) * (s >> level)
+            + (x >> level);
+        let Some(&w) = words.get(i as usize) else { continue };
+        println!(
+            "      level {level} depth {:.3} point {:.2?}",
             atlas_word::depth(w) * d_max,
             word_point(w, tile, lookup)
         );
@@ -379,7 +403,7 @@ fn main() -> anyhow::Result<()> {
                 if power_weighted {
                     w *= f64::from(0.2126 * v.power[0] + 0.7152 * v.power[1] + 0.0722 * v.power[2]);
                 }
-                let vis_true = !bvh.occluded(*p + *pn * 1e-4, -dir, d - 2e-4 - 1e-4);
+                let vis_true = sees(&bvh, *p, *pn, o, nn);
                 let sin_r = (1.0 - cos_r * cos_r).max(0.0).sqrt();
                 let delta = d * sigma * (ism.bias_constant + ism.bias_slope * sin_r);
                 let q = *p + *pn * delta;
@@ -465,7 +489,7 @@ fn main() -> anyhow::Result<()> {
     if ism.bounce_tail && ism.bounces > 1 {
         println!("{name}: the last set carries the bounce tail; `(bounce_tail: false)` compares it too");
     }
-    let mut acc = vec![([0.0f64; 3], [0.0f64; 3]); sets];
+    let mut acc = vec![([0.0f64; 4], [0.0f64; 4]); sets];
     let mut vpls = vpls;
     for f in 0..frames {
         if f > 0 {
@@ -474,8 +498,8 @@ fn main() -> anyhow::Result<()> {
             vpls = t.read_all_vpls(r.device(), r.queue())?;
         }
         for (src, a) in acc.iter_mut().enumerate() {
-            let (g, t) = bounce_by_room(&project, &bvh, &receivers, &recv, &vpls, &ism, src);
-            (0..3).for_each(|i| {
+            let (g, t) = bounce_by_room(&project, &bvh, &receivers, &recv, &vpls, &ism, src, &filter);
+            (0..4).for_each(|i| {
                 a.0[i] += g[i];
                 a.1[i] += t[i];
             });
@@ -484,7 +508,7 @@ fn main() -> anyhow::Result<()> {
     for (src, (g, t)) in acc.iter().enumerate() {
         println!("{name} bounce power set{}/true {:.3}", src + 1, g.iter().sum::<f64>() / t.iter().sum::<f64>());
         if std::env::var_os("CROSS").is_some() {
-            println!("{name} bounce power by room x / 5.2, set{}/true: {:?}", src + 1, [0, 1, 2].map(|i| g[i] / t[i]));
+            println!("{name} bounce power by room, set{}/true: {:?}", src + 1, [0, 1, 2, 3].map(|i| g[i] / t[i]));
         }
     }
     Ok(())
@@ -501,14 +525,15 @@ fn bounce_by_room(
     vpls: &[GpuVpl],
     ism: &IsmSettings,
     src: usize,
-) -> ([f64; 3], [f64; 3]) {
+    filter: &PairFilter,
+) -> ([f64; 4], [f64; 4]) {
     let n = ism.vpl_count as usize;
     let total_area: f64 = receivers.weighted_area.iter().sum();
     let a_recv = total_area / recv.len() as f64;
     let n2 = (ism.interleave * ism.interleave) as f64;
     let lum = |c: [f32; 4]| 0.2126 * f64::from(c[0]) + 0.7152 * f64::from(c[1]) + 0.0722 * f64::from(c[2]);
-    let room = |x: f32| ((x / 5.2).floor().clamp(0.0, 2.0)) as usize;
-    let (mut room_gpu, mut room_true) = ([0.0f64; 3], [0.0f64; 3]);
+    let room = |p: Vec3| (filter.room(p).clamp(0.0, 3.0)) as usize;
+    let (mut room_gpu, mut room_true) = ([0.0f64; 4], [0.0f64; 4]);
     for k in 0..n {
         let v = vpls[src * n + k];
         if v.position[3] <= 0.0 {
@@ -522,19 +547,19 @@ fn bounce_by_room(
             let dir = to_p / d;
             let cos_s = nn.dot(dir);
             let cos_r = pn.dot(-dir);
-            if cos_s <= 0.0 || cos_r <= 0.0 || d < 1e-3 || bvh.occluded(*p + *pn * 1e-4, -dir, d - 3e-4) {
+            if cos_s <= 0.0 || cos_r <= 0.0 || d < 1e-3 || !sees(bvh, *p, *pn, o, nn) {
                 continue;
             }
             let obj = &project.scene.objects()[receivers.points[ri].object as usize];
             let m = project.scene.materials().get(obj.material).cloned().unwrap_or_default();
             let alb = lum([m.base_color[0], m.base_color[1], m.base_color[2], 1.0]);
             let r2 = f64::from(v.position[3]) + a_recv / std::f64::consts::PI;
-            room_true[room(p.x)] += alb * lum(v.power) / n2 / std::f64::consts::PI * f64::from(cos_s * cos_r)
+            room_true[room(*p)] += alb * lum(v.power) / n2 / std::f64::consts::PI * f64::from(cos_s * cos_r)
                 / f64::from(d * d).max(r2)
                 * a_recv;
         }
         let next = vpls[(src + 1) * n + k];
-        room_gpu[room(next.position[0])] += lum(next.power) / n2;
+        room_gpu[room(Vec3::from_slice(&next.position[..3]))] += lum(next.power) / n2;
     }
     (room_gpu, room_true)
 }

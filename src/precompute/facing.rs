@@ -52,6 +52,32 @@ pub fn facing_geometry(scene: &Scene) -> Vec<Vec<bool>> {
         .collect()
 }
 
+/// For every sample point: whether it lies inside solid geometry ([`is_buried`]): a floor slab's
+/// top running on under a wall stood on it, a wall's face running on inside the wall it butts
+/// into. Such a point can receive no light; as an occluder it only ever stands behind a face of
+/// the solid it is buried in.
+pub fn buried_points(scene: &Scene, points: &super::sample_points::SamplePoints) -> Vec<bool> {
+    let bvh = SceneBvh::build(scene);
+    let eps = 1e-4 * bvh.scale;
+    points.world(scene).par_iter().map(|(p, n)| is_buried(&bvh, *p, *n, eps)).collect()
+}
+
+/// Whether surface point `p` (normal `n`) lies inside solid geometry: most of five rays (along
+/// the normal and four 45 degrees off it) first meet a face that faces away from them. One ray
+/// is not enough: a wall standing floor to ceiling has its top face where the ceiling's
+/// underside is, and which of the two a ray meets first is a tie.
+pub fn is_buried(bvh: &SceneBvh, p: Vec3, n: Vec3, eps: f32) -> bool {
+    let (t, s) = n.any_orthonormal_pair();
+    let dirs = [n, (n + t).normalize(), (n - t).normalize(), (n + s).normalize(), (n - s).normalize()];
+    let inside = dirs
+        .iter()
+        .filter(|d| {
+            bvh.intersect(p + n * eps, **d, f32::MAX).is_some_and(|h| bvh.tris[h.tri as usize].ng.dot(**d) > 0.0)
+        })
+        .count();
+    inside >= 3
+}
+
 /// Whether any of the triangle's test rays (from just above its front side) hits the scene.
 fn sees_geometry(bvh: &SceneBvh, [a, b, c]: [Vec3; 3], n: Vec3, eps: f32) -> bool {
     let (t, s) = n.any_orthonormal_pair();
@@ -142,5 +168,22 @@ mod tests {
         let kept: f64 = points.weighted_area.iter().sum();
         assert!((25.0..36.0).contains(&kept), "area with points {kept}");
         assert!(points.unseen_area > 30.0, "unseen area {}", points.unseen_area);
+    }
+
+    #[test]
+    fn a_floors_top_under_a_wall_is_buried_and_in_the_room_is_not() {
+        let scene = box_and_plane();
+        let bvh = SceneBvh::build(&scene);
+        let eps = 1e-4 * bvh.scale;
+        let up = Vec3::Y;
+        // The floor's top (y = -1) runs on under the left wall (x in -1.2..-1.0).
+        assert!(is_buried(&bvh, Vec3::new(-1.1, -1.0, 0.0), up, eps), "under the wall");
+        assert!(!is_buried(&bvh, Vec3::new(0.0, -1.0, 0.0), up, eps), "in the room");
+        assert!(!is_buried(&bvh, Vec3::new(-0.95, -1.0, 0.3), up, eps), "beside the wall's foot");
+        // The wall's top (y = 1) lies on the ceiling's underside: a single ray along the normal
+        // meets the two coincident faces in either order.
+        assert!(is_buried(&bvh, Vec3::new(-1.1, 1.0, 0.0), up, eps), "the wall's top under the ceiling");
+        // The wall's face into the room is not.
+        assert!(!is_buried(&bvh, Vec3::new(-1.0, 0.0, 0.0), Vec3::X, eps), "the wall's inner face");
     }
 }

@@ -181,6 +181,8 @@ var<workgroup> set_power: array<vec2<f32>, 64>;
 // and [1] the previous set's luminance on screen last frame (read and zeroed here), [2], [3]
 // their running means, [4] the scale the last set was given last frame.
 @group(0) @binding(12) var<storage, read_write> tail_state: array<f32>;
+// The atlas's coarse levels (`ism_lookup.wgsl`).
+@group(0) @binding(13) var<storage, read> atlas_coarse: array<u32>;
 
 // Weight of a frame's screen sums in their running mean (they move with the VPLs' resampling).
 const TAIL_BLEND: f32 = 0.25;

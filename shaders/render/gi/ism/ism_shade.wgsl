@@ -42,6 +42,8 @@ struct ShadeParams {
 // [0] the last set's and [1] the previous set's luminance E cos / pi summed over the screen (f32
 // bits, added per workgroup by compare-and-swap); `tail` in `ism_bounce.wgsl` reads and zeroes them.
 @group(0) @binding(11) var<storage, read_write> tail_sums: array<atomic<u32>>;
+// The atlas's coarse levels (`ism_lookup.wgsl`).
+@group(0) @binding(12) var<storage, read> atlas_coarse: array<u32>;
 
 const PI: f32 = 3.14159265358979;
 const SH_WORDS: u32 = 14u;

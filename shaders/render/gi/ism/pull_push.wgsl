@@ -1,10 +1,11 @@
 // ISM pass P8: pull-push hole filling of the ISM atlas (Grossman & Dally 1998, Marroquim et al.
 // 2008; Ritschel et al. 2008's threshold times 2^level, but relative to the depth compared
 // instead of their 5% of the scene extent). Every level holds atlas words (`ism_pack` in
-// `common/vpl.wgsl`: 17-bit depth, all ones empty); the coarse levels' name no point. Tiles are
-// powers of two, so 2x2 reductions never mix two VPLs' maps. The push marks the finest-level
-// texels it fills with the lowest bit (a depth without a point), so the
-// inspector can show the atlas before and after hole filling from the one buffer.
+// `common/vpl.wgsl`: 17-bit depth, all ones empty); a coarse word names the point of the
+// nearest of its block, which the lookups test rays against where a texel shows a hole
+// (`ism_hole_blocks` in `ism_lookup.wgsl`). Tiles are powers of two, so 2x2 reductions never mix
+// two VPLs' maps. The push marks the finest-level texels it fills with the lowest bit (a depth
+// without a point), so the inspector can show the atlas before and after hole filling.
 #import common/vpl.wgsl
 struct PullPushParams {
     // fine side (texels), level of the fine side (0 = finest), first fine row, unused.
@@ -15,8 +16,39 @@ struct PullPushParams {
 }
 
 @group(0) @binding(0) var<uniform> pp: PullPushParams;
-@group(0) @binding(1) var<storage, read_write> fine: array<u32>;
+// The finest level, and the coarse levels each after the finer ones (`level_base` in
+// `gather.rs`).
+@group(0) @binding(1) var<storage, read_write> atlas: array<u32>;
 @group(0) @binding(2) var<storage, read_write> coarse: array<u32>;
+
+// Where level `level` >= 1 starts in `coarse`.
+fn coarse_base(level: u32) -> u32 {
+    let side = pp.counts.x << pp.counts.y;
+    var base = 0u;
+    for (var l = 1u; l < level; l = l + 1u) {
+        base = base + (side >> l) * (side >> l);
+    }
+    return base;
+}
+
+fn read_fine(i: u32) -> u32 {
+    if pp.counts.y == 0u {
+        return atlas[i];
+    }
+    return coarse[coarse_base(pp.counts.y) + i];
+}
+
+fn write_fine(i: u32, w: u32) {
+    if pp.counts.y == 0u {
+        atlas[i] = w;
+    } else {
+        coarse[coarse_base(pp.counts.y) + i] = w;
+    }
+}
+
+fn coarse_at(i: u32) -> u32 {
+    return coarse_base(pp.counts.y + 1u) + i;
+}
 
 fn threshold(depth: f32) -> f32 {
     return pp.params.x * depth * f32(1u << pp.counts.y);
@@ -31,29 +63,37 @@ fn pull(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let b = id.xy * 2u;
-    let v = array<f32, 4>(
-        ism_depth(fine[b.y * fs + b.x]),
-        ism_depth(fine[b.y * fs + b.x + 1u]),
-        ism_depth(fine[(b.y + 1u) * fs + b.x]),
-        ism_depth(fine[(b.y + 1u) * fs + b.x + 1u]),
+    let w = array<u32, 4>(
+        read_fine(b.y * fs + b.x),
+        read_fine(b.y * fs + b.x + 1u),
+        read_fine((b.y + 1u) * fs + b.x),
+        read_fine((b.y + 1u) * fs + b.x + 1u),
     );
+    // The nearest's word names the coarse texel's point, so the lookups can test a ray against
+    // the surface around a hole (`ism_lookup.wgsl`); the slot survives every level.
     var nearest = 1.0;
+    var named = 0u;
     for (var i = 0; i < 4; i = i + 1) {
-        nearest = min(nearest, v[i]);
+        let v = ism_depth(w[i]);
+        if v < nearest {
+            nearest = v;
+            named = ism_slot1(w[i]);
+        }
     }
     var sum = 0.0;
     var count = 0.0;
     for (var i = 0; i < 4; i = i + 1) {
-        if v[i] < 1.0 && v[i] - nearest <= threshold(nearest) {
-            sum = sum + v[i];
+        let v = ism_depth(w[i]);
+        if v < 1.0 && v - nearest <= threshold(nearest) {
+            sum = sum + v;
             count = count + 1.0;
         }
     }
     var out = ISM_EMPTY;
     if count > 0.0 {
-        out = ism_pack(sum / count, 0u);
+        out = ism_pack(sum / count, named);
     }
-    coarse[id.y * cs + id.x] = out;
+    coarse[coarse_at(id.y * cs + id.x)] = out;
 }
 
 // One thread per coarse texel fills its 2x2 fine texels (one coarse read for four writes).
@@ -65,11 +105,10 @@ fn push(@builtin(global_invocation_id) gid: vec3<u32>) {
     if id.x >= cs || id.y >= cs {
         return;
     }
-    let c = coarse[id.y * cs + id.x];
+    let c = coarse[coarse_at(id.y * cs + id.x)];
     if c == ISM_EMPTY {
         return;
     }
-    let mark = select(0u, 1u, pp.counts.y == 0u);
     // Only empty texels are filled. Ritschel's push also overwrote texels farther than the
     // coarse depth (background seen through a hole in a nearer surface), which dilated every
     // silhouette by up to a coarse texel: at doorways that was a false shadow (with it at the
@@ -79,8 +118,10 @@ fn push(@builtin(global_invocation_id) gid: vec3<u32>) {
     for (var k = 0u; k < 4u; k = k + 1u) {
         let f = id * 2u + vec2<u32>(k & 1u, k >> 1u);
         let i = f.y * fs + f.x;
-        if fine[i] == ISM_EMPTY {
-            fine[i] = c | mark;
+        if read_fine(i) == ISM_EMPTY {
+            // The finest level gets a depth only (a filled texel's point may lie a few texels
+            // away; the lookups ask the coarse levels' points themselves).
+            write_fine(i, select(c, (c & ~0x7ffeu) | 1u, pp.counts.y == 0u));
         }
     }
 }

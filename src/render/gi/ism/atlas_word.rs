@@ -59,7 +59,8 @@ pub enum PointTest {
 /// texel `(x, y)` within its tile.
 #[derive(Clone, Copy, Debug)]
 pub struct AtlasTexel<'a> {
-    /// The atlas words.
+    /// The atlas words, its coarse levels after them (`IsmTechnique::read_atlas_words`; the
+    /// finest level alone is enough where no coarse level is asked).
     pub words: &'a [u32],
     /// Tile side (texels).
     pub r: u32,
@@ -69,7 +70,21 @@ pub struct AtlasTexel<'a> {
     pub texel: (u32, u32),
 }
 
+/// The coarse levels the lookups ask (`ISM_LEVELS` in `ism_lookup.wgsl`; every level pull-push
+/// keeps).
+pub const HOLE_LEVELS: u32 = super::gather::PULL_LEVELS as u32;
+
 impl AtlasTexel<'_> {
+    /// The word of level `level` (1 = half the side) over this texel of tile `tile`: the coarse
+    /// levels follow the finest in `words` (at side^2 + `level_base`); `None` when `words`
+    /// holds the finest only.
+    fn coarse_word(&self, tile: u32, level: u32) -> Option<u32> {
+        let side = self.r * self.c.max(1);
+        let (x, y) = ((tile % self.c.max(1)) * self.r + self.texel.0, (tile / self.c.max(1)) * self.r + self.texel.1);
+        let at = side * side + super::gather::level_base(side, level) + (y >> level) * (side >> level) + (x >> level);
+        self.words.get(at as usize).copied()
+    }
+
     /// The word of texel `(x, y)` of tile `tile`, `None` outside the tile.
     fn word(&self, tile: u32, x: i64, y: i64) -> Option<u32> {
         let r = i64::from(self.r);
@@ -111,10 +126,11 @@ pub const UNVOUCHED: f32 = 0.98;
 
 impl IsmLookupData {
     /// What atlas word `stored` of tile `tile` says of the receiver at `dist` from the VPL at `o`
-    /// along unit `dir` (normalised depth `depth_norm`). `reach` 0: the texel's own word (a word
-    /// without a point shadows by its depth, relative `margin`); > 0: a neighbour's, whose depth
-    /// never shadows and whose surface blocks only within its seams and within `reach` x t of
-    /// its point. The twin of `ism_point_test`.
+    /// along unit `dir` (normalised depth `depth_norm`). `own`: the texel's own word (a word
+    /// without a point shadows by its depth, relative `margin`; its surface blocks within its
+    /// open edges, past its seams too); otherwise a neighbour's or a coarse level's,
+    /// whose depth never shadows and whose surface blocks only within its seams and within
+    /// `reach` x t of its point. The twin of `ism_point_test`.
     #[allow(clippy::too_many_arguments)]
     pub fn point_test(
         &self,
@@ -126,6 +142,7 @@ impl IsmLookupData {
         stored: u32,
         margin: f32,
         reach: f32,
+        own: bool,
     ) -> PointTest {
         if stored == u32::MAX {
             return PointTest::Clear;
@@ -135,7 +152,7 @@ impl IsmLookupData {
             .and_then(|s| self.chosen_all.get((tile * self.per_ism + s) as usize))
             .filter(|j| (**j as usize) < self.points.len());
         let Some(&j) = point else {
-            return if reach <= 0.0 && depth_norm > depth(stored) * (1.0 + margin) {
+            return if own && depth_norm > depth(stored) * (1.0 + margin) {
                 PointTest::Blocked
             } else {
                 PointTest::Clear
@@ -145,8 +162,7 @@ impl IsmLookupData {
         let n = Vec3::from_slice(&self.normals[j as usize][..3]);
         // The ray does not cross the point's plane before the receiver: a point much nearer
         // than the receiver still leaves the rest of the way unvouched for (`ism_lookup.wgsl`).
-        let not_crossed =
-            if reach <= 0.0 && p.distance(o) < dist * UNVOUCHED { PointTest::Unsure } else { PointTest::Clear };
+        let not_crossed = if own && p.distance(o) < dist * UNVOUCHED { PointTest::Unsure } else { PointTest::Clear };
         let den = dir.dot(n);
         if den.abs() <= 1e-6 {
             return not_crossed;
@@ -158,7 +174,7 @@ impl IsmLookupData {
         let h = o + dir * t;
         if !self.on_surface(j, h, 0.0) {
             PointTest::Unsure
-        } else if reach <= 0.0 || (self.within_edges(j, h, 0.0, true) && within_disk(h - p, dir, n, reach * t)) {
+        } else if own || (self.within_edges(j, h, 0.0, true) && within_disk(h - p, dir, n, reach * t)) {
             PointTest::Blocked
         } else {
             PointTest::Clear
@@ -169,8 +185,8 @@ impl IsmLookupData {
     /// normal.w) along unit `dir` (normalised depth `depth_norm`) is lit by the VPL of atlas tile
     /// `tile`, whose map it falls in at `at`: the texel's own word decides, or where the ray
     /// passes its point's open edges, any of the four neighbouring words whose surface it
-    /// crosses (`margin`: the relative depth margin of texels without a point). The twin of
-    /// `ism_lit`.
+    /// crosses (`margin`: the relative depth margin of texels without a point), and where a
+    /// coarse level is nearer than the texel (a hole), its word's point. The twin of `ism_lit`.
     #[allow(clippy::too_many_arguments)]
     pub fn lit(
         &self,
@@ -185,16 +201,30 @@ impl IsmLookupData {
     ) -> bool {
         let (x, y) = (i64::from(at.texel.0), i64::from(at.texel.1));
         let stored = at.word(tile, x, y).unwrap_or(u32::MAX);
-        match self.point_test(o, tile, dir, dist, depth_norm, stored, margin, 0.0) {
-            PointTest::Clear => true,
-            PointTest::Blocked => false,
-            PointTest::Unsure => ![(-1, 0), (1, 0), (0, -1), (0, 1)].iter().any(|(dx, dy)| {
-                at.word(tile, x + dx, y + dy).is_some_and(|w| {
-                    let test = self.point_test(o, tile, dir, dist, depth_norm, w, margin, NEIGHBOUR_REACH * sigma);
-                    test == PointTest::Blocked
-                })
-            }),
+        let reach = NEIGHBOUR_REACH * sigma;
+        let blocked = |w: u32, reach: f32| {
+            self.point_test(o, tile, dir, dist, depth_norm, w, margin, reach, false) == PointTest::Blocked
+        };
+        match self.point_test(o, tile, dir, dist, depth_norm, stored, margin, reach, true) {
+            PointTest::Blocked => return false,
+            PointTest::Unsure => {
+                if [(-1, 0), (1, 0), (0, -1), (0, 1)]
+                    .iter()
+                    .any(|(dx, dy)| at.word(tile, x + dx, y + dy).is_some_and(|w| blocked(w, reach)))
+                {
+                    return false;
+                }
+            }
+            PointTest::Clear => {}
         }
+        // Ritschel's push, asked at lookup time (`ism_hole_blocks`).
+        let own_depth = depth(stored);
+        !(1..=HOLE_LEVELS).any(|level| {
+            at.coarse_word(tile, level).is_some_and(|w| {
+                let cd = depth(w);
+                w != u32::MAX && cd < own_depth && blocked(w, reach * (1u32 << level) as f32)
+            })
+        })
     }
 
     /// Whether `h` (on pool point `j`'s plane) lies inside all of its open edges' clip lines,
@@ -369,5 +399,51 @@ mod tests {
         // A receiver on the floor in front of the wall stays lit.
         let near = Vec3::new(0.0, -1.0, 1.8);
         assert!(data.lit(at, Vec3::ZERO, 0.1, 0, near.normalize(), near.length(), 0.2, 0.06));
+    }
+
+    /// A receiver on a back wall (z = 4) seen through a hole in a nearer wall (z = 2): its texel
+    /// holds its own surface, and only the coarse level's word names the nearer wall's point.
+    #[test]
+    fn a_hole_in_a_wall_is_closed_by_the_coarse_levels_point_within_its_reach() {
+        let none = [0.0, 0.0, 0.0, -1.0];
+        let data = |wall_x: f32| IsmLookupData {
+            chosen_all: vec![0, 1],
+            points: vec![[0.2, 0.0, 4.0, 1.0], [wall_x, 0.0, 2.0, 1.0]],
+            normals: vec![[0.0, 0.0, -1.0, 1.0], [0.0, 0.0, -1.0, 1.0]],
+            clips: vec![none; 8],
+            per_ism: 2,
+        };
+        let receiver = Vec3::new(0.2, 0.0, 4.0);
+        let (dir, dist) = (receiver.normalize(), receiver.length());
+        // A 2 x 2 map (all four texels show the back wall), then its one level-1 word.
+        let own = word(0.4, 1);
+        let holed = [own, own, own, own, word(0.2, 2)];
+        let unfilled = [own, own, own, own, u32::MAX];
+        let lit = |d: &IsmLookupData, words: &[u32]| {
+            let at = AtlasTexel { words, r: 2, c: 1, texel: (0, 0) };
+            d.lit(at, Vec3::ZERO, 0.1, 0, dir, dist, 0.4, 0.06)
+        };
+        let near = data(0.1);
+        assert!(lit(&near, &unfilled), "without the coarse level the hole lets the light through");
+        assert!(!lit(&near, &holed), "the wall's point at level 1 closes the hole");
+        // The wall's point 1 m from where the ray crosses its plane (reach: 2 x 0.75 x 0.1 x 2 m
+        // = 0.3 m) vouches for nothing there.
+        assert!(lit(&data(1.1), &holed), "a far point of the wall does not shadow");
+        // A receiver in front of the nearer wall stays lit.
+        let front = Vec3::new(0.05, 0.0, 1.5);
+        let at = AtlasTexel { words: &holed, r: 2, c: 1, texel: (0, 0) };
+        assert!(near.lit(at, Vec3::ZERO, 0.1, 0, front.normalize(), front.length(), 0.15, 0.06));
+    }
+
+    #[test]
+    fn the_shaders_constants_match_their_cpu_twins() {
+        let wgsl = include_str!("../../../../shaders/render/gi/ism/ism_lookup.wgsl");
+        for line in [
+            format!("const ISM_LEVELS: u32 = {HOLE_LEVELS}u;"),
+            format!("const UNVOUCHED: f32 = {UNVOUCHED:?};"),
+            format!("const MIN_COS: f32 = {MIN_COS:?};"),
+        ] {
+            assert!(wgsl.contains(&line), "ism_lookup.wgsl lacks `{line}`");
+        }
     }
 }

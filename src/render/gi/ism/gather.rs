@@ -16,7 +16,20 @@ use super::screen::{IsmInputs, IsmScreen};
 /// two: the unlit room 1.21 -> 0.73, the cluttered room 0.95 -> 0.89, the Cornell box 0.95 ->
 /// 0.92 of the reference's energy (`examples/ism_probe.rs`, with a bounce clamp of 0.25 in that
 /// run): hole filling dilates occluders.
-const PULL_LEVELS: usize = 2;
+pub const PULL_LEVELS: usize = 2;
+
+/// Where level `level` (>= 1) of an atlas whose finest level has side `side` starts in the
+/// buffer of the coarse levels (words): every level follows the finer ones (`ism_hole_blocks`
+/// in `ism_lookup.wgsl`, `coarse_base` in `pull_push.wgsl`).
+pub const fn level_base(side: u32, level: u32) -> u32 {
+    let mut base = 0;
+    let mut l = 1;
+    while l < level {
+        base += (side >> l) * (side >> l);
+        l += 1;
+    }
+    base
+}
 /// Largest splat half-extent in texels (a 33^2 box), a bound on one thread's work for points
 /// right next to a VPL.
 const MAX_SPLAT_HALF_EXTENT: f32 = 16.0;
@@ -65,7 +78,9 @@ const MAX_SETS: u64 = 6;
 struct Sized {
     key: Key,
     points: wgpu::Buffer,
-    atlas: Vec<wgpu::Buffer>,
+    atlas: wgpu::Buffer,
+    /// The atlas's coarse levels (`level_base`).
+    coarse: wgpu::Buffer,
     splat_group: wgpu::BindGroup,
     all_vpls: wgpu::Buffer,
     normals: wgpu::Buffer,
@@ -89,8 +104,7 @@ struct Sized {
     /// The atlas before hole filling (inspector copy), when captured.
     splats: Option<wgpu::Buffer>,
     bounce_group: wgpu::BindGroup,
-    pull_groups: Vec<wgpu::BindGroup>,
-    push_groups: Vec<wgpu::BindGroup>,
+    pp_group: wgpu::BindGroup,
     /// Counts recreations, so that the screen passes rebind.
     generation: u64,
 }
@@ -189,6 +203,7 @@ impl IsmGather {
                 storage_entry(10, c),
                 storage_entry(11, c),
                 storage_rw(12),
+                storage_entry(13, c),
             ],
         });
         let bounce_module = shaders::module(device, "render/gi/ism/ism_bounce.wgsl")?;
@@ -248,8 +263,10 @@ impl IsmGather {
                 mapped_at_creation: false,
             })
         };
-        let atlas: Vec<wgpu::Buffer> =
-            (0..=PULL_LEVELS).map(|l| buffer("ism atlas level", (side >> l) * (side >> l))).collect();
+        // The coarse levels in one buffer, each after the finer ones (`level_base`): the lookups
+        // read them too (`ism_lookup.wgsl`) with one binding.
+        let atlas = buffer("ism atlas", side * side);
+        let coarse = buffer("ism atlas coarse levels", level_base(side, PULL_LEVELS as u32 + 1));
         let points = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("ism scene sample points"),
             size: u64::from(key.points.max(1)) * 16,
@@ -298,7 +315,7 @@ impl IsmGather {
                 slot(0, &self.splat_params, std::mem::size_of::<SplatParams>() as u64),
                 buf(1, &points),
                 buf(2, &all_vpls),
-                buf(3, &atlas[0]),
+                buf(3, &atlas),
                 buf(4, &normals),
                 buf(5, &chosen),
                 buf(6, &clips),
@@ -325,7 +342,7 @@ impl IsmGather {
                 buf(2, &normals),
                 buf(3, &albedo),
                 buf(4, &all_vpls),
-                buf(5, &atlas[0]),
+                buf(5, &atlas),
                 buf(6, &selection),
                 buf(7, &lit),
                 buf(8, &specular),
@@ -333,21 +350,18 @@ impl IsmGather {
                 buf(10, &clips),
                 buf(11, &chosen_all),
                 buf(12, &tail),
+                buf(13, &coarse),
             ],
         });
-        let pp = |fine: &wgpu::Buffer, coarse: &wgpu::Buffer| {
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("ism pull-push bind group"),
-                layout: &self.pp_layout,
-                entries: &[
-                    slot(0, &self.pp_params, std::mem::size_of::<PullPushParams>() as u64),
-                    buf(1, fine),
-                    buf(2, coarse),
-                ],
-            })
-        };
-        let pull_groups = (0..PULL_LEVELS).map(|l| pp(&atlas[l], &atlas[l + 1])).collect();
-        let push_groups = (0..PULL_LEVELS).rev().map(|l| pp(&atlas[l], &atlas[l + 1])).collect();
+        let pp_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism pull-push bind group"),
+            layout: &self.pp_layout,
+            entries: &[
+                slot(0, &self.pp_params, std::mem::size_of::<PullPushParams>() as u64),
+                buf(1, &atlas),
+                buf(2, &coarse),
+            ],
+        });
         self.generation += 1;
         self.sized = Some(Sized {
             key,
@@ -370,8 +384,8 @@ impl IsmGather {
             select_group,
             splats: None,
             bounce_group,
-            pull_groups,
-            push_groups,
+            pp_group,
+            coarse,
             generation: self.generation,
         });
     }
@@ -397,9 +411,10 @@ impl IsmGather {
         self.sized.as_ref().map(|s| &s.chosen)
     }
 
-    /// The ISM atlas levels (f32 bit patterns, 1.0 = empty) of the last frame, for the inspector.
-    pub fn atlas(&self) -> Option<(&[wgpu::Buffer], u32)> {
-        self.sized.as_ref().map(|s| (s.atlas.as_slice(), s.key.r * Self::tiles_per_row(s.key.vpls * s.key.bounces)))
+    /// The ISM atlas of the last frame, its coarse levels (`level_base`) and the finest
+    /// level's side.
+    pub fn atlas(&self) -> Option<(&wgpu::Buffer, &wgpu::Buffer, u32)> {
+        self.sized.as_ref().map(|s| (&s.atlas, &s.coarse, s.key.r * Self::tiles_per_row(s.key.vpls * s.key.bounces)))
     }
 
     /// Sizes the atlas and point buffers for `settings` and `points` pool points; returns a
@@ -556,24 +571,23 @@ impl IsmGather {
                 // Copies may not happen inside a pass: end it, copy this set's rows, go on.
                 drop(pass);
                 let (at, bytes) = (u64::from(row0) * u64::from(side) * 4, u64::from(rows) * u64::from(side) * 4);
-                encoder.copy_buffer_to_buffer(&s.atlas[0], at, splats, at, bytes);
+                encoder.copy_buffer_to_buffer(&s.atlas, at, splats, at, bytes);
                 pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some("ism maps (after splat capture)"),
                     timestamp_writes: None,
                 });
             }
             pass.set_pipeline(&self.pull);
-            for (l, g) in s.pull_groups.iter().enumerate() {
+            for l in 0..PULL_LEVELS {
                 let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
-                pass.set_bind_group(0, g, &[slot]);
+                pass.set_bind_group(0, &s.pp_group, &[slot]);
                 let coarse = (side >> (l + 1)).max(1);
                 pass.dispatch_workgroups(coarse.div_ceil(8), (rows >> (l + 1)).max(1).div_ceil(8), 1);
             }
             pass.set_pipeline(&self.push);
-            for (i, g) in s.push_groups.iter().enumerate() {
-                let l = PULL_LEVELS - 1 - i;
+            for l in (0..PULL_LEVELS).rev() {
                 let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
-                pass.set_bind_group(0, g, &[slot]);
+                pass.set_bind_group(0, &s.pp_group, &[slot]);
                 // One thread per coarse texel (2x2 fine texels each).
                 let coarse = (side >> (l + 1)).max(1);
                 pass.dispatch_workgroups(coarse.div_ceil(8), (rows >> (l + 1)).max(1).div_ceil(8), 1);
@@ -609,7 +623,8 @@ impl IsmGather {
         let Some(s) = sized.as_ref() else { return };
         let inputs = IsmInputs {
             vpls: &s.all_vpls,
-            atlas: &s.atlas[0],
+            atlas: &s.atlas,
+            coarse: &s.coarse,
             points: &s.points,
             normals: &s.normals,
             clips: &s.clips,
@@ -650,7 +665,7 @@ impl IsmGather {
                 &s.chosen,
                 &s.chosen_all,
             ];
-            s.atlas.iter().chain(buffers).chain(&s.splats).map(wgpu::Buffer::size).sum::<u64>()
+            [&s.atlas, &s.coarse].into_iter().chain(buffers).chain(&s.splats).map(wgpu::Buffer::size).sum::<u64>()
         });
         own + self.screen.gpu_bytes()
     }

@@ -27,6 +27,7 @@ pub(super) fn point_data(
     points: &SamplePoints,
     texture_means: &[[f32; 3]],
     clips: &crate::precompute::open_edges::PointClips,
+    buried: &[bool],
 ) -> PointData {
     let mean_texture = |image: usize| texture_means.get(image).copied().unwrap_or([1.0; 3]);
     let per_object: Vec<([f32; 4], [f32; 4], f32)> = scene
@@ -45,8 +46,12 @@ pub(super) fn point_data(
     let world = points.world(scene);
     let normals: Vec<glam::Vec3> = world.iter().map(|(_, n)| *n).collect();
     out.clips = clips.world_lines(scene, &normals);
-    for (p, (position, normal)) in points.points.iter().zip(world) {
-        let (a, s, w) = per_object.get(p.object as usize).copied().unwrap_or(([0.0; 4], [0.0; 4], 1.0));
+    for (i, (p, (position, normal))) in points.points.iter().zip(world).enumerate() {
+        let (mut a, mut s, w) = per_object.get(p.object as usize).copied().unwrap_or(([0.0; 4], [0.0; 4], 1.0));
+        // A point inside solid geometry receives no light, so it reflects none either.
+        if buried.get(i).copied().unwrap_or(false) {
+            (a, s) = ([0.0, 0.0, 0.0, 1.0], [0.0; 4]);
+        }
         out.positions.push(position.extend(1.0).to_array());
         out.normals.push(normal.extend(w).to_array());
         out.albedo.push(a);

@@ -22,6 +22,8 @@ pub struct IsmInputs<'a> {
     pub vpls: &'a wgpu::Buffer,
     /// The finest ISM atlas level (`ism_pack` words).
     pub atlas: &'a wgpu::Buffer,
+    /// Its coarse levels (`gather::level_base`), which the lookups ask about holes.
+    pub coarse: &'a wgpu::Buffer,
     /// Pool point positions, normals and clip lines, and per VPL of every set and slot the
     /// pool point (what `ism_lookup.wgsl` tests a receiver's ray against).
     pub points: &'a wgpu::Buffer,
@@ -149,6 +151,7 @@ impl IsmScreen {
                 storage_entry(9, c),
                 storage_entry(10, c),
                 super::gather::storage_rw(11),
+                storage_entry(12, c),
             ],
         });
         let shade_module = shaders::module(device, "render/gi/ism/ism_shade.wgsl")?;
@@ -262,6 +265,7 @@ impl IsmScreen {
                 buf(9, ism.clips),
                 buf(10, ism.chosen_all),
                 buf(11, ism.tail),
+                buf(12, ism.coarse),
             ],
         });
         let history = [

@@ -59,11 +59,16 @@ pub fn settle_frames(base_confidence: f32) -> u32 {
     (3.0 / (1.0 - base_confidence).max(1e-3)).ceil().clamp(1.0, 3000.0) as u32
 }
 
+/// The point pool and what is derived from it once per distribution: the key it was made for,
+/// the points, the textures' mean colours, each point's clip lines and whether it lies inside
+/// solid geometry (`facing::buried_points`).
+type PoolPoints = (PointsKey, SamplePoints, Vec<[f32; 3]>, PointClips, Vec<bool>);
+
 /// The ISM technique (Knecht 2009; `ism-ritschel` is the same without temporal reuse).
 pub struct IsmTechnique {
     vpl_pass: VplPass,
     gather: IsmGather,
-    points: Option<(PointsKey, SamplePoints, Vec<[f32; 3]>, PointClips)>,
+    points: Option<PoolPoints>,
     points_generation: u64,
     /// (gather buffer generation, point set generation, [`point_data_key`]) of the uploaded
     /// point data; the upload is skipped while it stays equal.
@@ -178,8 +183,8 @@ impl IsmTechnique {
         })
     }
 
-    /// Storage buffers a pass binds at most (the bounce pass, `ism_bounce.wgsl`: 12).
-    pub const STORAGE_BUFFERS: u32 = 12;
+    /// Storage buffers a pass binds at most (the bounce pass, `ism_bounce.wgsl`: 13).
+    pub const STORAGE_BUFFERS: u32 = 13;
 
     /// The seam's support check: the bounce pass's storage buffers must be allowed, and the SH
     /// filter's coefficients must fit one storage binding.
@@ -243,7 +248,10 @@ impl IsmTechnique {
             // other geometry continues the surface within 0.2% of the scene's size excluded.
             let diameter = 2.0 * scene.bounds().map_or(1.0, |b| b.radius());
             let clips = crate::precompute::open_edges::point_clips(scene, &points.points, diameter, 0.002 * diameter);
-            self.points = Some((key, points, means, clips));
+            // Points inside solid geometry (a floor under a wall) reflect nothing: lit through
+            // an ISM's hole, they would become bounce VPLs inside the wall.
+            let buried = crate::precompute::facing::buried_points(scene, &points);
+            self.points = Some((key, points, means, clips, buried));
             self.points_generation += 1;
             self.rebuilds += 1;
         }
@@ -305,7 +313,8 @@ impl IsmTechnique {
     }
 
     /// The filled ISM atlas of the last frame as its raw words (`ism_pack` in
-    /// `common/vpl.wgsl`), row-major, and its side in texels.
+    /// `common/vpl.wgsl`), row-major, its coarse levels after it (each at side^2 +
+    /// `gather::level_base`), and the finest level's side in texels.
     pub fn read_atlas_words(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<(Vec<u32>, u32), RenderError> {
         self.atlas_words(device, queue, false)
     }
@@ -319,18 +328,25 @@ impl IsmTechnique {
     ) -> Result<(Vec<u32>, u32), RenderError> {
         let name = if splats { "ism_atlas_splats" } else { "ism_atlas" };
         let missing = |why: &str| RenderError::UnknownBuffer { name: name.into(), known: why.into() };
-        let (levels, side) = self.gather.atlas().ok_or_else(|| missing("render an ism mode first"))?;
-        let buffer = if splats {
-            self.gather.splats().ok_or_else(|| missing("render one ism frame while this buffer is shown"))?
-        } else {
-            levels.first().ok_or_else(|| missing("render an ism mode first"))?
-        };
-        Ok((bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, buffer)?), side))
+        let (atlas, coarse, side) = self.gather.atlas().ok_or_else(|| missing("render an ism mode first"))?;
+        if splats {
+            let buffer =
+                self.gather.splats().ok_or_else(|| missing("render one ism frame while this buffer is shown"))?;
+            return Ok((bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, buffer)?), side));
+        }
+        let mut words: Vec<u32> = bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, atlas)?);
+        words.extend(bytemuck::pod_collect_to_vec::<u8, u32>(&readback::read_buffer(device, queue, coarse)?));
+        Ok((words, side))
     }
 
     fn read_atlas(&self, device: &wgpu::Device, queue: &wgpu::Queue, splats: bool) -> Result<HdrImage, RenderError> {
         let (words, side) = self.atlas_words(device, queue, splats)?;
-        Ok(HdrImage { width: side, height: side, pixels: words.into_iter().map(super::atlas_word::texel).collect() })
+        let finest = (side as usize) * (side as usize);
+        Ok(HdrImage {
+            width: side,
+            height: side,
+            pixels: words.into_iter().take(finest).map(super::atlas_word::texel).collect(),
+        })
     }
 }
 
@@ -342,7 +358,7 @@ impl GiTechnique for IsmTechnique {
 
     fn render(&mut self, inputs: &mut GiInputs<'_>) -> Result<GiOutput, RenderError> {
         let settings = &inputs.settings.ism;
-        let Some((_, points, means, clips)) = self.points.as_ref() else { return Ok(GiOutput::Nothing) };
+        let Some((_, points, means, clips, buried)) = self.points.as_ref() else { return Ok(GiOutput::Nothing) };
         self.last_frame = inputs.frame_index;
         let recorded = self.vpl_pass.record(
             inputs.device,
@@ -358,7 +374,7 @@ impl GiTechnique for IsmTechnique {
         let buffers = self.gather.prepare(inputs.device, settings, points.points.len() as u32);
         let current = (buffers, self.points_generation, point_data_key(inputs.scene));
         if self.uploaded.as_ref() != Some(&current) {
-            let data: PointData = point_data(inputs.scene, points, means, clips);
+            let data: PointData = point_data(inputs.scene, points, means, clips, buried);
             self.gather.upload_points(inputs.queue, &data);
             self.uploaded = Some(current);
             self.uploads += 1;
