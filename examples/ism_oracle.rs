@@ -11,7 +11,7 @@
 //!
 //! Diagnostics (environment): `GRID=x,z` and `PAIR=a,b` pick rooms, `SHOW=1` / `SHOW_SHADOW=1`
 //! list false-light / false-shadow pairs (`NEIGHBOURS=1`: with the four neighbouring texels'
-//! points), `DUMP=tile` writes that tile beside the rays' depths, `POINTS=tile[,box]` lists a
+//! points; `SHOW_KIND=k`: false light of the k-th kind only, as the summary lists them), `DUMP=tile` writes that tile beside the rays' depths, `POINTS=tile[,box]` lists a
 //! tile's chosen points with their splat radius and footprint (`TEXEL=x,y`: whether each covers
 //! that texel as the splat pass decides it; `CLIPS=1`: with their clip lines).
 //!
@@ -274,7 +274,10 @@ fn list_points(
         let den = dir.dot(pn);
         let hit = if den.abs() <= 1e-6 { 0.0 } else { (pp - frame.o).dot(pn) / den };
         let h = frame.o + dir * hit;
-        let on = lookup.on_surface(j, h, 0.01 * radius);
+        // As the splat pass: within the open edges, and within the seams moved out by the
+        // point's solid depth (`within_seams`).
+        let past = bouncelab::precompute::open_edges::SEAM_SCALE * (lookup.points[j as usize][3] + 0.01 * radius);
+        let on = lookup.on_surface(j, h, 0.01 * radius) && lookup.within_edges(j, h, past, true);
         println!("  texel: inside {in_ellipse} hit {hit:.3} on surface {on}");
         if std::env::var_os("CLIPS").is_some() {
             let k = j as usize * CLIPS_PER_POINT;
@@ -380,6 +383,7 @@ fn main() -> anyhow::Result<()> {
     let unburied = std::env::var_os("UNBURIED").is_some();
     for set in 0..ism.bounces as usize {
         let (mut w_true, mut w_ism, mut w_fs, mut w_fl) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        let mut w_fs_slab = 0.0f64;
         let mut shown = 0;
         let mut w_pairs = 0.0f64;
         let mut fl_classes = [[0.0f64; 4]; FL_KINDS.len()];
@@ -425,6 +429,14 @@ fn main() -> anyhow::Result<()> {
                 }
                 if vis_true && !vis_ism {
                     w_fs += w;
+                    // The share of false shadow the texel's own point's slab casts.
+                    let own_j = atlas_word::slot(words[at])
+                        .and_then(|s| lookup.chosen_all.get(tile * lookup.per_ism as usize + s as usize));
+                    if own_j
+                        .is_some_and(|&j| lookup.slab_blocks(j, o, qq / qd, qd, atlas_word::NEIGHBOUR_REACH * sigma))
+                    {
+                        w_fs_slab += w;
+                    }
                     if std::env::var_os("SHOW_SHADOW").is_some()
                         && shown < 12
                         && cos_s > 0.2
@@ -448,7 +460,12 @@ fn main() -> anyhow::Result<()> {
                     let band = FL_BANDS.iter().position(|&b| cos_s < b).unwrap_or(FL_BANDS.len());
                     fl_classes[kind][band] += w * f64::from(v.power[0] + v.power[1] + v.power[2]);
                     let min_cos: f32 = std::env::var("SHOW_MIN_COS").ok().and_then(|v| v.parse().ok()).unwrap_or(0.0);
-                    if std::env::var_os("SHOW").is_some() && shown < 12 && cos_s >= min_cos {
+                    let kind_shown = std::env::var("SHOW_KIND").ok().and_then(|v| v.parse::<usize>().ok());
+                    if std::env::var_os("SHOW").is_some()
+                        && shown < 12
+                        && cos_s >= min_cos
+                        && kind_shown.is_none_or(|k| k == kind)
+                    {
                         shown += 1;
                         let point = word_point(words[at], tile, &lookup);
                         println!(
@@ -471,9 +488,10 @@ fn main() -> anyhow::Result<()> {
             }
         }
         println!(
-            "{name} set {set} lookups: ism/true {:.3}  false shadow {:.3}  false light {:.3} (of true; of all pairs {:.4})  true {:.4e} ism {:.4e}",
+            "{name} set {set} lookups: ism/true {:.3}  false shadow {:.3} (own slab {:.3})  false light {:.3} (of true; of all pairs {:.4})  true {:.4e} ism {:.4e}",
             w_ism / w_true,
             w_fs / w_true,
+            w_fs_slab / w_true,
             w_fl / w_true,
             w_fl / w_pairs,
             w_true,

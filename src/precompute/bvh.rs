@@ -150,6 +150,25 @@ impl SceneBvh {
         best
     }
 
+    /// Every hit along `o + t d` for `0 < t < tmax`, nearest first: its distance and whether
+    /// the ray meets the triangle's back (it leaves a solid there).
+    pub fn hits_along(&self, o: Vec3, d: Vec3, tmax: f32) -> Vec<(f32, bool)> {
+        let Some(bvh) = self.bvh.as_ref() else { return Vec::new() };
+        let d = positive_zeros(d);
+        let ray = Ray::new(Vec3A::from(o), Vec3A::from(d), 0.0, tmax);
+        let mut hit = RayHit::none();
+        let mut hits = Vec::new();
+        bvh.ray_traverse(ray, &mut hit, |r, id| {
+            let tri = &self.tris[bvh.primitive_indices[id] as usize];
+            if let Some((t, _, _)) = intersect(tri, o, d, 0.0, r.tmax) {
+                hits.push((t, tri.ng.dot(d) > 0.0));
+            }
+            f32::INFINITY
+        });
+        hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        hits
+    }
+
     /// Whether anything lies along `o + t d` for `0 < t < tmax`.
     pub fn occluded(&self, o: Vec3, d: Vec3, tmax: f32) -> bool {
         let Some(bvh) = self.bvh.as_ref() else { return false };

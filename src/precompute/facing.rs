@@ -52,14 +52,47 @@ pub fn facing_geometry(scene: &Scene) -> Vec<Vec<bool>> {
         .collect()
 }
 
-/// For every sample point: whether it lies inside solid geometry ([`is_buried`]): a floor slab's
-/// top running on under a wall stood on it, a wall's face running on inside the wall it butts
-/// into. Such a point can receive no light; as an occluder it only ever stands behind a face of
-/// the solid it is buried in.
-pub fn buried_points(scene: &Scene, points: &super::sample_points::SamplePoints) -> Vec<bool> {
+/// What the ISM needs to know of the solid behind each sample point, from one BVH.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PointSolids {
+    /// Whether the point lies inside solid geometry ([`is_buried`]): a floor slab's top running
+    /// on under a wall stood on it, a wall's face running on inside the wall it butts into. Such
+    /// a point can receive no light; as an occluder it only ever stands behind a face of the
+    /// solid it is buried in.
+    pub buried: Vec<bool>,
+    /// How deep the solid behind the point's face runs along its inward normal ([`solid_depth`];
+    /// 0 where nothing solid lies behind it): the ISM lookups take the slab behind a point for
+    /// occluder where a ray passes the point's face beside it (over a door's head).
+    pub depth: Vec<f32>,
+}
+
+/// [`PointSolids`] for every sample point of `points` (world positions under the current
+/// transforms; a moved object keeps the depths it had).
+pub fn point_solids(scene: &Scene, points: &super::sample_points::SamplePoints) -> PointSolids {
     let bvh = SceneBvh::build(scene);
     let eps = 1e-4 * bvh.scale;
-    points.world(scene).par_iter().map(|(p, n)| is_buried(&bvh, *p, *n, eps)).collect()
+    let (buried, depth) = points
+        .world(scene)
+        .par_iter()
+        .map(|(p, n)| (is_buried(&bvh, *p, *n, eps), solid_depth(&bvh, *p, *n, eps)))
+        .unzip();
+    PointSolids { buried, depth }
+}
+
+/// How far solid geometry runs behind surface point `p` (normal `n`) along -`n`: from just
+/// under the surface, each face the ray meets from behind leaves a solid and each it meets from
+/// the front enters one (abutting and overlapping slabs: a wall's top under the ceiling, a
+/// partition butting into a wall), and the depth is where it has left them all; 0 where it never
+/// does (a single-sided plane, a surface with empty space behind it).
+pub fn solid_depth(bvh: &SceneBvh, p: Vec3, n: Vec3, eps: f32) -> f32 {
+    let mut inside = 1i32;
+    for (t, back) in bvh.hits_along(p - n * eps, -n, f32::MAX) {
+        inside += if back { -1 } else { 1 };
+        if inside == 0 {
+            return t + eps;
+        }
+    }
+    0.0
 }
 
 /// Whether surface point `p` (normal `n`) lies inside solid geometry: most of five rays (along
@@ -185,5 +218,22 @@ mod tests {
         assert!(is_buried(&bvh, Vec3::new(-1.1, 1.0, 0.0), up, eps), "the wall's top under the ceiling");
         // The wall's face into the room is not.
         assert!(!is_buried(&bvh, Vec3::new(-1.0, 0.0, 0.0), Vec3::X, eps), "the wall's inner face");
+    }
+
+    #[test]
+    fn the_solid_behind_a_face_runs_to_where_the_ray_leaves_every_slab() {
+        let scene = box_and_plane();
+        let bvh = SceneBvh::build(&scene);
+        let eps = 1e-4 * bvh.scale;
+        let depth = |p: Vec3, n: Vec3| solid_depth(&bvh, p, n, eps);
+        let near = |a: f32, b: f32| (a - b).abs() < 1e-3;
+        assert!(near(depth(Vec3::new(-1.0, 0.0, 0.3), Vec3::X), 0.2), "the wall's inner face: its 0.2 m slab");
+        assert!(near(depth(Vec3::new(0.0, -1.0, 0.0), Vec3::Y), 0.2), "the floor's top");
+        // The wall's foot (y = -1, facing down onto the floor): up through the wall, whose top is
+        // level with the ceiling's underside, and on through the ceiling.
+        let foot = depth(Vec3::new(-1.1, -1.0, 0.0), Vec3::NEG_Y);
+        assert!(near(foot, 2.2), "the wall's foot: {foot}");
+        assert_eq!(depth(Vec3::new(50.0, 0.0, 0.0), Vec3::Y), 0.0, "a lone plane has nothing behind it");
+        assert_eq!(depth(Vec3::new(50.0, 0.0, 0.0), Vec3::NEG_Y), 0.0, "nor in front");
     }
 }

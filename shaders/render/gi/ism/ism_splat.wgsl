@@ -41,6 +41,9 @@ struct SplatParams {
 // CLIPS lines per pool point (`ism_clips.wgsl`).
 @group(0) @binding(6) var<storage, read> clips: array<vec4<f32>>;
 
+// The sine of the elevation, seen from a point, below which the VPL counts as on its plane.
+const ON_PLANE: f32 = 2.0e-3;
+
 @compute @workgroup_size(8, 8, 1)
 fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
     let side = sp.counts.z * sp.counts.w;
@@ -68,6 +71,13 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, points[j].xyz);
     if pb.w <= 0.0 {
+        return;
+    }
+    // A point whose plane runs through the VPL (the ceiling around a VPL on the ceiling) is seen
+    // edge-on: no ray leaving the VPL crosses its surface, so it shadows nothing, while its
+    // splat (a depth-only word where the texel's ray runs away from its plane) would fill the
+    // texels at the horizon with the nearest depths and hide the walls behind them.
+    if abs(dot(points[j].xyz - vpl.position.xyz, point_normals[j].xyz)) <= ON_PLANE * distance(points[j].xyz, vpl.position.xyz) {
         return;
     }
     let r = sp.counts.z;
@@ -104,7 +114,11 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
                 // doorway, past a wall's end) show no surface: the disk does not hang there.
                 // (A margin of 1% of the disk radius: two faces meeting at an edge leave no
                 // crack between them.)
-                if !own && hit > 0.0 && !on_surface(j, o + dir * hit, 0.01 * radius) {
+                // Past a seam the disk hangs into the solid the surface abuts, as far as that
+                // is thick (about the point's own solid depth, `points[j].w`), no further: a
+                // partition's disks over the corridor it ends at hid the corridor's far wall.
+                let on = o + dir * hit;
+                if !own && hit > 0.0 && (!on_surface(j, on, 0.01 * radius) || !within_seams(j, on, points[j].w + 0.01 * radius)) {
                     continue;
                 }
                 let a = origin + vec2<i32>(x, y);

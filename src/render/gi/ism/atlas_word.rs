@@ -6,7 +6,7 @@
 
 use glam::Vec3;
 
-use crate::precompute::open_edges::CLIPS_PER_POINT;
+use crate::precompute::open_edges::{CLIPS_PER_POINT, SEAM_SCALE};
 
 /// Depth levels of the word's 17-bit depth field (all ones is empty).
 const DEPTH_MAX: f32 = 131_070.0;
@@ -116,6 +116,10 @@ pub fn within_disk(e: Vec3, dir: Vec3, n: Vec3, radius: f32) -> bool {
     across2 + (along * c) * (along * c) <= radius * radius
 }
 
+/// The share of a slab's depth [`IsmLookupData::slab_blocks`] keeps clear of its faces and clip
+/// lines (`SLAB_INSET` in `ism_lookup.wgsl`, which must match).
+pub const SLAB_INSET: f32 = 0.05;
+
 /// The least cosine [`within_disk`] stretches by.
 pub const MIN_COS: f32 = 0.05;
 
@@ -160,6 +164,9 @@ impl IsmLookupData {
         };
         let p = Vec3::from_slice(&self.points[j as usize][..3]);
         let n = Vec3::from_slice(&self.normals[j as usize][..3]);
+        if self.slab_blocks(j, o, dir, dist, reach) {
+            return PointTest::Blocked;
+        }
         // The ray does not cross the point's plane before the receiver: a point much nearer
         // than the receiver still leaves the rest of the way unvouched for (`ism_lookup.wgsl`).
         let not_crossed = if own && p.distance(o) < dist * UNVOUCHED { PointTest::Unsure } else { PointTest::Clear };
@@ -174,7 +181,11 @@ impl IsmLookupData {
         let h = o + dir * t;
         if !self.on_surface(j, h, 0.0) {
             PointTest::Unsure
-        } else if own || (self.within_edges(j, h, 0.0, true) && within_disk(h - p, dir, n, reach * t)) {
+        } else if own {
+            // Past a seam the surface runs on into the solid it abuts, about as thick as its own.
+            let depth = self.points[j as usize][3];
+            if self.within_edges(j, h, SEAM_SCALE * depth, true) { PointTest::Blocked } else { PointTest::Unsure }
+        } else if self.within_edges(j, h, 0.0, true) && within_disk(h - p, dir, n, reach * t) {
             PointTest::Blocked
         } else {
             PointTest::Clear
@@ -227,6 +238,53 @@ impl IsmLookupData {
         })
     }
 
+    /// Whether the ray from `o` along unit `dir` passes, before `dist`, through the solid behind
+    /// pool point `j`'s face near it: the slab from the face to the solid's depth (the point's
+    /// w, 0: none), inset by [`SLAB_INSET`], bounded by its clip lines as faces square to its
+    /// plane, with the middle of the ray's way through it within `reach` x t of the point across
+    /// its normal. The twin of `slab_blocks` in `ism_lookup.wgsl`.
+    pub fn slab_blocks(&self, j: u32, o: Vec3, dir: Vec3, dist: f32, reach: f32) -> bool {
+        let Some(point) = self.points.get(j as usize) else { return false };
+        let depth = point[3];
+        if depth <= 0.0 {
+            return false;
+        }
+        let p = Vec3::from_slice(&point[..3]);
+        let n = self.normals.get(j as usize).map_or(Vec3::ZERO, |v| Vec3::from_slice(&v[..3]));
+        let inset = SLAB_INSET * depth;
+        let (mut lo, mut hi) = (0.0f32, dist);
+        let (s0, dn) = (n.dot(p - o), n.dot(dir));
+        if dn.abs() <= 1e-6 {
+            if s0 <= inset || s0 >= depth - inset {
+                return false;
+            }
+        } else {
+            let (ta, tb) = ((s0 - inset) / dn, (s0 - depth + inset) / dn);
+            lo = lo.max(ta.min(tb));
+            hi = hi.min(ta.max(tb));
+        }
+        let j = j as usize;
+        for c in self.clips.get(j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT).unwrap_or(&[]) {
+            let d = Vec3::from_slice(&c[..3]);
+            let (a, b) = (d.dot(o) - c[3] - inset * d.length(), d.dot(dir));
+            if b.abs() <= 1e-9 {
+                if a < 0.0 {
+                    return false;
+                }
+            } else if b > 0.0 {
+                lo = lo.max(-a / b);
+            } else {
+                hi = hi.min(-a / b);
+            }
+        }
+        if lo >= hi {
+            return false;
+        }
+        let tm = 0.5 * (lo + hi);
+        let e = o + dir * tm - p;
+        (e - n * e.dot(n)).length_squared() <= (reach * tm) * (reach * tm)
+    }
+
     /// Whether `h` (on pool point `j`'s plane) lies inside all of its open edges' clip lines,
     /// less `margin` (seam lines skipped): the twin of `on_surface` in `ism_clips.wgsl`.
     pub fn on_surface(&self, j: u32, h: Vec3, margin: f32) -> bool {
@@ -256,7 +314,7 @@ mod tests {
     fn wall_with_a_jamb() -> IsmLookupData {
         IsmLookupData {
             chosen_all: vec![0],
-            points: vec![[0.5, 0.0, 2.0, 1.0]],
+            points: vec![[0.5, 0.0, 2.0, 0.0]],
             normals: vec![[0.0, 0.0, -1.0, 1.0]],
             // Inward direction -x, offset -1: on the wall when -x >= -1, i.e. x <= 1; the other
             // three lines always pass.
@@ -318,7 +376,7 @@ mod tests {
         let none = [0.0, 0.0, 0.0, -1.0];
         let data = IsmLookupData {
             chosen_all: vec![0, 1],
-            points: vec![[1.0, 0.0, 2.1, 1.0], [1.1, 0.0, 2.0, 1.0]],
+            points: vec![[1.0, 0.0, 2.1, 0.0], [1.1, 0.0, 2.0, 0.0]],
             normals: vec![[-1.0, 0.0, 0.0, 1.0], [0.0, 0.0, -1.0, 1.0]],
             clips: vec![
                 // The jamb: z >= 2 and z <= 2.2.
@@ -380,7 +438,7 @@ mod tests {
         let none = [0.0, 0.0, 0.0, -1.0];
         let data = IsmLookupData {
             chosen_all: vec![0, 1],
-            points: vec![[0.0, -1.0, 1.5, 1.0], [0.0, -0.6, 2.0, 1.0]],
+            points: vec![[0.0, -1.0, 1.5, 0.0], [0.0, -0.6, 2.0, 0.0]],
             normals: vec![[0.0, 1.0, 0.0, 1.0], [0.0, 0.0, -1.0, 1.0]],
             clips: vec![none; 8],
             per_ism: 2,
@@ -408,7 +466,7 @@ mod tests {
         let none = [0.0, 0.0, 0.0, -1.0];
         let data = |wall_x: f32| IsmLookupData {
             chosen_all: vec![0, 1],
-            points: vec![[0.2, 0.0, 4.0, 1.0], [wall_x, 0.0, 2.0, 1.0]],
+            points: vec![[0.2, 0.0, 4.0, 0.0], [wall_x, 0.0, 2.0, 0.0]],
             normals: vec![[0.0, 0.0, -1.0, 1.0], [0.0, 0.0, -1.0, 1.0]],
             clips: vec![none; 8],
             per_ism: 2,
@@ -435,6 +493,58 @@ mod tests {
         assert!(near.lit(at, Vec3::ZERO, 0.1, 0, front.normalize(), front.length(), 0.15, 0.06));
     }
 
+    /// A door's head: the underside (plane y = -0.6, facing down) of a wall z in 2..2.25 whose
+    /// solid runs 1 m up, seen from a VPL at the origin above it. The texel holds the head's
+    /// point, and a ray that runs through the wall above the head crosses the head's plane only
+    /// past the wall, at z = 3.6.
+    #[test]
+    fn a_ray_through_the_wall_above_a_doors_head_is_blocked_by_the_slab_behind_it() {
+        let none = [0.0, 0.0, 0.0, -1.0];
+        let data = |depth: f32| IsmLookupData {
+            chosen_all: vec![0],
+            points: vec![[0.0, -0.6, 2.1, depth]],
+            normals: vec![[0.0, -1.0, 0.0, 1.0]],
+            clips: vec![[0.0, 0.0, 1.0, 2.0], [0.0, 0.0, -1.0, -2.25], none, none],
+            per_ism: 1,
+        };
+        let stored = word(0.2, 1);
+        let through_wall = Vec3::new(0.0, -1.0, 6.0);
+        let (dir, dist) = (through_wall.normalize(), through_wall.length());
+        assert!(lit_alone(&data(0.0), dir, dist, 0.5, stored), "the head's plane alone lets it pass");
+        assert!(!lit_alone(&data(1.0), dir, dist, 0.5, stored), "the wall above the head blocks it");
+        let through_door = Vec3::new(0.0, -2.0, 6.0);
+        assert!(lit_alone(&data(1.0), through_door.normalize(), through_door.length(), 0.5, stored));
+        // A receiver on the head itself, lit from below through the doorway, stays lit.
+        let o = Vec3::new(0.0, -2.0, 0.0);
+        let on_head = Vec3::new(0.0, -0.6, 2.15) - o;
+        assert!(!data(1.0).slab_blocks(0, o, on_head.normalize(), on_head.length(), 0.075));
+    }
+
+    /// A partition (plane x = 4 facing the VPL at the origin, 0.15 m thick) ending at a seam at
+    /// z = 2, where it butts into a corridor wall; the corridor (z < 2 - 0.15) runs on past it.
+    #[test]
+    fn a_texels_own_surface_runs_past_its_seam_as_far_as_its_solid_is_deep() {
+        let none = [0.0, 0.0, 0.0, -1.0];
+        let data = IsmLookupData {
+            chosen_all: vec![0],
+            points: vec![[4.0, 0.0, 2.5, 0.15]],
+            normals: vec![[-1.0, 0.0, 0.0, 1.0]],
+            clips: vec![[0.0, 0.0, 2.0, 4.0], none, none, none],
+            per_ism: 1,
+        };
+        let stored = word(0.2, 1);
+        let ray = |z: f32| {
+            let r = Vec3::new(8.0, 0.0, 2.0 * z);
+            (r.normalize(), r.length())
+        };
+        // Crossing x = 4 at z: 2.5 (the partition), 1.9 (inside the wall it butts into) and 1.5
+        // (the corridor).
+        for (z, lit) in [(2.5, false), (1.9, false), (1.5, true)] {
+            let (dir, dist) = ray(z);
+            assert_eq!(lit_alone(&data, dir, dist, 0.5, stored), lit, "crossing at z = {z}");
+        }
+    }
+
     #[test]
     fn the_shaders_constants_match_their_cpu_twins() {
         let wgsl = include_str!("../../../../shaders/render/gi/ism/ism_lookup.wgsl");
@@ -442,8 +552,11 @@ mod tests {
             format!("const ISM_LEVELS: u32 = {HOLE_LEVELS}u;"),
             format!("const UNVOUCHED: f32 = {UNVOUCHED:?};"),
             format!("const MIN_COS: f32 = {MIN_COS:?};"),
+            format!("const SLAB_INSET: f32 = {SLAB_INSET:?};"),
         ] {
             assert!(wgsl.contains(&line), "ism_lookup.wgsl lacks `{line}`");
         }
+        let clips = include_str!("../../../../shaders/render/gi/ism/ism_clips.wgsl");
+        assert!(clips.contains(&format!("const SEAM_SCALE: f32 = {SEAM_SCALE:?};")), "ism_clips.wgsl's SEAM_SCALE");
     }
 }

@@ -19,15 +19,15 @@ pub(super) fn mean_linear_colour(img: &crate::scene::Image) -> [f32; 3] {
     sum.map(|v| v / n)
 }
 
-/// What the ISM passes read per sample point (see [`PointData`]): world position and normal
-/// under the objects' current transforms, the object's sampling weight, albedo (base colour
+/// What the ISM passes read per sample point (see [`PointData`]): world position (w: the depth
+/// of the solid behind it) and normal under the objects' current transforms, the object's sampling weight, albedo (base colour
 /// factor times the mean of its texture, `texture_means` indexed by image) and specular lobe.
 pub(super) fn point_data(
     scene: &Scene,
     points: &SamplePoints,
     texture_means: &[[f32; 3]],
     clips: &crate::precompute::open_edges::PointClips,
-    buried: &[bool],
+    solids: &crate::precompute::facing::PointSolids,
 ) -> PointData {
     let mean_texture = |image: usize| texture_means.get(image).copied().unwrap_or([1.0; 3]);
     let per_object: Vec<([f32; 4], [f32; 4], f32)> = scene
@@ -49,10 +49,11 @@ pub(super) fn point_data(
     for (i, (p, (position, normal))) in points.points.iter().zip(world).enumerate() {
         let (mut a, mut s, w) = per_object.get(p.object as usize).copied().unwrap_or(([0.0; 4], [0.0; 4], 1.0));
         // A point inside solid geometry receives no light, so it reflects none either.
-        if buried.get(i).copied().unwrap_or(false) {
+        if solids.buried.get(i).copied().unwrap_or(false) {
             (a, s) = ([0.0, 0.0, 0.0, 1.0], [0.0; 4]);
         }
-        out.positions.push(position.extend(1.0).to_array());
+        // w: how deep the solid behind the point runs (the lookups' slab test).
+        out.positions.push(position.extend(solids.depth.get(i).copied().unwrap_or(0.0)).to_array());
         out.normals.push(normal.extend(w).to_array());
         out.albedo.push(a);
         out.specular.push(s);

@@ -60,9 +60,9 @@ pub fn settle_frames(base_confidence: f32) -> u32 {
 }
 
 /// The point pool and what is derived from it once per distribution: the key it was made for,
-/// the points, the textures' mean colours, each point's clip lines and whether it lies inside
-/// solid geometry (`facing::buried_points`).
-type PoolPoints = (PointsKey, SamplePoints, Vec<[f32; 3]>, PointClips, Vec<bool>);
+/// the points, the textures' mean colours, each point's clip lines, and whether it lies inside
+/// solid geometry and how deep the solid behind it runs (`facing::point_solids`).
+type PoolPoints = (PointsKey, SamplePoints, Vec<[f32; 3]>, PointClips, crate::precompute::facing::PointSolids);
 
 /// The ISM technique (Knecht 2009; `ism-ritschel` is the same without temporal reuse).
 pub struct IsmTechnique {
@@ -249,9 +249,10 @@ impl IsmTechnique {
             let diameter = 2.0 * scene.bounds().map_or(1.0, |b| b.radius());
             let clips = crate::precompute::open_edges::point_clips(scene, &points.points, diameter, 0.002 * diameter);
             // Points inside solid geometry (a floor under a wall) reflect nothing: lit through
-            // an ISM's hole, they would become bounce VPLs inside the wall.
-            let buried = crate::precompute::facing::buried_points(scene, &points);
-            self.points = Some((key, points, means, clips, buried));
+            // an ISM's hole, they would become bounce VPLs inside the wall. The depth of the
+            // solid behind each point lets a lookup take the slab behind a face for occluder.
+            let solids = crate::precompute::facing::point_solids(scene, &points);
+            self.points = Some((key, points, means, clips, solids));
             self.points_generation += 1;
             self.rebuilds += 1;
         }
@@ -358,7 +359,7 @@ impl GiTechnique for IsmTechnique {
 
     fn render(&mut self, inputs: &mut GiInputs<'_>) -> Result<GiOutput, RenderError> {
         let settings = &inputs.settings.ism;
-        let Some((_, points, means, clips, buried)) = self.points.as_ref() else { return Ok(GiOutput::Nothing) };
+        let Some((_, points, means, clips, solids)) = self.points.as_ref() else { return Ok(GiOutput::Nothing) };
         self.last_frame = inputs.frame_index;
         let recorded = self.vpl_pass.record(
             inputs.device,
@@ -374,7 +375,7 @@ impl GiTechnique for IsmTechnique {
         let buffers = self.gather.prepare(inputs.device, settings, points.points.len() as u32);
         let current = (buffers, self.points_generation, point_data_key(inputs.scene));
         if self.uploaded.as_ref() != Some(&current) {
-            let data: PointData = point_data(inputs.scene, points, means, clips, buried);
+            let data: PointData = point_data(inputs.scene, points, means, clips, solids);
             self.gather.upload_points(inputs.queue, &data);
             self.uploaded = Some(current);
             self.uploads += 1;
