@@ -274,10 +274,7 @@ fn list_points(
         let den = dir.dot(pn);
         let hit = if den.abs() <= 1e-6 { 0.0 } else { (pp - frame.o).dot(pn) / den };
         let h = frame.o + dir * hit;
-        // As the splat pass: within the open edges, and within the seams moved out by the
-        // point's solid depth (`within_seams`).
-        let past = bouncelab::precompute::open_edges::SEAM_SCALE * (lookup.points[j as usize][3] + 0.01 * radius);
-        let on = lookup.on_surface(j, h, 0.01 * radius) && lookup.within_edges(j, h, past, true);
+        let on = lookup.on_surface(j, h, 0.01 * radius);
         println!("  texel: inside {in_ellipse} hit {hit:.3} on surface {on}");
         if std::env::var_os("CLIPS").is_some() {
             let k = j as usize * CLIPS_PER_POINT;

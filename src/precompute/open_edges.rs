@@ -42,20 +42,16 @@ pub struct ClipEdge {
     pub b: Vec3,
     /// The opposite vertex of the edge's triangle: the side the surface is on.
     pub inner: Vec3,
-    /// Other geometry continues the surface past the edge (`abuts`): splats and a texel's own
-    /// lookup run on past it as far as the point's solid is deep, the neighbour test stops at
-    /// it (see [`SEAM_SCALE`]).
+    /// Other geometry continues the surface past the edge (`abuts`): splats are not clipped
+    /// there, only the ISM lookup's neighbour test stops at it (see [`SEAM_SCALE`]).
     pub seam: bool,
 }
 
 /// Seam lines are stored scaled by this factor (direction and offset alike, so the half-plane
-/// is the same; `SEAM_SCALE` in `ism_clips.wgsl` must match). Past a seam the surface runs on
-/// into the solid it abuts, so the splats and a texel's own lookup carry it on as far as the
-/// point's own solid is deep (`ism_clips.wgsl` `within_seams`; the wall it butts into is about
-/// as thick) and no further: carried on without end, a partition's disks hung over the corridor
-/// it ends at and hid the corridor's far wall, and its plane shadowed 13-35% of the corridor's
-/// far end in the held-out offices. A neighbouring texel's point may not shadow a ray past a
-/// seam at all.
+/// is the same): the splats and a texel's own lookup skip them (a disk overhanging a seam hangs
+/// into solid geometry), while a neighbouring texel's point may not shadow a ray past a seam
+/// (a partition's plane, continued through the wall it butts into, falsely shadowed the corridor
+/// beyond it).
 pub const SEAM_SCALE: f32 = 2.0;
 
 /// The open edges near each sample point.

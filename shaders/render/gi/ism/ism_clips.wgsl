@@ -4,14 +4,6 @@
 // shader binds `clips: array<vec4<f32>>`.
 
 const CLIPS: u32 = 4u;
-// Seam lines are stored scaled by this (`SEAM_SCALE` in `open_edges.rs`, which must match).
-const SEAM_SCALE: f32 = 2.0;
-
-// Whether `h` (on pool point `i`'s plane) lies within its seams, each moved out by `past` (the
-// solid a surface runs on into past its seam is about as thick as the point's own).
-fn within_seams(i: u32, h: vec3<f32>, past: f32) -> bool {
-    return within_edges(i, h, SEAM_SCALE * past, true);
-}
 
 // Whether `h` (on pool point `i`'s plane) lies inside all of the point's open edges' clip lines,
 // less `margin`; with `seams`, inside its seams' lines too (stored with xyz of length 2, see

@@ -41,7 +41,6 @@
 // (`slab_blocks`: the depth of that solid is the point's w, found once per distribution), which
 // the plane alone misses where the texel holds a face seen past its edge: over a door's head the
 // flat's first set sent 5.1x the true light into the camera's room, 4.1x with the slab test.
-// A texel's own surface runs on past a seam only as far as its solid is deep (`within_seams`).
 #import render/gi/ism/ism_clips.wgsl
 
 // What the point of atlas word `stored` says of the receiver's ray `l`: BLOCKED (its surface is
@@ -171,11 +170,7 @@ fn ism_point_test(vpl: Vpl, tile: u32, l: IsmLookup, stored: u32, per_ism: u32, 
         return UNSURE;
     }
     if own {
-        // Past a seam the surface runs on into the solid it abuts, about as thick as its own.
-        if within_seams(j, h, points[j].w) {
-            return BLOCKED;
-        }
-        return UNSURE;
+        return BLOCKED;
     }
     if within_edges(j, h, 0.0, true) && within_disk(h - points[j].xyz, l.dir, n, reach * t) {
         return BLOCKED;

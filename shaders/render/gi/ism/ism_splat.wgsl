@@ -114,11 +114,7 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
                 // doorway, past a wall's end) show no surface: the disk does not hang there.
                 // (A margin of 1% of the disk radius: two faces meeting at an edge leave no
                 // crack between them.)
-                // Past a seam the disk hangs into the solid the surface abuts, as far as that
-                // is thick (about the point's own solid depth, `points[j].w`), no further: a
-                // partition's disks over the corridor it ends at hid the corridor's far wall.
-                let on = o + dir * hit;
-                if !own && hit > 0.0 && (!on_surface(j, on, 0.01 * radius) || !within_seams(j, on, points[j].w + 0.01 * radius)) {
+                if !own && hit > 0.0 && !on_surface(j, o + dir * hit, 0.01 * radius) {
                     continue;
                 }
                 let a = origin + vec2<i32>(x, y);

@@ -6,7 +6,7 @@
 
 use glam::Vec3;
 
-use crate::precompute::open_edges::{CLIPS_PER_POINT, SEAM_SCALE};
+use crate::precompute::open_edges::CLIPS_PER_POINT;
 
 /// Depth levels of the word's 17-bit depth field (all ones is empty).
 const DEPTH_MAX: f32 = 131_070.0;
@@ -181,11 +181,7 @@ impl IsmLookupData {
         let h = o + dir * t;
         if !self.on_surface(j, h, 0.0) {
             PointTest::Unsure
-        } else if own {
-            // Past a seam the surface runs on into the solid it abuts, about as thick as its own.
-            let depth = self.points[j as usize][3];
-            if self.within_edges(j, h, SEAM_SCALE * depth, true) { PointTest::Blocked } else { PointTest::Unsure }
-        } else if self.within_edges(j, h, 0.0, true) && within_disk(h - p, dir, n, reach * t) {
+        } else if own || (self.within_edges(j, h, 0.0, true) && within_disk(h - p, dir, n, reach * t)) {
             PointTest::Blocked
         } else {
             PointTest::Clear
@@ -520,31 +516,6 @@ mod tests {
         assert!(!data(1.0).slab_blocks(0, o, on_head.normalize(), on_head.length(), 0.075));
     }
 
-    /// A partition (plane x = 4 facing the VPL at the origin, 0.15 m thick) ending at a seam at
-    /// z = 2, where it butts into a corridor wall; the corridor (z < 2 - 0.15) runs on past it.
-    #[test]
-    fn a_texels_own_surface_runs_past_its_seam_as_far_as_its_solid_is_deep() {
-        let none = [0.0, 0.0, 0.0, -1.0];
-        let data = IsmLookupData {
-            chosen_all: vec![0],
-            points: vec![[4.0, 0.0, 2.5, 0.15]],
-            normals: vec![[-1.0, 0.0, 0.0, 1.0]],
-            clips: vec![[0.0, 0.0, 2.0, 4.0], none, none, none],
-            per_ism: 1,
-        };
-        let stored = word(0.2, 1);
-        let ray = |z: f32| {
-            let r = Vec3::new(8.0, 0.0, 2.0 * z);
-            (r.normalize(), r.length())
-        };
-        // Crossing x = 4 at z: 2.5 (the partition), 1.9 (inside the wall it butts into) and 1.5
-        // (the corridor).
-        for (z, lit) in [(2.5, false), (1.9, false), (1.5, true)] {
-            let (dir, dist) = ray(z);
-            assert_eq!(lit_alone(&data, dir, dist, 0.5, stored), lit, "crossing at z = {z}");
-        }
-    }
-
     #[test]
     fn the_shaders_constants_match_their_cpu_twins() {
         let wgsl = include_str!("../../../../shaders/render/gi/ism/ism_lookup.wgsl");
@@ -556,7 +527,5 @@ mod tests {
         ] {
             assert!(wgsl.contains(&line), "ism_lookup.wgsl lacks `{line}`");
         }
-        let clips = include_str!("../../../../shaders/render/gi/ism/ism_clips.wgsl");
-        assert!(clips.contains(&format!("const SEAM_SCALE: f32 = {SEAM_SCALE:?};")), "ism_clips.wgsl's SEAM_SCALE");
     }
 }
