@@ -25,6 +25,7 @@ fn render(
     ctx: &GpuContext,
     project: &bouncelab::project_file::Project,
     frames: usize,
+    reference_mean: f64,
 ) -> anyhow::Result<(HdrImage, Renderer)> {
     let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
     // PROBE_SSAA: supersampling per axis, box-filtered as the references' pixels (default 2).
@@ -32,16 +33,31 @@ fn render(
     let size = (REFERENCE_SIZE.0 * ssaa, REFERENCE_SIZE.1 * ssaa);
     // PROBE_AVG: the mean of every frame instead of the last (the estimator's expectation).
     let average = std::env::var_os("PROBE_AVG").is_some();
+    // PROBE_FROM: with PROBE_AVG, the mean of the frames from this one on (the tail's running
+    // mean and the temporal filter settled; the CI tests take frames 17-32).
+    let from: usize = std::env::var("PROBE_FROM").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
     let mut sum = vec![[0.0f32; 4]; (size.0 * size.1) as usize];
     // A technique preparing on the CPU (MRT's dictionary and level) first.
     let ready = bouncelab::cli::render::until_ready(ctx, &mut r, project, size)? as usize;
-    for _ in ready..frames {
+    let averaged = frames.saturating_sub(from.max(ready)).max(1) as f32;
+    // PROBE_TRACE: each frame's mean luminance over the reference's.
+    let trace = std::env::var_os("PROBE_TRACE").is_some();
+    let mut traced = Vec::new();
+    for frame in ready..frames {
         r.render(&project.scene, &project.render, size)?;
-        if average {
+        if trace {
+            let px = r.read_hdr()?;
+            let mean = px.iter().map(|p| f64::from(metrics::luminance(p))).sum::<f64>() / px.len() as f64;
+            traced.push(format!("{:.2}", mean / reference_mean));
+        }
+        if average && frame >= from {
             for (s, p) in sum.iter_mut().zip(r.read_hdr()?) {
-                (0..4).for_each(|c| s[c] += p[c] / frames as f32);
+                (0..4).for_each(|c| s[c] += p[c] / averaged);
             }
         }
+    }
+    if trace {
+        println!("         frames: {}", traced.join(" "));
     }
     let pixels = if average { sum } else { r.read_hdr()? };
     let pixels = image_io::box_downsample(&pixels, size, ssaa);
@@ -79,7 +95,8 @@ fn main() -> anyhow::Result<()> {
             project.scene.desc_mut().lights[0].position.y = y;
         }
         project.render.mode = GiMode::Direct;
-        let (direct, _) = render(&ctx, &project, 1)?;
+        let reference_mean = metrics::mean_luminance(&reference);
+        let (direct, _) = render(&ctx, &project, 1, reference_mean)?;
         project.render.mode =
             if std::env::var_os("PROBE_RITSCHEL").is_some() { GiMode::IsmRitschel } else { GiMode::Ism };
         // PROBE_SSHGI: render `sshgi` with these settings (RON) instead of `ism`.
@@ -101,7 +118,7 @@ fn main() -> anyhow::Result<()> {
             project.render.rcs = ron::from_str(&ron_text)?;
             project.render.mode = GiMode::Rcs;
         }
-        let (img, r) = render(&ctx, &project, frames)?;
+        let (img, r) = render(&ctx, &project, frames, reference_mean)?;
         let c = metrics::compare(&img, &reference, ev)?;
         let d = metrics::compare(&direct, &reference, ev)?;
         let (mi, md, mr) =

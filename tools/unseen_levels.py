@@ -433,12 +433,127 @@ def three_rooms(view):
     return w
 
 
+def maisonette():
+    """Added at stop 37, never used for tuning: five rooms off a 1.6 m hall, 0.3 m walls (thicker
+    than any suite level), 3.0 m ceilings, doors of different widths; a spot in the first room,
+    a lamp in the second; the camera stands in the room across the hall from them, lit only by
+    light that has turned two corners."""
+    w = Writer()
+    wall, floor, ceil = w.material("plaster", (0.78, 0.74, 0.7)), w.material("oak", (0.55, 0.42, 0.3)), w.material("ceiling", CEILING)
+    ochre = w.material("ochre", (0.7, 0.55, 0.25))
+    t, h = 0.3, 3.0
+    # Hall: x in [0, 13], z in [4, 5.6]. South rooms z in [0, 4]: x [0,4], [4.3,8.3], [8.6,13].
+    # North rooms z in [5.9, 10.4]: x [0,6], [6.3,13].
+    zs, zh0, zh1, zn = 4.0, 4.0 + t, 4.0 + t + 1.6, 4.0 + 2 * t + 1.6
+    Z = zn + 4.5
+    X = 13.0
+    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
+    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
+    w.slab("south", [-t, 0, -t], [X + t, h, 0], wall)
+    w.slab("north", [-t, 0, Z], [X + t, h, Z + t], ochre)
+    w.slab("west", [-t, 0, 0], [0, h, Z], wall)
+    w.slab("east", [X, 0, 0], [X + t, h, Z], wall)
+    door_h = 2.2
+    def wall_x(name, z0, z1, doors):
+        edges = [0.0] + [e for d in doors for e in d] + [X]
+        for i in range(0, len(edges), 2):
+            w.slab(f"{name}_{i}", [edges[i], 0, z0], [edges[i + 1], h, z1], wall)
+        for k, (a, b) in enumerate(doors):
+            w.slab(f"{name}_head_{k}", [a, door_h, z0], [b, h, z1], wall)
+    wall_x("hall_s", zs, zh0, [(2.6, 3.5), (5.0, 6.2), (11.8, 12.6)])
+    wall_x("hall_n", zh1, zn, [(1.0, 1.8), (9.0, 10.1)])
+    for k, x in enumerate([4.0, 8.3]):
+        w.slab(f"part_s_{k}", [x, 0, 0], [x + t, h, zs], wall)
+    w.slab("part_n", [6.0, 0, zn], [6.0 + t, h, Z], wall)
+    w.slab("bed", [0.4, 0, 0.4], [2.4, 0.5, 2.4], ochre)
+    w.slab("wardrobe", [5.0, 0, 0.0], [7.2, 2.2, 0.6], wall)
+    w.slab("table", [9.5, 0.74, 7.0], [11.5, 0.78, 8.2], floor)
+    w.light("spot", "spot", 35.0, [1.2, 2.9, 3.4], [0.3, -1.0, -0.5], cone=(0.35, 0.6))
+    w.light("lamp", "point", 5.0, [6.2, 2.6, 2.0], [0, -1, 0])
+    w.camera([12.6, 1.7, 9.9], [8.0, 0.8, 6.4], 1.15, 0.05)
+    return w
+
+
+def studio():
+    """Added at stop 37, never used for tuning: an 8 x 3.4 x 6 m studio with a window in each of
+    two walls (0.35 m reveals), a low sun through them, a lamp and a spot on the back wall, and a
+    half-height partition; the camera looks at the partition's shadowed side."""
+    w = Writer()
+    wall, floor, ceil = w.material("plaster", (0.8, 0.78, 0.72)), w.material("concrete", (0.45, 0.44, 0.42)), w.material("ceiling", CEILING)
+    teal = w.material("teal", (0.2, 0.5, 0.5))
+    t, h, X, Z = 0.35, 3.4, 8.0, 6.0
+    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
+    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
+    w.slab("west", [-t, 0, -t], [0, h, Z + t], wall)
+    w.slab("north", [0, 0, Z], [X + t, h, Z + t], teal)
+    # South wall (z in [-t, 0]) with a window x 2.0..4.0, sill 1.0, head 2.6.
+    w.slab("south_a", [0, 0, -t], [2.0, h, 0], wall)
+    w.slab("south_b", [4.0, 0, -t], [X + t, h, 0], wall)
+    w.slab("south_sill", [2.0, 0, -t], [4.0, 1.0, 0], wall)
+    w.slab("south_head", [2.0, 2.6, -t], [4.0, h, 0], wall)
+    # East wall (x in [X, X + t]) with a window z 2.5..4.5, sill 0.9, head 2.5.
+    w.slab("east_a", [X, 0, 0], [X + t, h, 2.5], wall)
+    w.slab("east_b", [X, 0, 4.5], [X + t, h, Z], wall)
+    w.slab("east_sill", [X, 0, 2.5], [X + t, 0.9, 4.5], wall)
+    w.slab("east_head", [X, 2.5, 2.5], [X + t, h, 4.5], wall)
+    w.slab("partition", [3.0, 0, 3.2], [6.5, 1.5, 3.32], teal)
+    w.slab("plinth", [1.0, 0, 4.2], [2.0, 0.9, 5.2], wall)
+    w.light("sun", "directional", 4.0, [10.0, 6.0, -4.0], [-0.8, -0.45, 0.55])
+    w.light("lamp", "point", 4.0, [1.5, 2.9, 1.0], [0, -1, 0])
+    w.light("spot", "spot", 20.0, [4.0, 3.2, 5.8], [0.0, -0.7, -1.0], cone=(0.3, 0.5))
+    w.camera([7.5, 1.8, 5.6], [3.5, 0.8, 1.8], 1.2, 0.05)
+    return w
+
+
+def workshop():
+    """Added at stop 37, never used for tuning: a 9 x 3.5 x 7 m workshop, 0.25 m slabs, two
+    workbenches (tops on legs), fifty boxes and cylinders of many sizes on the floor and the
+    benches, a spot and a lamp."""
+    w = Writer()
+    wall, floor, ceil = w.material("brick", (0.6, 0.45, 0.38)), w.material("screed", (0.5, 0.5, 0.48)), w.material("ceiling", CEILING)
+    wood = w.material("wood", (0.6, 0.45, 0.3))
+    colours = [(0.75, 0.7, 0.6), (0.2, 0.3, 0.55), (0.7, 0.25, 0.2), (0.3, 0.5, 0.3), (0.85, 0.8, 0.3), (0.5, 0.5, 0.5)]
+    stuff = [w.material(f"item_{i}", c) for i, c in enumerate(colours)]
+    t, h, X, Z = 0.25, 3.5, 9.0, 7.0
+    closed_room(w, t, h, X, Z, wall, floor, ceil)
+    benches = [(1.0, 1.0, 4.0, 1.8), (5.0, 4.5, 8.2, 5.4)]
+    for k, (x0, z0, x1, z1) in enumerate(benches):
+        w.slab(f"bench_top_{k}", [x0, 0.85, z0], [x1, 0.9, z1], wood)
+        for px in [x0, x1 - 0.06]:
+            for pz in [z0, z1 - 0.06]:
+                w.slab(f"bench_leg_{k}_{px}_{pz}", [px, 0, pz], [px + 0.06, 0.85, pz + 0.06], wood)
+    rng = random.Random(37373737)
+    for i in range(50):
+        size = 0.12 + 0.5 * rng.random()
+        material = stuff[rng.randrange(len(stuff))]
+        if i < 14:
+            x0, z0, x1, z1 = benches[i % 2]
+            size = min(size, 0.5)
+            x, z, y = x0 + 0.05 + rng.random() * (x1 - x0 - 0.1 - size), z0 + 0.05 + rng.random() * (z1 - z0 - 0.1 - size), 0.9
+        else:
+            while True:
+                x, z = 0.2 + rng.random() * (X - 0.4 - size), 0.2 + rng.random() * (Z - 0.4 - size)
+                if not any(x0 - size < x < x1 and z0 - size < z < z1 for x0, z0, x1, z1 in benches):
+                    break
+            y = 0.0
+        if i % 3 == 2:
+            r, hh = size / 2, size * (0.6 + 1.2 * rng.random())
+            w.node({"name": f"drum_{i}", "mesh": w.cylinder_mesh(r, hh, material), "translation": [x + r, y, z + r]})
+        else:
+            w.slab(f"box_{i}", [x, y, z], [x + size, y + size * (0.4 + 0.9 * rng.random()), z + size], material)
+    w.light("spot", "spot", 80.0, [2.5, 3.4, 5.5], [0.5, -1.0, -0.7], cone=(0.4, 0.7))
+    w.light("lamp", "point", 5.0, [7.0, 3.0, 1.5], [0, -1, 0])
+    w.camera([0.5, 2.3, 6.6], [5.0, 0.4, 2.5], 1.15, 0.05)
+    return w
+
+
 def main():
     out = Path(sys.argv[1] if len(sys.argv) > 1 else "unseen")
     out.mkdir(parents=True, exist_ok=True)
     levels = [("apartment", apartment), ("sunroom", sunroom), ("storeroom", storeroom), ("offices", offices)]
     levels += [("cluttered", cluttered), ("cornell_b", cornell_b)]
     levels += [("three_rooms_b", lambda: three_rooms("b")), ("three_rooms_c", lambda: three_rooms("c"))]
+    levels += [("maisonette", maisonette), ("studio", studio), ("workshop", workshop)]
     for name, make in levels:
         make().write(out / f"{name}.gltf")
         print(out / f"{name}.gltf")
