@@ -1,5 +1,5 @@
 // ISM pass P10 (interleaved VPL shading, Knecht 2009 section 3.4) on the split G-buffer: one
-// thread per split texel, whose tile (i, j) gathers only its contiguous block of N / n^2 VPLs of
+// thread per split texel, whose tile (i, j) gathers only its contiguous block of about N / n^2 VPLs of
 // every bounce's set, each tested against its imperfect shadow map. Two outputs:
 // - `shade`: E / pi into the split accumulation buffer (the lighting composite multiplies by
 //   albedo): sum of V I(w) cos_r / (pi max(d^2, d_min^2)), with I the VPL's radiant intensity;
@@ -94,9 +94,18 @@ fn texel(s: vec2<u32>) -> Texel {
     let size = sh.sets.yz;
     let ni = sh.counts.w;
     let tile = split_pixel(s, size, ni).z;
-    let per = max(sh.counts.x / (ni * ni), 1u);
+    // Tile `tile` gathers a contiguous block of each set: N / n^2 VPLs, one more for the first
+    // N mod n^2 tiles, so that every VPL lights exactly one tile whatever N (each carries n^2
+    // times its power). Blocks of N / n^2 alone left N mod n^2 VPLs unused: 8 of 120 at n = 4,
+    // and the editor's preview (fewer VPLs while something moves) lost up to 16% of the light.
+    // A tile with no VPL (N < n^2) starts past the set's end and gathers nothing.
+    let tiles = ni * ni;
+    let base = sh.counts.x / tiles;
+    let extra = sh.counts.x % tiles;
+    let first = tile * base + min(tile, extra);
+    let per = max(base + select(0u, 1u, tile < extra), 1u);
     let enc = textureLoad(split_normal, s, 0);
-    return Texel(textureLoad(split_position, s, 0), oct_decode(enc.xy), oct_decode(enc.zw), tile * per, per);
+    return Texel(textureLoad(split_position, s, 0), oct_decode(enc.xy), oct_decode(enc.zw), first, per);
 }
 
 // Index of the i-th VPL texel t gathers (its block of every set in turn), or -1 where the
