@@ -357,6 +357,17 @@ def cornell_b():
     return w
 
 
+def outer_shell(w, t, h, X, Z, floor, ceil, south, north, west, east):
+    """Floor, ceiling and four outer walls of t m slabs around [0, X] x [0, Z], h m high; the
+    south and north walls run the full width, the west and east walls fit between them."""
+    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
+    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
+    w.slab("south", [-t, 0, -t], [X + t, h, 0], south)
+    w.slab("north", [-t, 0, Z], [X + t, h, Z + t], north)
+    w.slab("west", [-t, 0, 0], [0, h, Z], west)
+    w.slab("east", [X, 0, 0], [X + t, h, Z], east)
+
+
 def offices():
     """Added at stop 15, after the apartment had been used to diagnose ISM's holes: a second
     held-out multi-room level, never used for tuning. Thin (0.15 m) partitions, a 12 m corridor
@@ -370,12 +381,7 @@ def offices():
     X = 12.3  # corridor x in [0, X], z in [0, 2]; offices z in [2 + t, 6 + t]
     zc, zo = 2.0, 2.0 + t
     Z = zo + 4.0
-    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
-    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
-    w.slab("south", [-t, 0, -t], [X + t, h, 0], wall)
-    w.slab("north", [-t, 0, Z], [X + t, h, Z + t], wall)
-    w.slab("west", [-t, 0, 0], [0, h, Z], accent)
-    w.slab("east", [X, 0, 0], [X + t, h, Z], wall)
+    outer_shell(w, t, h, X, Z, floor, ceil, wall, wall, accent, wall)
     # Office partitions along z at x = 4 and 8.15 (each t thick).
     parts = [(4.0, 4.0 + t), (8.15, 8.15 + t)]
     for i, (a, b) in enumerate(parts):
@@ -447,12 +453,7 @@ def maisonette():
     zs, zh0, zh1, zn = 4.0, 4.0 + t, 4.0 + t + 1.6, 4.0 + 2 * t + 1.6
     Z = zn + 4.5
     X = 13.0
-    w.slab("floor", [-t, -t, -t], [X + t, 0, Z + t], floor)
-    w.slab("ceiling", [-t, h, -t], [X + t, h + t, Z + t], ceil)
-    w.slab("south", [-t, 0, -t], [X + t, h, 0], wall)
-    w.slab("north", [-t, 0, Z], [X + t, h, Z + t], ochre)
-    w.slab("west", [-t, 0, 0], [0, h, Z], wall)
-    w.slab("east", [X, 0, 0], [X + t, h, Z], wall)
+    outer_shell(w, t, h, X, Z, floor, ceil, wall, ochre, wall, wall)
     door_h = 2.2
     def wall_x(name, z0, z1, doors):
         edges = [0.0] + [e for d in doors for e in d] + [X]

@@ -61,7 +61,7 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut m.filter_normal, 0.0..=1.0).text("filter normal cosine"))
             .on_hover_text("Neighbours whose normal differs by a cosine below this are rejected (the SH filter tests geometric normals only).");
         ui.checkbox(&mut m.sh_filter, "SH filter (Segovia & Wald)").on_hover_text(
-            "Filter incident radiance as 9 SH coefficients per colour, then shade with each pixel's own normal-mapped normal and glossy lobe. Cost: 56 bytes per pixel and 27-channel filtering (`ism shade` +7% at 320x180, +17% at 640x360 in docs/BENCHMARKS.md).",
+            "Filter incident radiance as 9 SH coefficients per colour, then shade with each pixel's own normal-mapped normal and glossy lobe. Cost: 56 bytes per pixel and 27-channel filtering (on an H100 `ism shade` 0.91 -> 1.08 ms at 320x180, 1.09 -> 1.68 ms at 640x360; docs/BENCHMARKS.md).",
         );
     });
 }

@@ -5,7 +5,7 @@
 //! Objects are drawn instanced: the array is ordered by (material, mesh), and each run of equal
 //! material and mesh is one draw whose instances index the array (`instance_index`). A level of
 //! 1,000 props of four meshes went from 13,000 draws and 2.5 GB resident to a handful of draws
-//! on lavapipe (figures in `docs/BENCHMARKS.md`, `examples/big_scene.rs`).
+//! on lavapipe (figures in `docs/BENCHMARKS-lavapipe.md`, `examples/big_scene.rs`).
 
 use glam::Mat4;
 use wgpu::util::DeviceExt as _;

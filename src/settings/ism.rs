@@ -97,8 +97,9 @@ pub struct IsmSettings {
     pub filter_normal: f32,
     /// Filter the incident radiance as 9 SH coefficients per colour and shade afterwards with
     /// each pixel's own normal and BRDF (Segovia & Wald): keeps glossy and normal-mapped
-    /// detail. Cost: 56 bytes per pixel (f16) and 27-channel filtering, +7% (320x180) to
-    /// +17% (640x360) of the `ism shade` pass time (docs/BENCHMARKS.md).
+    /// detail. Cost: 56 bytes per pixel (f16) and 27-channel filtering: on an H100 the `ism
+    /// shade` pass goes from 0.91 to 1.08 ms at 320x180 and from 1.09 to 1.68 ms at 640x360
+    /// (docs/BENCHMARKS.md); on lavapipe +7% and +17% (docs/BENCHMARKS-lavapipe.md).
     pub sh_filter: bool,
     /// An extra fixed minimum VPL distance in metres, on top of `clamp_disk` (0 = none, the
     /// default). The thesis clamps d^2 >= 1 in world units, which assumes large scenes: in a 2 m
