@@ -97,7 +97,7 @@ fn texel(s: vec2<u32>) -> Texel {
     // Tile `tile` gathers a contiguous block of each set: N / n^2 VPLs, one more for the first
     // N mod n^2 tiles, so that every VPL lights exactly one tile whatever N (each carries n^2
     // times its power). Blocks of N / n^2 alone left N mod n^2 VPLs unused: 8 of 120 at n = 4,
-    // and the editor's preview (fewer VPLs while something moves) lost up to 16% of the light.
+    // and the editor's preview (fewer VPLs while something moves: 76 lost 16%, 31 lost 48%).
     // A tile with no VPL (N < n^2) starts past the set's end and gathers nothing.
     let tiles = ni * ni;
     let base = sh.counts.x / tiles;
