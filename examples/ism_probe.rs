@@ -45,18 +45,23 @@ fn render(
     let mut traced = Vec::new();
     for frame in ready..frames {
         r.render(&project.scene, &project.render, size)?;
+        let summed = average && frame >= from;
+        if !trace && !summed {
+            continue;
+        }
+        // One readback serves both.
+        let px = r.read_hdr()?;
         if trace {
-            let px = r.read_hdr()?;
             let mean = px.iter().map(|p| f64::from(metrics::luminance(p))).sum::<f64>() / px.len() as f64;
             traced.push(format!("{:.2}", mean / reference_mean));
         }
-        if average && frame >= from {
-            for (s, p) in sum.iter_mut().zip(r.read_hdr()?) {
+        if summed {
+            for (s, p) in sum.iter_mut().zip(px) {
                 (0..4).for_each(|c| s[c] += p[c] / averaged);
             }
         }
     }
-    if trace {
+    if !traced.is_empty() {
         println!("         frames: {}", traced.join(" "));
     }
     let pixels = if average { sum } else { r.read_hdr()? };

@@ -164,8 +164,8 @@ fn more_vpls_never_make_it_worse_on_average() {
 
 /// Every VPL lights exactly one interleave tile whatever the VPL count: 31 VPLs at n = 4 (16
 /// tiles) give the same indirect light as 32 on average. Before the tiles took the remainder,
-/// blocks of 31 / 16 = 1 VPL used 16 of the 31 and the indirect light read about half; the
-/// editor's preview (fewer VPLs while something moves) lost 16% of it at 76 VPLs.
+/// blocks of 31 / 16 = 1 VPL used 16 of the 31 and the indirect light read 0.498; the editor's
+/// preview (fewer VPLs while something moves) left 12 of its 76 VPLs unused.
 #[test]
 fn a_vpl_count_that_no_tile_count_divides_loses_no_light() {
     let Some(ctx) = common::gpu() else { return };
