@@ -17,7 +17,7 @@ struct BounceParams {
     // VPLs per set, points per ISM P, tile side r, tiles per row C.
     counts: vec4<u32>,
     // source set's first VPL, destination set's first VPL, frame seed, pick (0: brightest,
-    // 1: proportional to luminance).
+    // 1: proportional to luminance, 2: the whole set resampled, `resample`).
     sets: vec4<u32>,
     // 1 / d_max, clamp factor on the disks' radii squared, d_min^2, interleave n^2.
     params: vec4<f32>,
@@ -129,11 +129,13 @@ fn pick(@builtin(global_invocation_id) id: vec3<u32>) {
     lit[2u * id.x] = r;
     lit[2u * id.x + 1u] = incident;
     let y = luminance(r.rgb);
-    if r.w < 0.0 || y <= 0.0 {
+    if r.w < 0.0 || !(y > 0.0) {
         return;
     }
     let k = u32(r.w);
-    atomicMax(&selection[2u * k], bitcast<u32>(pick_key(id.x, y)));
+    if bp.sets.w != 2u {
+        atomicMax(&selection[2u * k], bitcast<u32>(pick_key(id.x, y)));
+    }
     // Float add by compare-and-swap.
     var old = atomicLoad(&selection[2u * k + 1u]);
     loop {
@@ -173,6 +175,167 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
     let spec = point_specular[j];
     out.gloss = vec4<f32>(spec.rgb * lit[2u * id.x + 1u].rgb * scale, spec.w);
     vpls[bp.sets.y + k] = out;
+}
+
+// The resampled pick (`BouncePick::Resampled`, sets.w = 2): the new set is drawn from every lit
+// point of every source VPL at once, N positions spaced W / N apart on the cumulative luminance
+// of all N x P slots (W their sum; one random offset per set), and each new VPL carries
+// r W / (N y): equal luminance for every VPL of the set. This is systematic resampling as
+// particle filters use it (Kitagawa 1996; Douc et al. 2005 for its variance): unbiased like the
+// per-chain pick (slot i is drawn N y_i / W times in expectation and carries r_i W / (N y_i)),
+// but the number of VPLs landing in a region no longer adds one coin flip per chain, and a chain
+// that reaches a room through a doorway no longer carries its source's whole power alone. The
+// slots are ordered by source VPL and then by its points' cluster order (`ism_select.wgsl`), so
+// the draws are stratified over the sources and, within each, over space.
+// `scan_sources` turns the per-source sums `pick` added into their exclusive prefix
+// (selection[2k] = the bits of the prefix before source k, [2k + 1] = the source's sum).
+var<workgroup> scan: array<f32, 256>;
+var<workgroup> last_thread: atomic<u32>;
+
+// Inclusive Hillis-Steele scan of `scan`; the whole workgroup calls it.
+fn scan_inclusive(lid: u32) {
+    for (var off = 1u; off < 256u; off = off * 2u) {
+        var v = scan[lid];
+        if lid >= off {
+            v = v + scan[lid - off];
+        }
+        workgroupBarrier();
+        scan[lid] = v;
+        workgroupBarrier();
+    }
+}
+
+fn source_sum(k: u32) -> f32 {
+    let v = bitcast<f32>(atomicLoad(&selection[2u * k + 1u]));
+    return select(0.0, v, v > 0.0);
+}
+
+@compute @workgroup_size(256, 1, 1)
+fn scan_sources(@builtin(local_invocation_index) lid: u32) {
+    let n = bp.counts.x;
+    let per = (n + 255u) / 256u;
+    let lo = min(lid * per, n);
+    let hi = min(lo + per, n);
+    var own = 0.0;
+    for (var k = lo; k < hi; k = k + 1u) {
+        own = own + source_sum(k);
+    }
+    scan[lid] = own;
+    workgroupBarrier();
+    scan_inclusive(lid);
+    var base = 0.0;
+    if lid > 0u {
+        base = scan[lid - 1u];
+    }
+    for (var k = lo; k < hi; k = k + 1u) {
+        atomicStore(&selection[2u * k], bitcast<u32>(base));
+        base = base + source_sum(k);
+    }
+}
+
+// The resampling weight of slot g: its reflected luminance (0 where unlit).
+fn slot_weight(g: u32) -> f32 {
+    let r = lit[2u * g];
+    let y = luminance(r.rgb);
+    return select(0.0, y, r.w >= 0.0 && y > 0.0);
+}
+
+// One workgroup per source VPL k: scans its P slots' weights and writes the new VPLs whose draw
+// positions fall in its share [base_k, base_k+1) of the cumulative sum. Which draws a source
+// (and, inside it, a thread) owns is computed from the same stored bits by both neighbours, so
+// every draw is written exactly once; inside a thread's range the walk clamps to its last
+// lit slot. (A draw can land on a source with nothing lit only where the two sums' float
+// rounding disagree at its boundary; it is then left dark, which costs one VPL in a
+// set on the rare frame where it happens.)
+@compute @workgroup_size(256, 1, 1)
+fn resample(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    let k = wid.x;
+    let n = bp.counts.x;
+    let p_count = bp.counts.y;
+    let per = (p_count + 255u) / 256u;
+    let lo = min(lid * per, p_count);
+    let hi = min(lo + per, p_count);
+    let first = k * p_count;
+    var own = 0.0;
+    var last_lit = lo;
+    for (var i = lo; i < hi; i = i + 1u) {
+        let w = slot_weight(first + i);
+        own = own + w;
+        if w > 0.0 {
+            last_lit = i;
+        }
+    }
+    if lid == 0u {
+        atomicStore(&last_thread, 0u);
+    }
+    scan[lid] = own;
+    workgroupBarrier();
+    if own > 0.0 {
+        atomicMax(&last_thread, lid);
+    }
+    scan_inclusive(lid);
+    let last = atomicLoad(&last_thread);
+    let total = bitcast<f32>(atomicLoad(&selection[2u * (n - 1u)])) + source_sum(n - 1u);
+    if !(total > 0.0) || k >= n || lid > last || own <= 0.0 {
+        return;
+    }
+    let base = bitcast<f32>(atomicLoad(&selection[2u * k]));
+    // One offset in [0, 1) for the whole set.
+    let xi = 1.0 - uniform01(0xffffffffu, bp.sets.z);
+    let scale = f32(n) / total;
+    let s0 = draw_at(base, scale, xi, n);
+    var s1 = n;
+    if k + 1u < n {
+        s1 = draw_at(bitcast<f32>(atomicLoad(&selection[2u * (k + 1u)])), scale, xi, n);
+    }
+    s1 = max(s1, s0);
+    var start = 0.0;
+    var i0 = s0;
+    if lid > 0u {
+        start = scan[lid - 1u];
+        i0 = clamp(draw_at(base + start, scale, xi, n), s0, s1);
+    }
+    var i1 = s1;
+    if lid < last {
+        i1 = clamp(draw_at(base + scan[lid], scale, xi, n), s0, s1);
+    }
+    var i = lo;
+    var acc = start;
+    var w = slot_weight(first + i);
+    for (var s = i0; s < i1; s = s + 1u) {
+        let u = (f32(s) + xi) / scale - base;
+        while i < last_lit && (acc + w <= u || w <= 0.0) {
+            acc = acc + w;
+            i = i + 1u;
+            w = slot_weight(first + i);
+        }
+        if w > 0.0 {
+            write_vpl(first + i, k, s, total / (f32(n) * w));
+        }
+    }
+}
+
+// The index of the first draw at or after cumulative position x (draws at (s + xi) W / N).
+fn draw_at(x: f32, scale: f32, xi: f32, n: u32) -> u32 {
+    return u32(clamp(ceil(x * scale - xi), 0.0, f32(n)));
+}
+
+// Writes VPL `s` of the new set at slot g's point, lit by source VPL k, its reflected power
+// times `weight` (the draw's 1 / (N probability) in luminance units).
+fn write_vpl(g: u32, k: u32, s: u32, weight: f32) {
+    let r = lit[2u * g];
+    let src = vpls[bp.sets.x + k];
+    let j = chosen[g].x;
+    let p = points[j].xyz;
+    var out: Vpl;
+    out.position = vec4<f32>(p, max(bp.area.x / (f32(bp.counts.x) * PI), 1.0e-20));
+    out.normal = vec4<f32>(point_normals[j].xyz, 0.0);
+    let scale = weight * bp.params.w;
+    out.power = vec4<f32>(r.rgb * scale, 1.0);
+    out.incident = vec4<f32>(normalize(src.position.xyz - p), 0.0);
+    let spec = point_specular[j];
+    out.gloss = vec4<f32>(spec.rgb * lit[2u * g + 1u].rgb * scale, spec.w);
+    vpls[bp.sets.y + s] = out;
 }
 
 var<workgroup> set_power: array<vec2<f32>, 64>;

@@ -7,7 +7,7 @@
 use crate::render::layouts::{compute_pipeline, storage_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::ViewTargets;
-use crate::settings::{IsmSettings, TailRatio};
+use crate::settings::{BouncePick, IsmSettings, TailRatio};
 
 use super::params::{BounceParams, GpuCluster, PullPushParams, SelectParams, SplatParams};
 use super::screen::{IsmInputs, IsmScreen};
@@ -145,6 +145,9 @@ pub struct IsmGather {
     bounce_select: wgpu::ComputePipeline,
     bounce_write: wgpu::ComputePipeline,
     bounce_tail: wgpu::ComputePipeline,
+    /// `BouncePick::Resampled`: the per-source sums' prefix, then the set's systematic draws.
+    bounce_scan: wgpu::ComputePipeline,
+    bounce_resample: wgpu::ComputePipeline,
     bounce_params: wgpu::Buffer,
     pp_params: wgpu::Buffer,
     /// The screen passes that shade with this frame's VPLs and maps.
@@ -221,6 +224,8 @@ impl IsmGather {
             bounce_select: compute_pipeline(device, "ism bounce select", &bounce_layout, &bounce_module, "pick"),
             bounce_write: compute_pipeline(device, "ism bounce write", &bounce_layout, &bounce_module, "write_winner"),
             bounce_tail: compute_pipeline(device, "ism bounce tail", &bounce_layout, &bounce_module, "tail"),
+            bounce_scan: compute_pipeline(device, "ism bounce scan sources", &bounce_layout, &bounce_module, "scan_sources"),
+            bounce_resample: compute_pipeline(device, "ism bounce resample", &bounce_layout, &bounce_module, "resample"),
             bounce_params: slots("ism bounce params"),
             bounce_layout,
             clear: compute_pipeline(device, "ism atlas clear", &splat_layout, &splat_module, "clear"),
@@ -551,8 +556,15 @@ impl IsmGather {
                 pass.dispatch_workgroups(key.vpls.div_ceil(64), 1, 1);
                 pass.set_pipeline(&self.bounce_select);
                 pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
-                pass.set_pipeline(&self.bounce_write);
-                pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
+                if settings.bounce_pick == BouncePick::Resampled {
+                    pass.set_pipeline(&self.bounce_scan);
+                    pass.dispatch_workgroups(1, 1, 1);
+                    pass.set_pipeline(&self.bounce_resample);
+                    pass.dispatch_workgroups(key.vpls, 1, 1);
+                } else {
+                    pass.set_pipeline(&self.bounce_write);
+                    pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
+                }
                 if b + 1 == key.bounces && settings.bounce_tail {
                     pass.set_pipeline(&self.bounce_tail);
                     pass.dispatch_workgroups(1, 1, 1);
