@@ -161,7 +161,13 @@ fn power_beyond_first_room(
     frames: u32,
 ) -> f64 {
     let project = bouncelab::suite::scene("rooms").expect("scene").load(std::path::Path::new(".")).expect("loads");
-    let ism = IsmSettings { bounces: 2, bounce_tail: false, bounce_pick: pick, ..IsmSettings::default() };
+    let ism = IsmSettings {
+        bounces: 2,
+        bounce_tail: false,
+        bounce_pick: pick,
+        view_importance: 0.0,
+        ..IsmSettings::default()
+    };
     let settings = RenderSettings { mode: GiMode::IsmRitschel, ism: ism.clone(), ..project.render.clone() };
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let first_room = bouncelab::suite::levels::rooms::ROOM[0];
@@ -196,4 +202,89 @@ fn proportional_bounce_pick_carries_light_through_the_doorway() {
     // Measured: 0.068 against 0.024 (the brightest pick moves light only from VPLs next to
     // the doorway).
     assert!(proportional > 2.0 * brightest, "proportional {proportional} vs brightest {brightest}");
+}
+
+/// The second set's VPLs of each of `frames` frames of the suite's three rooms (spot in the
+/// first, camera in the third): (x, luminance) of every live VPL.
+fn second_sets(ctx: &bouncelab::render::GpuContext, ism: IsmSettings, frames: u32) -> Vec<Vec<(f32, f64)>> {
+    let project = bouncelab::suite::scene("rooms").expect("scene").load(std::path::Path::new(".")).expect("loads");
+    let ism = IsmSettings { bounces: 2, bounce_tail: false, ..ism };
+    let settings = RenderSettings { mode: GiMode::IsmRitschel, ism: ism.clone(), ..project.render.clone() };
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let n = ism.vpl_count as usize;
+    (0..frames)
+        .map(|_| {
+            r.render(&project.scene, &settings, (16, 16)).expect("render");
+            let t = r.technique_as::<IsmTechnique>().expect("ism");
+            let all = t.read_all_vpls(r.device(), r.queue()).expect("vpls");
+            all[n..2 * n]
+                .iter()
+                .filter(|v| v.position[3] > 0.0)
+                .map(|v| (v.position[0], f64::from(0.2126 * v.power[0] + 0.7152 * v.power[1] + 0.0722 * v.power[2])))
+                .collect()
+        })
+        .collect()
+}
+
+/// The resampled pick draws the whole next set at once, evenly spaced on the cumulative
+/// luminance of every lit point: every draw is written (N live VPLs), each carrying the same
+/// luminance, and the set carries exactly the light the proportional pick's chains carry
+/// (both are the sum of what the first set's ISM-tested points reflect; the seeds are the same).
+#[test]
+fn resampled_bounce_pick_writes_every_vpl_with_an_equal_share_of_the_same_light() {
+    let Some(ctx) = common::gpu() else { return };
+    use bouncelab::settings::BouncePick;
+    let frames = 3;
+    let plain = IsmSettings { view_importance: 0.0, ..IsmSettings::default() };
+    let resampled = second_sets(&ctx, IsmSettings { bounce_pick: BouncePick::Resampled, ..plain.clone() }, frames);
+    let proportional = second_sets(&ctx, IsmSettings { bounce_pick: BouncePick::Proportional, ..plain }, frames);
+    for (f, (rs, pr)) in resampled.iter().zip(&proportional).enumerate() {
+        let lum: Vec<f64> = rs.iter().map(|v| v.1).collect();
+        let (lo, hi) = lum.iter().fold((f64::MAX, 0.0f64), |(a, b), &y| (a.min(y), b.max(y)));
+        let (total_rs, total_pr) = (lum.iter().sum::<f64>(), pr.iter().map(|v| v.1).sum::<f64>());
+        let (lo_pr, hi_pr) = pr.iter().fold((f64::MAX, 0.0f64), |(a, b), v| (a.min(v.1), b.max(v.1)));
+        eprintln!(
+            "frame {f}: resampled {} VPLs, luminance {lo:.4e}..{hi:.4e}, total {total_rs:.4e}; proportional {} VPLs, {lo_pr:.4e}..{hi_pr:.4e}, total {total_pr:.4e}",
+            rs.len(),
+            pr.len()
+        );
+        assert_eq!(rs.len(), 256, "frame {f}: every draw makes a VPL");
+        assert!(hi <= lo * 1.001, "frame {f}: resampled luminances {lo}..{hi} differ");
+        // The chains' powers differ by their sources' lit share, so the test can tell them apart.
+        assert!(hi_pr > 1.5 * lo_pr, "frame {f}: proportional luminances {lo_pr}..{hi_pr}");
+        assert!((total_rs / total_pr - 1.0).abs() < 1e-3, "frame {f}: total {total_rs} vs the chains' {total_pr}");
+    }
+}
+
+/// The view importance moves the resampled sets' VPLs towards what the camera sees without
+/// changing the light they carry: in the three rooms (camera in the unlit third, looking back
+/// through its doorway into the second), more of the second set lands beyond the lit first
+/// room, and the set's total power agrees with the plain draw's in expectation (frame 0 is
+/// skipped: the importance is last frame's view).
+#[test]
+fn view_importance_puts_more_vpls_where_the_camera_looks_and_keeps_their_light() {
+    let Some(ctx) = common::gpu() else { return };
+    use bouncelab::settings::BouncePick;
+    let beyond = bouncelab::suite::levels::rooms::start(1);
+    let frames = 5;
+    let run = |w: f32| {
+        let ism = IsmSettings { bounce_pick: BouncePick::Resampled, view_importance: w, ..IsmSettings::default() };
+        let sets = second_sets(&ctx, ism, frames);
+        let count = sets[1..].iter().map(|s| s.iter().filter(|v| v.0 > beyond).count()).sum::<usize>() as f64;
+        let total = sets[1..].iter().map(|s| s.iter().map(|v| v.1).sum::<f64>()).sum::<f64>();
+        (count / f64::from(frames - 1), total / f64::from(frames - 1))
+    };
+    let (count_plain, total_plain) = run(0.0);
+    let (count_weighted, total_weighted) = run(8.0);
+    eprintln!(
+        "second-set VPLs beyond the first room per frame: {count_plain:.1} plain, {count_weighted:.1} weighted; total power {total_plain:.4e} vs {total_weighted:.4e}"
+    );
+    assert!(
+        count_weighted > 2.0 * count_plain.max(1.0),
+        "VPLs beyond the first room: {count_weighted} weighted vs {count_plain} plain"
+    );
+    assert!(
+        (total_weighted / total_plain - 1.0).abs() < 0.05,
+        "power {total_weighted} weighted vs {total_plain} plain"
+    );
 }

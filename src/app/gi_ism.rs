@@ -48,6 +48,9 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
             ui.radio_value(&mut m.bounce_pick, BouncePick::Brightest, "brightest (thesis)")
                 .on_hover_text("The thesis's pick: the brightest lit point. Stable, but bounced light stays near where it landed.");
         });
+        ui.add(egui::Slider::new(&mut m.view_importance, 0.0..=64.0).text("view importance")).on_hover_text(
+            "Bounce picks favour points that can light what the camera sees, each such VPL carrying less: steadier light in a room lit through doorways. 0: picks by brightness alone.",
+        );
         ui.add(egui::Slider::new(&mut m.splat_radius, 0.25..=2.0).text("splat radius (x point disk)")).on_hover_text(
             "Each sample point's ISM splat, as a fraction of the surface disk it stands for. Smaller: holes that let light through walls; larger: occluders dilate, doorways close, contacts darken.",
         );

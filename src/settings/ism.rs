@@ -69,9 +69,19 @@ pub struct IsmSettings {
     /// Where the tail's ratio r comes from. Free within measurement (a per-workgroup sum in
     /// the shading either way).
     pub tail_ratio: TailRatio,
-    /// Which lit point of a VPL's sample points becomes the next bounce's VPL. Free (one hash
-    /// and a log per point).
+    /// How the lit points of a set's ISMs become the next set's VPLs. The per-VPL picks are
+    /// free (one hash and a log per point); `Resampled` adds a one-workgroup scan and one
+    /// workgroup per VPL per bounce.
     pub bounce_pick: BouncePick,
+    /// View importance of the proportional and resampled picks: a lit point is picked as if
+    /// (1 + this x I) times brighter, I its unoccluded reach into the last frame's view
+    /// (`ism_view_importance.wgsl`: about 1 beside the camera, up to 100 next to what it sees,
+    /// 0 facing away), and the new VPL's power is divided by the same, so every set's expected
+    /// light is unchanged (0: by brightness alone). More VPLs, each carrying less, land where
+    /// they light the view, which steadies a room lit only through doorways. Cost: one pass
+    /// over the pool points per frame, 64 depth reads each (`ism view importance`, in
+    /// `ism shade`).
+    pub view_importance: f32,
     /// Radius of each point's ISM splat as a fraction of the radius of the disk it stands for
     /// (the area it was chosen to stand for); the splat is that disk's elliptical footprint in
     /// the paraboloid map, clipped at its surface's open edges. Disks of their surface's area
@@ -171,13 +181,17 @@ pub enum BouncePick {
     /// A lit point picked with probability proportional to its reflected luminance: the power
     /// and where it lands are both unbiased; the places change every frame (the temporal
     /// filter averages them).
-    #[default]
     Proportional,
     /// The whole next set drawn at once from every lit point of every source VPL, N draws
     /// evenly spaced on their cumulative luminance (systematic resampling): as unbiased as the
     /// proportional pick, every VPL of a set carries the same luminance, and how many land in a
     /// region (a room lit only through a doorway) varies by at most one instead of one coin flip
     /// per chain. Cost: two passes per bounce (a one-workgroup scan, one workgroup per VPL).
+    /// With `view_importance` 8, the default: the suite's three rooms seen from the unlit room,
+    /// each frame's energy without the temporal filter (lavapipe, 128x72, 20 frames) has a
+    /// relative spread of 16% around 1.006 of the reference, against 38% around 0.986 for
+    /// `Proportional` without importance.
+    #[default]
     Resampled,
 }
 
@@ -198,7 +212,8 @@ impl Default for IsmSettings {
             filter_normal: 0.8,
             sh_filter: false,
             bounce_tail: true,
-            bounce_pick: BouncePick::Proportional,
+            bounce_pick: BouncePick::Resampled,
+            view_importance: 8.0,
             tail_ratio: TailRatio::Screen,
             splat_radius: 1.35,
             clamp_distance: 0.0,
@@ -223,7 +238,7 @@ impl IsmSettings {
             m.clamp_disk,
             m.splat_radius,
         ];
-        let checks: [(&'static str, bool, String, &'static str); 11] = [
+        let checks: [(&'static str, bool, String, &'static str); 12] = [
             ("ism.vpl_count", (4..=1024).contains(&m.vpl_count), m.vpl_count.to_string(), "4..=1024"),
             (
                 "ism.ism_resolution",
@@ -248,6 +263,7 @@ impl IsmSettings {
             ("ism.base_confidence", (0.0..=1.0).contains(&m.base_confidence), m.base_confidence.to_string(), "0..=1"),
             ("ism.bounces", (1..=6).contains(&m.bounces), m.bounces.to_string(), "1..=6"),
             ("ism.filter_normal", (-1.0..=1.0).contains(&m.filter_normal), m.filter_normal.to_string(), "-1..=1"),
+            ("ism.view_importance", (0.0..=64.0).contains(&m.view_importance), m.view_importance.to_string(), "0..=64"),
             (
                 "ism.clamp_distance",
                 m.clamp_distance.is_finite() && m.clamp_distance >= 0.0,

@@ -22,7 +22,7 @@ struct BounceParams {
     // 1 / d_max, clamp factor on the disks' radii squared, d_min^2, interleave n^2.
     params: vec4<f32>,
     // sum over the scene of area x weight, the tail's ratio (0: the sets' power, 1: the
-    // screen's, `TailRatio`), unused x2.
+    // screen's, `TailRatio`), the view importance (`importance`), unused.
     area: vec4<f32>,
     // ISM lookup: neighbour reach (`ism_lit`), normal-offset constant and slope factors (`ism_offset_point`), the
     // relative depth margin of texels without a point (`ism_lit`).
@@ -60,6 +60,18 @@ fn uniform01(j: u32, seed: u32) -> f32 {
     v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
     v = (v >> 22u) ^ v;
     return (f32(v >> 8u) + 1.0) / 16777216.0;
+}
+
+// The weight of pool point j in the proportional and resampled picks: 1 + `IsmSettings::
+// view_importance` x its reach into the last frame's view (`ism_view_importance.wgsl` writes it
+// into the albedo's w). The pick's probability is proportional to luminance x weight and the new
+// VPL's power is divided by the same, so each set's expected light is unchanged while more of
+// its VPLs, each carrying less, land where they light what the camera sees.
+fn importance(j: u32) -> f32 {
+    if bp.sets.w == 0u {
+        return 1.0;
+    }
+    return 1.0 + bp.area.z * max(point_albedo[j].w, 0.0);
 }
 
 // The key point j of luminance y competes with for its source VPL (largest wins).
@@ -128,7 +140,7 @@ fn pick(@builtin(global_invocation_id) id: vec3<u32>) {
     let r = vec4<f32>(point_albedo[j].rgb * incident.rgb, incident.w);
     lit[2u * id.x] = r;
     lit[2u * id.x + 1u] = incident;
-    let y = luminance(r.rgb);
+    let y = luminance(r.rgb) * importance(j);
     if r.w < 0.0 || !(y > 0.0) {
         return;
     }
@@ -153,7 +165,8 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let r = lit[2u * id.x];
-    let y = luminance(r.rgb);
+    let j = min(chosen[id.x].x, arrayLength(&point_albedo) - 1u);
+    let y = luminance(r.rgb) * importance(j);
     if r.w < 0.0 || y <= 0.0 {
         return;
     }
@@ -163,7 +176,6 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let total = bitcast<f32>(atomicLoad(&selection[2u * k + 1u]));
     let src = vpls[bp.sets.x + k];
-    let j = chosen[id.x].x;
     let p = points[j].xyz;
     var out: Vpl;
     // The new VPL stands for every point its source lit: the area of one ISM's points.
@@ -233,10 +245,11 @@ fn scan_sources(@builtin(local_invocation_index) lid: u32) {
     }
 }
 
-// The resampling weight of slot g: its reflected luminance (0 where unlit).
+// The resampling weight of slot g: its reflected luminance times its point's view importance
+// (0 where unlit).
 fn slot_weight(g: u32) -> f32 {
     let r = lit[2u * g];
-    let y = luminance(r.rgb);
+    let y = luminance(r.rgb) * importance(min(chosen[g].x, arrayLength(&point_albedo) - 1u));
     return select(0.0, y, r.w >= 0.0 && y > 0.0);
 }
 

@@ -224,8 +224,20 @@ impl IsmGather {
             bounce_select: compute_pipeline(device, "ism bounce select", &bounce_layout, &bounce_module, "pick"),
             bounce_write: compute_pipeline(device, "ism bounce write", &bounce_layout, &bounce_module, "write_winner"),
             bounce_tail: compute_pipeline(device, "ism bounce tail", &bounce_layout, &bounce_module, "tail"),
-            bounce_scan: compute_pipeline(device, "ism bounce scan sources", &bounce_layout, &bounce_module, "scan_sources"),
-            bounce_resample: compute_pipeline(device, "ism bounce resample", &bounce_layout, &bounce_module, "resample"),
+            bounce_scan: compute_pipeline(
+                device,
+                "ism bounce scan sources",
+                &bounce_layout,
+                &bounce_module,
+                "scan_sources",
+            ),
+            bounce_resample: compute_pipeline(
+                device,
+                "ism bounce resample",
+                &bounce_layout,
+                &bounce_module,
+                "resample",
+            ),
             bounce_params: slots("ism bounce params"),
             bounce_layout,
             clear: compute_pipeline(device, "ism atlas clear", &splat_layout, &splat_module, "clear"),
@@ -512,7 +524,12 @@ impl IsmGather {
                     // that: with 0.25 here a held-out four-room flat (tools/unseen_levels.py)
                     // read 5.0x the reference's energy, 4.3x with full disks (its walls leak).
                     params: [1.0 / d_max, 1.0, d_min * d_min, n2],
-                    area: [scale.total_area, f32::from(u8::from(settings.tail_ratio == TailRatio::Screen)), 0.0, 0.0],
+                    area: [
+                        scale.total_area,
+                        f32::from(u8::from(settings.tail_ratio == TailRatio::Screen)),
+                        settings.view_importance,
+                        0.0,
+                    ],
                     bias: scale.bias,
                 };
                 queue.write_buffer(&self.bounce_params, u64::from(b - 1) * SLOT, bytemuck::bytes_of(&bounce));
@@ -641,8 +658,10 @@ impl IsmGather {
             normals: &s.normals,
             clips: &s.clips,
             chosen_all: &s.chosen_all,
+            albedo: &s.albedo,
             tail: &s.tail,
             per_ism: s.key.per_ism,
+            pool_points: s.key.points,
             generation: s.generation,
             vpl_count: s.key.vpls,
             sets: s.key.bounces,

@@ -30,10 +30,14 @@ pub struct IsmInputs<'a> {
     pub normals: &'a wgpu::Buffer,
     pub clips: &'a wgpu::Buffer,
     pub chosen_all: &'a wgpu::Buffer,
+    /// Pool point albedo, whose w the view-importance pass writes (`ism_view_importance.wgsl`).
+    pub albedo: &'a wgpu::Buffer,
     /// The bounce tail's state, to which the shading adds the last two sets' screen sums.
     pub tail: &'a wgpu::Buffer,
     /// Points per ISM.
     pub per_ism: u32,
+    /// Points in the pool.
+    pub pool_points: u32,
     /// Changes whenever `vpls` or `atlas` were recreated.
     pub generation: u64,
     /// VPLs per set.
@@ -74,6 +78,8 @@ struct Sized {
     temporal_groups: [wgpu::BindGroup; 2],
     /// Filter input: 0 = raw (no temporal reuse), 1 + p = history[p].
     filter_groups: [wgpu::BindGroup; 3],
+    /// The view-importance pass over the pool points.
+    importance_group: wgpu::BindGroup,
 }
 
 /// Pipelines and view-sized resources of the ISM screen passes.
@@ -92,6 +98,8 @@ pub struct IsmScreen {
     filter_layout: wgpu::BindGroupLayout,
     filter: wgpu::ComputePipeline,
     filter_params: wgpu::Buffer,
+    importance_layout: wgpu::BindGroupLayout,
+    view_importance: wgpu::ComputePipeline,
     parity: usize,
     reset: bool,
     sized: Option<Sized>,
@@ -183,7 +191,26 @@ impl IsmScreen {
             ],
         });
         let temporal_module = shaders::module(device, "render/gi/ism/ism_temporal.wgsl")?;
+        let importance_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ism view importance layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                texture_entry(1, c, depth),
+                storage_entry(2, c),
+                storage_entry(3, c),
+                super::gather::storage_rw(4),
+            ],
+        });
+        let importance_module = shaders::module(device, "render/gi/ism/ism_view_importance.wgsl")?;
         Ok(Self {
+            view_importance: compute_pipeline(
+                device,
+                "ism view importance",
+                &importance_layout,
+                &importance_module,
+                "view_importance",
+            ),
+            importance_layout,
             split: compute_pipeline(device, "ism split g-buffer", &split_layout, &split_module, "cs_main"),
             split_params: uniform(device, "ism split params", size_of::<SplitParams>()),
             split_layout,
@@ -316,6 +343,17 @@ impl IsmScreen {
             })
         };
         let temporal_groups = [temporal_group(0), temporal_group(1)];
+        let importance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism view importance bind group"),
+            layout: &self.importance_layout,
+            entries: &[
+                buf(0, frame_buffer),
+                tex(1, &targets.depth.view),
+                buf(2, ism.points),
+                buf(3, ism.normals),
+                buf(4, ism.albedo),
+            ],
+        });
         self.reset = true;
         self.sized = Some(Sized {
             key,
@@ -329,6 +367,7 @@ impl IsmScreen {
             confidence,
             temporal_groups,
             filter_groups,
+            importance_group,
         });
     }
 
@@ -454,6 +493,12 @@ impl IsmScreen {
             pass.set_pipeline(&self.filter);
             pass.set_bind_group(0, &s.filter_groups[input], &[]);
             pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
+        }
+        if settings.view_importance > 0.0 {
+            // How strongly each pool point could light this view, for the next frame's bounce picks.
+            pass.set_pipeline(&self.view_importance);
+            pass.set_bind_group(0, &s.importance_group, &[]);
+            pass.dispatch_workgroups(ism.pool_points.div_ceil(64), 1, 1);
         }
         drop(pass);
         if settings.sh_filter {
