@@ -6,8 +6,9 @@
 //!
 //! `cargo run --release --example ism_probe -- rooms,clutter "(total_points: 524288)"`
 //!
-//! `PROBE_SSHGI="()"` renders `sshgi` with those settings in place of `ism` (the ISM settings
-//! argument is then ignored); `PROBE_MRT="()"` renders `mrt` likewise, `PROBE_RCS="()"` `rcs`.
+//! `PROBE_TIMINGS=1` prints the last frame's GPU pass timings. `PROBE_SSHGI="()"` renders
+//! `sshgi` with those settings in place of `ism` (the ISM settings argument is then ignored);
+//! `PROBE_MRT="()"` renders `mrt` likewise, `PROBE_RCS="()"` `rcs`.
 //!
 //! A name ending in `.gltf` is a scene outside the suite, compared with the `.exr` next to it
 //! (`tools/unseen_levels.py` writes the held-out levels; `bouncelab render --mode reference
@@ -63,6 +64,11 @@ fn render(
     }
     if !traced.is_empty() {
         println!("         frames: {}", traced.join(" "));
+    }
+    // PROBE_TIMINGS: the last frame's GPU passes (ms).
+    if std::env::var_os("PROBE_TIMINGS").is_some() {
+        let passes: Vec<String> = r.timings(true).iter().map(|p| format!("{} {:.2}", p.name, p.ms)).collect();
+        println!("         passes (ms): {}", passes.join(", "));
     }
     let pixels = if average { sum } else { r.read_hdr()? };
     let pixels = image_io::box_downsample(&pixels, size, ssaa);

@@ -2,7 +2,7 @@
 //! switches, adding, duplicating, moving and deleting objects and lights, undo and redo, the
 //! inspector, save and reopen). In epochs: each opens the same file and ends with undo-all,
 //! which must give back that file's bytes exactly; the file saved after redo-all must reopen to
-//! the same bytes. Memory must stay flat after the first epoch (the warm-up): the
+//! the same bytes. Memory must stay flat after the first two epochs (the warm-up): the
 //! process's resident memory (which on the software adapter includes every GPU allocation) and
 //! the viewport device's buffer and texture memory and live objects (wgpu's counters), each
 //! measured in the same state (the original file, `ism`, the albedo buffer inspected).
@@ -177,10 +177,16 @@ fn thousands_of_random_actions_keep_memory_flat_and_undo_all_restores_the_file()
             now.1.objects,
             started.elapsed().as_secs_f64()
         );
-        let Some((rss, gpu)) = warm else {
-            warm = Some(now);
+        // Two warm-up epochs, the larger resident size the baseline: after one epoch it varies
+        // between runs with the modes and buffers the random actions first used (measured at 250
+        // and 500 actions: 546 and 697 MiB in one run, 655 and 727 in another), while later
+        // epochs stay within that range.
+        if epochs <= 2 {
+            let rss = warm.as_ref().map_or(now.0, |w| w.0.max(now.0));
+            warm = Some((rss, now.1));
             continue;
-        };
+        }
+        let Some((rss, gpu)) = warm else { continue };
         assert!(now.0 <= rss * 1.25 + 64.0, "resident memory grew from {rss:.0} to {:.0} MiB", now.0);
         let gpu_bytes = |m: &GpuMemory| (m.buffer_bytes + m.texture_bytes) as f64;
         assert!(
@@ -190,6 +196,6 @@ fn thousands_of_random_actions_keep_memory_flat_and_undo_all_restores_the_file()
         );
         assert!(now.1.objects <= gpu.objects + 8, "live GPU objects grew from {} to {}", gpu.objects, now.1.objects);
     }
-    assert!(epochs >= 2, "a warm-up epoch and at least one measured one");
+    assert!(epochs >= 3, "two warm-up epochs and at least one measured one");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -6,9 +6,12 @@
 //   luminance). The total power is right in expectation, but its position is not: the
 //   brightest point is nearly always the one nearest the source, so light never travels far
 //   (the suite's unlit room, two doorways from the spot, got 5% of its light);
-// - the default: a point picked with probability proportional to its reflected luminance
+// - `proportional`: a point picked with probability proportional to its reflected luminance
 //   (an exponential race, max of y / E with E ~ Exp(1), same atomic max), which makes both the
-//   power and its spatial distribution unbiased.
+//   power and its spatial distribution unbiased;
+// - the default, `resampled` (`resample` below): the whole new set drawn at once from every
+//   source's lit points, with the view importance (`importance`), each new VPL carrying an
+//   equal share of the set's light divided by its point's weight.
 #import common/color.wgsl
 #import common/vpl.wgsl
 #import render/gi/ism/ism_lookup.wgsl
