@@ -36,6 +36,8 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
             ui.radio_value(&mut m.tail_ratio, TailRatio::Screen, "screen").on_hover_text(
                 "The light the last bounce gives the screen over the previous one's: for a room that light reaches late, through other rooms.",
             );
+            ui.radio_value(&mut m.tail_ratio, TailRatio::Mean, "mean")
+                .on_hover_text("The geometric mean of the two: the screen's growth slows as the light settles.");
         });
         ui.horizontal(|ui| {
             ui.label("bounce VPL pick");

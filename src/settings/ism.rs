@@ -167,6 +167,21 @@ pub enum TailRatio {
     /// ratio's 11-12%.
     #[default]
     Screen,
+    /// The geometric mean of the two: the screen's ratio says how fast the light on screen
+    /// still grows as it spreads into the room the camera is in, but that growth slows as the
+    /// light's spread settles, and the power ratio is where it ends.
+    Mean,
+}
+
+impl TailRatio {
+    /// The code `tail` in `ism_bounce.wgsl` reads (`BounceParams::area[1]`).
+    pub fn shader_code(self) -> f32 {
+        match self {
+            Self::Power => 0.0,
+            Self::Screen => 1.0,
+            Self::Mean => 2.0,
+        }
+    }
 }
 
 /// How the multi-bounce pass picks the point that becomes a VPL of the next bounce (the new VPL
@@ -214,7 +229,7 @@ impl Default for IsmSettings {
             bounce_tail: true,
             bounce_pick: BouncePick::Resampled,
             view_importance: 8.0,
-            tail_ratio: TailRatio::Screen,
+            tail_ratio: TailRatio::Mean,
             splat_radius: 1.35,
             clamp_distance: 0.0,
             clamp_disk: 0.25,

@@ -22,10 +22,11 @@ struct BounceParams {
     // source set's first VPL, destination set's first VPL, frame seed, pick (0: brightest,
     // 1: proportional to luminance, 2: the whole set resampled, `resample`).
     sets: vec4<u32>,
-    // 1 / d_max, clamp factor on the disks' radii squared, d_min^2, interleave n^2.
+    // 1 / d_max, unused, d_min^2, interleave n^2.
     params: vec4<f32>,
     // sum over the scene of area x weight, the tail's ratio (0: the sets' power, 1: the
-    // screen's, `TailRatio`), the view importance (`importance`), unused.
+    // screen's, 2: their geometric mean, `TailRatio`), the view importance (`importance`),
+    // unused.
     area: vec4<f32>,
     // ISM lookup: neighbour reach (`ism_lit`), normal-offset constant and slope factors (`ism_offset_point`), the
     // relative depth margin of texels without a point (`ism_lit`).
@@ -113,13 +114,17 @@ fn incident_power(i: u32) -> vec4<f32> {
     if !ism_lit(vpl, src, ism, bp.counts.z, bp.counts.w, bp.counts.y, bp.bias) {
         return vec4<f32>(0.0, 0.0, 0.0, f32(k));
     }
-    // The area this point stands for among its VPL's points.
+    // The area A this point stands for among its VPL's points.
     let area = bitcast<f32>(pick.y);
-    // Physical power of the source VPL (its shading power carries the interleave factor n^2),
-    // between two disks (the VPL's and the point's patch): clamping d^2 at R_vpl^2 + R_point^2
-    // keeps the power a near point receives below what the VPL emits.
-    let r2 = vpl.position.w + area / PI;
-    let e = vpl_intensity(vpl, dir, cos_s) / bp.params.w * cos_r / max(max(d2, bp.params.y * r2), bp.params.z);
+    // Physical power of the source VPL (its shading power carries the interleave factor n^2)
+    // reaching the point's patch, taken as a disk of area A: d^2 + A / pi is the exact
+    // point-to-coaxial-disk form factor's, so a patch next to the VPL receives at most the
+    // VPL's power and no light farther off is lost. The clamp at the VPL's and the point's
+    // disks used before (d^2 >= R_vpl^2 + R_point^2) lost 9% of the light at every bounce: in
+    // the held-out offices with every surface 0.7 grey (closed, so each set must reflect 0.7 of
+    // the last) the sets' ratio was 0.634, with this 0.687, with no clamp at all 0.698, but
+    // then a point 1 cm round a corner from a VPL made one frame in 40 24x too bright.
+    let e = vpl_intensity(vpl, dir, cos_s) / bp.params.w * cos_r / max(d2 + area / PI, bp.params.z);
     return vec4<f32>(e * area, f32(k));
 }
 
@@ -397,7 +402,9 @@ fn tail(@builtin(local_invocation_index) lid: u32) {
         mean = select(fresh, mix(mean, fresh, TAIL_BLEND), mean.y > 0.0);
     }
     var r = 0.0;
-    if mean.y > 0.0 && bp.area.y > 0.5 {
+    if mean.y > 0.0 && bp.area.y > 1.5 && total.x > 0.0 {
+        r = sqrt(max(mean.x / mean.y, 0.0) * total.y / total.x);
+    } else if mean.y > 0.0 && bp.area.y > 0.5 {
         r = mean.x / mean.y;
     } else if total.x > 0.0 {
         r = total.y / total.x;

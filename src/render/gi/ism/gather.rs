@@ -10,7 +10,7 @@ mod access;
 use crate::render::layouts::{compute_pipeline, storage_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::ViewTargets;
-use crate::settings::{BouncePick, IsmSettings, TailRatio};
+use crate::settings::{BouncePick, IsmSettings};
 
 use super::params::{BounceParams, GpuCluster, PullPushParams, SelectParams, SplatParams};
 use super::screen::{IsmInputs, IsmScreen};
@@ -494,15 +494,12 @@ impl IsmGather {
                 let bounce = BounceParams {
                     counts,
                     sets: [(b - 1) * key.vpls, b * key.vpls, self.seed.wrapping_add(b), settings.bounce_pick as u32],
-                    // The bounce clamps at the full disks, whatever the shading's clamp: a near
-                    // point then receives at most A_point / (A_vpl + A_point) of the VPL's
-                    // power. With a quarter of the disks a point could receive up to four times
-                    // that: with 0.25 here a held-out four-room flat (tools/unseen_levels.py)
-                    // read 5.0x the reference's energy, 4.3x with full disks (its walls leak).
-                    params: [1.0 / d_max, 1.0, d_min * d_min, n2],
+                    // The bounce keeps a near point's power below the VPL's with the point's
+                    // own disk (`incident_power`), whatever the shading's clamp.
+                    params: [1.0 / d_max, 0.0, d_min * d_min, n2],
                     area: [
                         scale.total_area,
-                        f32::from(u8::from(settings.tail_ratio == TailRatio::Screen)),
+                        settings.tail_ratio.shader_code(),
                         settings.view_importance,
                         0.0,
                     ],
