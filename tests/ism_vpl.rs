@@ -299,8 +299,7 @@ fn view_importance_puts_more_vpls_where_the_camera_looks_and_keeps_their_light()
 fn bounce_sets_keep_the_light_a_closed_level_of_one_albedo_reflects() {
     let Some(ctx) = common::gpu() else { return };
     let albedo = 0.7f32;
-    let mut project =
-        bouncelab::suite::scene("rooms").expect("scene").load(std::path::Path::new(".")).expect("loads");
+    let mut project = bouncelab::suite::scene("rooms").expect("scene").load(std::path::Path::new(".")).expect("loads");
     for m in &mut project.scene.desc_mut().materials {
         m.base_color = [albedo, albedo, albedo, 1.0];
         m.base_color_texture = None;
@@ -324,5 +323,8 @@ fn bounce_sets_keep_the_light_a_closed_level_of_one_albedo_reflects() {
     let ratios: Vec<f64> = power.windows(2).skip(1).map(|w| w[1] / w[0]).collect();
     eprintln!("set power ratios {ratios:.4?} (albedo {albedo})");
     let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
-    assert!((mean / f64::from(albedo) - 1.0).abs() < 0.04, "bounce sets reflect {mean:.4} of the set before, not {albedo}");
+    assert!(
+        (mean / f64::from(albedo) - 1.0).abs() < 0.04,
+        "bounce sets reflect {mean:.4} of the set before, not {albedo}"
+    );
 }

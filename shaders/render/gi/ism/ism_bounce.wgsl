@@ -377,8 +377,10 @@ const TAIL_BLEND: f32 = 0.25;
 // clamped to 0.9. r is the ratio of the two sets' total power, or (`TailRatio::Screen`) of what
 // the screen saw of them (last frame's shading, a running mean): in a level lit from another
 // room the light on screen grows for more bounces than the light in the scene as a whole
-// (held-out offices: 24% of the light on screen arrives after the sixth bounce). Before the
-// screen has seen both sets, r is their power ratio. One workgroup; runs after `write_winner` of the last set, which no later pass reads
+// (held-out offices: 24% of the light on screen arrives after the sixth bounce). The default
+// (`TailRatio::Mean`) is the geometric mean of the two: the screen's growth slows as the light's
+// spread settles, and the power ratio is where it ends. Before the screen has seen both sets, r
+// is their power ratio. One workgroup; runs after `write_winner` of the last set, which no later pass reads
 // as a source.
 @compute @workgroup_size(64, 1, 1)
 fn tail(@builtin(local_invocation_index) lid: u32) {

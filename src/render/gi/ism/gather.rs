@@ -497,12 +497,7 @@ impl IsmGather {
                     // The bounce keeps a near point's power below the VPL's with the point's
                     // own disk (`incident_power`), whatever the shading's clamp.
                     params: [1.0 / d_max, 0.0, d_min * d_min, n2],
-                    area: [
-                        scale.total_area,
-                        settings.tail_ratio.shader_code(),
-                        settings.view_importance,
-                        0.0,
-                    ],
+                    area: [scale.total_area, settings.tail_ratio.shader_code(), settings.view_importance, 0.0],
                     bias: scale.bias,
                 };
                 queue.write_buffer(&self.bounce_params, u64::from(b - 1) * SLOT, bytemuck::bytes_of(&bounce));
