@@ -7,7 +7,9 @@
 use anyhow::Context;
 use bouncelab::project_file::Project;
 use bouncelab::render::gi::ism::technique::IsmTechnique;
+use bouncelab::render::gi::ism::vpl_pass::set_powers;
 use bouncelab::render::{GpuContext, Renderer};
+use bouncelab::scene::Material;
 use bouncelab::settings::{GiMode, IsmSettings, RenderSettings};
 use std::path::Path;
 
@@ -20,9 +22,7 @@ fn main() -> anyhow::Result<()> {
     let ctx = GpuContext::new_headless()?;
     let mut project = Project::from_gltf(Path::new(gltf))?;
     for m in &mut project.scene.desc_mut().materials {
-        m.base_color = [albedo, albedo, albedo, 1.0];
-        m.base_color_texture = None;
-        m.specular = [0.0; 3];
+        *m = Material::diffuse(&m.name, [albedo; 3]);
     }
     let settings = RenderSettings { mode: GiMode::IsmRitschel, ism: ism.clone(), ..project.render.clone() };
     let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
@@ -32,8 +32,8 @@ fn main() -> anyhow::Result<()> {
         r.render(&project.scene, &settings, (64, 36))?;
         let t = r.technique_as::<IsmTechnique>().context("the ism technique is active")?;
         let all = t.read_all_vpls(r.device(), r.queue())?;
-        for (k, sum) in sums.iter_mut().enumerate() {
-            *sum += all[k * n..(k + 1) * n].iter().map(|v| f64::from(v.power[1])).sum::<f64>();
+        for (sum, set) in sums.iter_mut().zip(set_powers(&all, n)) {
+            *sum += set;
         }
     }
     for (k, w) in sums.windows(2).enumerate() {

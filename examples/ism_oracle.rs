@@ -568,10 +568,11 @@ fn bounce_by_room(
             let obj = &project.scene.objects()[receivers.points[ri].object as usize];
             let m = project.scene.materials().get(obj.material).cloned().unwrap_or_default();
             let alb = lum([m.base_color[0], m.base_color[1], m.base_color[2], 1.0]);
-            let r2 = f64::from(v.position[3]) + a_recv / std::f64::consts::PI;
-            room_true[room(*p)] += alb * lum(v.power) / n2 / std::f64::consts::PI * f64::from(cos_s * cos_r)
-                / f64::from(d * d).max(r2)
-                * a_recv;
+            // The bounce pass's form factor (`incident_power` in `ism_bounce.wgsl`): the receiving
+            // patch as a disk of its area.
+            let d2 = f64::from(d * d) + a_recv / std::f64::consts::PI;
+            room_true[room(*p)] +=
+                alb * lum(v.power) / n2 / std::f64::consts::PI * f64::from(cos_s * cos_r) / d2 * a_recv;
         }
         let next = vpls[(src + 1) * n + k];
         room_gpu[room(Vec3::from_slice(&next.position[..3]))] += lum(next.power) / n2;

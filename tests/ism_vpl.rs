@@ -301,9 +301,7 @@ fn bounce_sets_keep_the_light_a_closed_level_of_one_albedo_reflects() {
     let albedo = 0.7f32;
     let mut project = bouncelab::suite::scene("rooms").expect("scene").load(std::path::Path::new(".")).expect("loads");
     for m in &mut project.scene.desc_mut().materials {
-        m.base_color = [albedo, albedo, albedo, 1.0];
-        m.base_color_texture = None;
-        m.specular = [0.0; 3];
+        *m = bouncelab::scene::Material::diffuse(&m.name, [albedo; 3]);
     }
     let ism = IsmSettings { bounces: 5, bounce_tail: false, view_importance: 0.0, ..IsmSettings::default() };
     let settings = RenderSettings { mode: GiMode::IsmRitschel, ism: ism.clone(), ..project.render.clone() };
@@ -314,8 +312,8 @@ fn bounce_sets_keep_the_light_a_closed_level_of_one_albedo_reflects() {
         r.render(&project.scene, &settings, (16, 16)).expect("render");
         let t = r.technique_as::<IsmTechnique>().expect("ism");
         let all = t.read_all_vpls(r.device(), r.queue()).expect("vpls");
-        for (k, sum) in power.iter_mut().enumerate() {
-            *sum += all[k * n..(k + 1) * n].iter().map(|v| f64::from(v.power[1])).sum::<f64>();
+        for (sum, set) in power.iter_mut().zip(bouncelab::render::gi::ism::vpl_pass::set_powers(&all, n)) {
+            *sum += set;
         }
     }
     // Set 0 comes from the light's own G-buffer (its VPLs' clamp is the shading's); the bounce

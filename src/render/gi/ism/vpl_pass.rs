@@ -45,6 +45,12 @@ pub struct GpuVpl {
 
 const _: () = assert!(std::mem::size_of::<GpuVpl>() == 80);
 
+/// Total green-channel power of each set of `per_set` VPLs in `vpls` (every bounce's set, as
+/// `IsmTechnique::read_all_vpls` returns them): what the energy checks compare between bounces.
+pub fn set_powers(vpls: &[GpuVpl], per_set: usize) -> Vec<f64> {
+    vpls.chunks(per_set.max(1)).map(|set| set.iter().map(|v| f64::from(v.power[1])).sum()).collect()
+}
+
 /// Dynamic-offset slot of one tile's `LightView`.
 const VIEW_SLOT: u64 = 256;
 
