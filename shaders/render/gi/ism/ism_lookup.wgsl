@@ -44,9 +44,9 @@
 #import render/gi/ism/ism_clips.wgsl
 
 // What the point of atlas word `stored` says of the receiver's ray `l`: BLOCKED (its surface is
-// crossed before the receiver), PAST_EDGE (the ray meets its plane before the receiver but past
-// its open edges), UNVOUCHED_WAY (the texel's own point, much nearer than the receiver, whose
-// plane the ray does not cross) or CLEAR (anything else: its plane lies beyond the receiver or contains it,
+// crossed before the receiver), UNSURE (the ray meets its plane before the receiver but past
+// its open edges, or the texel's own point is much nearer than the receiver and its plane is
+// not crossed) or CLEAR (anything else: its plane lies beyond the receiver or contains it,
 // or only a depth is stored and it is farther). `reach` > 0 (a neighbour's word): its depth
 // alone never shadows, and its surface only within its seams and within reach x t of its point.
 // `UNVOUCHED` and `MIN_COS` are `atlas_word.rs`'s constants of the same names (the CPU twin).
@@ -129,8 +129,7 @@ fn slab_blocks(j: u32, o: vec3<f32>, dir: vec3<f32>, dist: f32, reach: f32) -> b
 
 const CLEAR: u32 = 0u;
 const BLOCKED: u32 = 1u;
-const PAST_EDGE: u32 = 2u;
-const UNVOUCHED_WAY: u32 = 3u;
+const UNSURE: u32 = 2u;
 
 fn ism_point_test(vpl: Vpl, tile: u32, l: IsmLookup, stored: u32, per_ism: u32, margin: f32, reach: f32, own: bool) -> u32 {
     if stored == ISM_EMPTY {
@@ -156,7 +155,7 @@ fn ism_point_test(vpl: Vpl, tile: u32, l: IsmLookup, stored: u32, per_ism: u32, 
     // receiver still leaves the rest of the way unvouched for, and the neighbours are asked.
     var not_crossed = CLEAR;
     if own && distance(points[j].xyz, o) < l.dist * UNVOUCHED {
-        not_crossed = UNVOUCHED_WAY;
+        not_crossed = UNSURE;
     }
     let den = dot(l.dir, n);
     if abs(den) <= 1.0e-6 {
@@ -169,7 +168,7 @@ fn ism_point_test(vpl: Vpl, tile: u32, l: IsmLookup, stored: u32, per_ism: u32, 
     }
     let h = o + l.dir * t;
     if !on_surface(j, h, 0.0) {
-        return PAST_EDGE;
+        return UNSURE;
     }
     if own {
         return BLOCKED;
@@ -194,11 +193,11 @@ fn ism_lit(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, bias
         return false;
     }
     let side = r * c;
-    if own != CLEAR {
+    if own == UNSURE {
         // A neighbour's point blocks it, or none does and neither the texel nor a neighbour
         // shows the way clear.
         let around = ism_neighbours(vpl, tile, l, r, c, per_ism, margin, reach);
-        if around == BLOCKED || (around != CLEAR && !ism_shows_clear(stored, l.depth)) {
+        if around == BLOCKED || (around == UNSURE && !ism_shows_clear(stored, l.depth)) {
             return false;
         }
     }
@@ -250,7 +249,7 @@ fn ism_hole_blocks(vpl: Vpl, tile: u32, l: IsmLookup, side: u32, per_ism: u32, r
 
 // What the four neighbouring texels say of the ray: BLOCKED where any one's point blocks it
 // (their words tested with `reach`), CLEAR where none does and one shows the way clear
-// (`ism_shows_clear`), UNVOUCHED_WAY otherwise.
+// (`ism_shows_clear`), UNSURE otherwise.
 fn ism_neighbours(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, margin: f32, reach: f32) -> u32 {
     let side = r * c;
     let x = l.index % side;
@@ -258,7 +257,7 @@ fn ism_neighbours(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u3
     let x0 = (tile % c) * r;
     let y0 = (tile / c) * r;
     let offsets = array<vec2<i32>, 4>(vec2<i32>(-1, 0), vec2<i32>(1, 0), vec2<i32>(0, -1), vec2<i32>(0, 1));
-    var shown = UNVOUCHED_WAY;
+    var shown = UNSURE;
     for (var i = 0; i < 4; i = i + 1) {
         let q = vec2<i32>(i32(x), i32(y)) + offsets[i];
         if q.x < i32(x0) || q.y < i32(y0) || q.x >= i32(x0 + r) || q.y >= i32(y0 + r) {

@@ -51,11 +51,10 @@ pub enum PointTest {
     Clear,
     /// The ray crosses the point's surface before the receiver.
     Blocked,
-    /// The ray meets the point's plane before the receiver but past its open edges.
-    PastEdge,
-    /// The point is much nearer than the receiver (within [`UNVOUCHED`] of its distance) but
-    /// the ray does not cross its plane before it: the rest of the way is unvouched for.
-    Unvouched,
+    /// The ray meets the point's plane before the receiver but past its open edges, or (the
+    /// texel's own point) the point is much nearer than the receiver (within [`UNVOUCHED`] of its
+    /// distance) and the ray does not cross its plane before it.
+    Unsure,
 }
 
 /// Where a lookup falls: the atlas (row-major words, tiles of side `r`, `c` per row) and the
@@ -188,7 +187,7 @@ impl IsmLookupData {
         }
         // The ray does not cross the point's plane before the receiver: a point much nearer
         // than the receiver still leaves the rest of the way unvouched for (`ism_lookup.wgsl`).
-        let not_crossed = if own && p.distance(o) < dist * UNVOUCHED { PointTest::Unvouched } else { PointTest::Clear };
+        let not_crossed = if own && p.distance(o) < dist * UNVOUCHED { PointTest::Unsure } else { PointTest::Clear };
         let den = dir.dot(n);
         if den.abs() <= 1e-6 {
             return not_crossed;
@@ -199,7 +198,7 @@ impl IsmLookupData {
         }
         let h = o + dir * t;
         if !self.on_surface(j, h, 0.0) {
-            PointTest::PastEdge
+            PointTest::Unsure
         } else if own || (self.within_edges(j, h, 0.0, true) && within_disk(h - p, dir, n, reach * t)) {
             PointTest::Blocked
         } else {
@@ -235,7 +234,7 @@ impl IsmLookupData {
         };
         match self.point_test(o, tile, dir, dist, depth_norm, stored, margin, reach, true) {
             PointTest::Blocked => return false,
-            PointTest::PastEdge | PointTest::Unvouched => {
+            PointTest::Unsure => {
                 let around = [(-1, 0), (1, 0), (0, -1), (0, 1)].map(|(dx, dy)| at.word(tile, x + dx, y + dy));
                 if around.iter().flatten().any(|&w| blocked(w, reach)) {
                     return false;
