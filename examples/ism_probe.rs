@@ -175,7 +175,21 @@ fn main() -> anyhow::Result<()> {
                 let n = objects.get(o.id as usize - 1).map_or("?", |o| o.name.as_str());
                 // Indirect share: (ism - direct) / (reference - direct) from the luminance ratios.
                 let ind = (o.luminance_ratio - d.luminance_ratio) / (1.0 - d.luminance_ratio);
-                println!("         {n:20} {:6} px  energy {:.3}  indirect {ind:.3}", o.pixels, o.luminance_ratio);
+                // The object's share of the reference's light on screen, and what `ism` misses of
+                // it as a share of the whole screen's reference light.
+                let sum = |img: &HdrImage| -> f64 {
+                    ids.iter()
+                        .zip(&img.pixels)
+                        .filter(|(id, _)| **id == o.id)
+                        .map(|(_, p)| f64::from(metrics::luminance(p)))
+                        .sum()
+                };
+                let total = mr * (ids.len() as f64);
+                let (share, missing) = (sum(&reference) / total, (sum(&reference) - sum(&img)) / total);
+                println!(
+                    "         {n:20} {:6} px  energy {:.3}  indirect {ind:.3}  share {share:.3}  missing {missing:+.3}",
+                    o.pixels, o.luminance_ratio
+                );
             }
         }
         if let Ok(dir) = std::env::var("PROBE_OUT") {

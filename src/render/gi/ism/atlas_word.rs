@@ -6,7 +6,7 @@
 
 use glam::Vec3;
 
-use crate::precompute::open_edges::CLIPS_PER_POINT;
+use crate::precompute::open_edges::{CLIPS_PER_POINT, SEAM_SCALE};
 
 /// Depth levels of the word's 17-bit depth field (all ones is empty).
 const DEPTH_MAX: f32 = 131_070.0;
@@ -309,15 +309,21 @@ impl IsmLookupData {
         self.within_edges(j, h, margin, false)
     }
 
-    /// Whether `h` lies inside pool point `j`'s open edges' clip lines, less `margin`, and with
-    /// `seams` inside its seams' lines too (stored scaled by
-    /// [`crate::precompute::open_edges::SEAM_SCALE`]): the twin of `within_edges`.
+    /// Whether `h` lies inside pool point `j`'s open edges' clip lines, less `margin`, and past
+    /// its seams only within their overhang (stored scaled by
+    /// [`crate::precompute::open_edges::SEAM_SCALE`] plus the overhang), and with `seams` inside
+    /// its seams' own lines too: the twin of `within_edges`.
     pub fn within_edges(&self, j: u32, h: Vec3, margin: f32, seams: bool) -> bool {
         let j = j as usize;
         self.clips.get(j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT).is_none_or(|lines| {
             lines.iter().all(|c| {
                 let d = Vec3::from_slice(&c[..3]);
-                (!seams && d.length_squared() > 2.0) || d.dot(h) >= c[3] - margin
+                let s = d.length();
+                if !seams && s * s > 2.0 {
+                    d.dot(h) / s >= c[3] / s - (s - SEAM_SCALE) - margin
+                } else {
+                    d.dot(h) >= c[3] - margin
+                }
             })
         })
     }
