@@ -304,8 +304,11 @@ mod tests {
         })
     }
 
+    /// Per sample point its object, world position and normal, and the points' clip lines.
+    type Clipped = (Vec<u32>, Vec<(Vec3, Vec3)>, Vec<[f32; 4]>);
+
     /// Sample points of `scene` with their world positions and normals, and their clip lines.
-    fn clipped_points(scene: &Scene) -> (Vec<u32>, Vec<(Vec3, Vec3)>, Vec<[f32; 4]>) {
+    fn clipped_points(scene: &Scene) -> Clipped {
         let points = crate::precompute::sample_points::distribute(scene, 4000, 1, 3);
         let clips = point_clips(scene, &points.points, 10.0, 0.01);
         let world = points.world(scene);
