@@ -591,5 +591,8 @@ mod tests {
         ] {
             assert!(wgsl.contains(&line), "ism_lookup.wgsl lacks `{line}`");
         }
+        let clips = include_str!("../../../../shaders/render/gi/ism/ism_clips.wgsl");
+        let line = format!("const SEAM_SCALE: f32 = {SEAM_SCALE:?};");
+        assert!(clips.contains(&line), "ism_clips.wgsl lacks `{line}`");
     }
 }
