@@ -29,8 +29,9 @@ enum Command {
         /// Write the signed error heat map (red = too bright, blue = too dark).
         #[arg(long)]
         heatmap: Option<PathBuf>,
-        /// Exposure in stops applied before FLIP (FLIP compares display images).
-        #[arg(long, default_value_t = 0.0)]
+        /// Exposure in stops applied before FLIP (FLIP compares display images); negative
+        /// stops are written as they are (`--exposure -1.5`).
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
         exposure: f32,
     },
     /// Time each mode per pass and write docs/BENCHMARKS.md; with --quality, render every mode

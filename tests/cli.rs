@@ -32,6 +32,14 @@ fn renders_and_compares() {
     args.extend(size);
     assert!(bouncelab(&args).status.success());
     let heat = p("heat.png");
+    // A negative exposure is a value, not an unknown flag (`-0.5` was refused as an argument).
+    let dark = p("dark.png");
+    let mut args = vec!["render", "projects/default.ron", "--mode", "direct", "--out", &dark, "--exposure", "-1.5"];
+    args.extend(size);
+    let o = bouncelab(&args);
+    assert!(o.status.success(), "render --exposure -1.5: {}", String::from_utf8_lossy(&o.stderr));
+    let o = bouncelab(&["compare", &p("d.exr"), &p("r.exr"), "--exposure", "-0.5"]);
+    assert!(o.status.success(), "compare --exposure -0.5: {}", String::from_utf8_lossy(&o.stderr));
     let o = bouncelab(&["compare", &p("d.exr"), &p("r.exr"), "--heatmap", &heat]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = String::from_utf8_lossy(&o.stdout);

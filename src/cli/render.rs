@@ -33,8 +33,8 @@ pub struct RenderArgs {
     /// Frames to render (temporal techniques converge); the last one is written.
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
-    /// Exposure in stops for the PNG view.
-    #[arg(long)]
+    /// Exposure in stops for the PNG view (`--exposure -1.5` darkens).
+    #[arg(long, allow_negative_numbers = true)]
     pub exposure: Option<f32>,
     /// Samples per pixel (reference mode).
     #[arg(long)]
