@@ -31,8 +31,12 @@ enum Command {
         heatmap: Option<PathBuf>,
         /// Exposure in stops applied before FLIP (FLIP compares display images); negative
         /// stops are written as they are (`--exposure -1.5`).
-        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, conflicts_with = "exposure_auto")]
         exposure: f32,
+        /// Instead of --exposure: the exposure that puts the reference's mean luminance at 0.18,
+        /// as docs/QUALITY.md judges every scene (printed as `exposure:`).
+        #[arg(long)]
+        exposure_auto: bool,
     },
     /// Time each mode per pass and write docs/BENCHMARKS.md; with --quality, render every mode
     /// on every scene of the suite against its reference and write docs/QUALITY.md.
@@ -80,7 +84,12 @@ fn main() -> ExitCode {
     let args = Args::parse();
     let result = match args.command {
         Some(Command::Render(args)) => cli::render::run(&args).map(|s| println!("wrote {s}")),
-        Some(Command::Compare { candidate, reference, heatmap, exposure }) => {
+        Some(Command::Compare { candidate, reference, heatmap, exposure, exposure_auto }) => {
+            let exposure = if exposure_auto {
+                cli::compare::Exposure::MatchQuality
+            } else {
+                cli::compare::Exposure::Stops(exposure)
+            };
             cli::compare::run(&candidate, &reference, heatmap.as_deref(), exposure).map(|s| println!("{s}"))
         }
         Some(Command::Bench { quick, quality: false, out }) => {

@@ -40,6 +40,22 @@ fn renders_and_compares() {
     assert!(o.status.success(), "render --exposure -1.5: {}", String::from_utf8_lossy(&o.stderr));
     let o = bouncelab(&["compare", &p("d.exr"), &p("r.exr"), "--exposure", "-0.5"]);
     assert!(o.status.success(), "compare --exposure -0.5: {}", String::from_utf8_lossy(&o.stderr));
+    // --exposure-auto judges at the exposure that puts the reference's mean at 0.18 (the
+    // quality matrix's), prints it, and gives the FLIP that exposure gives when named.
+    let o = bouncelab(&["compare", &p("d.exr"), &p("r.exr"), "--exposure-auto"]);
+    assert!(o.status.success(), "compare --exposure-auto: {}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let field = |text: &str, key: &str| -> f64 {
+        let line = text.lines().find(|l| l.starts_with(key)).unwrap_or_else(|| panic!("{key} in {text}"));
+        line[key.len()..].trim().parse().expect("a number")
+    };
+    let ev = field(&text, "exposure:");
+    assert!(ev.is_finite() && ev.abs() > 0.01, "{text}");
+    let named = bouncelab(&["compare", &p("d.exr"), &p("r.exr"), "--exposure", &format!("{ev}")]);
+    let named = String::from_utf8_lossy(&named.stdout).into_owned();
+    assert!((field(&text, "flip:") - field(&named, "flip:")).abs() < 1e-4, "{text}\n{named}");
+    let o = bouncelab(&["compare", &p("d.exr"), &p("r.exr"), "--exposure", "1", "--exposure-auto"]);
+    assert!(!o.status.success(), "--exposure and --exposure-auto together are refused");
     let o = bouncelab(&["compare", &p("d.exr"), &p("r.exr"), "--heatmap", &heat]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = String::from_utf8_lossy(&o.stdout);
