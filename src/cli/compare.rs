@@ -21,10 +21,10 @@ pub enum Exposure {
 /// Compares two images (EXR: linear; PNG: decoded from sRGB) and returns the printed text.
 pub fn run(candidate: &Path, reference: &Path, heatmap: Option<&Path>, exposure: Exposure) -> anyhow::Result<String> {
     // NaN compared as "identical" (FLIP 0) before this check.
-    if let Exposure::Stops(ev) = exposure {
-        if !(-32.0..=32.0).contains(&ev) {
-            anyhow::bail!("--exposure {ev} is outside -32..=32 stops");
-        }
+    if let Exposure::Stops(ev) = exposure
+        && !(-32.0..=32.0).contains(&ev)
+    {
+        anyhow::bail!("--exposure {ev} is outside -32..=32 stops");
     }
     let a = read_linear(candidate)?;
     let b = read_linear(reference)?;
