@@ -185,7 +185,8 @@ fn main() -> anyhow::Result<()> {
                         .sum()
                 };
                 let total = mr * (ids.len() as f64);
-                let (share, missing) = (sum(&reference) / total, (sum(&reference) - sum(&img)) / total);
+                let seen = sum(&reference);
+                let (share, missing) = (seen / total, (seen - sum(&img)) / total);
                 println!(
                     "         {n:20} {:6} px  energy {:.3}  indirect {ind:.3}  share {share:.3}  missing {missing:+.3}",
                     o.pixels, o.luminance_ratio

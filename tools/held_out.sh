@@ -21,7 +21,7 @@ for gltf in "$dir"/*.gltf; do
     echo "$name: no reference $ref (skipped)" >&2
     continue
   fi
-  declare -A flip=()
+  direct_flip=
   for mode in direct ism; do
     frames=1
     [[ $mode == ism ]] && frames=32
@@ -29,12 +29,13 @@ for gltf in "$dir"/*.gltf; do
       --out "$tmp/$name.$mode.exr" > "$tmp/log" 2>&1 || { echo "$name $mode: render failed" >&2; cat "$tmp/log" >&2; exit 1; }
     json=$("$bin" compare "$tmp/$name.$mode.exr" "$ref" --exposure-auto | tail -n 1)
     energy=$(sed -E 's/.*"luminance_ratio":([-0-9.eE+]+).*/\1/' <<< "$json")
-    flip[$mode]=$(sed -E 's/.*"flip":([-0-9.eE+]+).*/\1/' <<< "$json")
-    line=$(printf '%-12s %-7s energy %.3f  FLIP %.4f' "$name" "$mode" "$energy" "${flip[$mode]}")
-    if [[ $mode == ism ]]; then
-      line+=$(awk -v a="${flip[ism]}" -v b="${flip[direct]}" 'BEGIN { printf "  FLIP / direct %.2f", a / b }')
+    flip=$(sed -E 's/.*"flip":([-0-9.eE+]+).*/\1/' <<< "$json")
+    line=$(printf '%-12s %-7s energy %.3f  FLIP %.4f' "$name" "$mode" "$energy" "$flip")
+    if [[ $mode == direct ]]; then
+      direct_flip=$flip
+    else
+      line+=$(awk -v a="$flip" -v b="$direct_flip" 'BEGIN { printf "  FLIP / direct %.2f", a / b }')
     fi
     echo "$line"
   done
-  unset flip
 done

@@ -62,6 +62,20 @@ pub struct ClipEdge {
 /// falsely shadowed the corridor beyond it).
 pub const SEAM_SCALE: f32 = 2.0;
 
+/// Whether `h` passes one world clip `line` of [`PointClips::world_lines`], less `margin`: an
+/// open edge's line (unit xyz) when dot(xyz, h) >= w; a seam's (xyz of length s =
+/// [`SEAM_SCALE`] + overhang) when `h` lies no more than the overhang past it, or with `seams`
+/// when it lies inside the seam itself. The CPU statement of `within_edges` in `ism_clips.wgsl`.
+pub fn line_admits(line: &[f32; 4], h: Vec3, margin: f32, seams: bool) -> bool {
+    let d = Vec3::new(line[0], line[1], line[2]);
+    let s = d.length();
+    if !seams && s * s > 2.0 {
+        d.dot(h) / s >= line[3] / s - (s - SEAM_SCALE) - margin
+    } else {
+        d.dot(h) >= line[3] - margin
+    }
+}
+
 /// The open edges near each sample point.
 #[derive(Clone, Debug, Default)]
 pub struct PointClips {
@@ -297,11 +311,7 @@ mod tests {
     /// Whether `h` lies within point `i`'s clip `lines` (past its seams by their overhang at
     /// most; with `seams`, within the seams themselves), as `within_edges` in `ism_clips.wgsl`.
     fn within(lines: &[[f32; 4]], i: usize, h: Vec3, seams: bool) -> bool {
-        lines[i * CLIPS_PER_POINT..(i + 1) * CLIPS_PER_POINT].iter().all(|l| {
-            let d = Vec3::new(l[0], l[1], l[2]);
-            let s = d.length();
-            if s > 1.5 && !seams { d.dot(h) / s >= l[3] / s - (s - SEAM_SCALE) } else { d.dot(h) >= l[3] }
-        })
+        lines[i * CLIPS_PER_POINT..(i + 1) * CLIPS_PER_POINT].iter().all(|l| line_admits(l, h, 0.0, seams))
     }
 
     /// Per sample point its object, world position and normal, and the points' clip lines.

@@ -6,7 +6,7 @@
 
 use glam::Vec3;
 
-use crate::precompute::open_edges::{CLIPS_PER_POINT, SEAM_SCALE};
+use crate::precompute::open_edges::{CLIPS_PER_POINT, line_admits};
 
 /// Depth levels of the word's 17-bit depth field (all ones is empty).
 const DEPTH_MAX: f32 = 131_070.0;
@@ -315,23 +315,16 @@ impl IsmLookupData {
     /// its seams' own lines too: the twin of `within_edges`.
     pub fn within_edges(&self, j: u32, h: Vec3, margin: f32, seams: bool) -> bool {
         let j = j as usize;
-        self.clips.get(j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT).is_none_or(|lines| {
-            lines.iter().all(|c| {
-                let d = Vec3::from_slice(&c[..3]);
-                let s = d.length();
-                if !seams && s * s > 2.0 {
-                    d.dot(h) / s >= c[3] / s - (s - SEAM_SCALE) - margin
-                } else {
-                    d.dot(h) >= c[3] - margin
-                }
-            })
-        })
+        self.clips
+            .get(j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT)
+            .is_none_or(|lines| lines.iter().all(|c| line_admits(c, h, margin, seams)))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::precompute::open_edges::SEAM_SCALE;
 
     /// One pool point on a wall (plane z = 2, facing -z towards a VPL at the origin) whose open
     /// edge is at x = 1 (a door's jamb: the wall is x <= 1).
