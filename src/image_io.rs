@@ -71,8 +71,8 @@ const MAX_DECODE_BYTES: u64 = 2 << 30;
 
 /// Reads an image as linear RGBA float: EXR as stored, PNG/JPEG decoded from sRGB.
 pub fn read_linear(path: &Path) -> Result<HdrImage, ImageIoError> {
-    let bytes =
-        std::fs::read(path).map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })?;
+    let bytes = crate::input_file::read(path, crate::input_file::Kind::Image)
+        .map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })?;
     decode_linear(&bytes, path)
 }
 

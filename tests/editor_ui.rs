@@ -280,3 +280,134 @@ fn the_outliner_filters_by_name_and_lays_out_only_visible_rows() {
     assert_eq!(h.state().state().selection, Selection::Object(first + 1499));
     settle(&mut h);
 }
+
+/// A fresh folder for one recovery test: two projects (copies of the default one) and the
+/// folder the editor keeps its recovery files in, standing for a fresh home folder.
+fn recovery_fixture(name: &str) -> (std::path::PathBuf, std::path::PathBuf, std::path::PathBuf) {
+    let dir = std::env::temp_dir().join(format!("bouncelab-recovery-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("dir");
+    let project = Project::load(&default_project_path()).expect("default project");
+    let (a, b) = (dir.join("a.ron"), dir.join("b.ron"));
+    project.save(&a).expect("a.ron");
+    project.save(&b).expect("b.ron");
+    (a, b, dir.join("home-data"))
+}
+
+/// An editor on `path` with its recovery files in `recovery`.
+fn editor_at(path: &std::path::Path, recovery: &std::path::Path) -> Harness<'static, EditorApp> {
+    let (path, recovery) = (path.to_owned(), recovery.to_owned());
+    let project = Project::load(&path).expect("project");
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .wgpu()
+        .build_eframe(move |cc| EditorApp::with_recovery(cc, project, Some(path), Some(recovery)));
+    h.run_steps(2);
+    h
+}
+
+/// Adds a point light through the menus.
+fn add_point_light(h: &mut Harness<'static, EditorApp>) {
+    h.get_by_label("Add").click();
+    h.run_steps(2);
+    h.get_by_label("Point light").click();
+    h.run_steps(2);
+}
+
+fn has_gpu() -> bool {
+    std::env::var_os("CI").is_some() || bouncelab::render::GpuContext::new_headless().is_ok()
+}
+
+#[test]
+fn restored_work_goes_back_to_its_own_project_never_the_open_one() {
+    if !has_gpu() {
+        return;
+    }
+    let (a, b, home) = recovery_fixture("cross");
+    let b_before = std::fs::read(&b).expect("b");
+    let mut first = editor_at(&a, &home);
+    add_point_light(&mut first);
+    assert!(first.state().flush_autosave().is_some_and(|f| f.exists()), "a's edit is autosaved");
+    settle(&mut first);
+    // Killed: the instance is gone without a clean exit, its lock with it.
+    drop(first);
+    let mut second = editor_at(&b, &home);
+    let offered = second.state().recovery_offered().expect("the dialog is shown");
+    assert!(offered.contains("a.ron") && offered.contains("UTC") && offered.contains("1 edits"), "{offered}");
+    second.get_by_label("Restore").click();
+    second.run_steps(2);
+    let state = second.state().state();
+    assert_eq!(state.path.as_deref().and_then(|p| p.file_name()), Some(std::ffi::OsStr::new("a.ron")), "a reopened");
+    assert_eq!(state.project.scene.lights().len(), 2, "with the edit");
+    assert!(state.history.is_dirty(), "restored work is unsaved until saved");
+    let path = state.path.clone().expect("a's path");
+    second.state_mut().save_to(&path);
+    assert_eq!(std::fs::read(&b).expect("b"), b_before, "b.ron untouched");
+    assert_eq!(Project::load(&a).expect("a").scene.lights().len(), 2, "a.ron has the work");
+    settle(&mut second);
+}
+
+#[test]
+fn autosave_writes_after_an_idle_wait_without_any_repaint() {
+    if !has_gpu() {
+        return;
+    }
+    let (a, _, home) = recovery_fixture("idle");
+    let mut h = editor_at(&a, &home);
+    add_point_light(&mut h);
+    add_point_light(&mut h);
+    // No frame runs from here on: the editor is idle, as a real one is after the last edit.
+    std::thread::sleep(std::time::Duration::from_secs(4));
+    let files: Vec<_> = std::fs::read_dir(&home)
+        .expect("recovery folder")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .collect();
+    assert_eq!(files.len(), 1, "one recovery file: {files:?}");
+    let saved = bouncelab::app::recovery::RecoveryFile::read(&files[0]).expect("a recovery file");
+    assert_eq!(saved.scene.lights.len(), 3, "both edits are on disk");
+    assert_eq!(saved.edits, 2);
+    assert_eq!(saved.project.as_deref().and_then(|p| p.file_name()), Some(std::ffi::OsStr::new("a.ron")));
+    settle(&mut h);
+}
+
+#[test]
+fn a_second_instance_neither_offers_nor_deletes_a_running_ones_autosave() {
+    if !has_gpu() {
+        return;
+    }
+    let (a, b, home) = recovery_fixture("instances");
+    let mut first = editor_at(&a, &home);
+    add_point_light(&mut first);
+    let file = first.state().flush_autosave().expect("first's recovery file");
+    assert!(file.exists());
+    let mut second = editor_at(&a, &home);
+    assert_eq!(second.state().recovery_offered(), None, "the first instance still runs");
+    add_point_light(&mut second);
+    second.state_mut().save_to(&b);
+    second.state().flush_autosave();
+    assert!(file.exists(), "saving in another instance leaves the first's autosave");
+    drop(second);
+    settle(&mut first);
+    drop(first);
+    let third = editor_at(&a, &home);
+    assert!(third.state().recovery_offered().is_some_and(|m| m.contains("a.ron")), "offered once the first is gone");
+}
+
+#[test]
+fn the_default_project_is_never_overwritten() {
+    if !has_gpu() {
+        return;
+    }
+    let path = default_project_path();
+    let before = std::fs::read(&path).expect("default project");
+    let mut h = harness();
+    assert!(h.state().state().read_only, "opened read-only-safe");
+    add_point_light(&mut h);
+    h.state_mut().save_to(&path);
+    assert!(h.state().state().status.contains("never overwritten"), "{}", h.state().state().status);
+    assert!(h.state().state().history.is_dirty(), "nothing was saved");
+    assert_eq!(std::fs::read(&path).expect("default project"), before);
+    settle(&mut h);
+}

@@ -137,6 +137,23 @@ impl History {
         self.current_id != self.saved_id
     }
 
+    /// Identifies the authored state: it changes with every recorded edit, undo and redo, and
+    /// returns to an earlier value only when the state does (the autosave watches it).
+    pub fn state_id(&self) -> u64 {
+        self.current_id
+    }
+
+    /// How many undoable edits there are.
+    pub fn steps(&self) -> usize {
+        self.undo.len()
+    }
+
+    /// Makes the current state count as unsaved (restored work, not yet in its file).
+    pub fn mark_unsaved(&mut self) {
+        self.next_id += 1;
+        self.saved_id = self.next_id;
+    }
+
     /// Forgets everything (a new or reopened project).
     pub fn clear(&mut self) {
         *self = Self::default();

@@ -8,6 +8,7 @@
 //! The viewport follows platform-notes.md pattern B: the renderer draws into its own HDR and
 //! depth targets, the tonemapped `Rgba8Unorm` image is registered with egui as a native texture.
 
+mod autosave;
 pub mod edits;
 mod gi_ism;
 mod gi_mrt;
@@ -25,7 +26,7 @@ mod panes;
 pub mod pick;
 pub mod preview;
 mod properties;
-mod recovery;
+pub mod recovery;
 pub mod state;
 mod timings;
 mod viewport;
@@ -54,7 +55,12 @@ const PREVIEW_KEY: &str = "bouncelab.preview";
 pub fn open_or_fallback(path: &std::path::Path) -> Result<Startup, crate::scene::SceneError> {
     let is_project = |p: &std::path::Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron"));
     match Project::open(path) {
-        Ok(project) => Ok(Startup { project, path: is_project(path).then(|| path.to_owned()), error: None }),
+        Ok(project) => Ok(Startup {
+            project,
+            path: is_project(path).then(|| path.to_owned()),
+            opened: Some(path.to_owned()),
+            error: None,
+        }),
         Err(e) => {
             let why = format!("Could not open {}:\n{e}", path.display());
             log::error!("{why}");
@@ -63,7 +69,7 @@ pub fn open_or_fallback(path: &std::path::Path) -> Result<Startup, crate::scene:
                 Some(Ok(p)) => (p, "The default project is open instead."),
                 _ => (empty_project()?, "An empty project is open instead."),
             };
-            Ok(Startup { project, path: None, error: Some(format!("{why}\n\n{instead}")) })
+            Ok(Startup { project, path: None, opened: None, error: Some(format!("{why}\n\n{instead}")) })
         }
     }
 }
@@ -74,6 +80,8 @@ pub struct Startup {
     pub project: Project,
     /// Its file, if it is a project file (saving a glTF asks for a new name).
     pub path: Option<PathBuf>,
+    /// The file it came from (a project or glTF; its crash recovery is keyed by it).
+    pub opened: Option<PathBuf>,
     /// Why the requested file is not what is open.
     pub error: Option<String>,
 }
@@ -88,7 +96,7 @@ fn empty_project() -> Result<Project, crate::scene::SceneError> {
 /// Opens the editor window on `project` (the default project if `None`).
 pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
     let path = project.unwrap_or_else(default_project_path);
-    let Startup { project, path, error } = open_or_fallback(&path)?;
+    let Startup { project, path, opened, error } = open_or_fallback(&path)?;
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.device_descriptor = Arc::new(device_descriptor);
     let options = eframe::NativeOptions {
@@ -105,6 +113,7 @@ pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
         options,
         Box::new(move |cc| {
             let mut app = EditorApp::new(cc, project, path);
+            app.state_mut().opened = opened;
             if let Some(e) = error {
                 app.show_error(e);
             }
@@ -120,8 +129,8 @@ enum Modal {
     None,
     /// Unsaved changes and the user asked to close.
     ConfirmClose,
-    /// A recovery file from a crash exists.
-    OfferRecovery(PathBuf),
+    /// Work that a crashed or killed instance left unsaved (`EditorApp::offers`' first).
+    OfferRecovery,
     /// Something the user must read (a project that could not be opened at start).
     Error(String),
 }
@@ -134,7 +143,10 @@ pub struct EditorApp {
     tree: egui_tiles::Tree<Pane>,
     modal: Modal,
     allow_close: bool,
-    recovery: Option<recovery::Recovery>,
+    /// This instance's recovery files and their writer (`None` without a data folder).
+    autosave: Option<autosave::Autosave>,
+    /// Unsaved work of instances that are gone, offered one at a time (their locks held).
+    offers: Vec<recovery::Orphan>,
     /// The window title last sent.
     title: String,
 }
@@ -143,16 +155,29 @@ impl EditorApp {
     /// Creates the app; the renderer is created on eframe's wgpu device. Without eframe storage
     /// (tests) nothing is persisted and no recovery file is written.
     pub fn new(cc: &eframe::CreationContext<'_>, project: Project, path: Option<PathBuf>) -> Self {
+        let recovery = cc.storage.is_some().then(|| eframe::storage_dir("Bounce Lab")).flatten().map(|d| d.join("recovery"));
+        Self::with_recovery(cc, project, path, recovery)
+    }
+
+    /// [`EditorApp::new`] with crash recovery files in `recovery_dir` (tests give a temporary
+    /// folder; `None`: no recovery).
+    pub fn with_recovery(
+        cc: &eframe::CreationContext<'_>,
+        project: Project,
+        path: Option<PathBuf>,
+        recovery_dir: Option<PathBuf>,
+    ) -> Self {
         let mut state = EditorState::new(project, path);
         let tree = cc.storage.and_then(|s| eframe::get_value(s, TREE_KEY)).unwrap_or_else(panes::default_tree);
         if let Some(recent) = cc.storage.and_then(|s| eframe::get_value::<Vec<PathBuf>>(s, RECENT_KEY)) {
             state.recent = recent;
         }
-        let recovery = cc.storage.is_some().then(recovery::Recovery::new).flatten();
-        let modal = match recovery.as_ref().and_then(recovery::Recovery::pending) {
-            Some(p) => Modal::OfferRecovery(p),
-            None => Modal::None,
-        };
+        let autosave = recovery_dir.and_then(autosave::Autosave::new);
+        let offers = autosave
+            .as_ref()
+            .map(|a| recovery::orphans(a.dir(), &recovery::key(state.opened.as_deref())))
+            .unwrap_or_default();
+        let modal = if offers.is_empty() { Modal::None } else { Modal::OfferRecovery };
         let mut viewport = viewport::Viewport::new(&cc.egui_ctx, cc.wgpu_render_state.as_ref(), &state);
         if let Some(p) = cc.storage.and_then(|s| eframe::get_value::<preview::PreviewSettings>(s, PREVIEW_KEY)) {
             viewport.preview = p;
@@ -164,7 +189,8 @@ impl EditorApp {
             tree,
             modal,
             allow_close: false,
-            recovery,
+            autosave,
+            offers,
             title: String::new(),
         }
     }
@@ -247,6 +273,18 @@ impl EditorApp {
         (self.viewport.frames, self.viewport.timings.ui_worst(n))
     }
 
+    /// The recovery dialog's text, if it is open (tests).
+    pub fn recovery_offered(&self) -> Option<String> {
+        (self.modal == Modal::OfferRecovery).then(|| self.offers.first().map(recovery::Orphan::message)).flatten()
+    }
+
+    /// This instance's recovery file, and waits until what is pending is written (tests).
+    pub fn flush_autosave(&self) -> Option<PathBuf> {
+        let a = self.autosave.as_ref()?;
+        a.flush();
+        a.current_file().map(std::path::Path::to_owned)
+    }
+
     /// The editor state (tests read it).
     pub fn state(&self) -> &EditorState {
         &self.state
@@ -277,19 +315,75 @@ impl EditorApp {
         }
     }
 
-    /// Opens a project or glTF file.
+    /// Opens a project or glTF file, and offers work on it that a crashed instance left.
     pub fn open(&mut self, path: &std::path::Path) {
         match self.state.open(path) {
-            Ok(()) => self.viewport.reset_orbit(&self.state),
+            Ok(()) => {
+                self.viewport.reset_orbit(&self.state);
+                self.offer_recovery_of(path);
+            }
             Err(e) => self.state.report("open failed", &e),
         }
     }
 
+    /// Queues the orphaned recovery files of the project at `path`.
+    fn offer_recovery_of(&mut self, path: &std::path::Path) {
+        let Some(a) = &self.autosave else { return };
+        let key = recovery::key(Some(path));
+        let prefix = format!("{key}.");
+        let held: Vec<PathBuf> = self.offers.iter().map(|o| o.path.clone()).collect();
+        let new = recovery::orphans(a.dir(), &key).into_iter().filter(|o| {
+            o.path.file_name().is_some_and(|n| n.to_string_lossy().starts_with(&prefix)) && !held.contains(&o.path)
+        });
+        self.offers.extend(new);
+        if !self.offers.is_empty() && self.modal == Modal::None {
+            self.modal = Modal::OfferRecovery;
+        }
+    }
+
+    /// Save: to the project's file, or asks for one (a new project, a glTF, the read-only
+    /// default project).
     fn save(&mut self) {
-        match self.state.path.clone() {
+        match self.state.path.clone().filter(|_| !self.state.read_only) {
             Some(p) => self.save_to(&p),
             None => self.save_as_dialog(),
         }
+    }
+
+    /// Restores the first offered recovery into the project it belongs to, or discards it.
+    pub fn answer_recovery(&mut self, restore: bool) {
+        if self.offers.is_empty() {
+            self.modal = Modal::None;
+            return;
+        }
+        let offer = self.offers.remove(0);
+        if restore {
+            match offer.file.project(&offer.path) {
+                Ok(project) => {
+                    self.state.restore(project, offer.file.project.clone());
+                    self.state.status = format!("restored {} unsaved edits of {}", offer.file.edits, offer.file.describe());
+                    self.viewport.reset_orbit(&self.state);
+                    // This instance's own recovery file holds the work before the old one goes.
+                    let view = self.autosave_view();
+                    if let Some(a) = &mut self.autosave {
+                        a.track(&self.state.project, self.state.opened.as_deref(), &view);
+                        a.flush();
+                    }
+                    offer.remove();
+                }
+                // The file stays for a later try (an asset may be on a drive not mounted now).
+                Err(e) => self.state.report("recovery failed", &e),
+            }
+        } else {
+            offer.remove();
+        }
+        self.modal = if self.offers.is_empty() { Modal::None } else { Modal::OfferRecovery };
+    }
+
+    /// What the autosave reads of the history.
+    fn autosave_view(&self) -> autosave::History {
+        let h = &self.state.history;
+        autosave::History { state_id: h.state_id(), dirty: h.is_dirty(), edits: h.steps() as u64 }
     }
 
     fn save_as_dialog(&mut self) {
@@ -300,12 +394,12 @@ impl EditorApp {
         }
     }
 
-    /// Saves to `path` and clears the recovery file.
+    /// Saves to `path` and removes this instance's recovery file (only its own).
     pub fn save_to(&mut self, path: &std::path::Path) {
         match self.state.save_as(path) {
             Ok(()) => {
-                if let Some(r) = &self.recovery {
-                    r.clear();
+                if let Some(a) = &mut self.autosave {
+                    a.saved();
                 }
             }
             Err(e) => self.state.report("save failed", &e),
@@ -512,27 +606,20 @@ impl EditorApp {
                     }
                 });
             }
-            Modal::OfferRecovery(path) => {
+            Modal::OfferRecovery => {
+                let Some(message) = self.offers.first().map(recovery::Orphan::message) else {
+                    self.modal = Modal::None;
+                    return;
+                };
                 egui::Modal::new(egui::Id::unique("recovery")).show(ui.ctx(), |ui| {
-                    ui.label("Bounce Lab found unsaved work from a session that did not end cleanly.");
+                    ui.label(message);
+                    ui.label("Restore opens that project with the work; Discard deletes the work.");
                     ui.horizontal(|ui| {
                         if ui.button("Restore").clicked() {
-                            match Project::load(&path) {
-                                Ok(p) => {
-                                    let before = history::Snapshot::of(&self.state.project);
-                                    self.state.project = p;
-                                    self.state.history.record("Restore recovered work", before, &self.state.project);
-                                    self.viewport.reset_orbit(&self.state);
-                                }
-                                Err(e) => self.state.report("recovery failed", &e),
-                            }
-                            self.modal = Modal::None;
+                            self.answer_recovery(true);
                         }
                         if ui.button("Discard").clicked() {
-                            if let Some(r) = &self.recovery {
-                                r.clear();
-                            }
-                            self.modal = Modal::None;
+                            self.answer_recovery(false);
                         }
                     });
                 });
@@ -541,8 +628,8 @@ impl EditorApp {
     }
 
     fn close_now(&mut self, ui: &egui::Ui) {
-        if let Some(r) = &self.recovery {
-            r.clear();
+        if let Some(a) = &mut self.autosave {
+            a.close();
         }
         self.allow_close = true;
         ui.ctx().send_viewport_cmd(egui::ViewportCommand::Close);
@@ -648,10 +735,9 @@ impl eframe::App for EditorApp {
         self.viewport.submit(&mut self.state);
         self.viewport.logic_ms = self.viewport.logic_ms.max(started.elapsed().as_secs_f64() * 1e3);
         self.modal_ui(ui);
-        if let Some(r) = &mut self.recovery
-            && self.state.history.is_dirty()
-        {
-            r.maybe_save(&self.state.project);
+        let view = self.autosave_view();
+        if let Some(a) = &mut self.autosave {
+            a.track(&self.state.project, self.state.opened.as_deref(), &view);
         }
     }
 

@@ -35,8 +35,9 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset,
     let buffers = load_buffers(doc, gltf.blob.as_deref(), base_dir, path)?;
     let images = images::load_images(doc, &buffers, base_dir, path)?;
     let materials = doc.materials().map(|m| material(&m)).collect();
+    let emissive = doc.materials().filter(emits).map(|m| material(&m).name).collect();
     let primitives = primitive::load_primitives(doc, &buffers, path)?;
-    let mut asset = Asset { primitives, images, materials, ..Asset::default() };
+    let mut asset = Asset { primitives, images, materials, emissive, ..Asset::default() };
     nodes::build_scene(doc, &mut asset, path)?;
     Ok(asset)
 }
@@ -87,7 +88,7 @@ fn load_buffers(
                 gltf::buffer::Source::Bin => {
                     blob.map(<[u8]>::to_vec).ok_or(ImportError::MissingBinaryChunk { path: path.to_owned(), index })?
                 }
-                gltf::buffer::Source::Uri(u) => uri::load(u, base_dir).map_err(|source| ImportError::Buffer {
+                gltf::buffer::Source::Uri(u) => uri::load(u, base_dir, crate::input_file::Kind::Buffer).map_err(|source| ImportError::Buffer {
                     path: path.to_owned(),
                     index,
                     source,
@@ -104,6 +105,12 @@ fn load_buffers(
             Ok(data)
         })
         .collect()
+}
+
+/// Whether a material gives off light (an emissive factor or texture): the scene model has no
+/// emission yet, so the importer names these materials and every technique says it ignores them.
+fn emits(m: &gltf::Material<'_>) -> bool {
+    m.emissive_factor().iter().any(|c| *c > 0.0)
 }
 
 fn material(m: &gltf::Material<'_>) -> Material {

@@ -23,9 +23,6 @@ use crate::scene::{Image, Material, Mesh, SceneDesc};
 /// Extensions we understand well enough to accept when a file marks them required.
 pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &["KHR_lights_punctual"];
 
-/// Largest file we read (bytes); protects against memory blow-ups.
-const MAX_FILE_BYTES: u64 = 2 << 30;
-
 /// Why a glTF file could not be imported. Every variant names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum ImportError {
@@ -75,6 +72,8 @@ pub struct Asset {
     pub scene: SceneDesc,
     /// Whether the file had a camera (otherwise `scene.camera` frames the bounds).
     pub has_camera: bool,
+    /// Names of the materials that emit light, which the scene model does not carry (yet).
+    pub emissive: Vec<String>,
 }
 
 impl Asset {
@@ -86,12 +85,8 @@ impl Asset {
 
 /// Imports a `.gltf` or `.glb` file.
 pub fn import_gltf(path: &Path) -> Result<Asset, ImportError> {
-    let io = |source| ImportError::Io { path: path.to_owned(), source };
-    let len = std::fs::metadata(path).map_err(io)?.len();
-    if len > MAX_FILE_BYTES {
-        return Err(ImportError::Parse { path: path.to_owned(), message: format!("file is {len} bytes, too large") });
-    }
-    let bytes = std::fs::read(path).map_err(io)?;
+    let bytes = crate::input_file::read(path, crate::input_file::Kind::Scene)
+        .map_err(|source| ImportError::Io { path: path.to_owned(), source })?;
     let base_dir = path.parent().unwrap_or_else(|| Path::new("."));
     import_slice(&bytes, base_dir, path)
 }

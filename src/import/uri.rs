@@ -38,8 +38,8 @@ fn percent_decode(s: &str) -> String {
     String::from_utf8_lossy(&out).into_owned()
 }
 
-/// Resolves and reads `uri` relative to `base_dir`.
-pub fn load(uri: &str, base_dir: &Path) -> Result<Vec<u8>, UriError> {
+/// Resolves and reads `uri` relative to `base_dir`; a file is read as `kind` (bounded).
+pub fn load(uri: &str, base_dir: &Path, kind: crate::input_file::Kind) -> Result<Vec<u8>, UriError> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_, payload) = rest
             .split_once(";base64,")
@@ -58,7 +58,7 @@ pub fn load(uri: &str, base_dir: &Path) -> Result<Vec<u8>, UriError> {
         return Err(UriError::Refused(uri.to_owned()));
     }
     let path = base_dir.join(rel);
-    std::fs::read(&path).map_err(|source| UriError::Io { path, source })
+    crate::input_file::read(&path, kind).map_err(|source| UriError::Io { path, source })
 }
 
 #[cfg(test)]
@@ -69,14 +69,14 @@ mod tests {
     fn refuses_escapes() {
         let base = Path::new("/tmp");
         for uri in ["../x.bin", "/etc/passwd", "file:///etc/passwd", "http://example.com/a.bin", "a/../../b"] {
-            assert!(matches!(load(uri, base), Err(UriError::Refused(_))), "{uri}");
+            assert!(matches!(load(uri, base, crate::input_file::Kind::Buffer), Err(UriError::Refused(_))), "{uri}");
         }
     }
 
     #[test]
     fn decodes_data_uri() {
-        let bytes = load("data:application/octet-stream;base64,AAEC", Path::new(".")).expect("decodes");
+        let bytes = load("data:application/octet-stream;base64,AAEC", Path::new("."), crate::input_file::Kind::Buffer).expect("decodes");
         assert_eq!(bytes, vec![0, 1, 2]);
-        assert!(load("data:text/plain,hello", Path::new(".")).is_err());
+        assert!(load("data:text/plain,hello", Path::new("."), crate::input_file::Kind::Buffer).is_err());
     }
 }

@@ -101,11 +101,22 @@ impl Project {
 
     /// Loads a project file and the assets it refers to.
     pub fn load(path: &Path) -> Result<Self, ProjectError> {
-        let text =
-            std::fs::read_to_string(path).map_err(|source| ProjectError::Io { path: path.to_owned(), source })?;
+        let text = crate::input_file::read_text(path, crate::input_file::Kind::Project)
+            .map_err(|source| ProjectError::Io { path: path.to_owned(), source })?;
         let file = parse(&text, path)?;
         let dir = path.parent().unwrap_or_else(|| Path::new("."));
         let assets: Vec<PathBuf> = file.assets.iter().map(|a| dir.join(a)).collect();
+        Self::from_parts(path, assets, file.scene, file.render)
+    }
+
+    /// A project from its parts: `assets` are imported and `scene` resolved against them;
+    /// `path` names the file the parts came from in errors (a project or a recovery file).
+    pub fn from_parts(
+        path: &Path,
+        assets: Vec<PathBuf>,
+        scene: SceneDesc,
+        render: RenderSettings,
+    ) -> Result<Self, ProjectError> {
         let imported = assets
             .iter()
             .enumerate()
@@ -117,10 +128,10 @@ impl Project {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let scene = import::resolve(file.scene, &imported)
+        let scene = import::resolve(scene, &imported)
             .map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
-        file.render.validate().map_err(|source| ProjectError::Settings { path: path.to_owned(), source })?;
-        Ok(Self { assets, scene, render: file.render, imported })
+        render.validate().map_err(|source| ProjectError::Settings { path: path.to_owned(), source })?;
+        Ok(Self { assets, scene, render, imported })
     }
 
     /// Replaces the scene description (undo, redo, structural edits), rebuilding meshes from the
@@ -195,6 +206,15 @@ pub fn parse(text: &str, path: &Path) -> Result<ProjectFileV1, ProjectError> {
 pub fn default_project_path() -> PathBuf {
     let local = PathBuf::from("projects/default.ron");
     if local.exists() { local } else { Path::new(env!("CARGO_MANIFEST_DIR")).join("projects/default.ron") }
+}
+
+/// Whether `path` is the shipped default project (compared canonically): the editor opens it
+/// read-only-safe, so Save asks for a new path instead of writing into the install.
+pub fn is_default_project(path: &Path) -> bool {
+    match (std::fs::canonicalize(path), std::fs::canonicalize(default_project_path())) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
 }
 
 /// Validates `desc` against `scene`'s loaded resources without replacing anything.
