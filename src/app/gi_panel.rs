@@ -123,7 +123,13 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
 
 /// What the active technique leaves out, its history and the GPU memory each technique holds.
 fn technique_summary(ui: &mut egui::Ui, renderer: &Renderer, state: &EditorState) {
-    let warn = ui.visuals().warn_fg_color;
+    let (warn, error) = (ui.visuals().warn_fg_color, ui.visuals().error_fg_color);
+    // What makes the view other than what was asked for comes first, in the error colour.
+    let mut shortfalls = state.project.shortfalls();
+    shortfalls.extend(renderer.shortfalls(&state.project.scene, &state.project.render));
+    for problem in shortfalls {
+        ui.colored_label(error, problem);
+    }
     for note in renderer.limitations(&state.project.scene, &state.project.render) {
         ui.colored_label(warn, note);
     }

@@ -412,6 +412,13 @@ impl EditorApp {
         else {
             return;
         };
+        let mut inputs = self.state.project.files();
+        inputs.extend(self.state.opened.clone());
+        let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
+        if let Err(e) = crate::output_path::check(&path, crate::output_path::IMAGE, &inputs) {
+            self.state.report("export refused", &e);
+            return;
+        }
         if let Err(e) = self.viewport.render_full(&self.state) {
             self.state.report("export failed", &e);
             return;

@@ -26,6 +26,9 @@ pub fn run(candidate: &Path, reference: &Path, heatmap: Option<&Path>, exposure:
     {
         anyhow::bail!("--exposure {ev} is outside -32..=32 stops");
     }
+    if let Some(path) = heatmap {
+        crate::output_path::check(path, crate::output_path::PNG, &[candidate, reference])?;
+    }
     let a = read_linear(candidate)?;
     let b = read_linear(reference)?;
     let exposure_ev = match exposure {

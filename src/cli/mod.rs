@@ -7,6 +7,7 @@ pub mod bench_drt;
 pub mod bench_mrt;
 pub mod bench_rcs;
 pub mod bench_sshgi;
+pub mod budget;
 pub mod compare;
 pub mod generate;
 pub mod mrt;

@@ -56,18 +56,33 @@ pub struct MrtArgs {
 pub struct FitArgs {
     /// The level: a glTF file or a project file.
     pub input: PathBuf,
-    /// The project file to write (the level with the fitted proxy blocks added).
+    /// The project file to write (`.ron`; the level with the fitted proxy blocks). Never one of
+    /// the inputs: the level keeps its geometry.
     #[arg(long)]
     pub out: PathBuf,
 }
 
-/// Fits proxy blocks to a level and writes the project with them; returns the report.
+/// Fits proxy blocks to a level and writes the project with them; returns the report. Blocks
+/// the project already has are replaced (and the report says so), never stacked: two sets made
+/// `mrt` render twice the light.
 pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
+    use crate::output_path;
     use crate::project_file::Project;
+    use crate::scene::ObjectRole;
+    output_path::check(&args.out, output_path::PROJECT, &[&args.input])?;
     let mut project = Project::open(&args.input)?;
+    let inputs = project.files();
+    output_path::check(&args.out, output_path::PROJECT, &inputs.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
+    let objects = &mut project.scene.desc_mut().objects;
+    let before = objects.len();
+    objects.retain(|o| o.role != ObjectRole::ProxyBlock);
+    let replaced = before - objects.len();
     let fitted = crate::precompute::mrt::proxy::fitted_objects(&project.scene)
         .map_err(|e| anyhow::anyhow!("{}: cannot fit proxy blocks: {e}", args.input.display()))?;
     let mut out = format!("{}: {} proxy blocks\n", args.input.display(), fitted.len());
+    if replaced > 0 {
+        let _ = writeln!(out, "note: replaced the {replaced} proxy blocks the project had (blocks are never stacked)");
+    }
     let sides = ["+X", "-X", "+Y", "-Y", "+Z", "-Z"];
     for o in &fitted {
         if let crate::scene::MeshSource::Cuboid { size, openings } = &o.source {
@@ -88,9 +103,6 @@ pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
         }
     }
     project.scene.desc_mut().objects.extend(fitted);
-    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: {e}", dir.display()))?;
-    }
     project.save(&args.out)?;
     let _ = writeln!(out, "wrote {}", args.out.display());
     Ok(out)
@@ -174,10 +186,17 @@ pub fn run(args: &MrtArgs) -> anyhow::Result<String> {
     let mut out = String::new();
     match &source {
         Source::Loaded(path) => writeln!(out, "loaded {} in {seconds:.2} s", path.display())?,
-        Source::Built { path, why } => {
+        Source::Built { path, why, not_cached: None } => {
             writeln!(out, "built in {seconds:.1} s ({why}); wrote {}", path.display())?;
         }
+        built @ Source::Built { .. } => writeln!(out, "{} ({seconds:.1} s)", built.describe())?,
     }
+    let _ = writeln!(
+        out,
+        "cache folder: {} (keeps the dictionary in use and the {} most recently used others)",
+        dir.display(),
+        cache::KEEP_OTHERS
+    );
     writeln!(
         out,
         "{} texels per face, {} rays per texel, k_d {}, k_b {}, enrichment {}; runtime operators {:.2} MB (f32)",

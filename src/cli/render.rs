@@ -7,6 +7,7 @@ use std::sync::atomic::AtomicBool;
 use anyhow::Context as _;
 
 use crate::image_io::{self, HdrImage, OutputKind};
+use crate::output_path;
 use crate::precompute::pathtracer::PathTracer;
 use crate::project_file::Project;
 use crate::render::gi::Readiness;
@@ -30,9 +31,17 @@ pub struct RenderArgs {
     /// Height in pixels.
     #[arg(long, default_value_t = 360)]
     pub height: u32,
-    /// Frames to render (temporal techniques converge); the last one is written.
-    #[arg(long, default_value_t = 1)]
-    pub frames: u32,
+    /// Frames to render; the last one is written. Without it, temporal and progressive modes
+    /// (ism, sshgi, mrt, rcs) render until their history has converged, as the editor's
+    /// "refining" shows (at most 2000 frames); with it, that many frames are rendered (rcs
+    /// still fills its cache first) and a note says when the image had not converged yet.
+    #[arg(long)]
+    pub frames: Option<u32>,
+    /// Write the image even when it is not what was asked for (a technique could not do its
+    /// work, the scene has no light, it has emissive surfaces no mode renders): the problems
+    /// are still printed. Without it, such a render writes nothing and exits non-zero.
+    #[arg(long)]
+    pub allow_partial: bool,
     /// Exposure in stops for the PNG view (`--exposure -1.5` darkens).
     #[arg(long, allow_negative_numbers = true)]
     pub exposure: Option<f32>,
@@ -67,14 +76,16 @@ pub struct RenderArgs {
 pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     let kind = image_io::output_kind(&args.out)?;
     // Everything about the command line is checked before a long render starts.
-    if args.frames == 0 {
+    if args.frames == Some(0) {
         anyhow::bail!("--frames 0: at least one frame is rendered (the last one is written)");
     }
     if !(1..=8).contains(&args.ssaa) {
         anyhow::bail!("--ssaa {} is outside 1..=8 (samples per axis)", args.ssaa);
     }
-    check_writable(&args.out)?;
+    output_path::check(&args.out, output_path::IMAGE, &[&args.input])?;
     let mut project = Project::open(&args.input)?;
+    let inputs = project.files();
+    output_path::check(&args.out, output_path::IMAGE, &inputs.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
     let r = &mut project.render;
     if let Some(mode) = args.mode {
         r.mode = mode;
@@ -101,20 +112,26 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
             );
         }
     }
+    // A scene with no light or with emission no mode renders is not what a render asks for
+    // (buffers such as albedo or normal do not need light).
+    let scene_shortfalls = if args.buffer.is_some() { Vec::new() } else { project.shortfalls() };
     if project.render.mode == GiMode::Reference {
         if args.buffer.is_some() {
             anyhow::bail!("--buffer is for raster modes; the reference mode has no intermediate buffers");
         }
+        super::budget::check_reference(size)?;
+        refuse_partial(&args.out, &scene_shortfalls, args.allow_partial)?;
         return reference(&project, &args.out, kind, size);
     }
-    let ctx = GpuContext::new_headless()?;
-    ctx.log_errors();
-    log::info!("rendering {} with {}", args.input.display(), ctx.describe());
-    let mut renderer = Renderer::new(&ctx.device, &ctx.queue)?;
-    renderer.set_inspected(args.buffer.as_deref());
     // Buffers are inspected at their own resolution; the final image is supersampled.
     let k = if args.buffer.is_some() { 1 } else { args.ssaa };
     let render_size = (size.0 * k, size.1 * k);
+    let ctx = GpuContext::new_headless()?;
+    ctx.log_errors();
+    log::info!("rendering {} with {}", args.input.display(), ctx.describe());
+    super::budget::check_raster(&ctx, render_size)?;
+    let mut renderer = Renderer::new(&ctx.device, &ctx.queue)?;
+    renderer.set_inspected(args.buffer.as_deref());
     let max = ctx.device.limits().max_texture_dimension_2d;
     if render_size.0 > max || render_size.1 > max {
         anyhow::bail!(
@@ -125,37 +142,27 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
             render_size.1
         );
     }
-    // One frame in flight at a time: submitting without waiting queued every frame's command
-    // buffers and uploads until the driver ran out of memory (a segfault after ~600 frames).
-    let frames = args.frames;
-    let mut progress = super::progress::Progress::new(u64::from(frames));
-    let first = until_ready(&ctx, &mut renderer, &project, render_size)?;
-    for done in first + 1..=frames {
-        renderer.render(&project.scene, &project.render, render_size)?;
-        ctx.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| anyhow::anyhow!("waiting for the GPU: {e}"))?;
-        progress.tick(u64::from(done));
-    }
-    // `rcs` first fills its cache and converges its bounce passes (a budget of records per
-    // frame): the written frame is the converged one, however few frames were asked for.
-    if project.render.mode == GiMode::Rcs {
-        let mut extra = 0;
-        while extra < RCS_FILL_LIMIT && renderer.technique_status().is_some_and(|s| s.refining) {
-            renderer.render(&project.scene, &project.render, render_size)?;
-            ctx.device
-                .poll(wgpu::PollType::wait_indefinitely())
-                .map_err(|e| anyhow::anyhow!("waiting for the GPU: {e}"))?;
-            extra += 1;
-        }
-        if let Some(p) = renderer.technique_status().and_then(|s| s.progress) {
-            eprintln!("{p} after {} frames", frames + extra);
-        }
-    }
+    let frames = render_frames(&ctx, &mut renderer, &project, render_size, args.frames)?;
     // Say what the technique leaves out (a light type, a feature), so nobody mistakes it for error.
     for note in renderer.limitations(&project.scene, &project.render) {
         eprintln!("note: {} {note}", project.render.mode.name());
     }
+    if let (Some(asked), Some(status)) = (args.frames, renderer.technique_status())
+        && status.refining
+    {
+        eprintln!(
+            "note: {} had not converged after the {asked} frames asked for ({} of {} frames of history): the image holds only part of its light; without --frames the render converges first",
+            project.render.mode.name(),
+            status.history_frames,
+            status.refine_target
+        );
+    }
+    let mut shortfalls = renderer.shortfalls(&project.scene, &project.render);
+    shortfalls.extend(scene_shortfalls);
+    if args.frames.is_none() && renderer.technique_status().is_some_and(|s| s.refining) {
+        shortfalls.push(format!("still not converged after {frames} frames (the most a render gives a technique)"));
+    }
+    refuse_partial(&args.out, &shortfalls, args.allow_partial)?;
     let img = match &args.buffer {
         Some(name) => renderer.read_buffer(name)?,
         None => HdrImage {
@@ -194,8 +201,66 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     ))
 }
 
-/// Most extra frames `render` gives `rcs` to fill and converge its cache.
-const RCS_FILL_LIMIT: u32 = 2000;
+/// Most frames `render` gives a technique to converge (and `rcs` to fill its cache).
+const CONVERGE_LIMIT: u32 = 2000;
+
+/// Renders `asked` frames, or until the technique stops refining when `None` (at most
+/// [`CONVERGE_LIMIT`]); `rcs` always fills and converges its cache (a budget of records per
+/// frame), so its written frame is the converged one however few were asked for. One frame is
+/// in flight at a time: submitting without waiting queued every frame's command buffers and
+/// uploads until the driver ran out of memory (a segfault after ~600 frames). Returns the
+/// frames rendered.
+fn render_frames(
+    ctx: &GpuContext,
+    renderer: &mut Renderer,
+    project: &Project,
+    size: (u32, u32),
+    asked: Option<u32>,
+) -> anyhow::Result<u32> {
+    let refining = |r: &Renderer| r.technique_status().is_some_and(|s| s.refining);
+    let mut done = until_ready(ctx, renderer, project, size)?;
+    let total = asked.unwrap_or_else(|| renderer.technique_status().map_or(1, |s| s.refine_target.max(1)));
+    let mut progress = super::progress::Progress::new(u64::from(total));
+    let is_rcs = project.render.mode == GiMode::Rcs;
+    loop {
+        let more = match asked {
+            Some(n) => done < n || (is_rcs && refining(renderer) && done < n + CONVERGE_LIMIT),
+            None => refining(renderer) && done < CONVERGE_LIMIT,
+        };
+        if !more {
+            break;
+        }
+        renderer.render(&project.scene, &project.render, size)?;
+        ctx.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| anyhow::anyhow!("waiting for the GPU: {e}"))?;
+        done += 1;
+        if done <= total {
+            progress.tick(u64::from(done));
+        }
+    }
+    if let Some(p) = renderer.technique_status().and_then(|s| s.progress).filter(|_| is_rcs) {
+        eprintln!("{p} after {done} frames");
+    }
+    Ok(done)
+}
+
+/// Prints each shortfall of the result and refuses to write it unless `allow` (the user's
+/// `--allow-partial`).
+fn refuse_partial(out: &Path, shortfalls: &[String], allow: bool) -> anyhow::Result<()> {
+    for s in shortfalls {
+        eprintln!("{}: {s}", if allow { "warning" } else { "error" });
+    }
+    if shortfalls.is_empty() || allow {
+        return Ok(());
+    }
+    anyhow::bail!(
+        "{}: not written: the image would not be what was asked for ({} problem{} above); --allow-partial writes it anyway",
+        out.display(),
+        shortfalls.len(),
+        if shortfalls.len() == 1 { "" } else { "s" }
+    )
+}
 
 /// Renders frames of `project` at `size` until its technique is no longer preparing on the CPU
 /// (MRT's dictionary and level: the frame meanwhile shows direct light), saying what it waits
@@ -221,25 +286,6 @@ pub fn until_ready(
         }
         std::thread::sleep(std::time::Duration::from_millis(50));
     }
-}
-
-/// Fails now, not after the render, when `out` cannot be written: its folder cannot be
-/// created or is not writable (probed by creating and removing a file there).
-fn check_writable(out: &Path) -> anyhow::Result<()> {
-    let dir = match out.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    std::fs::create_dir_all(dir)
-        .map_err(|e| anyhow::anyhow!("{}: cannot create the folder {}: {e}", out.display(), dir.display()))?;
-    let probe = dir.join(format!(".bouncelab-write-probe-{}", std::process::id()));
-    std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&probe)
-        .map_err(|e| anyhow::anyhow!("{}: cannot write in {}: {e}", out.display(), dir.display()))?;
-    let _ = std::fs::remove_file(&probe);
-    Ok(())
 }
 
 fn reference(project: &Project, out: &Path, kind: OutputKind, size: (u32, u32)) -> anyhow::Result<String> {

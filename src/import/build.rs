@@ -37,7 +37,8 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset,
     let materials = doc.materials().map(|m| material(&m)).collect();
     let emissive = doc.materials().filter(emits).map(|m| material(&m).name).collect();
     let primitives = primitive::load_primitives(doc, &buffers, path)?;
-    let mut asset = Asset { primitives, images, materials, emissive, ..Asset::default() };
+    let files = referenced_files(doc, base_dir);
+    let mut asset = Asset { primitives, images, materials, emissive, files, ..Asset::default() };
     nodes::build_scene(doc, &mut asset, path)?;
     Ok(asset)
 }
@@ -105,6 +106,19 @@ fn load_buffers(
             Ok(data)
         })
         .collect()
+}
+
+/// The files the document's buffers and images name (outputs must never replace them).
+fn referenced_files(doc: &gltf::Document, base_dir: &Path) -> Vec<std::path::PathBuf> {
+    let buffers = doc.buffers().filter_map(|b| match b.source() {
+        gltf::buffer::Source::Uri(u) => uri::file_path(u, base_dir),
+        gltf::buffer::Source::Bin => None,
+    });
+    let images = doc.images().filter_map(|i| match i.source() {
+        gltf::image::Source::Uri { uri: u, .. } => uri::file_path(u, base_dir),
+        gltf::image::Source::View { .. } => None,
+    });
+    buffers.chain(images).collect()
 }
 
 /// Whether a material gives off light (an emissive factor or texture): the scene model has no

@@ -74,6 +74,8 @@ pub struct Asset {
     pub has_camera: bool,
     /// Names of the materials that emit light, which the scene model does not carry (yet).
     pub emissive: Vec<String>,
+    /// The buffer and image files it read besides itself.
+    pub files: Vec<PathBuf>,
 }
 
 impl Asset {

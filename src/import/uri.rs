@@ -38,6 +38,16 @@ fn percent_decode(s: &str) -> String {
     String::from_utf8_lossy(&out).into_owned()
 }
 
+/// The file a URI names (`None` for `data:` URIs and refused ones).
+pub fn file_path(uri: &str, base_dir: &Path) -> Option<PathBuf> {
+    if uri.starts_with("data:") {
+        return None;
+    }
+    let decoded = percent_decode(uri);
+    let rel = Path::new(&decoded);
+    rel.components().all(|c| matches!(c, Component::Normal(_) | Component::CurDir)).then(|| base_dir.join(rel))
+}
+
 /// Resolves and reads `uri` relative to `base_dir`; a file is read as `kind` (bounded).
 pub fn load(uri: &str, base_dir: &Path, kind: crate::input_file::Kind) -> Result<Vec<u8>, UriError> {
     if let Some(rest) = uri.strip_prefix("data:") {

@@ -152,6 +152,33 @@ impl Project {
         Ok(())
     }
 
+    /// Every file the project was read from: its glTF assets and the buffers and images they
+    /// name (an output must never replace one of them).
+    pub fn files(&self) -> Vec<PathBuf> {
+        let referenced = self.imported.iter().flat_map(|a| a.files.iter().cloned());
+        self.assets.iter().cloned().chain(referenced).collect()
+    }
+
+    /// What makes any render of this project other than what the user asked for, as sentences:
+    /// no light at all, or materials whose emission no mode renders (the scene model has none).
+    pub fn shortfalls(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        let lit = self.scene.lights().iter().any(|l| l.intensity > 0.0 && l.color.iter().any(|c| *c > 0.0));
+        if !lit {
+            out.push("the scene has no light (no light with a positive intensity): every mode renders it black".to_owned());
+        }
+        let emissive: Vec<&str> = self.imported.iter().flat_map(|a| a.emissive.iter().map(String::as_str)).collect();
+        if !emissive.is_empty() {
+            out.push(format!(
+                "{} material{} emit light ({}), which no mode renders yet: those surfaces give no light",
+                emissive.len(),
+                if emissive.len() == 1 { "" } else { "s" },
+                emissive.iter().take(5).copied().collect::<Vec<_>>().join(", ")
+            ));
+        }
+        out
+    }
+
     /// The RON text this project saves as, with asset paths relative to `project_path`'s folder.
     pub fn to_ron(&self, project_path: &Path) -> Result<String, ProjectError> {
         let dir = project_path.parent().unwrap_or_else(|| Path::new("."));

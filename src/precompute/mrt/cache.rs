@@ -54,9 +54,28 @@ pub enum Source {
     /// Read from this file.
     Loaded(PathBuf),
     /// Built and written to this file; `why` says why the file was not used (missing, stale,
-    /// corrupt).
-    Built { path: PathBuf, why: String },
+    /// corrupt); `not_cached` says why it could not be written there (the dictionary is still
+    /// used for this run).
+    Built { path: PathBuf, why: String, not_cached: Option<String> },
 }
+
+impl Source {
+    /// One line for the user: where the dictionary came from, and where the cache lives.
+    pub fn describe(&self) -> String {
+        match self {
+            Self::Loaded(path) => format!("loaded from {}", path.display()),
+            Self::Built { path, why, not_cached: None } => format!("built ({why}) and cached in {}", path.display()),
+            Self::Built { path, why, not_cached: Some(e) } => format!(
+                "built ({why}) but NOT cached, so the next run builds it again: {e}; the cache belongs in {} (set XDG_CACHE_HOME, or `mrt-dictionary --cache DIR`, to a writable folder)",
+                path.parent().map_or_else(String::new, |d| d.display().to_string())
+            ),
+        }
+    }
+}
+
+/// Dictionaries of other parameter sets kept besides the one in use (least recently used
+/// first to go): each is 20-28 MB, and every parameter set ever tried used to stay forever.
+pub const KEEP_OTHERS: usize = 3;
 
 fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ u64::from(*b)).wrapping_mul(0x0100_0000_01b3))
@@ -335,18 +354,53 @@ pub fn load_or_build(
     progress: &Progress,
 ) -> Result<(Dictionary, Source), CacheError> {
     let path = path_for(dir, params);
-    let why = match std::fs::read(&path) {
+    let why = match crate::input_file::read(&path, crate::input_file::Kind::Cache) {
         Ok(bytes) => match decode(&bytes, params) {
-            Ok(d) => return Ok((d, Source::Loaded(path))),
+            Ok(d) => {
+                // Its modification time is its last use (the pruning's order).
+                let _ = std::fs::File::options()
+                    .write(true)
+                    .open(&path)
+                    .and_then(|f| f.set_modified(std::time::SystemTime::now()));
+                return Ok((d, Source::Loaded(path)));
+            }
             Err(what) => what,
         },
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => "no cached file".to_owned(),
         Err(e) => e.to_string(),
     };
     let d = dictionary::build(params, progress)?;
-    std::fs::create_dir_all(dir).map_err(|source| CacheError::Io { path: dir.to_owned(), source })?;
-    crate::atomic_file::write(&path, &encode(&d)).map_err(|source| CacheError::Io { path: path.clone(), source })?;
-    Ok((d, Source::Built { path, why }))
+    let written = std::fs::create_dir_all(dir)
+        .map_err(|e| format!("{}: {e}", dir.display()))
+        .and_then(|()| crate::atomic_file::write(&path, &encode(&d)).map_err(|e| format!("{}: {e}", path.display())));
+    let not_cached = match written {
+        Ok(()) => {
+            prune(dir, &path, KEEP_OTHERS);
+            None
+        }
+        Err(e) => {
+            log::warn!("the MRT dictionary was built but could not be cached: {e}");
+            Some(e)
+        }
+    };
+    Ok((d, Source::Built { path, why, not_cached }))
+}
+
+/// Removes dictionary files in `dir` other than `keep`, all but the `others` most recently
+/// used; returns how many were removed.
+pub fn prune(dir: &Path, keep: &Path, others: usize) -> usize {
+    let Ok(entries) = std::fs::read_dir(dir) else { return 0 };
+    let mut files: Vec<(std::time::SystemTime, PathBuf)> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.as_path() != keep
+                && p.file_name().and_then(|n| n.to_str()).is_some_and(|n| n.starts_with("mrt-dictionary-") && n.ends_with(".bin"))
+        })
+        .filter_map(|p| Some((std::fs::metadata(&p).and_then(|m| m.modified()).ok()?, p)))
+        .collect();
+    files.sort_by(|a, b| b.0.cmp(&a.0));
+    files.iter().skip(others).filter(|(_, p)| std::fs::remove_file(p).is_ok()).count()
 }
 
 #[cfg(test)]
@@ -380,6 +434,34 @@ mod tests {
         let other = DictionaryParams { rays: 25, ..tiny() };
         assert_ne!(path_for(&dir, &other), path, "other parameters, other file");
         assert!(decode(&encode(&built), &other).is_err_and(|e| e.contains("other parameters")));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn the_cache_keeps_the_recently_used_and_a_failed_write_keeps_the_dictionary() {
+        let dir = std::env::temp_dir().join(format!("bouncelab-mrt-prune-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("dir");
+        let old = std::time::SystemTime::now() - std::time::Duration::from_secs(3600);
+        for k in 0..6u64 {
+            let p = dir.join(format!("mrt-dictionary-{k:016x}.bin"));
+            std::fs::write(&p, b"x").expect("write");
+            let f = std::fs::File::options().write(true).open(&p).expect("open");
+            f.set_modified(old + std::time::Duration::from_secs(k)).expect("mtime");
+        }
+        std::fs::write(dir.join("notes.txt"), b"mine").expect("write");
+        let keep = dir.join("mrt-dictionary-0000000000000000.bin");
+        assert_eq!(prune(&dir, &keep, 3), 2, "six files: the one in use and the three newest others stay");
+        for k in [0u64, 3, 4, 5] {
+            assert!(dir.join(format!("mrt-dictionary-{k:016x}.bin")).exists(), "{k} kept");
+        }
+        assert!(dir.join("notes.txt").exists(), "only dictionaries are pruned");
+        // A cache folder that cannot be made (a file stands there): built, used, and said.
+        let blocked = dir.join("notes.txt").join("cache");
+        let (d, source) = load_or_build(&blocked, &tiny(), &Progress::default()).expect("still built");
+        assert!(!d.elements.is_empty());
+        assert!(matches!(&source, Source::Built { not_cached: Some(_), .. }), "{source:?}");
+        assert!(source.describe().contains("NOT cached"), "{}", source.describe());
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -28,6 +28,12 @@ impl Renderer {
         self.techniques.get(settings.mode).map_or_else(Vec::new, |t| t.limitations(scene, settings))
     }
 
+    /// Why the technique for `settings.mode` could not do its work (see
+    /// [`GiTechnique::shortfalls`]); empty before it was first used.
+    pub fn shortfalls(&self, scene: &Scene, settings: &RenderSettings) -> Vec<String> {
+        self.techniques.get(settings.mode).map_or_else(Vec::new, |t| t.shortfalls(scene, settings))
+    }
+
     /// The active technique's viewport overlays (reads back from the GPU: call sparingly).
     pub fn overlays(&self) -> Vec<Overlay> {
         self.techniques.active().map_or_else(Vec::new, |t| t.overlays(&self.device, &self.queue))

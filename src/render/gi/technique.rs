@@ -230,6 +230,14 @@ pub trait GiTechnique {
         Vec::new()
     }
 
+    /// Why the last frame is not what `settings` ask for, as sentences (the technique could not
+    /// do its work: a missing precomputation, a level it could not build); empty when it did.
+    /// `render` refuses to write such an image unless `--allow-partial`, and the editor shows
+    /// these in the GI panel.
+    fn shortfalls(&self, _scene: &Scene, _settings: &RenderSettings) -> Vec<String> {
+        Vec::new()
+    }
+
     /// The inspector now shows buffer `name` (or nothing): a technique may then keep debug
     /// copies it does not make otherwise (ISM's atlas before hole filling).
     fn set_inspected(&mut self, _name: Option<&str>) {}

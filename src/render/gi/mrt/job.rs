@@ -62,11 +62,7 @@ impl DictionaryJob {
         let p = progress.clone();
         let slot = spawn("mrt dictionary", move || {
             let (d, source) = cache::load_or_build(&cache::default_dir(), &params, &p).map_err(|e| e.to_string())?;
-            let how = match source {
-                cache::Source::Loaded(path) => format!("loaded from {}", path.display()),
-                cache::Source::Built { path, why } => format!("built ({why}) and cached in {}", path.display()),
-            };
-            Ok((d, how))
+            Ok((d, source.describe()))
         });
         Self { params, progress, slot }
     }

@@ -527,14 +527,15 @@ impl GiTechnique for MrtTechnique {
         self.passes.gpu_bytes()
     }
 
-    fn limitations(&self, _scene: &Scene, settings: &RenderSettings) -> Vec<String> {
+    fn shortfalls(&self, _scene: &Scene, settings: &RenderSettings) -> Vec<String> {
+        self.error(&settings.mrt.dictionary).map(|e| format!("no indirect light: {e}")).into_iter().collect()
+    }
+
+    fn limitations(&self, _scene: &Scene, _settings: &RenderSettings) -> Vec<String> {
         let mut out = vec![
             "indirect light is diffuse; objects inside blocks shadow and reflect it only as clutter (delta radiance transfer: small objects found automatically or marked clutter)".to_owned(),
             "geometry images read materials' base colour factors, not their textures".to_owned(),
         ];
-        if let Some(e) = self.error(&settings.mrt.dictionary) {
-            out.insert(0, e);
-        }
         if let Some(s) = &self.shown {
             if s.fitted {
                 out.insert(
