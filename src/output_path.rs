@@ -25,7 +25,7 @@ pub enum OutputError {
     #[error("{path}: is read-only; refusing to replace it (make it writable or choose another path)")]
     ReadOnly { path: PathBuf },
     /// Its folder cannot be created or written.
-    #[error("{path}: cannot write in {folder}: {source}")]
+    #[error("{path}: cannot create or write in the folder {folder}: {source}")]
     NotWritable { path: PathBuf, folder: PathBuf, source: std::io::Error },
 }
 
@@ -49,9 +49,9 @@ pub const PNG: Writes = Writes { what: "a PNG image", extensions: &["png"] };
 /// special file, is read-only, or lies in a folder that cannot be created or written. Creates
 /// the folder if it is missing.
 pub fn check(out: &Path, writes: Writes, inputs: &[&Path]) -> Result<(), OutputError> {
+    check_not_input(out, inputs)?;
     check_extension(out, writes)?;
     check_existing(out)?;
-    check_not_input(out, inputs)?;
     check_folder(out)
 }
 

@@ -140,7 +140,7 @@ fn bad_arguments_fail_before_anything_renders() {
     std::fs::write(&file, "x").expect("write");
     let o = render(&[], &file.join("x.png").to_string_lossy());
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success() && err.contains("cannot create the folder"), "{err}");
+    assert!(!o.status.success() && err.contains("cannot create or write in the folder"), "{err}");
     // NaN exposure used to report FLIP 0 (identical) for any two images.
     let o = bouncelab(&["compare", "a.exr", "b.exr", "--exposure", "NaN"]);
     let err = String::from_utf8_lossy(&o.stderr);
@@ -244,4 +244,224 @@ fn fit_blocks_finds_the_suite_levels_rooms_and_doorways_and_names_what_it_cannot
     );
     assert!(!open.exists());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A fresh folder for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("bouncelab-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("dir");
+    dir
+}
+
+/// The Cornell box's glTF, changed by `edit`, written to `path`.
+fn cornell_variant(path: &std::path::Path, edit: impl FnOnce(&mut serde_json::Value)) {
+    let text = std::fs::read_to_string("assets/cornell_box.gltf").expect("cornell");
+    let mut doc: serde_json::Value = serde_json::from_str(&text).expect("json");
+    edit(&mut doc);
+    std::fs::write(path, serde_json::to_string(&doc).expect("json")).expect("write");
+}
+
+fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn outputs_never_replace_inputs_or_take_another_format() {
+    let dir = scratch("clobber");
+    let level = dir.join("level.gltf");
+    std::fs::copy("assets/cornell_box.gltf", &level).expect("copy");
+    let level_bytes = std::fs::read(&level).expect("level");
+    let (photo, notes) = (dir.join("photo.png"), dir.join("notes.txt"));
+    std::fs::write(&photo, b"a photo").expect("write");
+    std::fs::write(&notes, b"notes").expect("write");
+    let s = |p: &std::path::Path| p.to_string_lossy().into_owned();
+    // fit-blocks: the level itself, a PNG, a text file, the project it reads.
+    for (out, why) in [(&level, "is also an input"), (&photo, "must end in .ron"), (&notes, "must end in .ron")] {
+        let o = bouncelab(&["fit-blocks", &s(&level), "--out", &s(out)]);
+        assert!(!o.status.success() && stderr(&o).contains(why), "{}: {}", out.display(), stderr(&o));
+    }
+    assert_eq!(std::fs::read(&level).expect("level"), level_bytes, "the level keeps its geometry");
+    assert_eq!(std::fs::read(&photo).expect("photo"), b"a photo");
+    assert_eq!(std::fs::read(&notes).expect("notes"), b"notes");
+    let project = dir.join("p.ron");
+    bouncelab::project_file::Project::load(std::path::Path::new("projects/default.ron"))
+        .expect("default project")
+        .save(&project)
+        .expect("save");
+    let project_bytes = std::fs::read(&project).expect("project");
+    let o = bouncelab(&["fit-blocks", &s(&project), "--out", &s(&dir.join("./p.ron"))]);
+    assert!(!o.status.success() && stderr(&o).contains("is also an input"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&project).expect("project"), project_bytes);
+    // compare --heatmap: an input under its own name, or a name of another format.
+    let (a, b) = (dir.join("a.png"), dir.join("b.png"));
+    let img = image::RgbaImage::from_pixel(4, 4, image::Rgba([90, 90, 90, 255]));
+    img.save(&a).expect("a");
+    img.save(&b).expect("b");
+    let b_bytes = std::fs::read(&b).expect("b");
+    for (heat, why) in [(s(&b), "is also an input"), (s(&dir.join("heat.exr")), "must end in .png")] {
+        let o = bouncelab(&["compare", &s(&a), &s(&b), "--heatmap", &heat]);
+        assert!(!o.status.success() && stderr(&o).contains(why), "{heat}: {}", stderr(&o));
+    }
+    assert_eq!(std::fs::read(&b).expect("b"), b_bytes, "the reference is untouched");
+    // A read-only output is not replaced; a folder is found before a long render starts.
+    let mut perms = std::fs::metadata(&photo).expect("meta").permissions();
+    perms.set_readonly(true);
+    std::fs::set_permissions(&photo, perms).expect("chmod");
+    let o = bouncelab(&["render", &s(&level), "--mode", "reference", "--spp", "100000", "--out", &s(&photo)]);
+    assert!(!o.status.success() && stderr(&o).contains("read-only"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&photo).expect("photo"), b"a photo");
+    let folder = dir.join("out.exr");
+    std::fs::create_dir_all(&folder).expect("dir");
+    let started = std::time::Instant::now();
+    let o = bouncelab(&["render", &s(&level), "--mode", "reference", "--spp", "100000", "--out", &s(&folder)]);
+    assert!(!o.status.success() && stderr(&o).contains("is a folder"), "{}", stderr(&o));
+    assert!(started.elapsed().as_secs() < 60, "refused before the 100,000-spp render");
+}
+
+#[test]
+fn fit_blocks_on_a_project_with_blocks_replaces_them() {
+    let dir = scratch("refit");
+    let s = |p: &std::path::Path| p.to_string_lossy().into_owned();
+    let (first, second) = (dir.join("first.ron"), dir.join("second.ron"));
+    let o = bouncelab(&["fit-blocks", "assets/suite/rooms.gltf", "--out", &s(&first)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = bouncelab(&["fit-blocks", &s(&first), "--out", &s(&second)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("replaced the 3 proxy blocks"), "{o:?}");
+    let blocks = |p: &std::path::Path| {
+        let project = bouncelab::project_file::Project::load(p).expect("project");
+        project.scene.objects().iter().filter(|o| o.role == bouncelab::scene::ObjectRole::ProxyBlock).count()
+    };
+    assert_eq!(blocks(&first), 3, "one block per room");
+    assert_eq!(blocks(&second), 3, "never stacked");
+}
+
+#[test]
+fn a_render_that_is_not_what_was_asked_for_is_refused_unless_allowed() {
+    if !has_gpu() {
+        return;
+    }
+    let dir = scratch("partial");
+    let s = |p: &std::path::Path| p.to_string_lossy().into_owned();
+    let dark = dir.join("dark.gltf");
+    cornell_variant(&dark, |doc| {
+        doc.as_object_mut().expect("object").remove("extensions");
+        for node in doc["nodes"].as_array_mut().expect("nodes") {
+            node.as_object_mut().expect("node").remove("extensions");
+        }
+    });
+    let glowing = dir.join("glowing.gltf");
+    cornell_variant(&glowing, |doc| doc["materials"][0]["emissiveFactor"] = serde_json::json!([1.0, 0.9, 0.8]));
+    let size = ["--width", "16", "--height", "9", "--ssaa", "1", "--mode", "direct"];
+    for (scene, why) in [(&dark, "no light"), (&glowing, "emit light")] {
+        let out = dir.join("out.png");
+        let o = bouncelab(&[&["render", &s(scene), "--out", &s(&out)][..], &size[..]].concat());
+        assert!(!o.status.success(), "{}: exit 0", scene.display());
+        assert!(stderr(&o).contains(why) && stderr(&o).contains("--allow-partial"), "{}", stderr(&o));
+        assert!(!out.exists(), "nothing written");
+        let o = bouncelab(&[&["render", &s(scene), "--out", &s(&out), "--allow-partial"][..], &size[..]].concat());
+        assert!(o.status.success() && stderr(&o).contains(why), "{}", stderr(&o));
+        assert!(out.exists(), "written when accepted");
+        std::fs::remove_file(&out).expect("rm");
+    }
+    // A size this machine cannot render is refused before anything renders.
+    let out = s(&dir.join("huge.png"));
+    let o = bouncelab(&[
+        "render",
+        "projects/default.ron",
+        "--mode",
+        "direct",
+        "--width",
+        "16384",
+        "--height",
+        "16384",
+        "--ssaa",
+        "1",
+        "--out",
+        &out,
+    ]);
+    assert!(!o.status.success() && stderr(&o).contains("16384"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+}
+
+#[test]
+fn temporal_modes_converge_before_writing_unless_frames_cap_them() {
+    if !has_gpu() {
+        return;
+    }
+    let dir = scratch("converge");
+    let s = |p: &std::path::Path| p.to_string_lossy().into_owned();
+    // ISM settles in 3 / (1 - base confidence) frames: 6 at 0.5.
+    let project = dir.join("quick.ron");
+    let mut loaded =
+        bouncelab::project_file::Project::load(std::path::Path::new("projects/default.ron")).expect("default");
+    loaded.render.ism.base_confidence = 0.5;
+    loaded.save(&project).expect("save");
+    let out = dir.join("ism.png");
+    let args =
+        ["render", &s(&project), "--mode", "ism", "--width", "16", "--height", "9", "--ssaa", "1", "--out", &s(&out)];
+    let o = bouncelab(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("frame 6/6"), "converged over its 6 frames: {}", stderr(&o));
+    assert!(!stderr(&o).contains("had not converged"), "{}", stderr(&o));
+    let o = bouncelab(&[&args[..], &["--frames", "2"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("had not converged after the 2 frames asked for"), "{}", stderr(&o));
+}
+
+#[cfg(unix)]
+#[test]
+fn inputs_that_are_not_regular_files_or_too_large_are_refused() {
+    let dir = scratch("inputs");
+    let s = |p: &std::path::Path| p.to_string_lossy().into_owned();
+    let out = s(&dir.join("x.png"));
+    let o = bouncelab(&["render", "/dev/zero", "--out", &out]);
+    assert!(!o.status.success() && stderr(&o).contains("a device"), "{}", stderr(&o));
+    let o = bouncelab(&["compare", "/dev/zero", "x.png"]);
+    assert!(!o.status.success() && stderr(&o).contains("a device"), "{}", stderr(&o));
+    let fifo = dir.join("scene.gltf");
+    if Command::new("mkfifo").arg(&fifo).status().is_ok_and(|st| st.success()) {
+        let o = bouncelab(&["render", &s(&fifo), "--out", &out]);
+        assert!(!o.status.success() && stderr(&o).contains("FIFO"), "{}", stderr(&o));
+    }
+    // A glTF whose six images are one 8192² PNG: over the texture budget, said before decoding.
+    let big = dir.join("big.png");
+    image::RgbaImage::new(8192, 8192).save(&big).expect("png");
+    let textured = dir.join("textured.gltf");
+    cornell_variant(&textured, |doc| {
+        doc["images"] = serde_json::json!(vec![serde_json::json!({"uri": "big.png"}); 6]);
+    });
+    let o = bouncelab(&["render", &s(&textured), "--mode", "direct", "--out", &out]);
+    assert!(!o.status.success() && stderr(&o).contains("texture budget"), "{}", stderr(&o));
+}
+
+#[test]
+fn the_render_memory_estimate_covers_what_each_mode_allocates_per_pixel() {
+    if !has_gpu() {
+        return;
+    }
+    use bouncelab::settings::GiMode;
+    let project =
+        bouncelab::project_file::Project::load(std::path::Path::new("projects/default.ron")).expect("project");
+    let ctx = bouncelab::render::GpuContext::new_headless().expect("adapter");
+    let bytes_at = |mode: GiMode, size: (u32, u32)| {
+        let mut r = bouncelab::render::Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        let settings = bouncelab::settings::RenderSettings { mode, ..project.render.clone() };
+        r.render(&project.scene, &settings, size).expect("render");
+        ctx.device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+        let m = bouncelab::app::GpuMemory::of(&ctx.device);
+        m.buffer_bytes + m.texture_bytes
+    };
+    for mode in [GiMode::Direct, GiMode::Ism, GiMode::Sshgi, GiMode::Rcs] {
+        let small = bytes_at(mode, (64, 64));
+        let large = bytes_at(mode, (256, 256));
+        let per_pixel = large.saturating_sub(small) as f64 / f64::from(256 * 256 - 64 * 64);
+        eprintln!("{}: {per_pixel:.0} GPU bytes per render pixel", mode.name());
+        assert!(
+            per_pixel <= bouncelab::cli::budget::RASTER_GPU_BYTES_PER_PIXEL as f64,
+            "{}: {per_pixel:.0} bytes per pixel, over the estimate",
+            mode.name()
+        );
+    }
 }

@@ -185,7 +185,8 @@ fn writer(rx: &mpsc::Receiver<Msg>) {
 
 fn write_pending(pending: &mut Option<(PathBuf, Box<RecoveryFile>)>) {
     let Some((file, body)) = pending.take() else { return };
-    let written = body.to_text().map_err(std::io::Error::other).and_then(|t| crate::atomic_file::write(&file, t.as_bytes()));
+    let written =
+        body.to_text().map_err(std::io::Error::other).and_then(|t| crate::atomic_file::write(&file, t.as_bytes()));
     match written {
         Ok(()) => log::debug!("autosaved {}", file.display()),
         Err(e) => log::warn!("autosave to {} failed: {e}", file.display()),

@@ -155,7 +155,8 @@ impl EditorApp {
     /// Creates the app; the renderer is created on eframe's wgpu device. Without eframe storage
     /// (tests) nothing is persisted and no recovery file is written.
     pub fn new(cc: &eframe::CreationContext<'_>, project: Project, path: Option<PathBuf>) -> Self {
-        let recovery = cc.storage.is_some().then(|| eframe::storage_dir("Bounce Lab")).flatten().map(|d| d.join("recovery"));
+        let recovery =
+            cc.storage.is_some().then(|| eframe::storage_dir("Bounce Lab")).flatten().map(|d| d.join("recovery"));
         Self::with_recovery(cc, project, path, recovery)
     }
 
@@ -361,7 +362,8 @@ impl EditorApp {
             match offer.file.project(&offer.path) {
                 Ok(project) => {
                     self.state.restore(project, offer.file.project.clone());
-                    self.state.status = format!("restored {} unsaved edits of {}", offer.file.edits, offer.file.describe());
+                    self.state.status =
+                        format!("restored {} unsaved edits of {}", offer.file.edits, offer.file.describe());
                     self.viewport.reset_orbit(&self.state);
                     // This instance's own recovery file holds the work before the old one goes.
                     let view = self.autosave_view();

@@ -96,7 +96,8 @@ impl EditorState {
     /// Replaces the project with recovered work that belongs to `source` (its own file, never
     /// the one open before); the work counts as unsaved.
     pub fn restore(&mut self, project: Project, source: Option<PathBuf>) {
-        let is_project = source.as_deref().is_some_and(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron")));
+        let is_project =
+            source.as_deref().is_some_and(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron")));
         self.project = project;
         self.path = source.clone().filter(|_| is_project);
         self.read_only = self.path.as_deref().is_some_and(is_default_project);

@@ -89,11 +89,8 @@ fn load_buffers(
                 gltf::buffer::Source::Bin => {
                     blob.map(<[u8]>::to_vec).ok_or(ImportError::MissingBinaryChunk { path: path.to_owned(), index })?
                 }
-                gltf::buffer::Source::Uri(u) => uri::load(u, base_dir, crate::input_file::Kind::Buffer).map_err(|source| ImportError::Buffer {
-                    path: path.to_owned(),
-                    index,
-                    source,
-                })?,
+                gltf::buffer::Source::Uri(u) => uri::load(u, base_dir, crate::input_file::Kind::Buffer)
+                    .map_err(|source| ImportError::Buffer { path: path.to_owned(), index, source })?,
             };
             if data.len() < buffer.length() {
                 return Err(ImportError::BufferTooShort {

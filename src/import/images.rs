@@ -50,8 +50,9 @@ fn source_bytes(image: &gltf::Image<'_>, buffers: &[Vec<u8>], base_dir: &Path) -
             uri::load(u, base_dir, crate::input_file::Kind::Image).map_err(|e| e.to_string())
         }
         gltf::image::Source::View { view, .. } => {
-            let buffer =
-                buffers.get(view.buffer().index()).ok_or_else(|| format!("buffer {} is missing", view.buffer().index()))?;
+            let buffer = buffers
+                .get(view.buffer().index())
+                .ok_or_else(|| format!("buffer {} is missing", view.buffer().index()))?;
             let end = view.offset().checked_add(view.length()).filter(|e| *e <= buffer.len());
             let end = end.ok_or_else(|| "bufferView reaches past its buffer".to_owned())?;
             Ok(buffer[view.offset()..end].to_vec())

@@ -85,7 +85,8 @@ mod tests {
 
     #[test]
     fn decodes_data_uri() {
-        let bytes = load("data:application/octet-stream;base64,AAEC", Path::new("."), crate::input_file::Kind::Buffer).expect("decodes");
+        let bytes = load("data:application/octet-stream;base64,AAEC", Path::new("."), crate::input_file::Kind::Buffer)
+            .expect("decodes");
         assert_eq!(bytes, vec![0, 1, 2]);
         assert!(load("data:text/plain,hello", Path::new("."), crate::input_file::Kind::Buffer).is_err());
     }

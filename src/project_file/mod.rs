@@ -165,7 +165,9 @@ impl Project {
         let mut out = Vec::new();
         let lit = self.scene.lights().iter().any(|l| l.intensity > 0.0 && l.color.iter().any(|c| *c > 0.0));
         if !lit {
-            out.push("the scene has no light (no light with a positive intensity): every mode renders it black".to_owned());
+            out.push(
+                "the scene has no light (no light with a positive intensity): every mode renders it black".to_owned(),
+            );
         }
         let emissive: Vec<&str> = self.imported.iter().flat_map(|a| a.emissive.iter().map(String::as_str)).collect();
         if !emissive.is_empty() {

@@ -395,7 +395,9 @@ pub fn prune(dir: &Path, keep: &Path, others: usize) -> usize {
         .map(|e| e.path())
         .filter(|p| {
             p.as_path() != keep
-                && p.file_name().and_then(|n| n.to_str()).is_some_and(|n| n.starts_with("mrt-dictionary-") && n.ends_with(".bin"))
+                && p.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with("mrt-dictionary-") && n.ends_with(".bin"))
         })
         .filter_map(|p| Some((std::fs::metadata(&p).and_then(|m| m.modified()).ok()?, p)))
         .collect();
