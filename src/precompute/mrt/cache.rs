@@ -401,7 +401,7 @@ pub fn prune(dir: &Path, keep: &Path, others: usize) -> usize {
         })
         .filter_map(|p| Some((std::fs::metadata(&p).and_then(|m| m.modified()).ok()?, p)))
         .collect();
-    files.sort_by(|a, b| b.0.cmp(&a.0));
+    files.sort_by_key(|f| std::cmp::Reverse(f.0));
     files.iter().skip(others).filter(|(_, p)| std::fs::remove_file(p).is_ok()).count()
 }
 
