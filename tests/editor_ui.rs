@@ -411,3 +411,21 @@ fn the_default_project_is_never_overwritten() {
     assert_eq!(std::fs::read(&path).expect("default project"), before);
     settle(&mut h);
 }
+
+#[test]
+fn the_gi_panel_says_when_the_view_cannot_be_what_was_asked_for() {
+    if !has_gpu() {
+        return;
+    }
+    let path = default_project_path();
+    let mut project = Project::load(&path).expect("default project");
+    project.scene.desc_mut().lights.clear();
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .wgpu()
+        .build_eframe(move |cc| EditorApp::new(cc, project, Some(path)));
+    h.run_steps(3);
+    settle(&mut h);
+    h.run_steps(1);
+    assert!(h.query_by_label_contains("the scene has no light").is_some(), "said in the GI panel");
+}
