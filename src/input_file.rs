@@ -27,7 +27,8 @@ impl Kind {
         match self {
             Self::Project => 256 << 20,
             Self::Scene | Self::Buffer => 2 << 30,
-            Self::Image => 512 << 20,
+            // `compare` reads this tool's own EXRs: RGBA f32 with RLE, 16 bytes a pixel.
+            Self::Image => 2 << 30,
             Self::Cache => 1 << 30,
         }
     }

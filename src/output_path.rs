@@ -42,6 +42,8 @@ pub struct Writes {
 pub const PROJECT: Writes = Writes { what: "a RON project file", extensions: &["ron"] };
 /// A rendered image: linear EXR or tonemapped PNG.
 pub const IMAGE: Writes = Writes { what: "an EXR (linear) or PNG (tonemapped) image", extensions: &["exr", "png"] };
+/// A Markdown document (`bench`'s reports).
+pub const MARKDOWN: Writes = Writes { what: "a Markdown document", extensions: &["md"] };
 /// A PNG picture (heat maps).
 pub const PNG: Writes = Writes { what: "a PNG image", extensions: &["png"] };
 
@@ -138,10 +140,18 @@ fn check_folder(out: &Path) -> Result<(), OutputError> {
     };
     let fail = |source| OutputError::NotWritable { path: out.to_owned(), folder: folder.clone(), source };
     std::fs::create_dir_all(&folder).map_err(fail)?;
-    let probe = folder.join(format!(".bouncelab-write-probe-{}", std::process::id()));
-    std::fs::OpenOptions::new().write(true).create_new(true).open(&probe).map_err(fail)?;
-    let _ = std::fs::remove_file(&probe);
-    Ok(())
+    static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let probe = folder.join(format!(".bouncelab-write-probe-{}-{n}", std::process::id()));
+    match std::fs::OpenOptions::new().write(true).create_new(true).open(&probe) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        // A probe a killed run left behind: the folder took a file once.
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
+        Err(e) => Err(fail(e)),
+    }
 }
 
 #[cfg(test)]

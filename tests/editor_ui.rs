@@ -370,6 +370,14 @@ fn autosave_writes_after_an_idle_wait_without_any_repaint() {
     assert_eq!(saved.edits, 2);
     assert_eq!(saved.project.as_deref().and_then(|p| p.file_name()), Some(std::ffi::OsStr::new("a.ron")));
     settle(&mut h);
+    // Killed now: the next editor on the same project gets both edits back.
+    drop(h);
+    let mut next = editor_at(&a, &home);
+    let offered = next.state().recovery_offered().expect("offered");
+    assert!(offered.contains("a.ron") && offered.contains("2 edits"), "{offered}");
+    next.state_mut().answer_recovery(true);
+    assert_eq!(next.state().state().project.scene.lights().len(), 3);
+    settle(&mut next);
 }
 
 #[test]
@@ -428,4 +436,58 @@ fn the_gi_panel_says_when_the_view_cannot_be_what_was_asked_for() {
     settle(&mut h);
     h.run_steps(1);
     assert!(h.query_by_label_contains("the scene has no light").is_some(), "said in the GI panel");
+}
+
+#[test]
+fn restored_work_on_the_open_project_is_autosaved_before_the_old_file_goes() {
+    if !has_gpu() {
+        return;
+    }
+    let (a, _, home) = recovery_fixture("same");
+    let mut first = editor_at(&a, &home);
+    add_point_light(&mut first);
+    first.state().flush_autosave();
+    settle(&mut first);
+    drop(first);
+    let mut second = editor_at(&a, &home);
+    assert!(second.state().recovery_offered().is_some());
+    second.state_mut().answer_recovery(true);
+    let own = second.state().flush_autosave().expect("this instance's recovery file");
+    assert!(own.exists(), "the restored work is on disk again");
+    let saved = bouncelab::app::recovery::RecoveryFile::read(&own).expect("recovery file");
+    assert_eq!(saved.scene.lights.len(), 2, "with the restored edit");
+    let files =
+        std::fs::read_dir(&home).expect("dir").flatten().filter(|e| e.path().extension().is_some_and(|x| x == "ron"));
+    assert_eq!(files.count(), 1, "the old file went once the new one held the work");
+    settle(&mut second);
+}
+
+#[test]
+fn opening_another_project_or_a_new_one_keeps_unsaved_work_for_later() {
+    if !has_gpu() {
+        return;
+    }
+    let (a, b, home) = recovery_fixture("switch");
+    let mut h = editor_at(&a, &home);
+    add_point_light(&mut h);
+    h.state_mut().open(&b);
+    h.run_steps(1);
+    assert_eq!(h.state().recovery_offered(), None, "b has nothing to offer");
+    // File → New from b: the untitled project is not b's.
+    add_point_light(&mut h);
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::N);
+    h.run_steps(1);
+    assert_eq!(h.state().state().opened, None);
+    assert!(!h.state().state().read_only);
+    // Back to a: the work left there unsaved is offered.
+    h.state_mut().open(&a);
+    h.run_steps(1);
+    let offered = h.state().recovery_offered().expect("a's unsaved work");
+    assert!(offered.contains("a.ron"), "{offered}");
+    h.state_mut().answer_recovery(true);
+    assert_eq!(h.state().state().project.scene.lights().len(), 2);
+    h.state_mut().open(&b);
+    h.run_steps(1);
+    assert!(h.state().recovery_offered().is_some_and(|m| m.contains("b.ron")), "b's too");
+    settle(&mut h);
 }

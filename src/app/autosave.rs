@@ -23,8 +23,8 @@ enum Msg {
     Changed(PathBuf, Box<RecoveryFile>),
     /// Nothing unsaved any more: remove this file (and forget a pending write of it).
     Remove(PathBuf),
-    /// Write what is pending now and answer (tests, a restore).
-    Flush(mpsc::Sender<()>),
+    /// Write what is pending now and answer whether it was written (tests, a restore).
+    Flush(mpsc::Sender<bool>),
 }
 
 /// The recovery files of one editor instance and the thread that writes them.
@@ -33,8 +33,12 @@ pub struct Autosave {
     instance: String,
     /// The project key, its recovery file and the lock held on it.
     current: Option<(String, PathBuf, Lock)>,
-    /// The history state last handed to the writer.
-    sent: Option<u64>,
+    /// The project file the key was computed for, and the key (a canonical path: not per frame).
+    keyed: Option<(Option<PathBuf>, String)>,
+    /// The history state last handed to the writer, and whether it was unsaved.
+    sent: Option<(u64, bool)>,
+    /// A key whose lock could not be taken (said once).
+    refused: Option<String>,
     tx: mpsc::Sender<Msg>,
 }
 
@@ -51,7 +55,15 @@ impl Autosave {
             log::warn!("no crash recovery: cannot start the autosave thread: {e}");
             return None;
         }
-        Some(Self { dir, instance: recovery::instance_name(), current: None, sent: None, tx })
+        Some(Self {
+            dir,
+            instance: recovery::instance_name(),
+            current: None,
+            keyed: None,
+            sent: None,
+            refused: None,
+            tx,
+        })
     }
 
     /// The folder the recovery files live in.
@@ -59,19 +71,30 @@ impl Autosave {
         &self.dir
     }
 
-    /// This instance's recovery file for the project opened from `source` (its lock taken).
-    fn file_for(&mut self, source: Option<&Path>, dirty: bool) -> Option<PathBuf> {
-        let key = recovery::key(source);
-        if self.current.as_ref().is_some_and(|(k, _, _)| *k == key) {
-            return self.current.as_ref().map(|(_, f, _)| f.clone());
+    /// The recovery key of `source`, computed once per project file.
+    fn key_of(&mut self, source: Option<&Path>) -> String {
+        if let Some((p, k)) = &self.keyed
+            && p.as_deref() == source
+        {
+            return k.clone();
         }
-        // Another project: a clean file is removed; a dirty one's work stays on disk, unlocked,
-        // and is offered when that project is opened again.
-        if let Some((_, old, lock)) = self.current.take() {
-            if !dirty {
-                let _ = self.tx.send(Msg::Remove(old));
-            }
-            drop(lock);
+        let key = recovery::key(source);
+        self.keyed = Some((source.map(Path::to_owned), key.clone()));
+        key
+    }
+
+    /// This instance's recovery file for the project opened from `source` (its lock taken).
+    fn file_for(&mut self, source: Option<&Path>) -> Option<PathBuf> {
+        let key = self.key_of(source);
+        if let Some((k, f, _)) = &self.current
+            && *k == key
+        {
+            return Some(f.clone());
+        }
+        // The project changed without `leave` (a Save As to a new name): nothing is unsaved.
+        self.leave();
+        if self.refused.as_deref() == Some(key.as_str()) {
+            return None;
         }
         let (file, lock_path) = recovery::files(&self.dir, &key, &self.instance);
         match Lock::try_take(&lock_path) {
@@ -82,19 +105,39 @@ impl Autosave {
             }
             Ok(None) | Err(_) => {
                 log::warn!("no crash recovery for this project: cannot lock {}", lock_path.display());
+                self.refused = Some(key);
                 None
             }
         }
     }
 
+    /// The project this instance autosaved is being replaced (another is opened, a new one
+    /// made, recovered work restored). Its last state is written first; work that was unsaved
+    /// stays on disk with its lock released, so it is offered when that project is opened again
+    /// (by this editor too); a clean project's file is removed. Later files get a new instance
+    /// name, so the left work is never overwritten.
+    pub fn leave(&mut self) {
+        let Some((_, file, lock)) = self.current.take() else { return };
+        let unsaved = self.sent.is_some_and(|(_, dirty)| dirty);
+        if unsaved {
+            self.flush();
+            self.instance = recovery::instance_name();
+        } else {
+            let _ = self.tx.send(Msg::Remove(file));
+            self.flush();
+        }
+        drop(lock);
+        self.sent = None;
+    }
+
     /// Called every UI frame: hands the state to the writer when it changed (`state_id` is the
     /// undo history's state), or has the file removed once nothing is unsaved.
     pub fn track(&mut self, project: &crate::project_file::Project, source: Option<&Path>, history: &History) {
-        let Some(file) = self.file_for(source, history.dirty) else { return };
-        if self.sent == Some(history.state_id) {
+        let Some(file) = self.file_for(source) else { return };
+        if self.sent.is_some_and(|(id, _)| id == history.state_id) {
             return;
         }
-        self.sent = Some(history.state_id);
+        self.sent = Some((history.state_id, history.dirty));
         let msg = if history.dirty {
             Msg::Changed(file, Box::new(RecoveryFile::of(project, source, history.edits)))
         } else {
@@ -120,12 +163,11 @@ impl Autosave {
         }
     }
 
-    /// Writes whatever is pending now and waits for it (a restore, tests).
-    pub fn flush(&self) {
+    /// Writes whatever is pending now and waits for it (a restore, tests); false if a write
+    /// failed or the writer did not answer.
+    pub fn flush(&self) -> bool {
         let (tx, rx) = mpsc::channel();
-        if self.tx.send(Msg::Flush(tx)).is_ok() {
-            let _ = rx.recv_timeout(Duration::from_secs(10));
-        }
+        self.tx.send(Msg::Flush(tx)).is_ok() && rx.recv_timeout(Duration::from_secs(10)).unwrap_or(false)
     }
 
     /// This instance's current recovery file, if it has one.
@@ -145,8 +187,8 @@ pub struct History {
 }
 
 /// The writer thread: waits for changes and writes each file's latest state on the timer. It
-/// ends when the editor drops its [`Autosave`]; what is pending then is not written (a clean exit
-/// removed it already; a dropped editor in a test stands for a killed one).
+/// ends when the editor drops its [`Autosave`], writing what is pending first (a clean exit
+/// removed it already; an editor unwinding from a panic keeps its last edits).
 fn writer(rx: &mpsc::Receiver<Msg>) {
     let mut pending: Option<(PathBuf, Box<RecoveryFile>)> = None;
     let (mut first, mut last) = (Instant::now(), Instant::now());
@@ -161,7 +203,7 @@ fn writer(rx: &mpsc::Receiver<Msg>) {
         match msg {
             Ok(Msg::Changed(file, body)) => {
                 if pending.as_ref().is_none_or(|(f, _)| *f != file) {
-                    write_pending(&mut pending);
+                    let _ = write_pending(&mut pending);
                     first = Instant::now();
                 }
                 last = Instant::now();
@@ -174,21 +216,32 @@ fn writer(rx: &mpsc::Receiver<Msg>) {
                 let _ = std::fs::remove_file(&file);
             }
             Ok(Msg::Flush(done)) => {
-                write_pending(&mut pending);
-                let _ = done.send(());
+                let _ = done.send(write_pending(&mut pending));
             }
-            Err(mpsc::RecvTimeoutError::Timeout) => write_pending(&mut pending),
-            Err(mpsc::RecvTimeoutError::Disconnected) => return,
+            Err(mpsc::RecvTimeoutError::Timeout) => {
+                write_pending(&mut pending);
+            }
+            Err(mpsc::RecvTimeoutError::Disconnected) => {
+                write_pending(&mut pending);
+                return;
+            }
         }
     }
 }
 
-fn write_pending(pending: &mut Option<(PathBuf, Box<RecoveryFile>)>) {
-    let Some((file, body)) = pending.take() else { return };
+/// Writes the pending state, if any; false if the write failed.
+fn write_pending(pending: &mut Option<(PathBuf, Box<RecoveryFile>)>) -> bool {
+    let Some((file, body)) = pending.take() else { return true };
     let written =
         body.to_text().map_err(std::io::Error::other).and_then(|t| crate::atomic_file::write(&file, t.as_bytes()));
     match written {
-        Ok(()) => log::debug!("autosaved {}", file.display()),
-        Err(e) => log::warn!("autosave to {} failed: {e}", file.display()),
+        Ok(()) => {
+            log::debug!("autosaved {}", file.display());
+            true
+        }
+        Err(e) => {
+            log::warn!("autosave to {} failed: {e}", file.display());
+            false
+        }
     }
 }

@@ -154,8 +154,10 @@ impl History {
         self.saved_id = self.next_id;
     }
 
-    /// Forgets everything (a new or reopened project).
+    /// Forgets everything (a new or reopened project). State ids keep counting, so a cleared
+    /// history never repeats an id an observer (the autosave) has seen.
     pub fn clear(&mut self) {
-        *self = Self::default();
+        let id = self.next_id + 1;
+        *self = Self { current_id: id, next_id: id, saved_id: id, ..Self::default() };
     }
 }

@@ -299,8 +299,11 @@ impl EditorApp {
     fn new_project(&mut self) {
         match empty_project() {
             Ok(project) => {
+                self.leave_project();
                 self.state.project = project;
                 self.state.path = None;
+                self.state.opened = None;
+                self.state.read_only = false;
                 self.state.history.clear();
                 self.state.selection = Selection::None;
                 self.viewport.reset_orbit(&self.state);
@@ -318,12 +321,28 @@ impl EditorApp {
 
     /// Opens a project or glTF file, and offers work on it that a crashed instance left.
     pub fn open(&mut self, path: &std::path::Path) {
-        match self.state.open(path) {
+        // Loaded before the current project is left, so a file that does not open changes nothing.
+        let project = match crate::project_file::Project::open(path) {
+            Ok(p) => p,
+            Err(e) => return self.state.report("open failed", &e),
+        };
+        self.leave_project();
+        match self.state.open_loaded(path, project) {
             Ok(()) => {
                 self.viewport.reset_orbit(&self.state);
                 self.offer_recovery_of(path);
             }
             Err(e) => self.state.report("open failed", &e),
+        }
+    }
+
+    /// The open project is about to be replaced: its autosave writes its last state, and work
+    /// that was unsaved stays on disk to be offered again (see `Autosave::leave`).
+    fn leave_project(&mut self) {
+        let view = self.autosave_view();
+        if let Some(a) = &mut self.autosave {
+            a.track(&self.state.project, self.state.opened.as_deref(), &view);
+            a.leave();
         }
     }
 
@@ -361,17 +380,22 @@ impl EditorApp {
         if restore {
             match offer.file.project(&offer.path) {
                 Ok(project) => {
+                    self.leave_project();
                     self.state.restore(project, offer.file.project.clone());
                     self.state.status =
                         format!("restored {} unsaved edits of {}", offer.file.edits, offer.file.describe());
                     self.viewport.reset_orbit(&self.state);
                     // This instance's own recovery file holds the work before the old one goes.
                     let view = self.autosave_view();
-                    if let Some(a) = &mut self.autosave {
+                    let kept = self.autosave.as_mut().is_some_and(|a| {
                         a.track(&self.state.project, self.state.opened.as_deref(), &view);
-                        a.flush();
+                        a.flush() && a.current_file().is_some_and(std::path::Path::exists)
+                    });
+                    if kept {
+                        offer.remove();
+                    } else {
+                        log::warn!("kept {}: the restored work could not be autosaved yet", offer.path.display());
                     }
-                    offer.remove();
                 }
                 // The file stays for a later try (an asset may be on a drive not mounted now).
                 Err(e) => self.state.report("recovery failed", &e),
@@ -471,6 +495,10 @@ impl EditorApp {
 
     fn shortcuts(&mut self, ui: &egui::Ui) {
         use egui::{Key, KeyboardShortcut as K, Modifiers as M};
+        // A dialog is open: no edit, open or new may change what it asks about.
+        if self.modal != Modal::None {
+            return;
+        }
         let typing = ui.memory(|m| m.focused().is_some());
         let pressed = |sc: K| ui.input_mut(|i| i.consume_shortcut(&sc));
         if pressed(K::new(M::COMMAND | M::SHIFT, Key::Z)) || pressed(K::new(M::COMMAND, Key::Y)) {
@@ -711,7 +739,7 @@ impl eframe::App for EditorApp {
         let dropped: Vec<PathBuf> = ui.input(|i| {
             i.raw.dropped_files.iter().map(|f| f.path().to_owned()).filter(|p| !p.as_os_str().is_empty()).collect()
         });
-        if let Some(path) = dropped.first() {
+        if let Some(path) = dropped.first().filter(|_| self.modal == Modal::None) {
             self.open(path);
         }
         if ui.input(|i| i.viewport().close_requested()) && self.state.history.is_dirty() && !self.allow_close {
@@ -747,6 +775,15 @@ impl eframe::App for EditorApp {
         let view = self.autosave_view();
         if let Some(a) = &mut self.autosave {
             a.track(&self.state.project, self.state.opened.as_deref(), &view);
+        }
+    }
+
+    fn on_exit(&mut self) {
+        // A clean exit with nothing unsaved removes this instance's recovery file and lock.
+        if let Some(a) = &mut self.autosave
+            && !self.state.history.is_dirty()
+        {
+            a.close();
         }
     }
 

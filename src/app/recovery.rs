@@ -140,7 +140,9 @@ pub fn key(project: Option<&Path>) -> String {
 pub fn instance_name() -> String {
     static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
     let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    format!("{}-{n}", std::process::id())
+    // The start time too: a process id can come back after a reboot.
+    let started = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_millis());
+    format!("{}-{started}-{n}", std::process::id())
 }
 
 /// The recovery file and lock of `key` for `instance` in `dir`.
@@ -156,14 +158,20 @@ pub struct Lock {
 }
 
 impl Lock {
-    /// Takes the lock at `path` (creating it), or `None` if another instance holds it.
+    /// Takes the lock at `path` (creating it), or `None` if another instance holds it. A lock
+    /// file that another editor removed between our open and our lock is opened again, so the
+    /// lock held is always on the file the path names.
     pub fn try_take(path: &Path) -> std::io::Result<Option<Self>> {
-        let file = std::fs::OpenOptions::new().create(true).truncate(false).read(true).write(true).open(path)?;
-        match file.try_lock() {
-            Ok(()) => Ok(Some(Self { file, path: path.to_owned() })),
-            Err(std::fs::TryLockError::WouldBlock) => Ok(None),
-            Err(std::fs::TryLockError::Error(e)) => Err(e),
+        for _ in 0..8 {
+            let file = std::fs::OpenOptions::new().create(true).truncate(false).read(true).write(true).open(path)?;
+            match file.try_lock() {
+                Ok(()) if same_file(&file, path) => return Ok(Some(Self { file, path: path.to_owned() })),
+                Ok(()) => continue,
+                Err(std::fs::TryLockError::WouldBlock) => return Ok(None),
+                Err(std::fs::TryLockError::Error(e)) => return Err(e),
+            }
         }
+        Ok(None)
     }
 
     /// Releases the lock and removes its file.
@@ -171,6 +179,21 @@ impl Lock {
         let _ = std::fs::remove_file(&self.path);
         let _ = self.file.unlock();
     }
+}
+
+/// Whether the open `file` is the file `path` names now (not one unlinked meanwhile).
+#[cfg(unix)]
+fn same_file(file: &std::fs::File, path: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt as _;
+    match (file.metadata(), std::fs::metadata(path)) {
+        (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+        _ => false,
+    }
+}
+
+#[cfg(not(unix))]
+fn same_file(_file: &std::fs::File, path: &Path) -> bool {
+    path.exists()
 }
 
 /// Unsaved work an instance that is gone left behind, with its lock held while it is offered.

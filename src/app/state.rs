@@ -59,6 +59,11 @@ impl EditorState {
     /// Opens a project or glTF file, replacing the current one.
     pub fn open(&mut self, path: &Path) -> Result<(), ProjectError> {
         let project = Project::open(path)?;
+        self.open_loaded(path, project)
+    }
+
+    /// Replaces the current project with `project`, loaded from `path`.
+    pub fn open_loaded(&mut self, path: &Path, project: Project) -> Result<(), ProjectError> {
         let is_project = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron"));
         self.project = project;
         self.path = is_project.then(|| path.to_owned());

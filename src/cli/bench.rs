@@ -79,6 +79,7 @@ pub(crate) fn measure(
 
 /// Runs the benchmark and writes `out` (normally `docs/BENCHMARKS.md`).
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
+    crate::output_path::check(out, crate::output_path::MARKDOWN, &[])?;
     let ctx = GpuContext::new_headless()?;
     let project = Project::load(&default_project_path())?;
     let sizes: &[(u32, u32)] = if quick { &[(320, 180)] } else { &[(320, 180), (640, 360), (1280, 720)] };

@@ -86,6 +86,7 @@ fn tile(img: &HdrImage, view: &ViewSettings) -> Vec<u8> {
 
 /// Writes the matrix to `out` (markdown) and the contact sheet beside it.
 pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
+    crate::output_path::check(out, crate::output_path::MARKDOWN, &[])?;
     let ctx = GpuContext::new_headless()?;
     let mut rows: Vec<(&SuiteScene, HdrImage, Vec<Cell>)> = Vec::new();
     for scene in SCENES {

@@ -157,12 +157,16 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
             status.refine_target
         );
     }
+    if args.frames.is_none() && renderer.technique_status().is_some_and(|s| s.refining) {
+        eprintln!(
+            "note: {} still refining after {frames} frames, the most a render gives a technique",
+            project.render.mode.name()
+        );
+    }
     let mut shortfalls = renderer.shortfalls(&project.scene, &project.render);
     shortfalls.extend(scene_shortfalls);
-    if args.frames.is_none() && renderer.technique_status().is_some_and(|s| s.refining) {
-        shortfalls.push(format!("still not converged after {frames} frames (the most a render gives a technique)"));
-    }
-    refuse_partial(&args.out, &shortfalls, args.allow_partial)?;
+    // A buffer is inspected to find out what went wrong: it is written whatever it holds.
+    refuse_partial(&args.out, &shortfalls, args.allow_partial || args.buffer.is_some())?;
     let img = match &args.buffer {
         Some(name) => renderer.read_buffer(name)?,
         None => HdrImage {
@@ -218,14 +222,26 @@ fn render_frames(
     asked: Option<u32>,
 ) -> anyhow::Result<u32> {
     let refining = |r: &Renderer| r.technique_status().is_some_and(|s| s.refining);
+    // The first frame allocates what the size needs: an adapter that runs out says so here.
+    let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
     let mut done = until_ready(ctx, renderer, project, size)?;
-    let total = asked.unwrap_or_else(|| renderer.technique_status().map_or(1, |s| s.refine_target.max(1)));
+    if let Some(e) = pollster::block_on(scope.pop()) {
+        anyhow::bail!(
+            "the adapter ran out of memory for a {}x{} render ({e}): render smaller or with a lower --ssaa",
+            size.0,
+            size.1
+        );
+    }
+    let target = renderer.technique_status().map_or(1, |s| s.refine_target.max(1));
+    let total = asked.unwrap_or(target);
+    // A technique whose settings ask for more frames than the usual limit gets them.
+    let limit = CONVERGE_LIMIT.max(target.saturating_add(1));
     let mut progress = super::progress::Progress::new(u64::from(total));
     let is_rcs = project.render.mode == GiMode::Rcs;
     loop {
         let more = match asked {
-            Some(n) => done < n || (is_rcs && refining(renderer) && done < n + CONVERGE_LIMIT),
-            None => refining(renderer) && done < CONVERGE_LIMIT,
+            Some(n) => done < n || (is_rcs && refining(renderer) && done < n + limit),
+            None => refining(renderer) && done < limit,
         };
         if !more {
             break;

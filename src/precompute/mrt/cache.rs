@@ -66,7 +66,7 @@ impl Source {
             Self::Loaded(path) => format!("loaded from {}", path.display()),
             Self::Built { path, why, not_cached: None } => format!("built ({why}) and cached in {}", path.display()),
             Self::Built { path, why, not_cached: Some(e) } => format!(
-                "built ({why}) but NOT cached, so the next run builds it again: {e}; the cache belongs in {} (set XDG_CACHE_HOME, or `mrt-dictionary --cache DIR`, to a writable folder)",
+                "built ({why}) but NOT cached, so the next run builds it again: {e}; the cache belongs in {} (make it writable, or set XDG_CACHE_HOME to a writable folder)",
                 path.parent().map_or_else(String::new, |d| d.display().to_string())
             ),
         }
