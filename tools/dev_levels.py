@@ -52,8 +52,13 @@ def dev_rooms(seed):
 
 
 def main():
-    out = Path(sys.argv[1])
-    count = int(sys.argv[2]) if len(sys.argv) > 2 else 4
+    import argparse
+
+    parser = argparse.ArgumentParser(description="Write MRT development levels (rows of three rooms).")
+    parser.add_argument("out", help="output folder")
+    parser.add_argument("count", nargs="?", type=int, default=4, help="how many levels (default 4)")
+    args = parser.parse_args()
+    out, count = Path(args.out), args.count
     out.mkdir(parents=True, exist_ok=True)
     for seed in range(count):
         dev_rooms(seed).write(out / f"dev_rooms_{seed}.gltf")

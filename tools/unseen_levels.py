@@ -27,7 +27,6 @@ import json
 import math
 import random
 import struct
-import sys
 from pathlib import Path
 
 
@@ -549,7 +548,11 @@ def workshop():
 
 
 def main():
-    out = Path(sys.argv[1] if len(sys.argv) > 1 else "unseen")
+    import argparse
+
+    parser = argparse.ArgumentParser(description="Write the held-out level-like glTF scenes.")
+    parser.add_argument("out", nargs="?", default="unseen", help="output folder (default: unseen)")
+    out = Path(parser.parse_args().out)
     out.mkdir(parents=True, exist_ok=True)
     levels = [("apartment", apartment), ("sunroom", sunroom), ("storeroom", storeroom), ("offices", offices)]
     levels += [("cluttered", cluttered), ("cornell_b", cornell_b)]
