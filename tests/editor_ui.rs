@@ -333,7 +333,7 @@ fn restored_work_goes_back_to_its_own_project_never_the_open_one() {
     drop(first);
     let mut second = editor_at(&b, &home);
     let offered = second.state().recovery_offered().expect("the dialog is shown");
-    assert!(offered.contains("a.ron") && offered.contains("UTC") && offered.contains("1 edits"), "{offered}");
+    assert!(offered.contains("a.ron") && offered.contains("UTC") && offered.contains("1 edit,"), "{offered}");
     second.get_by_label("Restore").click();
     second.run_steps(2);
     let state = second.state().state();
@@ -456,6 +456,7 @@ fn restored_work_on_the_open_project_is_autosaved_before_the_old_file_goes() {
     assert!(own.exists(), "the restored work is on disk again");
     let saved = bouncelab::app::recovery::RecoveryFile::read(&own).expect("recovery file");
     assert_eq!(saved.scene.lights.len(), 2, "with the restored edit");
+    assert_eq!(saved.edits, 1, "and its count, which the cleared undo history does not hold");
     let files =
         std::fs::read_dir(&home).expect("dir").flatten().filter(|e| e.path().extension().is_some_and(|x| x == "ron"));
     assert_eq!(files.count(), 1, "the old file went once the new one held the work");

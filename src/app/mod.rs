@@ -304,6 +304,7 @@ impl EditorApp {
                 self.state.path = None;
                 self.state.opened = None;
                 self.state.read_only = false;
+                self.state.carried_edits = 0;
                 self.state.history.clear();
                 self.state.selection = Selection::None;
                 self.viewport.reset_orbit(&self.state);
@@ -381,9 +382,9 @@ impl EditorApp {
             match offer.file.project(&offer.path) {
                 Ok(project) => {
                     self.leave_project();
-                    self.state.restore(project, offer.file.project.clone());
+                    self.state.restore(project, offer.file.project.clone(), offer.file.edits);
                     self.state.status =
-                        format!("restored {} unsaved edits of {}", offer.file.edits, offer.file.describe());
+                        format!("restored {} of {}", recovery::edits_text(offer.file.edits), offer.file.describe());
                     self.viewport.reset_orbit(&self.state);
                     // This instance's own recovery file holds the work before the old one goes.
                     let view = self.autosave_view();
@@ -409,7 +410,8 @@ impl EditorApp {
     /// What the autosave reads of the history.
     fn autosave_view(&self) -> autosave::History {
         let h = &self.state.history;
-        autosave::History { state_id: h.state_id(), dirty: h.is_dirty(), edits: h.steps() as u64 }
+        let edits = self.state.carried_edits + h.steps() as u64;
+        autosave::History { state_id: h.state_id(), dirty: h.is_dirty(), edits }
     }
 
     fn save_as_dialog(&mut self) {

@@ -216,12 +216,17 @@ impl Orphan {
     /// The dialog's text: whose work and when.
     pub fn message(&self) -> String {
         format!(
-            "Bounce Lab found unsaved work on {} from a session that did not end cleanly: {} edits, saved {}.",
+            "Bounce Lab found unsaved work on {} from a session that did not end cleanly: {}, saved {}.",
             self.file.describe(),
-            self.file.edits,
+            edits_text(self.file.edits),
             describe_time(self.file.saved_unix, now_unix())
         )
     }
+}
+
+/// "1 edit", "3 edits".
+pub fn edits_text(n: u64) -> String {
+    format!("{n} edit{}", if n == 1 { "" } else { "s" })
 }
 
 /// Every recovery file in `dir` whose instance is gone, newest first, those of `prefer` (a

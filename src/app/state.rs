@@ -19,6 +19,9 @@ pub struct EditorState {
     /// `path` is the shipped default project: Save asks for a new path rather than writing
     /// into the install.
     pub read_only: bool,
+    /// Edits restored from a recovery file, which the (cleared) undo history does not count;
+    /// a later recovery file adds them to its own count.
+    pub carried_edits: u64,
     /// Undo and redo.
     pub history: History,
     /// Current selection.
@@ -38,6 +41,7 @@ impl EditorState {
             opened: path.clone(),
             path,
             read_only,
+            carried_edits: 0,
             history: History::default(),
             selection: Selection::None,
             status: String::new(),
@@ -69,6 +73,7 @@ impl EditorState {
         self.path = is_project.then(|| path.to_owned());
         self.opened = Some(path.to_owned());
         self.read_only = is_project && is_default_project(path);
+        self.carried_edits = 0;
         self.history.clear();
         self.selection = Selection::None;
         self.remember(path);
@@ -92,6 +97,7 @@ impl EditorState {
         self.path = Some(path.to_owned());
         self.opened = Some(path.to_owned());
         self.read_only = false;
+        self.carried_edits = 0;
         self.history.mark_saved();
         self.remember(path);
         self.status = format!("saved {}", path.display());
@@ -100,7 +106,8 @@ impl EditorState {
 
     /// Replaces the project with recovered work that belongs to `source` (its own file, never
     /// the one open before); the work counts as unsaved.
-    pub fn restore(&mut self, project: Project, source: Option<PathBuf>) {
+    pub fn restore(&mut self, project: Project, source: Option<PathBuf>, edits: u64) {
+        self.carried_edits = edits;
         let is_project =
             source.as_deref().is_some_and(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron")));
         self.project = project;
