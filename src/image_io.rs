@@ -64,6 +64,25 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgba8: Vec<u8>) -> Result
     write_atomic(path, bytes.get_ref())
 }
 
+/// Writes linear radiance as EXR, or the tonemapped `view` of it as PNG (creating the folder).
+pub fn write_image(
+    out: &Path,
+    kind: OutputKind,
+    img: &HdrImage,
+    view: &crate::settings::ViewSettings,
+) -> Result<(), ImageIoError> {
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| ImageIoError::Codec {
+            path: out.to_owned(),
+            message: format!("creating {}: {e}", dir.display()),
+        })?;
+    }
+    match kind {
+        OutputKind::Exr => write_exr(out, img),
+        OutputKind::Png => write_png(out, img.width, img.height, tonemap_srgb8(img, view)),
+    }
+}
+
 /// The largest image `read_linear` decodes: 16384 pixels a side and 2 GiB of decoder memory
 /// (a 16k x 16k float image is 4 GiB, beyond any render this tool compares).
 const MAX_SIDE: u32 = 16384;

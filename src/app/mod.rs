@@ -454,7 +454,7 @@ impl EditorApp {
         let Some(renderer) = self.viewport.renderer() else { return };
         let result = renderer.read_buffer("hdr").map_err(anyhow::Error::from).and_then(|img| {
             let kind = crate::image_io::output_kind(&path)?;
-            crate::cli::render::write_image(&path, kind, &img, &self.state.project.render.view)
+            Ok(crate::image_io::write_image(&path, kind, &img, &self.state.project.render.view)?)
         });
         match result {
             Ok(()) => self.state.status = format!("exported {}", path.display()),

@@ -4,8 +4,6 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
-use anyhow::Context as _;
-
 use crate::image_io::{self, HdrImage, OutputKind};
 use crate::output_path;
 use crate::precompute::pathtracer::PathTracer;
@@ -194,7 +192,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
             project.render.mode.name()
         );
     }
-    write_image(&args.out, kind, &img, &view)?;
+    image_io::write_image(&args.out, kind, &img, &view)?;
     Ok(format!(
         "{} ({}x{}, mode {}, {})",
         args.out.display(),
@@ -322,7 +320,7 @@ fn reference(project: &Project, out: &Path, kind: OutputKind, size: (u32, u32)) 
         }
     });
     let img = HdrImage { width: size.0, height: size.1, pixels: tracer.image() };
-    write_image(out, kind, &img, &project.render.view)?;
+    image_io::write_image(out, kind, &img, &project.render.view)?;
     let p = tracer.progress();
     Ok(format!(
         "{} ({}x{}, reference, {} spp, max {} bounces, {:.2} Mrays/s)",
@@ -333,16 +331,4 @@ fn reference(project: &Project, out: &Path, kind: OutputKind, size: (u32, u32)) 
         settings.max_bounces,
         p.rays_per_second * 1e-6
     ))
-}
-
-/// Writes linear radiance as EXR, or the tonemapped view as PNG.
-pub fn write_image(out: &Path, kind: OutputKind, img: &HdrImage, view: &ViewSettings) -> anyhow::Result<()> {
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    }
-    match kind {
-        OutputKind::Exr => image_io::write_exr(out, img)?,
-        OutputKind::Png => image_io::write_png(out, img.width, img.height, crate::image_io::tonemap_srgb8(img, view))?,
-    }
-    Ok(())
 }
