@@ -155,9 +155,19 @@ impl EditorApp {
     /// Creates the app; the renderer is created on eframe's wgpu device. Without eframe storage
     /// (tests) nothing is persisted and no recovery file is written.
     pub fn new(cc: &eframe::CreationContext<'_>, project: Project, path: Option<PathBuf>) -> Self {
-        let recovery =
-            cc.storage.is_some().then(|| eframe::storage_dir("Bounce Lab")).flatten().map(|d| d.join("recovery"));
-        Self::with_recovery(cc, project, path, recovery)
+        let data = cc.storage.is_some().then(|| eframe::storage_dir("Bounce Lab")).flatten();
+        let mut app = Self::with_recovery(cc, project, path, data.as_ref().map(|d| d.join("recovery")));
+        // Before per-project recovery files, one `recovery.ron` served every project; it is a
+        // plain project file (assets relative to it), so File → Open restores it.
+        if let Some(legacy) = data.map(|d| d.join("recovery.ron")).filter(|p| p.is_file()) {
+            let message = format!(
+                "An older Bounce Lab left unsaved work in {}: open it with File → Open to restore it (the project it belongs to is not recorded), then delete it.",
+                legacy.display()
+            );
+            log::warn!("{message}");
+            app.state.status = message;
+        }
+        app
     }
 
     /// [`EditorApp::new`] with crash recovery files in `recovery_dir` (tests give a temporary
