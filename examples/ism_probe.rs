@@ -93,7 +93,7 @@ fn main() -> anyhow::Result<()> {
             (Err(_), Some(gltf)) => image_io::read_linear(&gltf.with_extension("exr"))?,
             (Err(_), None) => suite::scene(name)?.reference(root)?,
         };
-        let ev = bouncelab::cli::quality::exposure(&reference);
+        let ev = bouncelab::metrics::judging_exposure(&reference);
         // PROBE_GLTF: another glTF in place of the suite scene (with PROBE_REF).
         let mut project = match (std::env::var("PROBE_GLTF"), outside) {
             (Ok(path), _) => bouncelab::project_file::Project::from_gltf(Path::new(&path))?,

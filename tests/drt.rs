@@ -176,7 +176,7 @@ fn drt_finds_the_cluttered_rooms_objects_and_lowers_mrts_error_against_the_refer
     let Some(ctx) = common::gpu() else { return };
     let project: Project = suite::scene("clutter").expect("suite scene").load(Path::new(".")).expect("clutter");
     let reference = suite::scene("clutter").expect("suite scene").reference(Path::new(".")).expect("reference");
-    let ev = bouncelab::cli::quality::exposure(&reference);
+    let ev = bouncelab::metrics::judging_exposure(&reference);
     let size = (reference.width, reference.height);
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let s = |on: bool| RenderSettings { mode: GiMode::Mrt, mrt: small(on), ..project.render.clone() };

@@ -66,7 +66,7 @@ fn mrt_on_a_bare_window_room_fits_its_block_and_beats_direct_against_the_referen
     let project = window();
     assert!(!project.scene.objects().iter().any(|o| o.role == ObjectRole::ProxyBlock), "a bare level");
     let reference = suite::scene("window").expect("suite scene").reference(Path::new(".")).expect("reference");
-    let ev = bouncelab::cli::quality::exposure(&reference);
+    let ev = bouncelab::metrics::judging_exposure(&reference);
     let big = (SIZE.0 * 2, SIZE.1 * 2);
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let s = settings(&project, small());
@@ -214,7 +214,7 @@ fn mrt_lights_the_unlit_third_room_of_a_bare_multi_room_level() {
     // doorway sides.
     let project = suite::scene("rooms").expect("suite scene").load(Path::new(".")).expect("rooms");
     let reference = suite::scene("rooms").expect("suite scene").reference(Path::new(".")).expect("reference");
-    let ev = bouncelab::cli::quality::exposure(&reference);
+    let ev = bouncelab::metrics::judging_exposure(&reference);
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let mrt = render(&mut r, &project, &settings(&project, small()), 16);
     let notes = r.limitations(&project.scene, &settings(&project, small()));

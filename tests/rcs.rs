@@ -82,7 +82,7 @@ fn rcs_on_the_cornell_box_beats_directs_flip_with_energy_within_ten_percent() {
     let direct = image(&r);
     let frames = converge(&mut r, &project, &with(&project, GiMode::Rcs, RcsSettings::default()), big, 12);
     let rcs = image(&r);
-    let ev = bouncelab::cli::quality::exposure(&reference);
+    let ev = bouncelab::metrics::judging_exposure(&reference);
     let fd = metrics::flip(&direct, &reference, ev).expect("flip").0;
     let fr = metrics::flip(&rcs, &reference, ev).expect("flip").0;
     let energy = metrics::luminance_ratio(&rcs, &reference).expect("ratio");
@@ -102,7 +102,7 @@ fn gradients_bring_sparse_records_closer_to_the_reference() {
     let big = (SIZE.0 * 2, SIZE.1 * 2);
     // Sparse records (a large a, large zones) make the interpolation error visible.
     let sparse = RcsSettings { accuracy: 0.8, min_zone_pixels: 24.0, ..RcsSettings::default() };
-    let ev = bouncelab::cli::quality::exposure(&reference);
+    let ev = bouncelab::metrics::judging_exposure(&reference);
     let mut errors = Vec::new();
     for gradients in [false, true] {
         let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");

@@ -90,7 +90,7 @@ fn sshgi_on_the_cornell_box_has_under_six_tenths_of_directs_flip_and_energy_with
     };
     let direct = render_big(&with(&project, GiMode::Direct, SshgiSettings::default()), 1);
     let sshgi = render_big(&with(&project, GiMode::Sshgi, SshgiSettings::default()), 8);
-    let ev = bouncelab::cli::quality::exposure(&reference);
+    let ev = bouncelab::metrics::judging_exposure(&reference);
     let fd = metrics::flip(&direct, &reference, ev).expect("flip").0;
     let fs = metrics::flip(&sshgi, &reference, ev).expect("flip").0;
     let energy = metrics::luminance_ratio(&sshgi, &reference).expect("ratio");

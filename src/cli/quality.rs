@@ -73,11 +73,9 @@ pub(crate) fn render_project(
     Ok((HdrImage { width: REFERENCE_SIZE.0, height: REFERENCE_SIZE.1, pixels }, median(times)))
 }
 
-/// The exposure (stops) that puts `reference`'s mean luminance at 0.18, so dim scenes (the
-/// unlit room, the diorama) are judged as a user would look at them.
-pub fn exposure(reference: &HdrImage) -> f32 {
-    (0.18 / metrics::mean_luminance(reference).max(1e-6)).log2() as f32
-}
+/// The judging exposure; it lives in [`metrics::judging_exposure`] so tests and examples use it
+/// without the CLI.
+pub use metrics::judging_exposure as exposure;
 
 /// A tonemapped tile of the contact sheet.
 fn tile(img: &HdrImage, view: &ViewSettings) -> Vec<u8> {

@@ -76,6 +76,13 @@ pub fn mean_luminance(img: &HdrImage) -> f64 {
     img.pixels.iter().map(|p| f64::from(luminance(p))).sum::<f64>() / img.pixels.len().max(1) as f64
 }
 
+/// The exposure (stops) that puts `reference`'s mean luminance at 0.18, so dim scenes (the
+/// unlit room, the diorama) are judged as a user would look at them: the quality matrix's and
+/// `compare --exposure-auto`'s exposure, and the tests'.
+pub fn judging_exposure(reference: &HdrImage) -> f32 {
+    (0.18 / mean_luminance(reference).max(1e-6)).log2() as f32
+}
+
 /// Mean luminance of the candidate over that of the reference (1 = same energy).
 pub fn luminance_ratio(candidate: &HdrImage, reference: &HdrImage) -> Result<f64, MetricsError> {
     check(candidate, reference)?;
