@@ -130,7 +130,7 @@ fn main() -> anyhow::Result<()> {
     let ctx = GpuContext::new_headless()?;
     println!("adapter: {}", ctx.describe());
     for name in modes.split(',') {
-        let mode = <GiMode as clap::ValueEnum>::from_str(name, true).map_err(anyhow::Error::msg)?;
+        let mode = GiMode::from_name(name).ok_or_else(|| anyhow::anyhow!("unknown mode {name:?}"))?;
         let settings = RenderSettings { mode, ..RenderSettings::default() };
         let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
         let t = Instant::now();

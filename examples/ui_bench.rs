@@ -28,7 +28,7 @@ fn main() -> anyhow::Result<()> {
     );
     println!("|---|---|---|---|---|---|---|---|");
     for name in modes.split(',') {
-        let mode = <GiMode as clap::ValueEnum>::from_str(name, true).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let mode = GiMode::from_name(name).ok_or_else(|| anyhow::anyhow!("unknown mode {name:?}"))?;
         let path = default_project_path();
         let mut project = Project::load(&path)?;
         project.render.mode = mode;

@@ -141,6 +141,14 @@ fn bad_arguments_fail_before_anything_renders() {
     let o = render(&[], &file.join("x.png").to_string_lossy());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.contains("cannot create or write in the folder"), "{err}");
+    // Modes are parsed by their names, and an unknown one lists them.
+    let mode = |m: &str| bouncelab(&["render", "projects/default.ron", "--mode", m, "--width", "0", "--out", &out]);
+    let o = mode("ISM-Ritschel");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("0x360"), "the mode parsed, the size refused: {err}");
+    let o = mode("bogus");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("the modes are direct, ism, ism-ritschel"), "{err}");
     // NaN exposure used to report FLIP 0 (identical) for any two images.
     let o = bouncelab(&["compare", "a.exr", "b.exr", "--exposure", "NaN"]);
     let err = String::from_utf8_lossy(&o.stderr);

@@ -18,7 +18,7 @@ pub struct RenderArgs {
     /// Project (.ron) or scene (.gltf/.glb).
     pub input: PathBuf,
     /// GI mode (default: the project's).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = parse_mode)]
     pub mode: Option<GiMode>,
     /// Output file (.exr or .png).
     #[arg(long)]
@@ -331,4 +331,12 @@ fn reference(project: &Project, out: &Path, kind: OutputKind, size: (u32, u32)) 
         settings.max_bounces,
         p.rays_per_second * 1e-6
     ))
+}
+
+/// Parses `--mode` (the settings stay free of the command line's types).
+fn parse_mode(name: &str) -> Result<GiMode, String> {
+    GiMode::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = GiMode::ALL.iter().map(|m| m.name()).collect();
+        format!("unknown mode {name:?}; the modes are {}", names.join(", "))
+    })
 }

@@ -20,33 +20,35 @@ pub use sshgi::SshgiSettings;
 pub use vo::VoSettings;
 
 /// The GI technique that produces indirect light.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum GiMode {
     /// Direct light only (shadowed punctual lights), no indirect term.
     #[default]
-    #[value(name = "direct")]
     Direct,
     /// Knecht 2009: instant radiosity with imperfect shadow maps and temporal reuse.
-    #[value(name = "ism")]
     Ism,
     /// Ritschel 2008: the same ISM pipeline without temporal reuse (baseline).
-    #[value(name = "ism-ritschel")]
     IsmRitschel,
     /// Modular / delta radiance transfer (Loos 2015).
-    #[value(name = "mrt")]
     Mrt,
     /// Screen-space hierarchical GI (Soler et al. 2010).
-    #[value(name = "sshgi")]
     Sshgi,
     /// Radiance cache splatting (Gautron et al.).
-    #[value(name = "rcs")]
     Rcs,
     /// The progressive reference path tracer.
-    #[value(name = "reference")]
     Reference,
 }
 
 impl GiMode {
+    /// Every mode, in the order the GI panel and the command line list them.
+    pub const ALL: [Self; 7] =
+        [Self::Direct, Self::Ism, Self::IsmRitschel, Self::Mrt, Self::Sshgi, Self::Rcs, Self::Reference];
+
+    /// The mode whose [`GiMode::name`] is `name` (ASCII case ignored).
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name().eq_ignore_ascii_case(name))
+    }
+
     /// The name used on the command line and in the UI.
     pub fn name(self) -> &'static str {
         match self {
@@ -223,6 +225,27 @@ impl RenderSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_mode_is_listed_once_and_found_by_its_name() {
+        for mode in GiMode::ALL {
+            // A new variant fails to compile here until it is listed.
+            let listed = match mode {
+                GiMode::Direct
+                | GiMode::Ism
+                | GiMode::IsmRitschel
+                | GiMode::Mrt
+                | GiMode::Sshgi
+                | GiMode::Rcs
+                | GiMode::Reference => true,
+            };
+            assert!(listed);
+            assert_eq!(GiMode::from_name(mode.name()), Some(mode));
+            assert_eq!(GiMode::from_name(&mode.name().to_uppercase()), Some(mode));
+            assert_eq!(GiMode::ALL.iter().filter(|m| **m == mode).count(), 1);
+        }
+        assert_eq!(GiMode::from_name("bogus"), None);
+    }
 
     #[test]
     fn defaults_are_valid_and_absurd_values_are_named() {
