@@ -27,19 +27,22 @@ pub mod pick;
 pub mod preview;
 mod properties;
 pub mod recovery;
+mod recovery_actions;
+mod startup;
 pub mod state;
 mod timings;
 mod viewport;
 
 pub use orbit::Orbit;
 pub use panes::Pane;
+use startup::empty_project;
+pub use startup::{Startup, open_or_fallback};
 
 use std::path::PathBuf;
 use std::sync::Arc;
 
 use crate::project_file::{Project, default_project_path};
 use crate::render::device_descriptor;
-use crate::scene::{Camera, Resources, Scene, SceneDesc};
 use edits::Selection;
 pub use preview::GpuMemory;
 use state::EditorState;
@@ -48,50 +51,6 @@ use state::EditorState;
 const TREE_KEY: &str = "bouncelab.layout";
 const RECENT_KEY: &str = "bouncelab.recent";
 const PREVIEW_KEY: &str = "bouncelab.preview";
-
-/// The project to start with: `path` if it opens, else the default project (or an empty one)
-/// and the reason, which the editor shows in a dialog. Someone who starts the editor from a
-/// desktop never sees stderr, so a bad file must not end in no window at all.
-pub fn open_or_fallback(path: &std::path::Path) -> Result<Startup, crate::scene::SceneError> {
-    let is_project = |p: &std::path::Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron"));
-    match Project::open(path) {
-        Ok(project) => Ok(Startup {
-            project,
-            path: is_project(path).then(|| path.to_owned()),
-            opened: Some(path.to_owned()),
-            error: None,
-        }),
-        Err(e) => {
-            let why = format!("Could not open {}:\n{e}", path.display());
-            log::error!("{why}");
-            let default = default_project_path();
-            let (project, instead) = match (default.as_path() != path).then(|| Project::open(&default)) {
-                Some(Ok(p)) => (p, "The default project is open instead."),
-                _ => (empty_project()?, "An empty project is open instead."),
-            };
-            Ok(Startup { project, path: None, opened: None, error: Some(format!("{why}\n\n{instead}")) })
-        }
-    }
-}
-
-/// What the editor starts with.
-pub struct Startup {
-    /// The project to show.
-    pub project: Project,
-    /// Its file, if it is a project file (saving a glTF asks for a new name).
-    pub path: Option<PathBuf>,
-    /// The file it came from (a project or glTF; its crash recovery is keyed by it).
-    pub opened: Option<PathBuf>,
-    /// Why the requested file is not what is open.
-    pub error: Option<String>,
-}
-
-/// A project with nothing in it and the default camera.
-fn empty_project() -> Result<Project, crate::scene::SceneError> {
-    let desc = SceneDesc { camera: Camera::default(), ..SceneDesc::default() };
-    let scene = Scene::new(desc, Resources::default())?;
-    Ok(Project { assets: Vec::new(), scene, render: Default::default(), imported: Vec::new() })
-}
 
 /// Opens the editor window on `project` (the default project if `None`).
 pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
@@ -157,15 +116,8 @@ impl EditorApp {
     pub fn new(cc: &eframe::CreationContext<'_>, project: Project, path: Option<PathBuf>) -> Self {
         let data = cc.storage.is_some().then(|| eframe::storage_dir("Bounce Lab")).flatten();
         let mut app = Self::with_recovery(cc, project, path, data.as_ref().map(|d| d.join("recovery")));
-        // Before per-project recovery files, one `recovery.ron` served every project; it is a
-        // plain project file (assets relative to it), so File → Open restores it.
-        if let Some(legacy) = data.map(|d| d.join("recovery.ron")).filter(|p| p.is_file()) {
-            let message = format!(
-                "An older Bounce Lab left unsaved work in {}: open it with File → Open to restore it (the project it belongs to is not recorded), then delete it.",
-                legacy.display()
-            );
-            log::warn!("{message}");
-            app.state.status = message;
+        if let Some(data) = data {
+            app.note_legacy_recovery(&data);
         }
         app
     }
@@ -284,18 +236,6 @@ impl EditorApp {
         (self.viewport.frames, self.viewport.timings.ui_worst(n))
     }
 
-    /// The recovery dialog's text, if it is open (tests).
-    pub fn recovery_offered(&self) -> Option<String> {
-        (self.modal == Modal::OfferRecovery).then(|| self.offers.first().map(recovery::Orphan::message)).flatten()
-    }
-
-    /// This instance's recovery file, and waits until what is pending is written (tests).
-    pub fn flush_autosave(&self) -> Option<PathBuf> {
-        let a = self.autosave.as_ref()?;
-        a.flush();
-        a.current_file().map(std::path::Path::to_owned)
-    }
-
     /// The editor state (tests read it).
     pub fn state(&self) -> &EditorState {
         &self.state
@@ -347,31 +287,6 @@ impl EditorApp {
         }
     }
 
-    /// The open project is about to be replaced: its autosave writes its last state, and work
-    /// that was unsaved stays on disk to be offered again (see `Autosave::leave`).
-    fn leave_project(&mut self) {
-        let view = self.autosave_view();
-        if let Some(a) = &mut self.autosave {
-            a.track(&self.state.project, self.state.opened.as_deref(), &view);
-            a.leave();
-        }
-    }
-
-    /// Queues the orphaned recovery files of the project at `path`.
-    fn offer_recovery_of(&mut self, path: &std::path::Path) {
-        let Some(a) = &self.autosave else { return };
-        let key = recovery::key(Some(path));
-        let prefix = format!("{key}.");
-        let held: Vec<PathBuf> = self.offers.iter().map(|o| o.path.clone()).collect();
-        let new = recovery::orphans(a.dir(), &key).into_iter().filter(|o| {
-            o.path.file_name().is_some_and(|n| n.to_string_lossy().starts_with(&prefix)) && !held.contains(&o.path)
-        });
-        self.offers.extend(new);
-        if !self.offers.is_empty() && self.modal == Modal::None {
-            self.modal = Modal::OfferRecovery;
-        }
-    }
-
     /// Save: to the project's file, or asks for one (a new project, a glTF, the read-only
     /// default project).
     fn save(&mut self) {
@@ -379,49 +294,6 @@ impl EditorApp {
             Some(p) => self.save_to(&p),
             None => self.save_as_dialog(),
         }
-    }
-
-    /// Restores the first offered recovery into the project it belongs to, or discards it.
-    pub fn answer_recovery(&mut self, restore: bool) {
-        if self.offers.is_empty() {
-            self.modal = Modal::None;
-            return;
-        }
-        let offer = self.offers.remove(0);
-        if restore {
-            match offer.file.project(&offer.path) {
-                Ok(project) => {
-                    self.leave_project();
-                    self.state.restore(project, offer.file.project.clone(), offer.file.edits);
-                    self.state.status =
-                        format!("restored {} of {}", recovery::edits_text(offer.file.edits), offer.file.describe());
-                    self.viewport.reset_orbit(&self.state);
-                    // This instance's own recovery file holds the work before the old one goes.
-                    let view = self.autosave_view();
-                    let kept = self.autosave.as_mut().is_some_and(|a| {
-                        a.track(&self.state.project, self.state.opened.as_deref(), &view);
-                        a.flush() && a.current_file().is_some_and(std::path::Path::exists)
-                    });
-                    if kept {
-                        offer.remove();
-                    } else {
-                        log::warn!("kept {}: the restored work could not be autosaved yet", offer.path.display());
-                    }
-                }
-                // The file stays for a later try (an asset may be on a drive not mounted now).
-                Err(e) => self.state.report("recovery failed", &e),
-            }
-        } else {
-            offer.remove();
-        }
-        self.modal = if self.offers.is_empty() { Modal::None } else { Modal::OfferRecovery };
-    }
-
-    /// What the autosave reads of the history.
-    fn autosave_view(&self) -> autosave::History {
-        let h = &self.state.history;
-        let edits = self.state.carried_edits + h.steps() as u64;
-        autosave::History { state_id: h.state_id(), dirty: h.is_dirty(), edits }
     }
 
     fn save_as_dialog(&mut self) {
@@ -655,24 +527,7 @@ impl EditorApp {
                     }
                 });
             }
-            Modal::OfferRecovery => {
-                let Some(message) = self.offers.first().map(recovery::Orphan::message) else {
-                    self.modal = Modal::None;
-                    return;
-                };
-                egui::Modal::new(egui::Id::unique("recovery")).show(ui.ctx(), |ui| {
-                    ui.label(message);
-                    ui.label("Restore opens that project with the work; Discard deletes the work.");
-                    ui.horizontal(|ui| {
-                        if ui.button("Restore").clicked() {
-                            self.answer_recovery(true);
-                        }
-                        if ui.button("Discard").clicked() {
-                            self.answer_recovery(false);
-                        }
-                    });
-                });
-            }
+            Modal::OfferRecovery => self.recovery_dialog(ui),
         }
     }
 
