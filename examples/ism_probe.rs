@@ -39,7 +39,9 @@ fn render(
     let from: usize = std::env::var("PROBE_FROM").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
     let mut sum = vec![[0.0f32; 4]; (size.0 * size.1) as usize];
     // A technique preparing on the CPU (MRT's dictionary and level) first.
-    let ready = bouncelab::cli::render::until_ready(ctx, &mut r, project, size)? as usize;
+    let ready =
+        bouncelab::render::harness::until_ready(&mut r, &project.scene, &project.render, size, |w| eprintln!("{w}"))?
+            as usize;
     let averaged = frames.saturating_sub(from.max(ready)).max(1) as f32;
     // PROBE_TRACE: each frame's mean luminance over the reference's.
     let trace = std::env::var_os("PROBE_TRACE").is_some();

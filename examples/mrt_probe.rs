@@ -1,4 +1,4 @@
-//! A probe of MRT on a real level on the CPU (the GPU runtime computes the same, `tests/mrt.rs`): fits proxy blocks to a suite
+//! A probe of MRT on a real level on the CPU (the GPU runtime computes the same, `tests/integration/mrt.rs`): fits proxy blocks to a suite
 //! level (or uses its own), builds (or loads) the dictionary, lights every block texel with the
 //! scene's lights through the real geometry (shadow rays on the scene BVH, the lit wall's albedo:
 //! MRT's l_d), runs the reduced-space transfer on the CPU, and compares each block's one-bounce

@@ -8,7 +8,7 @@
 #   tools/held_out.sh .gpu/unseen [BOUNCELAB]       # default BOUNCELAB: target/release/bouncelab
 #
 # A single frame of a room lit only through doorways wanders (the maisonette's frames 17-40 read
-# 0.87-1.15 of the reference, USER_GUIDE); for the
+# 0.87-1.15 of the reference, docs/notes/held-out-levels.md); for the
 # expectation use `PROBE_AVG=1 PROBE_FROM=16 ism_probe LEVEL.gltf "()" 40`.
 set -euo pipefail
 dir=${1:?usage: tools/held_out.sh DIR [BOUNCELAB]}

@@ -5,31 +5,16 @@
 
 use super::state::EditorState;
 use crate::render::Renderer;
+use crate::render::gi::registry;
 use crate::settings::{GiMode, Tonemap};
-
-const MODES: [GiMode; 7] =
-    [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel, GiMode::Mrt, GiMode::Sshgi, GiMode::Rcs, GiMode::Reference];
-
-fn mode_tip(mode: GiMode) -> &'static str {
-    match mode {
-        GiMode::Direct => "Shadowed punctual lights only: the baseline every technique adds to.",
-        GiMode::Ism => "Instant radiosity with imperfect shadow maps and temporal reuse (Knecht 2009).",
-        GiMode::IsmRitschel => {
-            "The same ISM pipeline without temporal reuse (Ritschel 2008): the baseline for flicker."
-        }
-        GiMode::Mrt => "Modular and delta radiance transfer on proxy blocks (Loos 2015).",
-        GiMode::Sshgi => "Screen-space hierarchical indirect light (Soler et al. 2010).",
-        GiMode::Rcs => "GPU irradiance caching by radiance cache splatting (Gautron et al.).",
-        GiMode::Reference => "Progressive CPU path tracer: the ground truth (shown in the inspector's comparison).",
-    }
-}
 
 /// Draws the GI panel and records setting changes as undo steps; `renderer` answers which
 /// modes can run at the viewport's `size`.
 pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Renderer>, size: (u32, u32)) {
     let mut render = state.project.render.clone();
     ui.label(egui::RichText::new("Mode").strong());
-    for mode in MODES {
+    for row in registry::modes() {
+        let mode = row.mode;
         let candidate = crate::settings::RenderSettings { mode, ..render.clone() };
         let available = match renderer {
             Some(r) => r.support(&candidate, size),
@@ -37,8 +22,8 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
         };
         let enabled = available.is_ok();
         let tip = match &available {
-            Ok(()) => mode_tip(mode).to_owned(),
-            Err(reason) => format!("{} Unavailable: {reason}.", mode_tip(mode)),
+            Ok(()) => row.tip.to_owned(),
+            Err(reason) => format!("{} Unavailable: {reason}.", row.tip),
         };
         ui.add_enabled(enabled, egui::RadioButton::new(render.mode == mode, mode.name()))
             .on_hover_text(&tip)

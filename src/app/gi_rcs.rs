@@ -1,6 +1,6 @@
-//! The GI panel's radiance cache splatting section (Gautron et al.; digest part A): the cache's
-//! accuracy, record computation and budget settings, each with its cost as a tooltip (the
-//! `bouncelab bench` rcs table has the measured figures).
+//! The GI panel's radiance cache splatting section (Gautron et al. 2005): the cache's accuracy,
+//! record computation and budget settings, each with its cost as a tooltip (the `bouncelab bench`
+//! rcs table has the measured figures).
 
 use crate::settings::RcsSettings;
 

@@ -5,8 +5,9 @@
 //! layout and recent files persist in eframe's storage, apart from project files; unsaved work
 //! is autosaved to a recovery file that is offered back after a crash.
 //!
-//! The viewport follows platform-notes.md pattern B: the renderer draws into its own HDR and
-//! depth targets, the tonemapped `Rgba8Unorm` image is registered with egui as a native texture.
+//! The viewport's renderer draws into its own HDR and depth targets, on a second device of the
+//! same adapter; each finished display image is copied back and uploaded as an egui texture, so
+//! the interface never waits for a GI frame (see [`preview`]).
 
 mod autosave;
 pub mod edits;

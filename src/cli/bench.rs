@@ -7,6 +7,7 @@ use std::time::Instant;
 
 use crate::precompute::pathtracer::PathTracer;
 use crate::project_file::{Project, default_project_path};
+use crate::render::harness::{self, median};
 use crate::render::{GpuContext, PassTiming, Renderer};
 use crate::settings::GiMode;
 use crate::settings::ReferenceSettings;
@@ -19,25 +20,14 @@ pub(crate) struct Row {
     pub(crate) passes: Vec<PassTiming>,
 }
 
-/// The median of `v` (0 when empty).
 /// The reference path tracer's image of `project` at `size` (64 spp, 16 quick) and its spp:
 /// what the technique sections measure their error against.
 pub(crate) fn traced_reference(project: &Project, size: (u32, u32), quick: bool) -> (crate::image_io::HdrImage, u32) {
-    let mut tracer = PathTracer::new(
-        &project.scene,
-        size,
-        ReferenceSettings { spp: if quick { 16 } else { 64 }, ..Default::default() },
-    );
-    let spp = tracer.settings_spp();
-    tracer.render(spp, &std::sync::atomic::AtomicBool::new(false), |_| {});
-    (crate::image_io::HdrImage { width: size.0, height: size.1, pixels: tracer.image() }, spp)
+    let spp = if quick { 16 } else { 64 };
+    (harness::reference_image(&project.scene, size, ReferenceSettings { spp, ..Default::default() }), spp)
 }
 
-pub(crate) fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(0.0)
-}
-
+/// Times `mode` on `project` at `size` ([`harness::measure`]).
 pub(crate) fn measure(
     ctx: &GpuContext,
     project: &Project,
@@ -46,35 +36,9 @@ pub(crate) fn measure(
     frames: usize,
 ) -> anyhow::Result<Row> {
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue)?;
-    let mut settings = project.render.clone();
-    settings.mode = mode;
-    // A technique preparing on the CPU (MRT's dictionary and level) first.
-    let mut ready = project.clone();
-    ready.render = settings.clone();
-    super::render::until_ready(ctx, &mut renderer, &ready, size)?;
-    // Warm-up: pipeline compilation and first uploads.
-    for _ in 0..3 {
-        renderer.render(&project.scene, &settings, size)?;
-        let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
-    }
-    let mut times = Vec::new();
-    let mut per_pass: Vec<Vec<PassTiming>> = Vec::new();
-    for _ in 0..frames {
-        let t = Instant::now();
-        renderer.render(&project.scene, &settings, size)?;
-        let _ = ctx.device.poll(wgpu::PollType::wait_indefinitely());
-        times.push(t.elapsed().as_secs_f64() * 1e3);
-        per_pass.push(renderer.timings(true));
-    }
-    let names: Vec<String> = per_pass.last().map(|p| p.iter().map(|t| t.name.clone()).collect()).unwrap_or_default();
-    let passes = names
-        .into_iter()
-        .map(|name| {
-            let ms = median(per_pass.iter().filter_map(|f| f.iter().find(|t| t.name == name).map(|t| t.ms)).collect());
-            PassTiming { name, ms }
-        })
-        .collect();
-    Ok(Row { mode, size, frame_ms: median(times), passes })
+    let settings = crate::settings::RenderSettings { mode, ..project.render.clone() };
+    let timed = harness::measure(&mut renderer, &project.scene, &settings, size, frames)?;
+    Ok(Row { mode, size, frame_ms: timed.frame_ms, passes: timed.passes })
 }
 
 /// Runs the benchmark and writes `out` (normally `docs/BENCHMARKS.md`).

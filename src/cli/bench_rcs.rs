@@ -8,10 +8,10 @@ use std::time::Instant;
 
 use glam::Vec3;
 
-use super::bench::median;
 use crate::image_io::HdrImage;
 use crate::metrics;
 use crate::project_file::Project;
+use crate::render::harness::median;
 use crate::render::{GpuContext, Renderer};
 use crate::settings::{GiMode, RcsSettings, RenderSettings};
 

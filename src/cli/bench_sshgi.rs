@@ -9,10 +9,10 @@ use std::time::Instant;
 
 use glam::Vec3;
 
-use super::bench::median;
 use crate::image_io::HdrImage;
 use crate::metrics;
 use crate::project_file::Project;
+use crate::render::harness::median;
 use crate::render::{GpuContext, Renderer};
 use crate::scene::{MeshSource, Object, ObjectRole, Transform};
 use crate::settings::{GiMode, SshgiSettings};

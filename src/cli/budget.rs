@@ -7,7 +7,7 @@ use crate::render::GpuContext;
 
 /// GPU bytes a raster frame holds per render pixel at most, over every mode's screen-sized
 /// targets and buffers (G-buffer, shadowed direct, indirect, HDR, display image, the depth and
-/// normal pyramid, a technique's screen buffers). `tests/cli.rs` measures each mode's growth
+/// normal pyramid, a technique's screen buffers). `tests/integration/cli.rs` measures each mode's growth
 /// with the render size against it.
 pub const RASTER_GPU_BYTES_PER_PIXEL: u64 = 320;
 

@@ -1,4 +1,4 @@
-//! Command-line entry points (architecture.md section 5): `render`, `bench` (and its quality
+//! Command-line entry points (docs/ARCHITECTURE.md, "Command line"): `render`, `bench` (and its quality
 //! matrix), the scene suite and asset generation.
 //! The binary's `main.rs` only parses arguments and calls these.
 

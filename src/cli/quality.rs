@@ -8,19 +8,25 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-use super::bench::median;
 use crate::image_io::{self, HdrImage};
 use crate::metrics;
+use crate::render::gi::registry;
+use crate::render::harness::median;
 use crate::render::{GpuContext, Renderer};
 use crate::settings::{GiMode, ViewSettings};
 use crate::suite::{REFERENCE_SIZE, SCENES, SuiteScene};
 
-/// Modes in the matrix (the reference is the yardstick, not a row).
-const MODES: [GiMode; 6] = [GiMode::Direct, GiMode::Ism, GiMode::IsmRitschel, GiMode::Sshgi, GiMode::Mrt, GiMode::Rcs];
-/// Most frames `rcs` may take to fill its cache and converge its bounce passes.
-const RCS_FILL_FRAMES: usize = 128;
-/// Frames rendered per mode (temporal techniques converge; the last one is compared).
+/// Modes in the matrix: every row's (the reference is the yardstick, not a row).
+fn modes() -> Vec<GiMode> {
+    registry::modes().map(|m| m.mode).filter(|m| *m != GiMode::Reference).collect()
+}
+/// Most frames a technique whose cache must fill first (`fill_before_final`) may take to fill
+/// it and converge its bounce passes.
+const FILL_FRAMES: usize = 128;
+/// Frames rendered per temporal mode (it converges; the last one is compared).
 const FRAMES: usize = 32;
+/// Frames rendered per mode without history (the timing takes the last eight).
+const STATIC_FRAMES: usize = 9;
 /// Supersampling per axis, as the reference's box-filtered pixels.
 const SSAA: u32 = 2;
 
@@ -49,17 +55,18 @@ pub(crate) fn render_project(
     project.render.mode = mode;
     let size = (REFERENCE_SIZE.0 * SSAA, REFERENCE_SIZE.1 * SSAA);
     let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
-    let frames = if mode == GiMode::Direct || mode == GiMode::IsmRitschel { 9 } else { FRAMES };
+    let temporal = registry::mode_row(mode).is_some_and(|m| m.temporal);
+    let frames = if temporal { FRAMES } else { STATIC_FRAMES };
     let mut times = Vec::new();
-    let mut first = super::render::until_ready(ctx, &mut r, &project, size)? as usize;
+    let mut first = super::render::until_ready(&mut r, &project, size)? as usize;
     let mut end = frames;
-    if mode == GiMode::Rcs {
+    if registry::entry(mode).is_some_and(|e| e.fill_before_final) {
         // The cache fills and its bounce passes converge first; nine more frames reuse it.
-        while first < RCS_FILL_FRAMES && (first == 0 || r.technique_status().is_some_and(|s| s.refining)) {
+        while first < FILL_FRAMES && (first == 0 || r.technique_status().is_some_and(|s| s.refining)) {
             r.render(&project.scene, &project.render, size)?;
             first += 1;
         }
-        end = first + 9;
+        end = first + STATIC_FRAMES;
     }
     for f in first..end {
         let t = Instant::now();
@@ -91,7 +98,7 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
         let reference = scene.reference(root)?;
         let ev = exposure(&reference);
         let mut cells = Vec::new();
-        for mode in MODES {
+        for mode in modes() {
             let (image, frame_ms) = render(&ctx, scene, root, mode)?;
             // FLIP compares display images: expose each scene as the sheet shows it.
             let c = metrics::compare(&image, &reference, ev)?;
@@ -107,7 +114,7 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
         "Written by `bouncelab bench --quality` (release build). Adapter: **{}**. Every mode on every \
          scene of the suite (`src/suite/`) at {}x{} ({}x{} supersampling), against the cached \
          {}-spp path-traced reference (32768 spp for the rooms, seen from the unlit room); FLIP at the exposure that puts the reference's mean at 0.18 (`assets/suite/references/`, `bouncelab suite --references`). \
-         `ism`, `sshgi` and `mrt` are the last of {FRAMES} frames (temporal, or multi-bounce feedback for `mrt`, whose blocks are fitted on the fly where a scene has none); `rcs` renders until its cache has filled and its bounce passes converged (at most {RCS_FILL_FRAMES} frames), then 9 frames with the warm cache; `direct` and `ism-ritschel` single frames. Energy is the \
+         `ism`, `sshgi` and `mrt` are the last of {FRAMES} frames (temporal, or multi-bounce feedback for `mrt`, whose blocks are fitted on the fly where a scene has none); `rcs` renders until its cache has filled and its bounce passes converged (at most {FILL_FRAMES} frames), then 9 frames with the warm cache; `direct` and `ism-ritschel` single frames. Energy is the \
          mean-luminance ratio to the reference; frame time is relative to `direct` on the same scene in \
          the same run (wall clock, median of the last 8 frames; `rcs`: with the warm cache).\n",
         ctx.describe(),
@@ -152,7 +159,7 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
 /// Lays out the contact sheet: per scene two rows of tiles (images, then error maps).
 fn write_sheet(path: &Path, rows: &[(&SuiteScene, HdrImage, Vec<Cell>)]) -> anyhow::Result<()> {
     let (w, h) = (REFERENCE_SIZE.0 as usize, REFERENCE_SIZE.1 as usize);
-    let columns = 1 + MODES.len();
+    let columns = 1 + modes().len();
     let (sw, sh) = (columns * w, rows.len() * 2 * h);
     let mut sheet: Vec<u8> = std::iter::repeat_n([0u8, 0, 0, 255], sw * sh).flatten().collect();
     let mut blit = |tile: &[u8], col: usize, row: usize| {

@@ -8,7 +8,8 @@ use crate::image_io::{self, HdrImage, OutputKind};
 use crate::output_path;
 use crate::precompute::pathtracer::PathTracer;
 use crate::project_file::Project;
-use crate::render::gi::Readiness;
+use crate::render::gi::registry;
+use crate::render::harness;
 use crate::render::{GpuContext, Renderer};
 use crate::settings::{GiMode, Tonemap, ViewSettings};
 
@@ -222,7 +223,7 @@ fn render_frames(
     let refining = |r: &Renderer| r.technique_status().is_some_and(|s| s.refining);
     // The first frame allocates what the size needs: an adapter that runs out says so here.
     let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-    let mut done = until_ready(ctx, renderer, project, size)?;
+    let mut done = until_ready(renderer, project, size)?;
     if let Some(e) = pollster::block_on(scope.pop()) {
         anyhow::bail!(
             "the adapter ran out of memory for a {}x{} render ({e}): render smaller or with a lower --ssaa",
@@ -235,10 +236,11 @@ fn render_frames(
     // A technique whose settings ask for more frames than the usual limit gets them.
     let limit = CONVERGE_LIMIT.max(target.saturating_add(1));
     let mut progress = super::progress::Progress::new(u64::from(total));
-    let is_rcs = project.render.mode == GiMode::Rcs;
+    // A cache that must fill before its image is final (`rcs`) gets its frames whatever was asked.
+    let must_fill = registry::entry(project.render.mode).is_some_and(|e| e.fill_before_final);
     loop {
         let more = match asked {
-            Some(n) => done < n || (is_rcs && refining(renderer) && done < n + limit),
+            Some(n) => done < n || (must_fill && refining(renderer) && done < n + limit),
             None => refining(renderer) && done < limit,
         };
         if !more {
@@ -253,7 +255,7 @@ fn render_frames(
             progress.tick(u64::from(done));
         }
     }
-    if let Some(p) = renderer.technique_status().and_then(|s| s.progress).filter(|_| is_rcs) {
+    if let Some(p) = renderer.technique_status().and_then(|s| s.progress).filter(|_| must_fill) {
         eprintln!("{p} after {done} frames");
     }
     Ok(done)
@@ -276,30 +278,9 @@ fn refuse_partial(out: &Path, shortfalls: &[String], allow: bool) -> anyhow::Res
     )
 }
 
-/// Renders frames of `project` at `size` until its technique is no longer preparing on the CPU
-/// (MRT's dictionary and level: the frame meanwhile shows direct light), saying what it waits
-/// for. Returns how many of the frames rendered were the technique's own (the last one, 1), so
-/// callers count it toward their frames.
-pub fn until_ready(
-    ctx: &GpuContext,
-    renderer: &mut Renderer,
-    project: &Project,
-    size: (u32, u32),
-) -> anyhow::Result<u32> {
-    let mut said = String::new();
-    loop {
-        renderer.render(&project.scene, &project.render, size)?;
-        ctx.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| anyhow::anyhow!("waiting for the GPU: {e}"))?;
-        let Readiness::Pending { what, .. } = renderer.readiness() else { return Ok(1) };
-        let head = what.split(" (").next().unwrap_or_default().to_owned();
-        if head != said {
-            eprintln!("{what}");
-            said = head;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(50));
-    }
+/// [`harness::until_ready`] for `project`, saying on stderr what it waits for.
+pub fn until_ready(renderer: &mut Renderer, project: &Project, size: (u32, u32)) -> anyhow::Result<u32> {
+    Ok(harness::until_ready(renderer, &project.scene, &project.render, size, |what| eprintln!("{what}"))?)
 }
 
 fn reference(project: &Project, out: &Path, kind: OutputKind, size: (u32, u32)) -> anyhow::Result<String> {

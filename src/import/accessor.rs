@@ -1,9 +1,8 @@
 //! Bounds-checked accessor reading.
 //!
 //! The `gltf` crate's own readers trust the file (unchecked slicing, `count - 1` underflow,
-//! `unreachable!` on float indices; platform-notes.md section 12), so every accessor is checked
-//! here against the bytes that really exist, with checked arithmetic, before anything is
-//! allocated from a declared count.
+//! `unreachable!` on float indices), so every accessor is checked here against the bytes that
+//! really exist, with checked arithmetic, before anything is allocated from a declared count.
 
 use gltf::accessor::{DataType, Dimensions};
 

@@ -3,7 +3,7 @@
 //! Exists so that every technique sees a glTF file the same way an independent renderer does:
 //! node hierarchy transforms, KHR_lights_punctual lights in W/sr, perspective cameras,
 //! one-sided CCW triangles. Files are treated as hostile: every problem becomes an
-//! [`ImportError`] naming the file, never a panic (platform-notes.md section 12).
+//! [`ImportError`] naming the file, never a panic (docs/ARCHITECTURE.md, "Conventions").
 
 mod accessor;
 mod build;

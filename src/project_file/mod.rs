@@ -1,8 +1,8 @@
 //! Project files: versioned RON with the scene, its assets, the camera and the render settings.
 //!
-//! Contracts (architecture.md section 4): `format_version` first; older versions migrate with
-//! `From`; unknown fields are errors with line and column; saves are atomic and deterministic;
-//! assets are referenced relative to the project file.
+//! Contracts (docs/ARCHITECTURE.md, "Project files"): `format_version` first; older versions
+//! migrate with `From`; unknown fields are errors with line and column; saves are atomic and
+//! deterministic; assets are referenced relative to the project file.
 
 use crate::atomic_file as atomic;
 mod paths;

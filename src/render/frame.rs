@@ -345,7 +345,7 @@ impl Renderer {
         }
         let obscurance = self.output != GiOutput::Nothing
             && self.output != GiOutput::Complete
-            && super::obscurance::applies(settings.mode, &settings.vo);
+            && registry::obscurance_applies(settings.mode, &settings.vo);
         if obscurance {
             self.vo.set(queue, &settings.vo);
             self.vo.record(&mut encoder, &sized.vo, &mut self.timer);
@@ -429,6 +429,14 @@ impl Renderer {
     pub fn read_hdr(&self) -> Result<Vec<[f32; 4]>, RenderError> {
         let t = self.targets().ok_or(RenderError::Size(0, 0, 0))?;
         Ok(readback::read_rgba32f(&self.device, &self.queue, &t.hdr.texture)?)
+    }
+
+    /// Blocks until the GPU has finished every frame submitted so far.
+    pub fn wait_for_gpu(&self) -> Result<(), RenderError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| RenderError::Gpu(format!("waiting for the GPU: {e}")))
     }
 
     /// Reads the tonemapped display image of the last frame (RGBA8, sRGB-encoded).

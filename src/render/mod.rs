@@ -1,7 +1,7 @@
 //! The wgpu renderer (no egui): device context, scene upload, G-buffer, shadow maps, deferred
 //! lighting, tonemapping, GPU timings and readback.
 //!
-//! [`Renderer::render`] is the one readable frame function (architecture.md section 2):
+//! [`Renderer::render`] is the one readable frame function (docs/ARCHITECTURE.md, "The frame"):
 //! G-buffer -> shadow maps -> direct light -> [depth/normal pyramid] -> the active GI technique
 //! (through the seam in [`gi`]) -> composite -> tonemap.
 
@@ -10,6 +10,7 @@ mod context;
 mod frame;
 mod gbuffer;
 pub mod gi;
+pub mod harness;
 pub(crate) mod layouts;
 mod lighting;
 pub mod obscurance;

@@ -69,8 +69,9 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/tonemap.wgsl", include_str!("../../shaders/render/tonemap.wgsl")),
 ];
 
-/// Shader entry files (the others are only imported).
-pub const ENTRY_SHADERS: &[&str] = &[
+/// The frame's own entry files (G-buffer, shadows, lighting, pyramid, obscurance, composite,
+/// tonemap); each technique lists its own in its registry row. The others are only imported.
+pub const FRAME_SHADERS: &[&str] = &[
     "render/gbuffer.wgsl",
     "render/lighting.wgsl",
     "render/composite.wgsl",
@@ -79,40 +80,13 @@ pub const ENTRY_SHADERS: &[&str] = &[
     "render/pyramid.wgsl",
     "render/shadow_depth.wgsl",
     "render/tonemap.wgsl",
-    "render/gi/ism/importance.wgsl",
-    "render/gi/ism/ism_bounce.wgsl",
-    "render/gi/ism/ism_filter.wgsl",
-    "render/gi/ism/ism_shade.wgsl",
-    "render/gi/ism/ism_sh_filter.wgsl",
-    "render/gi/ism/ism_select.wgsl",
-    "render/gi/ism/ism_splat.wgsl",
-    "render/gi/ism/ism_split.wgsl",
-    "render/gi/ism/ism_temporal.wgsl",
-    "render/gi/ism/ism_view_importance.wgsl",
-    "render/gi/ism/pull_push.wgsl",
-    "render/gi/ism/light_gbuffer.wgsl",
-    "render/gi/ism/vpl_generate.wgsl",
-    "render/gi/mrt/mrt_apply.wgsl",
-    "render/gi/mrt/mrt_direct.wgsl",
-    "render/gi/mrt/mrt_interface.wgsl",
-    "render/gi/mrt/mrt_reconstruct.wgsl",
-    "render/gi/mrt/mrt_reduce.wgsl",
-    "render/gi/mrt/mrt_sides.wgsl",
-    "render/gi/mrt/drt_patches.wgsl",
-    "render/gi/mrt/drt_rows.wgsl",
-    "render/gi/rcs/rcs_check.wgsl",
-    "render/gi/rcs/rcs_coverage.wgsl",
-    "render/gi/rcs/rcs_hemisphere.wgsl",
-    "render/gi/rcs/rcs_reduce.wgsl",
-    "render/gi/rcs/rcs_resolve.wgsl",
-    "render/gi/rcs/rcs_splat.wgsl",
-    "render/gi/sshgi/sshgi_gather.wgsl",
-    "render/gi/sshgi/sshgi_mip.wgsl",
-    "render/gi/sshgi/sshgi_upsample.wgsl",
-    "render/gi/sshgi/sshgi_voxel_mip.wgsl",
-    "render/gi/sshgi/sshgi_voxelize.wgsl",
-    "render/gi/sshgi/sshgi_temporal.wgsl",
 ];
+
+/// Every entry file: the frame's and every technique's (`registry::TECHNIQUES`).
+pub fn entry_shaders() -> Vec<&'static str> {
+    let techniques = super::gi::registry::TECHNIQUES.iter().flat_map(|t| t.shaders.iter().copied());
+    FRAME_SHADERS.iter().copied().chain(techniques).collect()
+}
 
 /// A shader that could not be assembled.
 #[derive(Debug, thiserror::Error, PartialEq)]

@@ -1,6 +1,6 @@
-//! Punctual lights with the KHR_lights_punctual conventions of `architecture.md` section 3:
-//! `color * intensity` is radiant intensity in W/sr (point, spot) or irradiance in W/m^2
-//! (directional), linear RGB, pure inverse-square falloff when `range` is absent, and the
+//! Punctual lights with the KHR_lights_punctual conventions of docs/ARCHITECTURE.md,
+//! "Conventions": `color * intensity` is radiant intensity in W/sr (point, spot) or irradiance in
+//! W/m^2 (directional), linear RGB, pure inverse-square falloff when `range` is absent, and the
 //! specification's spot falloff (scale/offset on the cosine, then squared).
 
 use glam::Vec3;

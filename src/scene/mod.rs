@@ -2,8 +2,8 @@
 //!
 //! It exists so that the importer, the project file, the renderer, the reference path tracer and
 //! the editor all agree on one description of the world, with the conventions of
-//! `architecture.md` section 3 (metres, +Y up, radiometric lights in W/sr, one-sided surfaces).
-//! It never imports wgpu or egui.
+//! docs/ARCHITECTURE.md, "Conventions" (metres, +Y up, radiometric lights in W/sr, one-sided
+//! surfaces). It never imports wgpu or egui.
 //!
 //! Every mutable access goes through a method that bumps [`Scene::revision`], so caches (GPU
 //! buffers, sample points, path-tracer accumulation) can tell when they are stale.

@@ -64,7 +64,7 @@ pub struct IsmSettings {
     /// Add the bounces beyond the last set as a geometric series: the last set's power is
     /// scaled by 1 / (1 - r), r from `tail_ratio` (an extension of the thesis; one tiny pass).
     /// Free; the Cornell box lit by a point light alone went from 0.948 to 0.956 of the
-    /// reference's energy at 6 bounces (`tests/ism_lights.rs`).
+    /// reference's energy at 6 bounces (`tests/integration/ism_lights.rs`).
     pub bounce_tail: bool,
     /// Where the tail's ratio r comes from. Free within measurement (a per-workgroup sum in
     /// the shading either way).
@@ -302,8 +302,8 @@ impl IsmSettings {
             return Err(SettingsError { name, value, range });
         }
         // The ISM atlas holds one tile per VPL of every bounce; keep its side within 5792 texels
-        // (a 5792^2 u32 atlas is just under 128 MiB, WebGPU's default storage-binding limit;
-        // digest PF24), which fits 256 VPLs x 6 bounces at 128^2.
+        // (a 5792^2 u32 atlas is just under 128 MiB, WebGPU's default storage-binding limit),
+        // which fits 256 VPLs x 6 bounces at 128^2.
         let tiles = f64::from(m.vpl_count * m.bounces).sqrt().ceil() as u32;
         if m.ism_resolution * tiles > MAX_ATLAS_SIDE {
             return Err(SettingsError {

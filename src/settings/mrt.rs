@@ -1,6 +1,6 @@
-//! Settings of `mrt`, modular radiance transfer over proxy blocks (Loos 2015; digest
-//! `technique-mrt-drt.md` sections 7 and 10), and their ranges. The dictionary's parameters
-//! choose the precompute (cached on disk per parameter set); the rest are per-frame.
+//! Settings of `mrt`, modular radiance transfer over proxy blocks (Loos 2015: the per-frame steps
+//! of §3.6.3, the parameters of §3.6.1 and §4.1-§4.2), and their ranges. The dictionary's
+//! parameters choose the precompute (cached on disk per parameter set); the rest are per-frame.
 
 use serde::{Deserialize, Serialize};
 

@@ -1,8 +1,7 @@
-//! Settings of `rcs`, GPU irradiance caching by radiance cache splatting (Gautron et al.,
-//! SIGGRAPH 2007 course notes; digest part A of `technique-rcs-shfilter-sshgi.md`), and their
-//! ranges. The notes give no values for `a` or the hemisphere resolution; the defaults are the
-//! digest's (Radiance-style accuracy, 32x32 planes are the cheaper half of its 64x64), with the
-//! costs `bouncelab bench` measures.
+//! Settings of `rcs`, GPU irradiance caching by radiance cache splatting (Gautron et al. 2005, as
+//! Gautron's SIGGRAPH 2007 course notes give it), and their ranges. The notes give no values for
+//! `a` or the hemisphere resolution; the defaults are ours (a Radiance-style accuracy, and 32x32
+//! planes, cheaper than 64x64), with the costs `bouncelab bench` measures.
 
 use serde::{Deserialize, Serialize};
 

@@ -1,5 +1,5 @@
 //! Settings of `sshgi`, screen-space hierarchical indirect light (Soler, Hoel, Rochet and
-//! Holzschuch 2010; digest part C of `technique-rcs-shfilter-sshgi.md`), and their ranges.
+//! Holzschuch 2010), and their ranges.
 //! Defaults are the paper's (quarter start resolution, 4 levels, 64 samples per level).
 
 use serde::{Deserialize, Serialize};
@@ -60,8 +60,8 @@ pub struct SshgiSettings {
     /// can vanish (entry and exit cancel).
     pub voxel_range: [f32; 2],
     /// Temporal blend a of the reprojected history (0: none). The paper's Eq. 6; its value is not
-    /// given (the digest suggests 0.85 for static diffuse scenes). Higher: less noise, more lag
-    /// after changes (history is dropped at disocclusions and on resets). Free.
+    /// given (the default 0.85 is a starting value for static diffuse scenes). Higher: less noise,
+    /// more lag after changes (history is dropped at disocclusions and on resets). Free.
     pub temporal_weight: f32,
     /// Blend with the previous frame's raw gather (the paper's 2-tap Eq. 6) instead of the
     /// recursive history (an exponential average, the default: stronger noise reduction).

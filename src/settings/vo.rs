@@ -1,5 +1,5 @@
-//! Settings of volumetric obscurance (Loos & Sloan 2010 as Loos 2015 ch. 6 gives it; digest
-//! section 9): the screen-space obscurance that multiplies the indirect term where the active
+//! Settings of volumetric obscurance (Loos & Sloan 2010 as Loos 2015 ch. 6 gives it): the
+//! screen-space obscurance that multiplies the indirect term where the active
 //! technique's own resolution misses contact detail (`mrt`'s lightmap texels are 25 cm on a 4 m
 //! room). Costs are `bouncelab bench` figures.
 

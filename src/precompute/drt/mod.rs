@@ -1,4 +1,4 @@
-//! Delta Radiance Transfer (Loos 2015 ch. 5; digest section 8): what clutter, the small movable
+//! Delta Radiance Transfer (Loos et al. 2012; Loos 2015 ch. 5): what clutter, the small movable
 //! objects inside MRT's blocks, changes of the blocks' indirect light (its shadows and its
 //! bounce), and the light the blocks give the clutter. MRT's operators are scene independent and
 //! ignore clutter; these are rebuilt by ray tracing whenever clutter moves, on the level job's

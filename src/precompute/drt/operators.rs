@@ -1,6 +1,5 @@
-//! The three delta operators of Delta Radiance Transfer (Loos 2015 §5.3, digest section 8), built
-//! by ray tracing the whole scene (blocks' real geometry and clutter) whenever clutter is placed
-//! or moved:
+//! The three delta operators of Delta Radiance Transfer (Loos 2015 §5.3), built by ray tracing the
+//! whole scene (blocks' real geometry and clutter) whenever clutter is placed or moved:
 //!
 //! - **delta occlusion** ΔU_b: from every block texel near clutter, N cosine rays; a ray whose
 //!   first hit is clutter is continued past it to the surface y it would have reached, and the
@@ -272,7 +271,8 @@ fn delta_row(inp: &Inputs<'_>, pat: &Patches, params: &DrtParams, i: usize) -> (
         }
     }
     // Covered: the texel's point lies inside a clutter box (a floor texel under a crate), or
-    // clutter takes more than 95% of its rays (digest section 8.5).
+    // clutter takes more than 95% of its rays: the texels Loos 2015 §5.4.2 inpaints (the 95% is
+    // our threshold; the dissertation gives none).
     let inside = near.iter().any(|c| {
         let m = Vec3::splat(1e-3);
         t.position.cmpge(c.lo - m).all() && t.position.cmple(c.hi + m).all()

@@ -1,10 +1,11 @@
-//! One dictionary element's reduced direct-to-indirect transfer (Loos 2015 §3.3, digest sections
-//! 2.3-2.6 and 3.2): the light prior P S from the SVD of the training lights' direct light (no
-//! mean subtracted: an SVD, not PCA), the light-space indirect operator M = F P S and its SVD,
-//! truncated to k_b modes: the indirect basis U_b = U~ S~ (scaled columns), the projection
-//! T_{d->b} = V~^T S^-1 P^T and the implicit lights L_imp = P S V~ (kept for DRT). Enrichment
-//! (App. A) re-derives the prior from the balanced concatenation [P S | face constants | U_b] so
-//! that single-coloured faces, shadows the prior never saw and multi-bounce feedback stay in span.
+//! One dictionary element's reduced direct-to-indirect transfer (Loos 2015 §3.3 and §3.3.1,
+//! eqs. 3.2-3.3, built per element as in §4.1): the light prior P S from the SVD of the training
+//! lights' direct light (no mean subtracted: an SVD, not PCA), the light-space indirect operator
+//! M = F P S and its SVD, truncated to k_b modes: the indirect basis U_b = U~ S~ (scaled columns),
+//! the projection T_{d->b} = V~^T S^-1 P^T and the implicit lights L_imp = P S V~ (kept for DRT).
+//! Enrichment (App. A) re-derives the prior from the balanced concatenation
+//! [P S | face constants | U_b] so that single-coloured faces, shadows the prior never saw and
+//! multi-bounce feedback stay in span.
 //!
 //! Matrices are row-major `Vec<f64>`: element (i, j) of an r x c matrix at `i * c + j`.
 
@@ -45,7 +46,7 @@ pub struct Element {
     /// S, k_d.
     pub prior_sigma: Vec<f64>,
     /// Singular values of the training lights' direct light L_d (the prior's spectrum, before
-    /// enrichment: the inspector's plot and the digest's Table 3.2 check).
+    /// enrichment: the inspector's plot and the check against Loos 2015 Table 3.2).
     pub data_sigma: Vec<f64>,
     /// Singular values of M = F P S (all of them: the indirect spectrum).
     pub m_sigma: Vec<f64>,
@@ -234,7 +235,7 @@ mod tests {
 
     #[test]
     fn projecting_the_implicit_lights_gives_the_unit_coefficients() {
-        // Digest section 2.5: T_{d->b} L_imp = I.
+        // L_imp = P S V~ (Loos 2015 §3.3.1.1), so T_{d->b} L_imp = V~^T S^-1 P^T P S V~ = I.
         let e = build(Shape::Corner, &small(), &|| false).expect("element");
         for j in 0..e.k_b {
             let column: Vec<f64> = (0..e.n).map(|i| e.l_imp[i * e.k_b + j]).collect();

@@ -30,8 +30,8 @@ pub enum DictionaryError {
     },
 }
 
-/// The dictionary's parameters (digest sections 3 and 10). Cost on these two cores, release
-/// build: see `bouncelab mrt-dictionary` in docs/BENCHMARKS.md.
+/// The dictionary's parameters (in parentheses: Loos 2015's values, §3.6.1 and §4.1). Cost on
+/// these two cores, release build: see `bouncelab mrt-dictionary` in docs/BENCHMARKS.md.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct DictionaryParams {

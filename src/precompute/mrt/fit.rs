@@ -1,11 +1,11 @@
-//! Fitting MRT proxy blocks to a level's geometry (the "fit proxy blocks" command; research note
-//! `mrt-autofit.md`, whose section 4 this follows in a reduced form for rectilinear, one-storey
-//! levels): voxelise the triangles, flood the outside from the grid's border (through voxels
-//! farther than a closing radius from any surface, so a window does not open a room, then spread
-//! back by it), keep the enclosed air; in plan, erode the air by half a doorway so rooms part at their doorways, label the cores,
-//! grow the labels back over the air; each room's box is its core's bounds grown back, its height
-//! the air's; rooms that touch are joined through their doorways ([`super::doorways`]). What it cannot fit is a named error: no enclosed air
-//! (an open field, a lone triangle), a level far from axis-aligned (a sphere).
+//! Fitting MRT proxy blocks to a level's geometry (the "fit proxy blocks" command, for rectilinear,
+//! one-storey levels): voxelise the triangles, flood the outside from the grid's border (through
+//! voxels farther than a closing radius from any surface, so a window does not open a room, then
+//! spread back by it), keep the enclosed air; in plan, erode the air by half a doorway so rooms
+//! part at their doorways, label the cores, grow the labels back over the air; each room's box is
+//! its core's bounds grown back, its height the air's; rooms that touch are joined through their
+//! doorways ([`super::doorways`]). What it cannot fit is a named error: no enclosed air (an open
+//! field, a lone triangle), a level far from axis-aligned (a sphere).
 //!
 //! Loos leaves fitting to the artist (§4.3.1) and names it open research (§7.1); thresholds here
 //! are starting values, each a constant below.

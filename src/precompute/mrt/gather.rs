@@ -1,10 +1,10 @@
-//! MRT's one-bounce gather F inside a dictionary shape (digest sections 2.2 and 3.2 step 3):
-//! `(F l)(x_i) = (1/N) sum_k l(hit_k)` over N cosine-distributed rays from sample i, each ray's
-//! hit the point where it leaves the unit cube (inside an empty box, exact and analytic), read
-//! bilinearly from the hit face's texels. A ray leaving through an open side adds 0: light
-//! crossing openings is the interface operators' business. F is never stored; it is applied to
-//! the columns of a matrix (the scaled prior, or the implicit lights) in one pass, so each ray is
-//! cast once whatever the number of columns.
+//! MRT's one-bounce gather F inside a dictionary shape (Loos 2015 eq. 3.1 and §5.2.1, eq. 5.1;
+//! importance-sampled gather rays as in §3.6.1): `(F l)(x_i) = (1/N) sum_k l(hit_k)` over N
+//! cosine-distributed rays from sample i, each ray's hit the point where it leaves the unit cube
+//! (inside an empty box, exact and analytic), read bilinearly from the hit face's texels. A ray
+//! leaving through an open side adds 0: light crossing openings is the interface operators'
+//! business. F is never stored; it is applied to the columns of a matrix (the scaled prior, or the
+//! implicit lights) in one pass, so each ray is cast once whatever the number of columns.
 //!
 //! Rays are stratified (a sqrt(N) x sqrt(N) grid over the disc's square, jittered) and seeded
 //! per sample, so the result is identical whatever the thread scheduling.

@@ -1,6 +1,6 @@
-//! MRT's geometry images (Loos 2015 §4.4.1, digest section 6.2): for every texel of every block
-//! face, the *real* surface that the texel stands for, so that the direct light l_d is evaluated
-//! on the level's walls and not on the proxy box (digest pitfall 4). The texel's surface is the
+//! MRT's geometry images (Loos 2015 §3.5.2 and §4.4.1): for every texel of every block face, the
+//! *real* surface that the texel stands for, so that the direct light l_d is evaluated on the
+//! level's walls and not on the proxy box, as §4.4.1 requires. The texel's surface is the
 //! first one met along the face's normal through the texel centre, searched from inside the
 //! block back through the face to as far behind it (the wall just behind a face fitted to a
 //! wall's mid-plane, or a surface standing in front of it). Its albedo is stored with it so that

@@ -1,5 +1,5 @@
-//! MRT's reduced light-field basis at block openings (Loos 2015 §3.4.1 / §4.2.1, digest section
-//! 4.2): for every dictionary element and each of its open sides, the light fields that its 32
+//! MRT's reduced light-field basis at block openings (Loos 2015 §3.4.1 / §4.2.1, the basis
+//! H_rlf): for every dictionary element and each of its open sides, the light fields that its 32
 //! implicit lights (the columns of L_imp) send out through the opening; all of them, each
 //! element's columns balanced to equal energy (eq. 4.1), reduced by an SVD to k_rlf modes. The
 //! SVD goes through the Gram matrix (c x c, c = 12 openings x k_b columns) in f64, then
@@ -90,11 +90,11 @@ fn balanced(blocks: &[(&[f64], usize)], s: usize) -> Mat<f64> {
 }
 
 /// Builds the basis from `dictionary`'s implicit lights, keeping `k_rlf` modes (128 in the
-/// dissertation), then enriches it `enrichment` times (digest section 4.4, the dissertation's 3):
-/// the basis light fields H_rlf = U~ S pushed through the propagation operators (ahead, left,
-/// right) join H_rlf, balanced, and a new basis of k_rlf modes is taken, so that light carried
-/// one more block stays in span. With `bands` > 0 each pass also adds H_rlf masked to each of
-/// `bands` bands across the opening (along u): light that crosses a side only at a doorway
+/// dissertation), then enriches it `enrichment` times (Loos 2015 App. A; the dissertation's 3,
+/// §3.6.1): the basis light fields H_rlf = U~ S pushed through the propagation operators (ahead,
+/// left, right) join H_rlf, balanced, and a new basis of k_rlf modes is taken, so that light
+/// carried one more block stays in span. With `bands` > 0 each pass also adds H_rlf masked to each
+/// of `bands` bands across the opening (along u): light that crosses a side only at a doorway
 /// ([`super::opening`]) then keeps its place instead of spreading over the side.
 pub fn build(
     elements: &[Element],

@@ -1,9 +1,9 @@
 //! An MRT level: dictionary blocks, each a box (the unit cube warped to its size, Loos 2015
 //! §3.5.2) turned a number of quarter turns about up, joined where two neighbours' open sides
-//! lie on one plane and overlap (§3.5.3, digest section 4.5). This module finds the links and,
-//! from the transfer [`super::transfer`] assembles, evaluates a frame's indirect light from the
-//! blocks' direct light in the reduced spaces, and, for tests and the inspector, gathers the same bounce by brute force
-//! through the level's blocks.
+//! lie on one plane and overlap (§3.5.3, §4.3.2). This module finds the links and, from the
+//! transfer [`super::transfer`] assembles, evaluates a frame's indirect light from the blocks'
+//! direct light in the reduced spaces, and, for tests and the inspector, gathers the same bounce by
+//! brute force through the level's blocks.
 
 use std::collections::HashMap;
 

@@ -1,6 +1,6 @@
-//! MRT's light fields at block openings (Loos 2015 §4.2.1, digest section 4.1): the radiance
-//! crossing an open side, sampled on a grid of positions over the opening and of directions
-//! over the hemisphere, each direction cell averaged over a supersampling grid.
+//! MRT's light fields at block openings (Loos 2015 §4.2.1): the radiance crossing an open side,
+//! sampled on a grid of positions over the opening and of directions over the hemisphere, each
+//! direction cell averaged over a supersampling grid.
 //!
 //! Frame: every *directed* interface has an intrinsic frame, n = the direction light travels
 //! (out of the source block, into the receiving one), v = world up, u = n x v. Positions are
@@ -17,7 +17,7 @@ use glam::{Vec2, Vec3};
 
 use super::shape::{Face, Layout, exit};
 
-/// Light-field resolution (digest section 4.1: 12 x 12 positions, 24 x 24 directions, 5 x 5
+/// Light-field resolution (Loos 2015 §4.2.1: 12 x 12 positions, 24 x 24 directions, 5 x 5
 /// supersampling).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LightFieldRes {

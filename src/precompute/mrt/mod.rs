@@ -1,4 +1,4 @@
-//! Modular Radiance Transfer's precompute (Loos 2015; digest `technique-mrt-drt.md`): the
+//! Modular Radiance Transfer's precompute (Loos et al. 2011, as Loos 2015 ch. 3-4 gives it): the
 //! scene-independent dictionary of canonical block shapes ([`shape`]), each with its light prior
 //! from sphere-light training sets ([`prior`]), its one-bounce gather by exact ray-box exits
 //! ([`gather`]) and its reduced direct-to-indirect transfer ([`basis`]: U_b, T_{d->b}, L_imp,

@@ -1,5 +1,5 @@
 //! The level-independent interface operators a level's assembly needs, built once from the
-//! dictionary (Loos 2015 §4.2, digest sections 4.2-4.4): each opening's R_{b->rlf}, the
+//! dictionary (Loos 2015 §3.4.1 and §4.2, enriched as in App. A): each opening's R_{b->rlf}, the
 //! propagation R ahead / left / right, the surface response U_r, T_{rlf->r} and the per-position
 //! operators of partly open sides ([`super::opening`]). The light-field
 //! basis U~ itself (s x k_rlf, 85 MB at the dissertation's resolution) is only needed to build
@@ -15,7 +15,7 @@ use super::opening::PositionOps;
 use super::propagate::{self, Turn};
 use super::response::{self, Response};
 
-/// The interface operators' parameters (digest section 10).
+/// The interface operators' parameters (in parentheses: Loos 2015's values, §3.6.1 and §4.2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct InterfaceParams {

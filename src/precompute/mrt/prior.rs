@@ -1,10 +1,10 @@
-//! MRT's light prior training set (Loos 2015 §3.3 / §4.1.1, digest section 2.3): the direct
-//! light that sphere lights of equal power put on a shape's samples, one column per light. Lights
-//! sit on a 6x6x6 grid of cell centres inside the cube, three cell layers out through every open
-//! side (108 each) and, for each pair of adjacent open sides, 3x3 diagonal columns of 6 (54). A
-//! light outside the block lights a sample only through an opening. The direct light is the
-//! outgoing radiance of a white diffuse wall up to a constant, cos(theta) / d^2 with d clamped at
-//! the sphere's radius ([`LIGHT_RADIUS`]); the SVD that follows is blind to that constant.
+//! MRT's light prior training set (Loos 2015 §3.3 / §4.1.1): the direct light that sphere lights of
+//! equal power put on a shape's samples, one column per light. Lights sit on a 6x6x6 grid of cell
+//! centres inside the cube, three cell layers out through every open side (108 each) and, for each
+//! pair of adjacent open sides, 3x3 diagonal columns of 6 (54). A light outside the block lights a
+//! sample only through an opening. The direct light is the outgoing radiance of a white diffuse
+//! wall up to a constant, cos(theta) / d^2 with d clamped at the sphere's radius
+//! ([`LIGHT_RADIUS`]); the SVD that follows is blind to that constant.
 
 use glam::Vec3;
 
@@ -14,10 +14,11 @@ use super::shape::{Face, Layout, exit};
 pub const GRID: usize = 6;
 
 /// The sphere lights' radius, the distance below which their 1/d^2 is clamped: one grid spacing.
-/// The source leaves it open (the digest suggests half a spacing). Measured on the closed cube
-/// (`bouncelab mrt-dictionary`, 16x16 texels): half a spacing needs 74 / 104 / 125 prior modes for
-/// 80 / 90 / 95% of the training set's energy, one spacing 21 / 40 / 61 and one and a half 8 / 17
-/// / 29; the dissertation's Table 3.2 has 22 / 41 / 62, so one spacing is what it used in effect.
+/// The dissertation leaves it open (half a spacing is the obvious guess). Measured on the closed
+/// cube (`bouncelab mrt-dictionary`, 16x16 texels): half a spacing needs 74 / 104 / 125 prior modes
+/// for 80 / 90 / 95% of the training set's energy, one spacing 21 / 40 / 61 and one and a half
+/// 8 / 17 / 29; the dissertation's Table 3.2 has 22 / 41 / 62, so one spacing is what it used in
+/// effect.
 pub const LIGHT_RADIUS: f32 = 1.0 / GRID as f32;
 
 /// The training lights of `layout`'s shape.

@@ -1,5 +1,5 @@
-//! MRT's light-field propagation through a block (Loos 2015 §3.4.1 / §4.2.2, digest section 4.3
-//! item 2): light entering a block through one opening and leaving, unchanged, through the
+//! MRT's light-field propagation through a block (Loos 2015 §3.4.1 / §4.2.2, the operators R ahead,
+//! left and right): light entering a block through one opening and leaving, unchanged, through the
 //! opening straight ahead, on the left or on the right. Each target sample (position over the
 //! exit, direction cell, supersampled) is traced backwards into the block; where the ray crosses
 //! the entry opening it reads the entering light field there (quadrilinear), anywhere else (a

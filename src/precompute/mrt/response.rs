@@ -1,7 +1,7 @@
-//! MRT's surface response to light entering a block (Loos 2015 §3.4.1 / §4.2.3, digest section
-//! 4.3 item 3): each basis light field placed on one canonical opening, gathered at the texels of
-//! the block's other five faces with the same cosine gather as the blocks' own transfer (a ray
-//! leaving through the opening reads the entering light field, quadrilinear, and carries its
+//! MRT's surface response to light entering a block (Loos 2015 §3.4.1 / §4.2.3, the operators G,
+//! U_r and T_{rlf->r}): each basis light field placed on one canonical opening, gathered at the
+//! texels of the block's other five faces with the same cosine gather as the blocks' own transfer
+//! (a ray leaving through the opening reads the entering light field, quadrilinear, and carries its
 //! radiance one bounce onto the wall). G = F_rlf H_rlf (columns scaled by the light-field
 //! singular values so the truncation ranks modes by how much they occur), G = U_g S_g V_g^T,
 //! truncated to k_r: U_r = U~_g (not scaled, unlike U_b) and, for orthonormal light-field

@@ -1,5 +1,5 @@
-//! The canonical shapes of Modular Radiance Transfer's 2D cube dictionary (Loos 2015, digest
-//! section 3.1): a unit cube whose floor and ceiling are always present and whose four side walls
+//! The canonical shapes of Modular Radiance Transfer's 2D cube dictionary (Loos 2015 §3.5.1,
+//! Fig. 4.1): a unit cube whose floor and ceiling are always present and whose four side walls
 //! may be open, six entries up to rotation about the up axis. Each present face carries
 //! `res x res` texels at their centres; this module lays them out in one sample vector and maps a
 //! point on a face back to the four texels a bilinear lookup reads.
@@ -94,7 +94,7 @@ impl Face {
     }
 }
 
-/// The six dictionary entries (digest section 3.1), each with its canonical open side walls.
+/// The six dictionary entries (Loos 2015 §3.5.1), each with its canonical open side walls.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Shape {
     /// No side open.
@@ -267,7 +267,7 @@ mod tests {
     fn the_dictionary_has_twenty_four_present_and_twelve_open_faces() {
         let present: usize = Shape::ALL.iter().map(|s| s.present_faces().len()).sum();
         let open: usize = Shape::ALL.iter().map(|s| s.open_faces().len()).sum();
-        assert_eq!((present, open), (24, 12), "digest section 3.1");
+        assert_eq!((present, open), (24, 12), "Loos 2015 section 3.5.1");
         assert_eq!(Shape::Corner.adjacent_open_pairs(), vec![(Face::PosX, Face::PosZ)]);
         assert_eq!(Shape::Corridor.adjacent_open_pairs(), vec![]);
         assert_eq!(Shape::Crossroads.adjacent_open_pairs().len(), 4);

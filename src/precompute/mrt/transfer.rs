@@ -1,10 +1,9 @@
-//! MRT's sparse block-to-interface transfer T_{b->r} of a level (Loos 2015 §3.5.3, digest
-//! section 4.5), assembled by depth-limited propagation: dynamic programming by depth, paths of
-//! equal length into the same directed interface summed, never sent back out through the side
-//! they came in by. Where the real level leaves a linked side only partly open (a doorway in a
-//! room's whole side, [`super::opening`]), the light crossing it is masked position by
-//! position, the closed part reflects back into the block, and what that part receives is kept
-//! for its own lookup.
+//! MRT's sparse block-to-interface transfer T_{b->r} of a level (Loos 2015 §3.5.3 and §4.3.2),
+//! assembled by depth-limited propagation: dynamic programming by depth, paths of equal length into
+//! the same directed interface summed, never sent back out through the side they came in by. Where
+//! the real level leaves a linked side only partly open (a doorway in a room's whole side,
+//! [`super::opening`]), the light crossing it is masked position by position, the closed part
+//! reflects back into the block, and what that part receives is kept for its own lookup.
 
 use std::collections::HashMap;
 

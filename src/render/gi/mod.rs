@@ -1,4 +1,4 @@
-//! Global-illumination techniques behind one seam (architecture.md section 2).
+//! Global-illumination techniques behind one seam (docs/ARCHITECTURE.md, "The GI seam").
 //!
 //! [`technique`] defines the seam: the [`GiTechnique`] trait, what a technique writes
 //! ([`GiOutput`]), why its history resets ([`ResetReason`]), its inspector buffers and overlays.

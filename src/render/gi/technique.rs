@@ -1,5 +1,6 @@
-//! The seam every GI technique plugs into (architecture.md section 2): what a technique offers
-//! the frame, the inspector, the overlays and the editor, and the typed values that cross it.
+//! The seam every GI technique plugs into (docs/ARCHITECTURE.md, "The GI seam"): what a
+//! technique offers the frame, the inspector, the overlays and the editor, and the typed values
+//! that cross it.
 //!
 //! A technique is a long-lived object behind `dyn GiTechnique`. A trait object, not an enum over
 //! technique structs, because the techniques share no code and own very different resources
@@ -184,7 +185,8 @@ pub struct SupportQuery<'a> {
     pub settings: &'a RenderSettings,
 }
 
-/// A GI technique (architecture.md section 2). Owns its pipelines, GPU memory and history.
+/// A GI technique (docs/ARCHITECTURE.md, "The GI seam"). Owns its pipelines, GPU memory and
+/// history.
 pub trait GiTechnique {
     /// What the frame must provide for [`GiTechnique::render`].
     fn needs(&self) -> Needs {

@@ -1,4 +1,4 @@
-//! Volumetric obscurance (Loos & Sloan 2010; Loos 2015 ch. 6; digest section 9): a screen-space
+//! Volumetric obscurance (Loos & Sloan 2010; Loos 2015 ch. 6): a screen-space
 //! obscurance that the composite multiplies into the indirect term of the techniques it is on
 //! for (`settings::VoSettings`). It exists because `mrt`'s lightmap (16 x 16 texels per block
 //! face) and DRT's clutter operators cannot hold contact detail finer than a texel; the
@@ -15,7 +15,7 @@ use super::layouts::{compute_pipeline, storage_texture_entry, texture_entry, uni
 use super::shaders::{self, ShaderError};
 use super::targets::{ViewTargets, formats};
 use super::timing::{GpuTimer, TimestampPair};
-use crate::settings::{GiMode, VoSettings};
+use crate::settings::VoSettings;
 
 /// `VoParams` in `vo/vo.wgsl`.
 #[repr(C)]
@@ -47,15 +47,6 @@ pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/vo/vo.wgsl", "VoParams", std::mem::size_of::<VoParams>()),
     ("render/vo/vo_blur.wgsl", "BlurParams", std::mem::size_of::<BlurParams>()),
 ];
-
-/// Whether `settings` apply obscurance to `mode`'s indirect term.
-pub fn applies(mode: GiMode, settings: &VoSettings) -> bool {
-    match mode {
-        GiMode::Mrt => settings.mrt,
-        GiMode::Direct | GiMode::Reference => false,
-        _ => settings.other_modes,
-    }
-}
 
 /// The parameter block for `settings`.
 pub fn params(settings: &VoSettings) -> VoParams {

@@ -1,4 +1,4 @@
-//! The line-sample sets of volumetric obscurance (Loos 2015 §6.3.5, digest section 9.7): n points
+//! The line-sample sets of volumetric obscurance (Loos 2015 §6.3.5, Fig. 6.6): n points
 //! in the unit disk spread so that each point's Voronoi cell holds about the same share of the
 //! sphere's chord length 2 sqrt(1 - x^2 - y^2), and each point's weight that share exactly (its
 //! cell's integral, on a 256^2 grid). The dissertation relaxes points by electrostatic repulsion

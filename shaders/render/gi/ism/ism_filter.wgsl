@@ -3,7 +3,7 @@
 // when its normal differs by a cosine below beta or its distance from this pixel's tangent
 // plane exceeds alpha (normalised by the scene diameter). The thesis compares view depths;
 // along the plane, walls seen at grazing angles keep their taps instead of showing the
-// interleave pattern as stripes (measured in tests/ism_sh.rs).
+// interleave pattern as stripes (measured in tests/integration/ism_sh.rs).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/interleave.wgsl

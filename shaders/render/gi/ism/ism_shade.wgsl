@@ -98,7 +98,7 @@ fn texel(s: vec2<u32>) -> Texel {
     // N mod n^2 tiles, so that every VPL lights exactly one tile whatever N (each carries n^2
     // times its power). Blocks of N / n^2 alone left N mod n^2 VPLs unused: 8 of 120 at n = 4,
     // 12 of the 76 the editor's preview uses at a third of the cost, 15 of 31 (the indirect
-    // light read 0.498 of 32 VPLs', `tests/ism.rs`).
+    // light read 0.498 of 32 VPLs', `tests/integration/ism.rs`).
     // A tile with no VPL (N < n^2) starts past the set's end and gathers nothing.
     let tiles = ni * ni;
     let base = sh.counts.x / tiles;

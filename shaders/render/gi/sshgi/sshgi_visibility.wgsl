@@ -40,7 +40,7 @@ fn slice_bits(a: i32, b: i32) -> vec4<u32> {
 // Whether the segment from the point seen at view pixel pt (view depth zt) to the point seen at
 // pixel py (depth zy) passes through a solid voxel. Every level marches the same columns: the
 // paper's per-level AND erodes a wall a few pixels thick away at the coarse levels, where
-// long-range light is gathered (the walled floor of `tests/sshgi.rs` leaked 86% of its light
+// long-range light is gathered (the walled floor of `tests/integration/sshgi.rs` leaked 86% of its light
 // with level-k columns at three levels). Level k has 4^k fewer texels and 2^k times longer
 // marches, so the marches of all levels cost at most twice the start level's.
 fn voxel_occluded(pt: vec2<f32>, py: vec2<f32>, zt: f32, zy: f32) -> bool {

@@ -2,7 +2,7 @@
 // from the view's, 2x2 at a time. Each coarse column is the OR of its children's 128-bit columns
 // (depth stays 128 slices): a voxel is solid where any of the pixels it covers is. The paper ANDs
 // them (a coarse voxel solid only where all four are), which erodes a wall a pixel or two wide on
-// screen away: the walled floor of `tests/sshgi.rs` kept 30% of the light leaking through its
+// screen away: the walled floor of `tests/integration/sshgi.rs` kept 30% of the light leaking through its
 // wall at a half-resolution start level, none with OR. OR dilates occluders by up to a coarse
 // texel at their silhouettes instead; the march skips two columns at each end for the surfaces
 // the segment starts and ends on (one-bounce Cornell box against a one-bounce reference, 256x144

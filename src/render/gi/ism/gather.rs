@@ -1,8 +1,8 @@
-//! ISM passes P6b, P7, P8 and P11 on the GPU: choose each VPL's points from the scene's point
-//! pool by solid angle, splat them into the imperfect shadow map atlas, fill holes by
-//! pull-push, and grow each further bounce's VPL set from the previous one (one-pass
-//! multi-bounce). The screen passes that shade with these VPLs and maps
-//! live in [`super::screen`], which this type owns and feeds.
+//! ISM passes P6b, P7, P8 and P11 on the GPU (docs/ARCHITECTURE.md, "ISM pass labels"): choose each
+//! VPL's points from the scene's point pool by solid angle, splat them into the imperfect shadow
+//! map atlas, fill holes by pull-push, and grow each further bounce's VPL set from the previous one
+//! (one-pass multi-bounce). The screen passes that shade with these VPLs and maps live in
+//! [`super::screen`], which this type owns and feeds.
 
 #[path = "gather_access.rs"]
 mod access;

@@ -1,5 +1,7 @@
 //! Halton points (bases 2 and 3) in [0, 1)^2. The window advances by N every frame so that
-//! consecutive frames use different VPLs and the temporal blend integrates them (digest P4).
+//! consecutive frames use different VPLs and the temporal blend integrates them (pass P4 of
+//! docs/ARCHITECTURE.md, "ISM pass labels"; Knecht 2009 §3.3 does not say whether the window
+//! moves).
 
 /// Radical inverse of `i` in `base`.
 pub fn radical_inverse(mut i: u64, base: u64) -> f64 {

@@ -1,5 +1,6 @@
 //! The VPL frame and the paraboloid map (Brabec et al. 2002) shared by the ISM splat and the
-//! lookup: one orthonormal basis function, so both sides agree (digest PF20).
+//! lookup: one orthonormal basis function, so both sides agree (a VPL frame that differs between
+//! the splat and the lookup turns the visibility into garbage).
 
 use glam::{Vec2, Vec3};
 

@@ -1,5 +1,5 @@
 //! The ISM passes' shader parameter blocks as `Pod` structs, one per WGSL struct, with their
-//! sizes checked at compile time here and against the WGSL layout (naga) in `tests/shaders.rs`
+//! sizes checked at compile time here and against the WGSL layout (naga) in `tests/integration/shaders.rs`
 //! through [`PARAM_BLOCKS`].
 
 use bytemuck::{Pod, Zeroable};

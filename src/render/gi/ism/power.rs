@@ -1,5 +1,5 @@
-//! The power a VPL carries, which the thesis leaves out (digest sections 7.3 and P5): a
-//! light-G-buffer texel t chosen with probability P(t) gets
+//! The power a VPL carries, which the thesis leaves out (Knecht 2009 §4.4 and Eq. 4.7-4.9 have no
+//! 1/N, pdf or pi): a light-G-buffer texel t chosen with probability P(t) gets
 //! Phi = rho_t * I_L(w_t) * dOmega_t * cos_t / (N * P(t)) * n^2, where I_L * dOmega * cos is the
 //! light's power arriving on the texel's surface patch, rho_t the (blurred) albedo, N the VPL
 //! count and n^2 the interleave factor (each pixel sees only N / n^2 VPLs). Summing the VPLs

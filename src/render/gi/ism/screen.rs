@@ -1,7 +1,8 @@
 //! The screen-space half of the ISM technique: the split G-buffer (P9), interleaved VPL
 //! shading (P10) or Segovia & Wald's SH projection, the SH filter with per-pixel BRDF
 //! evaluation, the temporal merge with its confidence (P12) and the geometry-aware filter
-//! (P13). The VPL sets and imperfect shadow maps it reads come from [`super::gather`].
+//! (P13; labels as in docs/ARCHITECTURE.md, "ISM pass labels"). The VPL sets and imperfect
+//! shadow maps it reads come from [`super::gather`].
 
 use crate::render::layouts::{compute_pipeline, storage_entry, storage_texture_entry, texture_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};

@@ -1,4 +1,4 @@
-//! DRT's GPU side (Loos 2015 §5.4's runtime order, digest section 8.7), recorded by
+//! DRT's GPU side (the runtime order of Loos 2015 §5.4 and §5.4.1), recorded by
 //! [`super::passes::MrtPasses`] between the reconstruction (D) and the side texels (E): G0 the
 //! clutter texels' radiance (the direct pass A's shader on the clutter texels, its feedback the
 //! clutter's gathered light), G1 the patches' light (`drt_patches.wgsl`), G2 the delta and gather

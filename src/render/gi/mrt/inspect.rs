@@ -1,7 +1,7 @@
-//! MRT's inspector images built on the CPU (digest section 14): the per-texel atlas (one row of
-//! six face tiles per block), the reduced coefficients, the dictionary's U_b and T_{d->b} as
-//! images, its singular-value spectra as a bar plot, and the prior's reconstruction error of
-//! this frame's direct light.
+//! MRT's inspector images built on the CPU: the per-texel atlas (one row of six face tiles per
+//! block), the reduced coefficients, the dictionary's U_b and T_{d->b} as images (as Loos 2015
+//! Figs. 4.10 and 4.3 show them), its singular-value spectra as a bar plot (to hold against
+//! Table 3.2), and the prior's reconstruction error of this frame's direct light.
 
 use super::pack::{NONE, Packed};
 use crate::image_io::HdrImage;

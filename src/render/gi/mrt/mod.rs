@@ -12,6 +12,18 @@ pub mod pack;
 pub mod passes;
 pub mod technique;
 
+/// This technique's entry shaders (its registry row lists them).
+pub const SHADERS: &[&str] = &[
+    "render/gi/mrt/mrt_apply.wgsl",
+    "render/gi/mrt/mrt_direct.wgsl",
+    "render/gi/mrt/mrt_interface.wgsl",
+    "render/gi/mrt/mrt_reconstruct.wgsl",
+    "render/gi/mrt/mrt_reduce.wgsl",
+    "render/gi/mrt/mrt_sides.wgsl",
+    "render/gi/mrt/drt_patches.wgsl",
+    "render/gi/mrt/drt_rows.wgsl",
+];
+
 /// Parameter blocks and records shared with WGSL (file, struct, bytes), checked by the shader
 /// tests against naga's layout.
 pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[

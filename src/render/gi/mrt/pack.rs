@@ -1,10 +1,10 @@
-//! A level and its dictionary laid out for MRT's GPU runtime (digest section 7.3's records as
-//! storage buffers): every block texel's geometry-image surface, one record per block (its box,
-//! its faces' texel ranges, the interfaces entering it), the dictionary elements' T_{d->b} and
-//! U_b, the surface response U_r, the level's sparse T_{b->r} as k_r x k_b matrices grouped by
-//! the directed interface they feed, and, per entering interface, the response row of each of
-//! the receiving block's texels. Built on the CPU whenever the blocks or the geometry change
-//! (the suite's 11-block rooms: tens of milliseconds), uploaded once, read every frame.
+//! A level and its dictionary laid out for MRT's GPU runtime (the per-face records of Loos 2015
+//! §4.4.1 as storage buffers): every block texel's geometry-image surface, one record per block
+//! (its box, its faces' texel ranges, the interfaces entering it), the dictionary elements'
+//! T_{d->b} and U_b, the surface response U_r, the level's sparse T_{b->r} as k_r x k_b matrices
+//! grouped by the directed interface they feed, and, per entering interface, the response row of
+//! each of the receiving block's texels. Built on the CPU whenever the blocks or the geometry
+//! change (the suite's 11-block rooms: tens of milliseconds), uploaded once, read every frame.
 
 use bytemuck::{Pod, Zeroable};
 

@@ -1,11 +1,11 @@
-//! MRT's GPU passes (Loos 2015 §3.6.3; digest section 7.3's wgpu mapping): A direct light at the
-//! texels (`mrt_direct.wgsl`), B b = T_{d->b} l_d (`mrt_reduce.wgsl`), C r = T_{b->r} b
-//! (`mrt_interface.wgsl`), D the texels' indirect light U_b b + U_r r (`mrt_reconstruct.wgsl`),
-//! E the light on the closed part of partly open sides (`mrt_sides.wgsl`), F the lightmap on
-//! the view (`mrt_apply.wgsl`). Each is its own timed compute pass. The
-//! level's buffers are uploaded when the level changes; the per-frame ones (l_d, b, r, the
-//! texels' indirect light) live with them, so the texels' light of the last frame is there for
-//! the feedback and the inspector.
+//! MRT's GPU passes (the per-frame steps of Loos 2015 §3.6.3 as compute passes, where §4.4-§4.5
+//! used render-target passes over records): A direct light at the texels (`mrt_direct.wgsl`),
+//! B b = T_{d->b} l_d (`mrt_reduce.wgsl`), C r = T_{b->r} b (`mrt_interface.wgsl`), D the texels'
+//! indirect light U_b b + U_r r (`mrt_reconstruct.wgsl`), E the light on the closed part of partly
+//! open sides (`mrt_sides.wgsl`), F the lightmap on the view (`mrt_apply.wgsl`). Each is its own
+//! timed compute pass. The level's buffers are uploaded when the level changes; the per-frame ones
+//! (l_d, b, r, the texels' indirect light) live with them, so the texels' light of the last frame
+//! is there for the feedback and the inspector.
 
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;

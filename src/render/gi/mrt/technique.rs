@@ -1,7 +1,7 @@
-//! The `mrt` technique behind the GI seam (Loos 2015, digest section 18.1): prepares the
-//! dictionary and the level off the frame ([`super::job`]), uploads the level's records
-//! ([`super::pack`]) and runs the per-frame passes ([`super::passes`]) into E / pi for the
-//! composite. A scene without proxy blocks gets blocks fitted to its geometry, and says so.
+//! The `mrt` technique behind the GI seam (Loos 2015): prepares the dictionary and the level off
+//! the frame ([`super::job`]), uploads the level's records ([`super::pack`]) and runs the per-frame
+//! passes ([`super::passes`]) into E / pi for the composite. A scene without proxy blocks gets
+//! blocks fitted to its geometry, and says so.
 
 use std::sync::Arc;
 
@@ -24,7 +24,7 @@ const fn atlas(name: &'static str, description: &'static str) -> BufferInfo {
     BufferInfo { name, description, format: "rgba32f, texels^2 per face", view: BufferView::Colour }
 }
 
-/// The inspector's buffers (digest section 14).
+/// The inspector's buffers, each described with what it looks like when right.
 pub const BUFFERS: &[BufferInfo] = &[
     atlas(
         "mrt_geometry_positions",

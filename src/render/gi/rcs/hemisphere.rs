@@ -36,8 +36,9 @@ fn corner_integral(x: f64, y: f64) -> f64 {
 
 /// `int cos^2(theta_b(phi)) / 2 dphi` over the azimuths `phi0..phi1` of a border segment on
 /// the line `u = 2` (in the edge's own frame): the missing band theta_b..pi/2 beyond it,
-/// cosine-weighted (the digest's corrected compensation; the notes' Omega term would count it
-/// twice). tan theta_b = 2 / cos phi on that line.
+/// cosine-weighted. For irradiance the band's measure is cos^2(theta_b) dphi / 2: the course
+/// notes' border term Omega_p + cos(theta_b) dPhi, weighted by cos(theta_b), would count it
+/// twice. tan theta_b = 2 / cos phi on that line.
 fn band_integral(phi0: f64, phi1: f64) -> f64 {
     const STEPS: usize = 32;
     let h = (phi1 - phi0) / STEPS as f64;
@@ -281,7 +282,7 @@ mod tests {
     use super::*;
 
     /// The white furnace on the CPU: radiance 1 everywhere integrates to pi, the plane alone to
-    /// the 83% the digest derives, at every resolution.
+    /// about 83% of it (the cosine-weighted share a 126.87-degree plane sees), at every resolution.
     #[test]
     fn plane_weights_integrate_to_pi_and_the_plane_alone_to_83_percent() {
         for h in [8u32, 16, 32, 64] {

@@ -1,6 +1,5 @@
 //! `rcs`: GPU irradiance caching by radiance cache splatting (Gautron, Krivanek, Bouatouch and
-//! Pattanaik 2005, as Gautron's SIGGRAPH 2007 course notes give it; digest part A of
-//! `technique-rcs-shfilter-sshgi.md`). Sparse records of indirect irradiance, each computed by
+//! Pattanaik 2005, as Gautron's SIGGRAPH 2007 course notes give it). Sparse records of indirect irradiance, each computed by
 //! rasterising the scene into a wide-angle plane at the record ([`hemisphere`], [`reduce`]),
 //! placed where splatting leaves pixels uncovered ([`coverage`]), interpolated by splatting one
 //! quad per record with Ward's weight and gradients ([`splat`]), and kept across frames in a
@@ -20,7 +19,17 @@ pub mod staging;
 pub mod store;
 pub mod technique;
 
-/// Every WGSL parameter block of these passes and its Rust size (tests/shaders.rs checks them).
+/// This technique's entry shaders (its registry row lists them).
+pub const SHADERS: &[&str] = &[
+    "render/gi/rcs/rcs_check.wgsl",
+    "render/gi/rcs/rcs_coverage.wgsl",
+    "render/gi/rcs/rcs_hemisphere.wgsl",
+    "render/gi/rcs/rcs_reduce.wgsl",
+    "render/gi/rcs/rcs_resolve.wgsl",
+    "render/gi/rcs/rcs_splat.wgsl",
+];
+
+/// Every WGSL parameter block of these passes and its Rust size (tests/integration/shaders.rs checks them).
 pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/gi/rcs/rcs_hemisphere.wgsl", "Job", std::mem::size_of::<record::GpuJob>()),
     ("render/gi/rcs/rcs_hemisphere.wgsl", "Record", std::mem::size_of::<record::GpuRecord>()),

@@ -1,8 +1,8 @@
 //! Splatting and normalisation (`rcs_splat.wgsl`, `rcs_resolve.wgsl`): one quad per record
 //! with additive blending of Ward-weighted irradiance into two float targets (with and without
 //! the gradients, each with the summed weight), then E = sum w E / sum w as E / pi.
-//! 32-bit float blending (the digest's SplatAcc) keeps w up to 1000 times irradiance in the
-//! hundreds without the overflow 16-bit floats have at 65504.
+//! 32-bit float blending of the weighted sums keeps w up to 1000 times irradiance in the hundreds
+//! without the overflow 16-bit floats have at 65504.
 
 use bytemuck::{Pod, Zeroable};
 

@@ -1,5 +1,4 @@
-//! `sshgi`: screen-space hierarchical indirect light (Soler, Hoel, Rochet and Holzschuch 2010;
-//! digest part C of `technique-rcs-shfilter-sshgi.md`). A purely deferred technique: its cost does
+//! `sshgi`: screen-space hierarchical indirect light (Soler, Hoel, Rochet and Holzschuch 2010). A purely deferred technique: its cost does
 //! not depend on the scene's geometry or lights, every light type feeds it through the direct
 //! term, and it adds several bounces, but only surfaces on screen send light.
 
@@ -8,10 +7,20 @@ pub mod technique;
 pub mod temporal;
 pub mod voxels;
 
+/// This technique's entry shaders (its registry row lists them).
+pub const SHADERS: &[&str] = &[
+    "render/gi/sshgi/sshgi_gather.wgsl",
+    "render/gi/sshgi/sshgi_mip.wgsl",
+    "render/gi/sshgi/sshgi_upsample.wgsl",
+    "render/gi/sshgi/sshgi_voxel_mip.wgsl",
+    "render/gi/sshgi/sshgi_voxelize.wgsl",
+    "render/gi/sshgi/sshgi_temporal.wgsl",
+];
+
 use std::mem::size_of;
 
 /// (shader file, WGSL struct, size of the Rust mirror) for every sshgi parameter block, checked
-/// against naga's layout by `tests/shaders.rs`.
+/// against naga's layout by `tests/integration/shaders.rs`.
 pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/gi/sshgi/sshgi_mip.wgsl", "MipParams", size_of::<passes::Counts>()),
     ("render/gi/sshgi/sshgi_upsample.wgsl", "UpParams", size_of::<passes::UpParams>()),

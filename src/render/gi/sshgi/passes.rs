@@ -1,8 +1,8 @@
-//! sshgi's GPU passes and the targets they write (Soler et al. 2010, digest part C): per bounce,
-//! the illumination levels (`sshgi_mip.wgsl`), one gather per level (`sshgi_gather.wgsl`) and the
-//! coarse-to-fine joint bilateral up-sampling that sums them (`sshgi_upsample.wgsl`); then the
-//! bounces' sum, up-sampled from the start level to the view. Depth and normal levels come from
-//! the frame's shared voted pyramid (`render::pyramid`), shared by every bounce.
+//! sshgi's GPU passes and the targets they write (Soler et al. 2010): per bounce, the illumination
+//! levels (`sshgi_mip.wgsl`), one gather per level (`sshgi_gather.wgsl`) and the coarse-to-fine
+//! joint bilateral up-sampling that sums them (`sshgi_upsample.wgsl`); then the bounces' sum,
+//! up-sampled from the start level to the view. Depth and normal levels come from the frame's
+//! shared voted pyramid (`render::pyramid`), shared by every bounce.
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3, Vec4};
