@@ -17,8 +17,8 @@
 //!
 //! `cargo run --release --example ism_oracle -- clutter "(bounces: 3)"`
 use bouncelab::precompute::bvh::SceneBvh;
+use bouncelab::precompute::ism::atlas_word::{self, AtlasTexel};
 use bouncelab::precompute::open_edges::CLIPS_PER_POINT;
-use bouncelab::render::gi::ism::atlas_word::{self, AtlasTexel};
 use bouncelab::render::gi::ism::technique::IsmTechnique;
 use bouncelab::render::gi::ism::vpl_pass::GpuVpl;
 use bouncelab::render::{GpuContext, Renderer};

@@ -70,6 +70,13 @@ enum Command {
     /// Fit MRT proxy blocks to a level's geometry (rooms, and openings where they meet) and
     /// write the project with them.
     FitBlocks(cli::mrt::FitArgs),
+    /// Tuning probe: render a technique and `direct` on suite scenes (or levels with their
+    /// reference beside them) with overridden settings; print energy, indirect share and FLIP
+    /// against the reference, judged as docs/QUALITY.md judges.
+    Probe(cli::probe::ProbeArgs),
+    /// Check MRT's reduced-space transfer on the CPU against a brute-force gather in the real
+    /// geometry of a level: per block and per room, MRT's one-bounce light over the brute force's.
+    ProbeMrt(cli::probe_mrt::ProbeMrtArgs),
     /// Regenerate assets/cornell_box.gltf and projects/default.ron from code.
     #[command(hide = true)]
     GenerateAssets {
@@ -105,6 +112,8 @@ fn main() -> ExitCode {
         Some(Command::GenerateAssets { root }) => cli::generate::generate(&root),
         Some(Command::MrtDictionary(args)) => cli::mrt::run(&args).map(|s| println!("{s}")),
         Some(Command::FitBlocks(args)) => cli::mrt::fit(&args).map(|s| print!("{s}")),
+        Some(Command::Probe(args)) => cli::probe::run(&args).map(|s| print!("{s}")),
+        Some(Command::ProbeMrt(args)) => cli::probe_mrt::run(&args).map(|s| print!("{s}")),
         None => bouncelab::app::run(args.project),
     };
     match result {

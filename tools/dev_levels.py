@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Development levels for MRT: random rows of three box rooms joined by doorways (the kind of
 level issue 12 names), for diagnosing the runtime against a brute force at its texels
-(`examples/mrt_probe.rs` with a .gltf path) without touching the held-out levels of
+(`bouncelab probe-mrt` with a .gltf path) without touching the held-out levels of
 `tools/unseen_levels.py`. Sizes, doorway places and the spot differ per seed.
 
 Usage: python3 tools/dev_levels.py OUT_DIR [COUNT]  (writes OUT_DIR/dev_rooms_<seed>.gltf)

@@ -9,7 +9,7 @@
 #
 # A single frame of a room lit only through doorways wanders (the maisonette's frames 17-40 read
 # 0.87-1.15 of the reference, docs/notes/held-out-levels.md); for the
-# expectation use `PROBE_AVG=1 PROBE_FROM=16 ism_probe LEVEL.gltf "()" 40`.
+# expectation use `bouncelab probe LEVEL.gltf --average-from 16 --frames 40`.
 set -euo pipefail
 dir=${1:?usage: tools/held_out.sh DIR [BOUNCELAB]}
 bin=${2:-target/release/bouncelab}

@@ -106,7 +106,7 @@ pub struct Drag {
 }
 
 fn angle_about(axis: Vec3, origin: Vec3, hit: Vec3) -> f32 {
-    let (t, b) = crate::precompute::brdf::basis(axis.normalize());
+    let (t, b) = crate::scene::basis::basis(axis.normalize());
     let v = hit - origin;
     v.dot(b).atan2(v.dot(t))
 }

@@ -109,7 +109,7 @@ pub fn draw(painter: &egui::Painter, rect: egui::Rect, view: &View, scene: &Scen
         match light.kind {
             LightKind::Spot { outer_cone_angle, inner_cone_angle } => {
                 let len = view.world_size(anchor, 80.0);
-                let (t, b) = crate::precompute::brdf::basis(light.direction);
+                let (t, b) = crate::scene::basis::basis(light.direction);
                 for (angle, n) in [(outer_cone_angle, 8), (inner_cone_angle, 0)] {
                     let r = len * angle.tan().min(10.0);
                     let rim: Vec<Vec3> = (0..24)

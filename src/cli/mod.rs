@@ -11,6 +11,8 @@ pub mod budget;
 pub mod compare;
 pub mod generate;
 pub mod mrt;
+pub mod probe;
+pub mod probe_mrt;
 pub mod progress;
 pub mod quality;
 pub mod render;

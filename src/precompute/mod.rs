@@ -6,6 +6,7 @@ pub mod brdf;
 pub mod bvh;
 pub mod drt;
 pub mod facing;
+pub mod ism;
 pub mod mrt;
 pub mod open_edges;
 pub mod pathtracer;

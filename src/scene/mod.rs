@@ -8,6 +8,7 @@
 //! Every mutable access goes through a method that bumps [`Scene::revision`], so caches (GPU
 //! buffers, sample points, path-tracer accumulation) can tell when they are stale.
 
+pub mod basis;
 mod camera;
 mod light;
 pub mod limits;

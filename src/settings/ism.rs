@@ -40,7 +40,7 @@ pub struct IsmSettings {
     /// equal share of uniformly spread points: at level scale a box next to a VPL then had one
     /// or two points, and its light leaked through). Cost: splatting and the bounce pass grow
     /// linearly; quality: fewer holes, a smaller lookup offset (it scales with the angular
-    /// spacing sqrt(2 pi / P)). Measured on lavapipe (`ism_probe cornell "()" 8`, whole run):
+    /// spacing sqrt(2 pi / P)). Measured on lavapipe (`bouncelab probe cornell --frames 8`, whole run):
     /// 10.1 s at 256, 11.9 s at 1024; the splats' texel coverage, not their count, dominates.
     pub points_per_ism: u32,
     /// Interleave size n (the G-buffer splits into n x n tiles; 1..=8). Cost: none; quality:
@@ -87,13 +87,13 @@ pub struct IsmSettings {
     /// the paraboloid map, clipped at its surface's open edges. Disks of their surface's area
     /// leave gaps between them (on a square grid a disk must have 1.57x its cell's area, radius
     /// 1.25x, to cover it), through which light leaks; larger ones close doorways seen at
-    /// grazing angles. Measured with `examples/ism_probe.rs` (mean of 8 frames, `PROBE_AVG=1`,
+    /// grazing angles. Measured with `bouncelab probe` (mean of 8 frames, `--average-from 0`,
     /// point-surface lookups, offset 0.05), energy against the reference at 1.25 / 1.35 / 1.5:
     /// the held-out four-room flat 1.20 / 1.09 / 1.03 (at 1.35: 1.22 over 16 frames, 1.56 over
     /// 32; light still leaks where its floor VPLs see a wall's foot at a few degrees), the held-out
     /// offices 1.06 / 1.02 / 0.78, the suite's three rooms 1.015 / 0.975 / 0.932, the Cornell
     /// box 0.993 at 1.25 and 1.35. Cost: the ISM maps' texel writes grow with its square
-    /// (`ism_probe cornell "()" 8` on lavapipe, before the point-surface lookups: 7.9 s at 0.5,
+    /// (`bouncelab probe cornell --frames 8` on lavapipe, before the point-surface lookups: 7.9 s at 0.5,
     /// 11.9 s at 1.0; `bench --quick`: `ism maps` 1.75 s per frame at 1.35 against 1.31-1.34 s
     /// at 1.0, lookups included).
     pub splat_radius: f32,
@@ -124,7 +124,7 @@ pub struct IsmSettings {
     /// losing light: clamping there at the VPL's disk lost 9% per bounce). 0 turns it off. Free;
     /// larger: fewer spikes near VPLs, darker corners. It replaces the thesis's 1-unit clamp,
     /// which no fixed distance can stand for from a 20 cm diorama to a 60 m hall. Measured with
-    /// `examples/ism_probe.rs` (32 frames): 0.5 kept 0.76 of the three rooms' energy and 0.945
+    /// `bouncelab probe` (32 frames): 0.5 kept 0.76 of the three rooms' energy and 0.945
     /// of the Cornell box's, 0.25 0.76 and 0.952.
     pub clamp_disk: f32,
     /// ISM lookup normal offset, constant part, as a fraction of the world spacing of one
@@ -134,7 +134,7 @@ pub struct IsmSettings {
     /// (`ism_lookup.wgsl`), so flat surfaces need no offset; this covers curved ones, whose
     /// neighbours' tangent disks lie in front of them. Free; larger: softer contact shadows and
     /// light beyond a doorway shifted (a raised receiver is seen through the doorway higher up).
-    /// Measured before the point-surface lookups (`ism_probe`, 8 frames, splat radius 1.25,
+    /// Measured before the point-surface lookups (`bouncelab probe`, 8 frames, splat radius 1.25,
     /// depths compared against the plane through the texel): 0 / 0.05 gave the three rooms
     /// 0.933 / 0.948 of the reference's energy, the Cornell box 0.983 / 0.989, the cluttered
     /// room 0.928 / 0.938. Unlike a depth bias it lets no light through a wall at any size.
@@ -161,7 +161,7 @@ pub enum TailRatio {
     /// went from 0.821 to 1.011 of the reference's energy;
     /// the suite's three rooms (camera in the unlit room) from 0.913 to 1.046 (1.12 at the
     /// CI test's size, over its 1.1 limit), the rest of the suite by less than 0.002; the
-    /// held-out flat from 1.102 to 1.342, its leak no longer hidden (`ism_probe`, 32 frames).
+    /// held-out flat from 1.102 to 1.342, its leak no longer hidden (`bouncelab probe`, 32 frames).
     /// With the lookups' hole test and buried points reflecting nothing: the offices 0.774 ->
     /// 0.921, the flat 0.925 -> 1.164. Against the path tracer's own 7-bounce image, the
     /// bounces past the sixth add 30.5% in both; the screen ratio's tail adds 32-35%, the power
@@ -171,7 +171,7 @@ pub enum TailRatio {
     /// the light per bounce (which the screen ratio had been making up for): the screen's ratio
     /// says how fast the light on screen still grows as it spreads into the camera's room, but
     /// that growth slows as the spread settles, and the power ratio is where it ends. Against
-    /// Mitsuba (`PROBE_AVG=1 PROBE_FROM=16 PROBE_SSAA=1 ism_probe`, frames 17-40, 128x72),
+    /// Mitsuba (`bouncelab probe --average-from 16 --ssaa 1`, frames 17-40, 128x72),
     /// power / screen / mean: the suite's three rooms 0.910 / 1.205 / 0.989, the held-out
     /// offices 0.828 / 0.980 / 0.871; the flat reads 1.084 with the screen ratio, 1.009 with
     /// the mean. Free.

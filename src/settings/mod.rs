@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 mod ism;
 mod mrt;
+pub mod mrt_params;
 mod preview;
 mod rcs;
 mod sshgi;

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::SettingsError;
-use crate::precompute::mrt::dictionary::DictionaryParams;
+use super::mrt_params::{DictionaryParams, DrtParams};
 
 /// Settings of the `mrt` technique.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -71,7 +71,7 @@ pub struct DrtSettings {
 
 impl Default for DrtSettings {
     fn default() -> Self {
-        let p = crate::precompute::drt::DrtParams::default();
+        let p = DrtParams::default();
         Self {
             enabled: true,
             rays: p.rays as u32,
@@ -86,8 +86,8 @@ impl Default for DrtSettings {
 
 impl DrtSettings {
     /// The build parameters.
-    pub fn params(&self) -> crate::precompute::drt::DrtParams {
-        crate::precompute::drt::DrtParams {
+    pub fn params(&self) -> DrtParams {
+        DrtParams {
             rays: self.rays as usize,
             gather_rays: self.gather_rays as usize,
             clutter_res: self.clutter_res as usize,
@@ -123,9 +123,7 @@ impl Default for MrtSettings {
 impl MrtSettings {
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
-        if let Err(crate::precompute::mrt::dictionary::DictionaryError::Param { name, value, range }) =
-            self.dictionary.validate()
-        {
+        if let Err(SettingsError { name, value, range }) = self.dictionary.validate() {
             return Err(SettingsError { name: "mrt.dictionary", value: format!("{name} = {value}"), range });
         }
         if self.depth > 32 {

@@ -29,8 +29,8 @@ pub struct SshgiSettings {
     /// Indirect bounces (1..=4). Each later bounce gathers albedo x the previous bounce's light
     /// from the same depth and normal levels, re-mipping only the illumination: one more gather
     /// and up-sampling chain each (linear cost; without visibility unless
-    /// `visibility_all_bounces`). The paper shows one; the suite's Cornell box (`ism_probe` with
-    /// `PROBE_SSHGI`, 256x144, mean of 8 frames) reads 0.754 / 0.846 / 0.887 / 0.905 of the path
+    /// `visibility_all_bounces`). The paper shows one; the suite's Cornell box (`bouncelab probe
+    /// --mode sshgi`, 256x144, mean of 8 frames) reads 0.754 / 0.846 / 0.887 / 0.905 of the path
     /// tracer's energy at 1 / 2 / 3 / 4 bounces (what is left: off-screen and hidden senders, and
     /// Eq. 4's bound, which loses 3% at 64 samples against 256: 0.933).
     pub bounces: u32,

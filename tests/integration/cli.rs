@@ -481,3 +481,23 @@ fn the_render_memory_estimate_covers_what_each_mode_allocates_per_pixel() {
         );
     }
 }
+
+/// `probe-mrt` on the one-room `window` scene, with the MRT tests' small dictionary (it builds in
+/// seconds in a debug build; the default one takes minutes) and 16 brute-force rays per texel:
+/// the room's line, MRT's bounce within a factor of two of the brute force's, and the per-block
+/// table.
+#[test]
+fn probe_mrt_compares_each_block_with_the_brute_force() {
+    let dictionary = "(res: 4, k_d: 32, k_b: 16, rays: 256, enrichment: 1, seed: 3, interfaces: (positions: 4, \
+                      directions: 8, supersample: 1, k_rlf: 48, k_r: 16, enrichment: 1, bands: 2))";
+    let o = bouncelab(&["probe-mrt", "window", "--rays", "16", "--dictionary", dictionary]);
+    assert!(o.status.success(), "probe-mrt window: {}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let room = text.lines().find(|l| l.starts_with("room 0:")).unwrap_or_else(|| panic!("room 0 in {text}"));
+    let ratio: f64 = room
+        .rsplit_once("MRT / brute force")
+        .and_then(|(_, r)| r.trim().parse().ok())
+        .unwrap_or_else(|| panic!("a ratio in {room:?}"));
+    assert!(ratio.is_finite() && (0.5..=2.0).contains(&ratio), "MRT / brute force {ratio}:\n{text}");
+    assert!(text.contains("| block | shape |"), "{text}");
+}

@@ -6,11 +6,11 @@
 
 use crate::common;
 
+use bouncelab::precompute::ism::halton::sample_set;
+use bouncelab::precompute::ism::warp::ImportancePyramid;
 use bouncelab::project_file::{Project, default_project_path};
 use bouncelab::render::Renderer;
-use bouncelab::render::gi::ism::halton::sample_set;
 use bouncelab::render::gi::ism::technique::{IsmTechnique, IsmVpls};
-use bouncelab::render::gi::ism::warp::ImportancePyramid;
 use bouncelab::scene::Light;
 use bouncelab::settings::{GiMode, IsmSettings, RenderSettings};
 use glam::Vec3;

@@ -31,28 +31,7 @@ use crate::precompute::mrt::dictionary::Progress;
 use crate::precompute::mrt::gather::cosine_rays;
 use crate::precompute::rng::Pcg32;
 
-/// The build's parameters (`settings::DrtSettings`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DrtParams {
-    /// Rays per block texel (ΔU_b, ΔU_c): the dissertation's 1024.
-    pub rays: usize,
-    /// Rays per clutter texel (C_b).
-    pub gather_rays: usize,
-    /// Texels per clutter face side (the dissertation's 16).
-    pub clutter_res: usize,
-    /// Block texels farther from a clutter box than this many times its radius get no delta
-    /// (at 16 radii a box covers under 0.4% of the cosine-weighted hemisphere).
-    pub reach: f32,
-    /// Texels clutter covers take their neighbours' light (§5.4.2); off, they keep their own
-    /// (meaningless) deltas: the comparison of the dissertation's Fig. 5.3.
-    pub inpaint: bool,
-}
-
-impl Default for DrtParams {
-    fn default() -> Self {
-        Self { rays: 1024, gather_rays: 256, clutter_res: 16, reach: 16.0, inpaint: true }
-    }
-}
+pub use crate::settings::mrt_params::DrtParams;
 
 /// A block texel's real surface (the geometry image, `render::gi::mrt::pack::GpuTexel`).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -5,12 +5,12 @@
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 
-use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use super::basis::{self, BasisError, Element};
-use super::operators::{self, InterfaceParams, Interfaces};
+use super::operators::{self, Interfaces};
 use super::shape::{Layout, Shape};
+pub use crate::settings::mrt_params::{DictionaryParams, InterfaceParams};
 
 /// What can stop a dictionary build.
 #[derive(Debug, Error)]
@@ -30,57 +30,7 @@ pub enum DictionaryError {
     },
 }
 
-/// The dictionary's parameters (in parentheses: Loos 2015's values, §3.6.1 and §4.1). Cost on
-/// these two cores, release build: see `bouncelab mrt-dictionary` in docs/BENCHMARKS.md.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct DictionaryParams {
-    /// Texels per face side (the dissertation's 16; below 6 its artefacts are objectionable).
-    /// Cost: the gather grows with res^2, the SVDs with up to res^4.
-    pub res: usize,
-    /// Prior columns k_d (64).
-    pub k_d: usize,
-    /// Indirect modes k_b (32 on desktop, 12 on the iPad).
-    pub k_b: usize,
-    /// Gather rays per texel (16K in the dissertation; 4K while iterating). Cost: linear.
-    pub rays: usize,
-    /// Enrichment passes (1). Each costs one more gather.
-    pub enrichment: usize,
-    /// Seed of the gather's rays.
-    pub seed: u64,
-    /// The interface operators'.
-    pub interfaces: InterfaceParams,
-}
-
-impl Default for DictionaryParams {
-    fn default() -> Self {
-        Self { res: 16, k_d: 64, k_b: 32, rays: 4096, enrichment: 1, seed: 1, interfaces: InterfaceParams::default() }
-    }
-}
-
 impl DictionaryParams {
-    /// Checks ranges.
-    pub fn validate(&self) -> Result<(), DictionaryError> {
-        let i = &self.interfaces;
-        let checks: [(&'static str, bool, String, &'static str); 11] = [
-            ("res", (2..=32).contains(&self.res), self.res.to_string(), "2..=32"),
-            ("k_d", (1..=256).contains(&self.k_d), self.k_d.to_string(), "1..=256"),
-            ("k_b", (1..=self.k_d).contains(&self.k_b), self.k_b.to_string(), "1..=k_d"),
-            ("rays", (1..=1 << 20).contains(&self.rays), self.rays.to_string(), "1..=1048576"),
-            ("enrichment", self.enrichment <= 4, self.enrichment.to_string(), "0..=4"),
-            ("interfaces.positions", (2..=32).contains(&i.positions), i.positions.to_string(), "2..=32"),
-            ("interfaces.directions", (2..=64).contains(&i.directions), i.directions.to_string(), "2..=64"),
-            ("interfaces.supersample", (1..=8).contains(&i.supersample), i.supersample.to_string(), "1..=8"),
-            ("interfaces.k_r", (1..=i.k_rlf).contains(&i.k_r), i.k_r.to_string(), "1..=k_rlf"),
-            ("interfaces.k_rlf", (1..=512).contains(&i.k_rlf), i.k_rlf.to_string(), "1..=512"),
-            ("interfaces.bands", i.bands <= i.positions, i.bands.to_string(), "0..=positions"),
-        ];
-        match checks.into_iter().find(|c| !c.1) {
-            Some((name, _, value, range)) => Err(DictionaryError::Param { name, value, range }),
-            None => Ok(()),
-        }
-    }
-
     /// Texels gathered by the elements' precompute (the interfaces count as a third more).
     fn element_work(&self) -> usize {
         Shape::ALL.iter().map(|s| Layout::new(*s, self.res).len()).sum::<usize>() * (1 + self.enrichment)
@@ -174,7 +124,7 @@ pub fn test_params() -> DictionaryParams {
 
 /// Builds the dictionary (element after element; each element's gather runs on every core).
 pub fn build(params: &DictionaryParams, progress: &Progress) -> Result<Dictionary, DictionaryError> {
-    params.validate()?;
+    params.validate().map_err(|e| DictionaryError::Param { name: e.name, value: e.value, range: e.range })?;
     progress.total.store(params.total_work(), Ordering::Relaxed);
     progress.done.store(0, Ordering::Relaxed);
     let _ = progress.started.set(Instant::now());

@@ -19,7 +19,7 @@ const MIN_STRIP: f32 = 0.3;
 /// at its doorways' jambs, so that each doorway is a whole side of one strip (the 2D dictionary
 /// opens whole sides only, one neighbour per side), the sides between its strips open. Measured
 /// on the suite's rooms (one bounce per room against a brute force in the real level,
-/// `examples/mrt_probe.rs`, 256 rays): strips everywhere 0.92 / 0.97 / 1.29, whole rooms 0.99 / 0.94 /
+/// `bouncelab probe-mrt rooms --rays 256`): strips everywhere 0.92 / 0.97 / 1.29, whole rooms 0.99 / 0.94 /
 /// 0.87; thin strips (0.4 m x 5 m) are far from the unit cube the operators assume. A long
 /// room is then cut into near-cubic parts (below), which on `tools/dev_levels.py`'s levels took
 /// the second room from 1.71x to 1.09x of the brute force (16 bounces) and the suite's window,

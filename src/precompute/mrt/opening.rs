@@ -3,8 +3,8 @@
 //! its neighbour through a side of which the doorway is a small part (15% in a 5 x 2.8 m
 //! partition with a 1 x 2.1 m door). A scalar share passed the side's average light and absorbed
 //! the rest: the door's place on the side was lost and the wall around it reflected nothing,
-//! which took 10% off every bounce of a room with such sides (`mrt_probe rooms` with
-//! `MRT_MULTI=8`: 0.83 of a brute force's eight bounces in the lit room).
+//! which took 10% off every bounce of a room with such sides (`bouncelab probe-mrt rooms
+//! --multi 8`: 0.83 of a brute force's eight bounces in the lit room).
 //!
 //! Here the light field crossing a side is masked position by position in the reduced space:
 //! with U~ the light-field basis (orthonormal, s x k_rlf) and U_p its rows at opening position

@@ -5,8 +5,6 @@
 //! basis U~ itself (s x k_rlf, 85 MB at the dissertation's resolution) is only needed to build
 //! them and is not kept.
 
-use serde::{Deserialize, Serialize};
-
 use super::basis::{BasisError, Element};
 use super::dictionary::DictionaryParams;
 use super::interface::{self, Exit};
@@ -15,37 +13,7 @@ use super::opening::PositionOps;
 use super::propagate::{self, Turn};
 use super::response::{self, Response};
 
-/// The interface operators' parameters (in parentheses: Loos 2015's values, §3.6.1 and §4.2).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct InterfaceParams {
-    /// Light-field positions per side of an opening (12).
-    pub positions: usize,
-    /// Light-field direction cells per side of the concentric square (24).
-    pub directions: usize,
-    /// Supersamples per side of a direction cell (5).
-    pub supersample: usize,
-    /// Light-field modes k_rlf (128).
-    pub k_rlf: usize,
-    /// Surface-response modes k_r (32).
-    pub k_r: usize,
-    /// Enrichment passes of the light-field basis (the dissertation's 3).
-    pub enrichment: usize,
-    /// Bands across an opening (along u) whose masked copies of the basis join each enrichment
-    /// pass, so that light crossing only part of a side (a doorway in a room's wall) keeps its
-    /// place (0: the dissertation's basis, whose fields are smooth across a side). Cost: only
-    /// the dictionary build (the enrichment SVDs grow with (4 + bands)^2; 27.1 s at 6, 18.1 s
-    /// before bands and the per-position operators, two cores); on the suite's rooms
-    /// (`MRT_MIMIC=1 MRT_MULTI=4 mrt_probe rooms`:
-    /// the third room 1.12 / 1.06 / 1.04 of a brute force at 4 / 6 / 12 bands).
-    pub bands: usize,
-}
-
-impl Default for InterfaceParams {
-    fn default() -> Self {
-        Self { positions: 12, directions: 24, supersample: 5, k_rlf: 128, k_r: 32, enrichment: 3, bands: 6 }
-    }
-}
+pub use crate::settings::mrt_params::InterfaceParams;
 
 impl InterfaceParams {
     /// The light-field resolution.

@@ -3,7 +3,7 @@
 //! every face had the cube's area and saw the others as in the cube. For a stretched box both
 //! are off: light entering a 0.9 m x 2.9 m doorway side of a 5 m long strip spreads over faces
 //! five times its area, and most of it leaves through the long open sides rather than the
-//! cube's fifth. Measured on the suite's rooms (`examples/mrt_probe.rs`): the next room's
+//! cube's fifth. Measured on the suite's rooms (`bouncelab probe-mrt rooms`): the next room's
 //! bounce read 1.95x the brute force's, a doorway strip 4.8x.
 //!
 //! The dissertation re-traces a stretched prior per block (seconds per block, §3.5.2). This
@@ -28,7 +28,7 @@ use crate::precompute::rng::Pcg32;
 /// passes 63% of diffuse light straight through against the cube's 20% (a scale of 3.1), but
 /// the cube already passes most of a beam square to the side, which the scale then tripled. The
 /// feedback's loop gain then crossed 1 on the suite's rooms, then split into strips
-/// (`MRT_BOUNCES=8 mrt_probe rooms`: 0.69 ... 0.95 and rising, the image's energy 108x after 32
+/// (`bouncelab probe-mrt rooms --bounces 8`: 0.69 ... 0.95 and rising, the image's energy 108x after 32
 /// frames). The cap applies where light enters or leaves through an opening (the propagation,
 /// the exits and the surface response); measured there, a cap of 1 / 1.5 / 2 / 3 gave the next
 /// room 0.39 / 0.81 / 0.97 / 1.16 of the brute force's bounce and a loop gain of 0.51 / 0.57 /

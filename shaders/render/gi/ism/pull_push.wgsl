@@ -113,7 +113,7 @@ fn push(@builtin(global_invocation_id) gid: vec3<u32>) {
     // coarse depth (background seen through a hole in a nearer surface), which dilated every
     // silhouette by up to a coarse texel: at doorways that was a false shadow (with it at the
     // finest level only, the three rooms read 0.59 of the reference's energy, the unlit room
-    // 0.51; without it 0.66 and 0.57, at splat radius 1.25, `ism_probe`, mean of 16 frames).
+    // 0.51; without it 0.66 and 0.57, at splat radius 1.25, `bouncelab probe`, mean of 16 frames).
     // Splats clipped at open edges and sized to close the surfaces do its job.
     for (var k = 0u; k < 4u; k = k + 1u) {
         let f = id * 2u + vec2<u32>(k & 1u, k >> 1u);

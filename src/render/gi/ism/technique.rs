@@ -288,12 +288,12 @@ impl IsmTechnique {
         &self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-    ) -> Result<super::atlas_word::IsmLookupData, RenderError> {
+    ) -> Result<crate::precompute::ism::atlas_word::IsmLookupData, RenderError> {
         let ([chosen, points, normals, clips], per_ism) = self.gather.lookup_buffers().ok_or_else(|| {
             RenderError::UnknownBuffer { name: "ism lookup data".into(), known: "render an ism mode first".into() }
         })?;
         let read = |b: &wgpu::Buffer| readback::read_buffer(device, queue, b);
-        Ok(super::atlas_word::IsmLookupData {
+        Ok(crate::precompute::ism::atlas_word::IsmLookupData {
             chosen_all: bytemuck::pod_collect_to_vec(&read(chosen)?),
             points: bytemuck::pod_collect_to_vec(&read(points)?),
             normals: bytemuck::pod_collect_to_vec(&read(normals)?),
@@ -346,7 +346,7 @@ impl IsmTechnique {
         Ok(HdrImage {
             width: side,
             height: side,
-            pixels: words.into_iter().take(finest).map(super::atlas_word::texel).collect(),
+            pixels: words.into_iter().take(finest).map(crate::precompute::ism::atlas_word::texel).collect(),
         })
     }
 }
@@ -387,7 +387,7 @@ impl GiTechnique for IsmTechnique {
             // A texel without a point (pull-push filled it) is compared by depth with a margin
             // of two texels' angle at the paraboloid's centre (4 / r each) as a share of it.
             bias: [
-                super::atlas_word::NEIGHBOUR_REACH,
+                crate::precompute::ism::atlas_word::NEIGHBOUR_REACH,
                 settings.bias_constant,
                 settings.bias_slope,
                 8.0 / settings.ism_resolution as f32,

@@ -1,8 +1,8 @@
 //! ISM passes P2, P3 and P5 on the GPU (docs/ARCHITECTURE.md, "ISM pass labels"): the light
 //! G-buffer of every light (tiles laid out by [`super::light_tiles`]), its importance sum pyramid,
 //! and first-bounce VPL generation by hierarchical warping over the whole atlas, so VPLs spread
-//! over all lights in proportion to the power they reflect. The CPU oracles in [`super::warp`] and
-//! [`super::power`] define what these passes must produce.
+//! over all lights in proportion to the power they reflect. The CPU oracles in [`crate::precompute::ism::warp`] and
+//! [`crate::precompute::ism::power`] define what these passes must produce.
 
 use glam::Vec3;
 

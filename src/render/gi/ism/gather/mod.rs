@@ -4,7 +4,6 @@
 //! (one-pass multi-bounce). The screen passes that shade with these VPLs and maps live in
 //! [`super::screen`], which this type owns and feeds.
 
-#[path = "gather_access.rs"]
 mod access;
 
 use crate::render::layouts::{compute_pipeline, storage_entry, uniform_entry};
@@ -15,24 +14,8 @@ use crate::settings::{BouncePick, IsmSettings};
 use super::params::{BounceParams, GpuCluster, PullPushParams, SelectParams, SplatParams};
 use super::screen::{IsmInputs, IsmScreen};
 
-/// Pull-push levels below the finest (the thesis: "at least two mip levels"). Four instead of
-/// two: the unlit room 1.21 -> 0.73, the cluttered room 0.95 -> 0.89, the Cornell box 0.95 ->
-/// 0.92 of the reference's energy (`examples/ism_probe.rs`, with a bounce clamp of 0.25 in that
-/// run): hole filling dilates occluders.
-pub const PULL_LEVELS: usize = 2;
+pub use crate::precompute::ism::atlas_word::{PULL_LEVELS, level_base};
 
-/// Where level `level` (>= 1) of an atlas whose finest level has side `side` starts in the
-/// buffer of the coarse levels (words): every level follows the finer ones (`ism_hole_blocks`
-/// in `ism_lookup.wgsl`, `coarse_base` in `pull_push.wgsl`).
-pub const fn level_base(side: u32, level: u32) -> u32 {
-    let mut base = 0;
-    let mut l = 1;
-    while l < level {
-        base += (side >> l) * (side >> l);
-        l += 1;
-    }
-    base
-}
 /// Largest splat half-extent in texels (a 33^2 box), a bound on one thread's work for points
 /// right next to a VPL.
 const MAX_SPLAT_HALF_EXTENT: f32 = 16.0;

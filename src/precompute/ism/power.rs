@@ -26,8 +26,8 @@ pub fn receiver_radiance(phi: f32, albedo: f32, cos_s: f32, cos_r: f32, d2: f32,
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::gi::ism::halton::sample_set;
-    use crate::render::gi::ism::warp::ImportancePyramid;
+    use crate::precompute::ism::halton::sample_set;
+    use crate::precompute::ism::warp::ImportancePyramid;
 
     /// A point light above a floor: VPLs sampled by importance (any importance) carry, in sum,
     /// the floor's total reflected power, whatever the VPL count.

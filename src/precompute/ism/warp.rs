@@ -106,7 +106,7 @@ impl ImportancePyramid {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::gi::ism::halton::sample_set;
+    use crate::precompute::ism::halton::sample_set;
 
     #[test]
     fn samples_follow_the_importance() {

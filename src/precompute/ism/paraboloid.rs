@@ -6,7 +6,7 @@ use glam::{Vec2, Vec3};
 
 /// The VPL's local frame: tangent, bitangent, normal (Duff et al. 2017, branchless).
 pub fn frame(n: Vec3) -> (Vec3, Vec3, Vec3) {
-    let (t, b) = crate::precompute::brdf::basis(n);
+    let (t, b) = crate::scene::basis::basis(n);
     (t, b, n)
 }
 
