@@ -77,6 +77,9 @@ enum Command {
     /// Check MRT's reduced-space transfer on the CPU against a brute-force gather in the real
     /// geometry of a level: per block and per room, MRT's one-bounce light over the brute force's.
     ProbeMrt(cli::probe_mrt::ProbeMrtArgs),
+    /// Check ISM's maps and lookups against rays through the scene, per bounce set: false
+    /// occluders and holes, lit share, and the power each set hands the next.
+    ProbeIsm(cli::probe_ism::ProbeIsmArgs),
     /// Regenerate assets/cornell_box.gltf and projects/default.ron from code.
     #[command(hide = true)]
     GenerateAssets {
@@ -114,6 +117,7 @@ fn main() -> ExitCode {
         Some(Command::FitBlocks(args)) => cli::mrt::fit(&args).map(|s| print!("{s}")),
         Some(Command::Probe(args)) => cli::probe::run(&args).map(|s| print!("{s}")),
         Some(Command::ProbeMrt(args)) => cli::probe_mrt::run(&args).map(|s| print!("{s}")),
+        Some(Command::ProbeIsm(args)) => cli::probe_ism::run(&args).map(|s| print!("{s}")),
         None => bouncelab::app::run(args.project),
     };
     match result {

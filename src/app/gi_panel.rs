@@ -6,7 +6,59 @@
 use super::state::EditorState;
 use crate::render::Renderer;
 use crate::render::gi::registry;
-use crate::settings::{GiMode, Tonemap};
+use crate::settings::{GiMode, RenderSettings, Tonemap};
+
+/// A technique's settings section: draws it for `render`'s settings; true when the user asked
+/// for an action the panel carries out after the section (MRT's "fit proxy blocks").
+pub type Section = fn(&mut egui::Ui, &mut RenderSettings, &EditorState) -> bool;
+
+/// The editor's side of each row of [`registry::TECHNIQUES`], in the same order: the row's
+/// name and its settings section (`None`: the technique has no settings of its own here).
+/// Adding a technique adds its row here and its `gi_<name>.rs`; a test checks that the two
+/// tables agree.
+pub const SECTIONS: &[(&str, Option<Section>)] = &[
+    ("direct light", None),
+    (
+        "imperfect shadow maps (Ritschel 2008, Knecht 2009)",
+        Some(|ui, r, _| {
+            super::gi_ism::ism_ui(&mut r.ism, ui);
+            false
+        }),
+    ),
+    ("modular and delta radiance transfer (Loos 2011, 2012, 2015)", Some(mrt_section)),
+    (
+        "screen-space hierarchical GI (Soler et al. 2010)",
+        Some(|ui, r, _| {
+            super::gi_sshgi::sshgi_ui(&mut r.sshgi, ui);
+            false
+        }),
+    ),
+    (
+        "radiance cache splatting (Gautron et al. 2005)",
+        Some(|ui, r, _| {
+            super::gi_rcs::rcs_ui(&mut r.rcs, ui);
+            false
+        }),
+    ),
+    // The reference's settings are always shown (the inspector's comparison uses them).
+    ("reference path tracer (CPU)", None),
+];
+
+/// The settings section of the technique serving `mode`.
+fn technique_section(mode: GiMode) -> Option<Section> {
+    let index = registry::entry_index(mode)?;
+    SECTIONS.get(index).and_then(|(_, section)| *section)
+}
+
+/// MRT's section: its settings, with the scene's static objects and proxy blocks for the
+/// block overrides; true when "fit proxy blocks" was pressed.
+fn mrt_section(ui: &mut egui::Ui, render: &mut RenderSettings, state: &EditorState) -> bool {
+    let names = |role: crate::scene::ObjectRole| -> Vec<String> {
+        state.project.scene.objects().iter().filter(|o| o.role == role).map(|o| o.name.clone()).collect()
+    };
+    let (objects, blocks) = (names(crate::scene::ObjectRole::Static), names(crate::scene::ObjectRole::ProxyBlock));
+    super::gi_mrt::mrt_ui(&mut render.mrt, ui, &objects, &blocks)
+}
 
 /// Draws the GI panel and records setting changes as undo steps; `renderer` answers which
 /// modes can run at the viewport's `size`.
@@ -15,7 +67,7 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
     ui.label(egui::RichText::new("Mode").strong());
     for row in registry::modes() {
         let mode = row.mode;
-        let candidate = crate::settings::RenderSettings { mode, ..render.clone() };
+        let candidate = RenderSettings { mode, ..render.clone() };
         let available = match renderer {
             Some(r) => r.support(&candidate, size),
             None => Err("no renderer: the GPU is unavailable".to_owned()),
@@ -49,22 +101,7 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
         ui.add(egui::Slider::new(&mut s.normal_bias_texels, 0.0..=4.0).text("normal bias (texels)"))
             .on_hover_text("Receiver offset along the normal on top of the receiver-plane bias. Free; too large leaks light at contacts.");
     });
-    if matches!(render.mode, GiMode::Ism | GiMode::IsmRitschel) {
-        super::gi_ism::ism_ui(&mut render.ism, ui);
-    }
-    if render.mode == GiMode::Sshgi {
-        super::gi_sshgi::sshgi_ui(&mut render.sshgi, ui);
-    }
-    if render.mode == GiMode::Rcs {
-        super::gi_rcs::rcs_ui(&mut render.rcs, ui);
-    }
-    let names = |role: crate::scene::ObjectRole| -> Vec<String> {
-        state.project.scene.objects().iter().filter(|o| o.role == role).map(|o| o.name.clone()).collect()
-    };
-    let fit = render.mode == GiMode::Mrt && {
-        let (objects, blocks) = (names(crate::scene::ObjectRole::Static), names(crate::scene::ObjectRole::ProxyBlock));
-        super::gi_mrt::mrt_ui(&mut render.mrt, ui, &objects, &blocks)
-    };
+    let fit = technique_section(render.mode).is_some_and(|section| section(ui, &mut render, state));
     super::gi_vo::vo_ui(&mut render.vo, render.mode, ui);
     if fit {
         match super::edits::fit_proxy_blocks(&mut state.project, &mut state.history) {
@@ -132,5 +169,20 @@ fn technique_summary(ui: &mut egui::Ui, renderer: &Renderer, state: &EditorState
     if !memory.is_empty() {
         ui.label(format!("GPU memory: {}", memory.join(", ")))
             .on_hover_text("Buffers and textures each technique holds; a mode that is not active holds none.");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_technique_row_has_its_panel_row_in_the_same_order() {
+        let rows: Vec<&str> = registry::TECHNIQUES.iter().map(|t| t.name).collect();
+        let panels: Vec<&str> = SECTIONS.iter().map(|(name, _)| *name).collect();
+        assert_eq!(rows, panels, "app::gi_panel::SECTIONS must follow render::gi::registry::TECHNIQUES");
+        for mode in [GiMode::Ism, GiMode::IsmRitschel, GiMode::Mrt, GiMode::Sshgi, GiMode::Rcs] {
+            assert!(technique_section(mode).is_some(), "{} has settings of its own", mode.name());
+        }
     }
 }

@@ -113,6 +113,20 @@ struct PointsCache {
     points: crate::precompute::sample_points::SamplePoints,
 }
 
+/// What the stages of [`Viewport::ui`] read of this UI frame's view.
+struct UiFrame {
+    /// The image's screen rectangle (egui points) and its response.
+    rect: egui::Rect,
+    response: egui::Response,
+    /// Pixels per point, and the view's size in physical pixels.
+    ppp: f32,
+    size: (u32, u32),
+    /// The camera as the frame began, looking at `rect`.
+    view: View,
+    /// The pointer relative to `rect`'s corner (points).
+    mouse: Option<Vec2>,
+}
+
 const AXIS_COLOURS: [egui::Color32; 3] =
     [egui::Color32::from_rgb(230, 70, 70), egui::Color32::from_rgb(80, 200, 80), egui::Color32::from_rgb(80, 120, 240)];
 
@@ -425,6 +439,20 @@ impl Viewport {
             ui.label(format!("Renderer unavailable: {e}"));
             return;
         }
+        self.toolbar(ui, state);
+        let frame = self.allocate(ui, state);
+        let hovered_axis = self.gizmo_handles(ui, state, &frame);
+        self.drag(ui, state, &frame);
+        self.release(ui, state, &frame.response);
+        self.zoom(ui, &frame.response);
+        self.pick(state, &frame);
+        self.write_camera(state);
+        self.count_frame(&frame);
+        self.paint(ui, state, frame.rect, hovered_axis);
+    }
+
+    /// The toolbar: gizmo mode and options, overlay toggles, the GI mode and the preview menu.
+    fn toolbar(&mut self, ui: &mut egui::Ui, state: &EditorState) {
         ui.horizontal(|ui| {
             ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Translate, "Move (G)");
             ui.selectable_value(&mut self.gizmo.mode, GizmoMode::Rotate, "Rotate (R)");
@@ -439,6 +467,10 @@ impl Viewport {
             ui.label(format!("mode: {}", state.project.render.mode.name()));
             self.preview_menu(ui);
         });
+    }
+
+    /// Takes the remaining space for the image and reads its size, camera and pointer.
+    fn allocate(&mut self, ui: &mut egui::Ui, state: &EditorState) -> UiFrame {
         let (rect, response) = ui.allocate_exact_size(ui.available_size(), egui::Sense::click_and_drag());
         self.rect = Some(rect);
         let ppp = ui.ctx().pixels_per_point();
@@ -448,23 +480,31 @@ impl Viewport {
             .hover_pos()
             .or(response.interact_pointer_pos())
             .map(|p| Vec2::new(p.x - rect.min.x, p.y - rect.min.y));
+        UiFrame { rect, response, ppp, size, view, mouse }
+    }
 
-        // Gizmo handles of the selection; a drag starts where the button went down.
+    /// The gizmo handle (index and world axis) of the selection at view position `m`.
+    fn axis_at(view: &View, target: Option<(Vec3, Quat)>, local: bool, m: Vec2) -> Option<(usize, Vec3)> {
+        let (origin, rotation) = target?;
+        let len = view.world_size(origin, 70.0);
+        gizmo::axes(rotation, local).into_iter().enumerate().find(|(_, axis)| {
+            matches!((view.project(origin), view.project(origin + *axis * len)), (Some(a), Some(b)) if gizmo::segment_distance(m, a, b) < 8.0)
+        })
+    }
+
+    /// Gizmo handles of the selection: returns the hovered one, and starts a drag where the
+    /// button went down on one.
+    fn gizmo_handles(&mut self, ui: &egui::Ui, state: &EditorState, f: &UiFrame) -> Option<(usize, Vec3)> {
+        let (rect, view) = (f.rect, &f.view);
         let target = Self::target(state);
-        let axis_at = |m: Vec2| -> Option<(usize, Vec3)> {
-            let (origin, rotation) = target?;
-            let len = view.world_size(origin, 70.0);
-            gizmo::axes(rotation, self.gizmo.local).into_iter().enumerate().find(|(_, axis)| {
-                matches!((view.project(origin), view.project(origin + *axis * len)), (Some(a), Some(b)) if gizmo::segment_distance(m, a, b) < 8.0)
-            })
-        };
-        let hovered_axis = mouse.and_then(axis_at);
-        if response.drag_started_by(egui::PointerButton::Primary) {
+        let local = self.gizmo.local;
+        let hovered_axis = f.mouse.and_then(|m| Self::axis_at(view, target, local, m));
+        if f.response.drag_started_by(egui::PointerButton::Primary) {
             let press = ui.input(|i| i.pointer.press_origin()).map(|p| Vec2::new(p.x - rect.min.x, p.y - rect.min.y));
             if let (Some(p), Some((origin, rotation))) = (press, target)
-                && let Some((_, axis)) = axis_at(p)
+                && let Some((_, axis)) = Self::axis_at(view, target, local, p)
             {
-                self.drag = Drag::begin(&view, self.gizmo.mode, axis, origin, rotation, p).map(|mut d| {
+                self.drag = Drag::begin(view, self.gizmo.mode, axis, origin, rotation, p).map(|mut d| {
                     if let Selection::Object(i) = state.selection
                         && let Some(o) = state.project.scene.objects().get(i)
                     {
@@ -474,84 +514,122 @@ impl Viewport {
                 });
             }
         }
-        if let (Some(drag), Some(m)) = (self.drag, mouse)
-            && response.dragged_by(egui::PointerButton::Primary)
+        hovered_axis
+    }
+
+    /// A primary drag of a gizmo handle edits the selection; any other drag moves the camera.
+    fn drag(&mut self, ui: &egui::Ui, state: &mut EditorState, f: &UiFrame) {
+        if let (Some(drag), Some(m)) = (self.drag, f.mouse)
+            && f.response.dragged_by(egui::PointerButton::Primary)
         {
-            Self::apply_gizmo(state, &drag, &view, m, &self.gizmo);
+            Self::apply_gizmo(state, &drag, &f.view, m, &self.gizmo);
         } else {
-            let d = response.drag_delta();
-            if response.dragged_by(egui::PointerButton::Primary) {
-                self.orbit.rotate(d.x, d.y);
-            } else if response.dragged_by(egui::PointerButton::Middle)
-                || (response.dragged_by(egui::PointerButton::Secondary) && ui.input(|i| i.modifiers.shift))
-            {
-                self.orbit.pan(d.x, d.y, rect.height(), state.project.scene.camera().yfov);
-            } else if response.dragged_by(egui::PointerButton::Secondary) {
-                // Fly: look around with the right button, WASD/QE to move.
-                self.orbit.rotate(d.x, d.y);
-                let step = self.orbit.distance * 0.02;
-                let r = self.orbit.rotation();
-                let mut mv = Vec3::ZERO;
-                ui.input(|i| {
-                    for (key, dir) in [
-                        (egui::Key::W, Vec3::NEG_Z),
-                        (egui::Key::S, Vec3::Z),
-                        (egui::Key::A, Vec3::NEG_X),
-                        (egui::Key::D, Vec3::X),
-                        (egui::Key::Q, Vec3::NEG_Y),
-                        (egui::Key::E, Vec3::Y),
-                    ] {
-                        if i.key_down(key) {
-                            mv += r * dir;
-                        }
-                    }
-                });
-                self.orbit.target += mv * step;
-            }
+            self.navigate(ui, state, f);
         }
+    }
+
+    /// Camera drags: orbit (primary), pan (middle, or shift and secondary), fly (secondary).
+    fn navigate(&mut self, ui: &egui::Ui, state: &EditorState, f: &UiFrame) {
+        let response = &f.response;
+        let d = response.drag_delta();
+        if response.dragged_by(egui::PointerButton::Primary) {
+            self.orbit.rotate(d.x, d.y);
+        } else if response.dragged_by(egui::PointerButton::Middle)
+            || (response.dragged_by(egui::PointerButton::Secondary) && ui.input(|i| i.modifiers.shift))
+        {
+            self.orbit.pan(d.x, d.y, f.rect.height(), state.project.scene.camera().yfov);
+        } else if response.dragged_by(egui::PointerButton::Secondary) {
+            self.fly(ui, d);
+        }
+    }
+
+    /// Fly: look around with the right button (drag `d`), WASD/QE to move.
+    fn fly(&mut self, ui: &egui::Ui, d: egui::Vec2) {
+        self.orbit.rotate(d.x, d.y);
+        let step = self.orbit.distance * 0.02;
+        let r = self.orbit.rotation();
+        let mut mv = Vec3::ZERO;
+        ui.input(|i| {
+            for (key, dir) in [
+                (egui::Key::W, Vec3::NEG_Z),
+                (egui::Key::S, Vec3::Z),
+                (egui::Key::A, Vec3::NEG_X),
+                (egui::Key::D, Vec3::X),
+                (egui::Key::Q, Vec3::NEG_Y),
+                (egui::Key::E, Vec3::Y),
+            ] {
+                if i.key_down(key) {
+                    mv += r * dir;
+                }
+            }
+        });
+        self.orbit.target += mv * step;
+    }
+
+    /// Without a drag: ends the gizmo drag, and commits the edit once no button is down.
+    fn release(&mut self, ui: &egui::Ui, state: &mut EditorState, response: &egui::Response) {
         if !response.dragged() {
             self.drag = None;
             if ui.input(|i| !i.pointer.any_down()) {
                 state.history.commit(&state.project);
             }
         }
+    }
+
+    /// Scrolling over the view zooms the camera.
+    fn zoom(&mut self, ui: &egui::Ui, response: &egui::Response) {
         if response.hovered() {
             let scroll = ui.input(|i| i.smooth_scroll_delta.y);
             if scroll != 0.0 {
                 self.orbit.zoom(scroll);
             }
         }
-        // Picking: light icons first, then the object-id buffer.
-        if response.clicked_by(egui::PointerButton::Primary)
-            && let Some(m) = mouse
+    }
+
+    /// Picking on a primary click: light icons first, then the object-id buffer.
+    fn pick(&mut self, state: &mut EditorState, f: &UiFrame) {
+        if f.response.clicked_by(egui::PointerButton::Primary)
+            && let Some(m) = f.mouse
         {
             let light = (0..state.project.scene.lights().len()).find(|&i| {
                 overlays::light_anchor(&state.project.scene, i)
-                    .and_then(|p| view.project(p))
+                    .and_then(|p| f.view.project(p))
                     .is_some_and(|s| s.distance(m) < 10.0)
             });
             state.selection = match light {
                 Some(i) => Selection::Light(i),
-                None => match self.picker.pick(&state.project.scene, m.x * ppp, m.y * ppp, size) {
+                None => match self.picker.pick(&state.project.scene, m.x * f.ppp, m.y * f.ppp, f.size) {
                     Some(i) => Selection::Object(i),
                     None => Selection::None,
                 },
             };
         }
-        // Camera: only written when the user moved it, so undo history stays clean.
+    }
+
+    /// Camera: only written when the user moved it, so undo history stays clean.
+    fn write_camera(&self, state: &mut EditorState) {
         let mut cam = *state.project.scene.camera();
         self.orbit.apply(&mut cam);
         if cam != *state.project.scene.camera() {
             state.project.scene.set_camera(cam);
         }
-        self.size = size;
-        self.interacting = response.dragged();
+    }
+
+    /// Records the view size and interaction, counts the UI frame and its interval, logs stats.
+    fn count_frame(&mut self, f: &UiFrame) {
+        self.size = f.size;
+        self.interacting = f.response.dragged();
         self.ui_frames += 1;
         let now = Instant::now();
         let ui_ms = self.last.map_or(0.0, |l| (now - l).as_secs_f64() * 1e3);
         self.last = Some(now);
         self.timings.push_ui(ui_ms);
         self.log_stats();
+    }
+
+    /// Paints the latest image, the status text, the scene overlays, the sample points, the
+    /// technique's markers and the gizmo, from the camera as this frame left it.
+    fn paint(&mut self, ui: &egui::Ui, state: &EditorState, rect: egui::Rect, hovered_axis: Option<(usize, Vec3)>) {
         let painter = ui.painter_at(rect);
         let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
         if let Some((t, _)) = &self.texture {
@@ -563,6 +641,12 @@ impl Viewport {
         if self.gizmo.show_points {
             self.draw_points(&painter, rect, &view, state);
         }
+        self.draw_markers(&painter, rect, &view);
+        self.draw_gizmo(&painter, rect, &view, state, hovered_axis);
+    }
+
+    /// The technique's markers while the overlays are on; forgets them when they are off.
+    fn draw_markers(&mut self, painter: &egui::Painter, rect: egui::Rect, view: &View) {
         if self.gizmo.show_overlays {
             // Turned on over an idle view (a converged cache renders no more frames): read the
             // markers once now.
@@ -572,35 +656,47 @@ impl Viewport {
                 self.overlays = view.renderer().overlays();
                 self.overlays_read = true;
             }
-            overlays::draw_markers(&painter, rect, &view, &self.overlays);
+            overlays::draw_markers(painter, rect, view, &self.overlays);
         } else {
             self.overlays.clear();
             self.overlays_read = false;
         }
-        if let Some((origin, rotation)) = Self::target(state) {
-            let len = view.world_size(origin, 70.0);
-            for (k, axis) in gizmo::axes(rotation, self.gizmo.local).into_iter().enumerate() {
-                if let (Some(a), Some(b)) = (view.project(origin), view.project(origin + axis * len)) {
-                    let hot = hovered_axis.is_some_and(|(h, _)| h == k) || self.drag.is_some_and(|d| d.axis == axis);
-                    let stroke = egui::Stroke::new(if hot { 4.0 } else { 2.5 }, AXIS_COLOURS[k]);
-                    let (pa, pb) = (rect.min + egui::vec2(a.x, a.y), rect.min + egui::vec2(b.x, b.y));
-                    painter.line_segment([pa, pb], stroke);
-                    match self.gizmo.mode {
-                        GizmoMode::Translate => {
-                            painter.circle_filled(pb, 4.0, AXIS_COLOURS[k]);
-                        }
-                        GizmoMode::Rotate => {
-                            painter.circle_stroke(pb, 6.0, stroke);
-                        }
-                        GizmoMode::Scale => {
-                            painter.rect_filled(
-                                egui::Rect::from_center_size(pb, egui::vec2(8.0, 8.0)),
-                                0.0,
-                                AXIS_COLOURS[k],
-                            );
-                        }
-                    }
-                }
+    }
+
+    /// The selection's gizmo: an axis line per handle (thicker when hovered or dragged) and the
+    /// mode's end shape.
+    fn draw_gizmo(
+        &self,
+        painter: &egui::Painter,
+        rect: egui::Rect,
+        view: &View,
+        state: &EditorState,
+        hovered_axis: Option<(usize, Vec3)>,
+    ) {
+        let Some((origin, rotation)) = Self::target(state) else { return };
+        let len = view.world_size(origin, 70.0);
+        for (k, axis) in gizmo::axes(rotation, self.gizmo.local).into_iter().enumerate() {
+            if let (Some(a), Some(b)) = (view.project(origin), view.project(origin + axis * len)) {
+                let hot = hovered_axis.is_some_and(|(h, _)| h == k) || self.drag.is_some_and(|d| d.axis == axis);
+                let stroke = egui::Stroke::new(if hot { 4.0 } else { 2.5 }, AXIS_COLOURS[k]);
+                let (pa, pb) = (rect.min + egui::vec2(a.x, a.y), rect.min + egui::vec2(b.x, b.y));
+                painter.line_segment([pa, pb], stroke);
+                self.draw_handle_end(painter, pb, k, stroke);
+            }
+        }
+    }
+
+    /// The end of gizmo handle `k` at `pb`: a dot (move), a ring (rotate) or a square (scale).
+    fn draw_handle_end(&self, painter: &egui::Painter, pb: egui::Pos2, k: usize, stroke: egui::Stroke) {
+        match self.gizmo.mode {
+            GizmoMode::Translate => {
+                painter.circle_filled(pb, 4.0, AXIS_COLOURS[k]);
+            }
+            GizmoMode::Rotate => {
+                painter.circle_stroke(pb, 6.0, stroke);
+            }
+            GizmoMode::Scale => {
+                painter.rect_filled(egui::Rect::from_center_size(pb, egui::vec2(8.0, 8.0)), 0.0, AXIS_COLOURS[k]);
             }
         }
     }

@@ -41,6 +41,35 @@ pub(crate) fn measure(
     Ok(Row { mode, size, frame_ms: timed.frame_ms, passes: timed.passes })
 }
 
+/// A technique's section of `docs/BENCHMARKS.md`: appends its tables (`quick`: fewer sizes and
+/// frames) measured on `ctx`, the default project at hand.
+type BenchSection = fn(&mut String, &GpuContext, &Project, bool) -> anyhow::Result<()>;
+
+/// Each row of `registry::TECHNIQUES`, in the same order: its name and its sections (a test
+/// checks that the tables agree, so a new technique cannot be left out of the benchmark by
+/// accident).
+const SECTIONS: &[(&str, &[BenchSection])] = &[
+    ("direct light", &[]),
+    ("imperfect shadow maps (Ritschel 2008, Knecht 2009)", &[ism_rows]),
+    (
+        "modular and delta radiance transfer (Loos 2011, 2012, 2015)",
+        &[
+            |md, _, _, quick| super::bench_mrt::mrt_rows(md, quick),
+            |md, ctx, _, quick| super::bench_mrt::mrt_runtime_rows(md, ctx, quick),
+            |md, ctx, _, quick| super::bench_drt::drt_rows(md, ctx, quick),
+        ],
+    ),
+    ("screen-space hierarchical GI (Soler et al. 2010)", &[super::bench_sshgi::sshgi_rows]),
+    ("radiance cache splatting (Gautron et al. 2005)", &[super::bench_rcs::rcs_rows]),
+    (
+        "reference path tracer (CPU)",
+        &[|md, _, project, quick| {
+            reference_rows(md, project, quick);
+            Ok(())
+        }],
+    ),
+];
+
 /// Runs the benchmark and writes `out` (normally `docs/BENCHMARKS.md`).
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
     crate::output_path::check(out, crate::output_path::MARKDOWN, &[])?;
@@ -93,13 +122,11 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<String> {
     for (filter, r) in &ism_rows_timed {
         let _ = writeln!(md, "| {filter} | {}x{} | {:.2} | {} |", r.size.0, r.size.1, r.frame_ms, passes(r));
     }
-    reference_rows(&mut md, &project, quick);
-    ism_rows(&mut md, &ctx, &project, quick)?;
-    super::bench_sshgi::sshgi_rows(&mut md, &ctx, &project, quick)?;
-    super::bench_mrt::mrt_rows(&mut md, quick)?;
-    super::bench_mrt::mrt_runtime_rows(&mut md, &ctx, quick)?;
-    super::bench_drt::drt_rows(&mut md, &ctx, quick)?;
-    super::bench_rcs::rcs_rows(&mut md, &ctx, &project, quick)?;
+    for (_, sections) in SECTIONS {
+        for section in *sections {
+            section(&mut md, &ctx, &project, quick)?;
+        }
+    }
     // Anything after the manual marker (hand-run external comparisons) survives a rerun.
     if let Ok(old) = std::fs::read_to_string(out)
         && let Some(i) = old.find(MANUAL_MARKER)
@@ -236,4 +263,17 @@ fn ism_rows(md: &mut String, ctx: &GpuContext, project: &Project, quick: bool) -
     let (ms, flip, rel, lum) = run(GiMode::Direct, &|_| {})?;
     let _ = writeln!(md, "| baseline | - | direct | {:.2} | {flip:.4} | {rel:.4} | {lum:.3} |", ms / direct_ms);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::SECTIONS;
+    use crate::render::gi::registry::TECHNIQUES;
+
+    #[test]
+    fn every_technique_row_has_its_bench_row_in_the_same_order() {
+        let rows: Vec<&str> = TECHNIQUES.iter().map(|t| t.name).collect();
+        let bench: Vec<&str> = SECTIONS.iter().map(|(name, _)| *name).collect();
+        assert_eq!(rows, bench, "cli::bench::SECTIONS must follow render::gi::registry::TECHNIQUES");
+    }
 }

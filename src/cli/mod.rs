@@ -12,6 +12,7 @@ pub mod compare;
 pub mod generate;
 pub mod mrt;
 pub mod probe;
+pub mod probe_ism;
 pub mod probe_mrt;
 pub mod progress;
 pub mod quality;

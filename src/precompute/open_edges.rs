@@ -50,7 +50,7 @@ pub struct ClipEdge {
     /// into extends past the edge (`solid_past`): a disk may hang that far into it and no
     /// farther. A partition's face hung 1.2 m past the 0.15 m corridor wall it butts into and
     /// shadowed the corridor beyond (the held-out offices' lamp lit its far end 0.73 of the
-    /// rays' light, `ism_oracle`). 0 where the edge is open.
+    /// rays' light, `bouncelab probe-ism`). 0 where the edge is open.
     pub overhang: f32,
 }
 

@@ -66,6 +66,27 @@ struct FrameRequest<'a> {
     size: (u32, u32),
 }
 
+/// What the recording stages of one frame share.
+struct FramePlan<'a> {
+    scene: &'a Scene,
+    settings: &'a RenderSettings,
+    size: (u32, u32),
+    /// The packed lights of this frame.
+    lights: &'a [GpuLight],
+    /// This frame's constants.
+    frame: &'a FrameUniforms,
+    needs: FrameNeeds,
+}
+
+/// The shared inputs this frame's technique asked for.
+#[derive(Clone, Copy)]
+struct FrameNeeds {
+    /// The technique reads the depth/normal pyramid.
+    pyramid: bool,
+    /// The pyramid is recorded (for the technique or for the inspector).
+    wants_pyramid: bool,
+}
+
 /// Owns every pipeline and per-view resource; long-lived.
 pub struct Renderer {
     device: wgpu::Device,
@@ -198,29 +219,59 @@ impl Renderer {
         }
     }
 
+    /// The frame in stages: check the request, bring the scene and lights to the GPU, prepare
+    /// the technique, then record and submit G-buffer -> shadow maps -> direct light ->
+    /// [pyramid] -> GI -> [obscurance] -> composite -> tonemap.
     fn render_inner(
         &mut self,
         request: FrameRequest<'_>,
         then: &mut dyn FnMut(&mut wgpu::CommandEncoder, &ViewTargets),
     ) -> Result<(), RenderError> {
         let FrameRequest { scene, settings, size } = request;
+        self.check_request(settings, size)?;
+        self.ensure_size(size);
+        self.sync_scene(scene);
+        // Shadow layers, packed lights and frame constants.
+        let assignment = self.shadows.prepare(&self.device, scene, &settings.shadows);
+        self.upload_lights(&assignment.lights);
+        let frame = self.write_frame_uniforms(scene, settings, size, assignment.lights.len() as u32);
+        let needs = self.prepare_technique(scene, settings, size)?;
+        if self.scene_gpu.is_none() || self.sized.is_none() {
+            return Ok(());
+        }
+        self.ensure_lighting_inputs();
+        let plan = FramePlan { scene, settings, size, lights: &assignment.lights, frame: &frame, needs };
+        self.record_frame(&plan, then)
+    }
+
+    /// Settings in range, a size the adapter can hold, a mode this adapter supports.
+    fn check_request(&self, settings: &RenderSettings, size: (u32, u32)) -> Result<(), RenderError> {
         settings.validate()?;
         let max = self.device.limits().max_texture_dimension_2d;
         if size.0 == 0 || size.1 == 0 || size.0 > max || size.1 > max {
             return Err(RenderError::Size(size.0, size.1, max));
         }
-        self.support(settings, size)
-            .map_err(|reason| RenderError::Unsupported { mode: settings.mode.name(), reason })?;
-        self.ensure_size(size);
+        self.support(settings, size).map_err(|reason| RenderError::Unsupported { mode: settings.mode.name(), reason })
+    }
+
+    /// Uploads the scene the first time, and what changed since the last frame after that.
+    fn sync_scene(&mut self, scene: &Scene) {
         let (device, queue) = (&self.device.clone(), &self.queue.clone());
         match &mut self.scene_gpu {
             Some(gpu) => gpu.sync(device, queue, &self.layouts, scene),
             None => self.scene_gpu = Some(SceneGpu::new(device, queue, &self.layouts, scene)),
         }
+    }
 
-        // Shadow layers, packed lights and frame constants.
-        let assignment = self.shadows.prepare(device, scene, &settings.shadows);
-        self.upload_lights(&assignment.lights);
+    /// Writes this frame's constants (camera, previous camera, size, light and shadow counts)
+    /// and advances the frame index.
+    fn write_frame_uniforms(
+        &mut self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        size: (u32, u32),
+        light_count: u32,
+    ) -> FrameUniforms {
         let camera = scene.camera();
         let clip_from_world = camera.clip_from_view(size.0 as f32 / size.1 as f32) * camera.view_from_world();
         let prev = self.prev_clip_from_world.unwrap_or(clip_from_world);
@@ -232,19 +283,29 @@ impl Renderer {
             camera_position: camera.position.extend(1.0).to_array(),
             size: [size.0 as f32, size.1 as f32, 1.0 / size.0 as f32, 1.0 / size.1 as f32],
             params: [
-                assignment.lights.len() as u32,
+                light_count,
                 self.frame_index,
                 settings.shadows.pcf_radius,
                 self.shadows.layer_matrices.len() as u32,
             ],
             shadow: [settings.shadows.normal_bias_texels, res, 1.0 / res, 0.0],
         };
-        queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
+        self.queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
         self.prev_clip_from_world = Some(clip_from_world);
         self.frame_index = self.frame_index.wrapping_add(1);
+        frame
+    }
 
-        // The active technique: created on first use, told what changed, prepared on the CPU.
+    /// The active technique: created on first use, told what changed, prepared on the CPU; the
+    /// shared inputs it needs (the pyramid, the previous frame) kept or freed.
+    fn prepare_technique(
+        &mut self,
+        scene: &Scene,
+        settings: &RenderSettings,
+        size: (u32, u32),
+    ) -> Result<FrameNeeds, RenderError> {
         let reasons = self.changes.detect(scene, settings, size);
+        let device = &self.device.clone();
         let technique = self.techniques.activate(settings.mode, device, &self.layouts)?;
         for reason in reasons {
             technique.reset(reason);
@@ -263,10 +324,12 @@ impl Renderer {
             let usage = U::TEXTURE_BINDING | U::COPY_DST | U::COPY_SRC;
             self.previous = Some(Target::new(device, "previous frame radiance", size, formats::HDR, usage));
         }
+        Ok(FrameNeeds { pyramid: needs.pyramid, wants_pyramid })
+    }
 
-        let (Some(gpu), Some(sized)) = (&self.scene_gpu, &self.sized) else {
-            return Ok(());
-        };
+    /// The direct-lighting pass's inputs (frame, lights, shadow maps), rebuilt when one of them
+    /// was replaced.
+    fn ensure_lighting_inputs(&mut self) {
         let generation = self.shadows.generation * 1_000_003 + self.inputs_generation;
         if self.lighting_inputs.as_ref().is_none_or(|(g, _)| *g != generation) {
             let inputs = LightingInputs {
@@ -275,85 +338,120 @@ impl Renderer {
                 shadow_views: &self.shadow_views_buffer,
                 shadow_maps: &self.shadows.array_view,
             };
-            self.lighting_inputs = Some((generation, self.lighting.inputs_bind_group(device, &inputs)));
+            self.lighting_inputs = Some((generation, self.lighting.inputs_bind_group(&self.device, &inputs)));
         }
-        let Some((_, lighting_inputs)) = &self.lighting_inputs else {
-            return Ok(());
-        };
+    }
 
-        // G-buffer -> shadow maps -> direct light -> [pyramid] -> GI -> composite -> tonemap.
+    /// Records the frame into one command buffer (`then` adds its own commands last) and
+    /// submits it.
+    fn record_frame(
+        &mut self,
+        plan: &FramePlan<'_>,
+        then: &mut dyn FnMut(&mut wgpu::CommandEncoder, &ViewTargets),
+    ) -> Result<(), RenderError> {
         let mut encoder =
-            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame encoder") });
+            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame encoder") });
         self.timer.begin_frame();
+        self.record_direct(&mut encoder, plan);
+        self.output = self.record_gi(&mut encoder, plan)?;
+        self.record_post(&mut encoder, plan);
+        if let Some(sized) = &self.sized {
+            then(&mut encoder, &sized.targets);
+        }
+        self.timer.resolve(&mut encoder);
+        self.queue.submit([encoder.finish()]);
+        self.timer.after_submit();
+        Ok(())
+    }
+
+    /// G-buffer, shadow maps, direct light and (when wanted) the depth/normal pyramid.
+    fn record_direct(&mut self, encoder: &mut wgpu::CommandEncoder, plan: &FramePlan<'_>) {
+        let (Some(gpu), Some(sized), Some((_, lighting_inputs))) =
+            (&self.scene_gpu, &self.sized, &self.lighting_inputs)
+        else {
+            return;
+        };
+        let (device, queue) = (&self.device, &self.queue);
         self.gbuffer.record(
-            &mut encoder,
+            encoder,
             &sized.targets,
             &self.frame_bind_group,
             gpu,
             self.timer.scope("gbuffer").map(|t| t.render_writes(true, true)),
         );
         let shadow_ts = if self.shadows.layer_matrices.is_empty() { None } else { self.timer.scope("shadows") };
-        self.shadows.record(device, queue, &mut encoder, gpu, shadow_ts);
+        self.shadows.record(device, queue, encoder, gpu, shadow_ts);
         self.lighting.record(
-            &mut encoder,
+            encoder,
             lighting_inputs,
             &sized.lighting_targets,
-            size,
+            plan.size,
             self.timer.scope("lighting"),
         );
-        if wants_pyramid {
+        if plan.needs.wants_pyramid {
             let ts = self.timer.scope("pyramid");
-            self.pyramid.record(device, &mut encoder, &self.frame_buffer, &sized.targets, ts);
+            self.pyramid.record(device, encoder, &self.frame_buffer, &sized.targets, ts);
         }
+    }
+
+    /// The active technique's passes when it is ready (nothing while it prepares on the CPU).
+    fn record_gi(&mut self, encoder: &mut wgpu::CommandEncoder, plan: &FramePlan<'_>) -> Result<GiOutput, RenderError> {
+        let settings = plan.settings;
         let technique = self.techniques.active_mut().ok_or_else(|| RenderError::Unsupported {
             mode: settings.mode.name(),
             reason: "no active technique".into(),
         })?;
-        self.output = match self.readiness {
-            Readiness::Ready => {
-                let mut inputs = GiInputs {
-                    device,
-                    queue,
-                    encoder: &mut encoder,
-                    scene,
-                    scene_gpu: gpu,
-                    layouts: &self.layouts,
-                    mode: settings.mode,
-                    settings,
-                    frame_buffer: &self.frame_buffer,
-                    frame: &frame,
-                    lights: GpuLights {
-                        packed: &assignment.lights,
-                        buffer: &self.lights_buffer,
-                        shadow_views: &self.shadow_views_buffer,
-                        shadow_maps: &self.shadows.array_view,
-                        shadow_matrices: &self.shadows.layer_matrices,
-                    },
-                    targets: &sized.targets,
-                    previous: self.previous.as_ref(),
-                    pyramid: self.pyramid.levels().filter(|_| needs.pyramid).map(|levels| PyramidView { levels }),
-                    frame_index: self.frame_index,
-                    timer: &mut self.timer,
-                };
-                technique.render(&mut inputs)?
-            }
-            Readiness::Pending { .. } => GiOutput::Nothing,
+        let (Readiness::Ready, Some(gpu), Some(sized)) = (&self.readiness, &self.scene_gpu, &self.sized) else {
+            return Ok(GiOutput::Nothing);
         };
+        let mut inputs = GiInputs {
+            device: &self.device,
+            queue: &self.queue,
+            encoder,
+            scene: plan.scene,
+            scene_gpu: gpu,
+            layouts: &self.layouts,
+            mode: settings.mode,
+            settings,
+            frame_buffer: &self.frame_buffer,
+            frame: plan.frame,
+            lights: GpuLights {
+                packed: plan.lights,
+                buffer: &self.lights_buffer,
+                shadow_views: &self.shadow_views_buffer,
+                shadow_maps: &self.shadows.array_view,
+                shadow_matrices: &self.shadows.layer_matrices,
+            },
+            targets: &sized.targets,
+            previous: self.previous.as_ref(),
+            pyramid: self.pyramid.levels().filter(|_| plan.needs.pyramid).map(|levels| PyramidView { levels }),
+            frame_index: self.frame_index,
+            timer: &mut self.timer,
+        };
+        technique.render(&mut inputs)
+    }
+
+    /// After the technique: an empty indirect term cleared (the inspector stays honest),
+    /// obscurance where it applies, composite, tonemap, and the previous frame kept when a
+    /// technique reprojects it.
+    fn record_post(&mut self, encoder: &mut wgpu::CommandEncoder, plan: &FramePlan<'_>) {
+        let Some(sized) = &self.sized else { return };
+        let (settings, size) = (plan.settings, plan.size);
         if self.output == GiOutput::Nothing {
             // Keep the inspector honest: nothing was written, so `indirect` shows black.
-            clear(&mut encoder, &sized.targets.indirect.view);
+            clear(encoder, &sized.targets.indirect.view);
         }
         let obscurance = self.output != GiOutput::Nothing
             && self.output != GiOutput::Complete
             && registry::obscurance_applies(settings.mode, &settings.vo);
         if obscurance {
-            self.vo.set(queue, &settings.vo);
-            self.vo.record(&mut encoder, &sized.vo, &mut self.timer);
+            self.vo.set(&self.queue, &settings.vo);
+            self.vo.record(encoder, &sized.vo, &mut self.timer);
         }
         let ts = self.timer.scope("composite");
         let what = super::composite::Composite { output: self.output, obscurance };
-        self.composite.record(queue, &mut encoder, &sized.composite, what, size, ts);
-        self.tonemap.record(queue, &mut encoder, &sized.tonemap, &settings.view, size, self.timer.scope("tonemap"));
+        self.composite.record(&self.queue, encoder, &sized.composite, what, size, ts);
+        self.tonemap.record(&self.queue, encoder, &sized.tonemap, &settings.view, size, self.timer.scope("tonemap"));
         if let Some(previous) = &self.previous {
             encoder.copy_texture_to_texture(
                 sized.targets.hdr.texture.as_image_copy(),
@@ -361,11 +459,6 @@ impl Renderer {
                 previous.texture.size(),
             );
         }
-        then(&mut encoder, &sized.targets);
-        self.timer.resolve(&mut encoder);
-        queue.submit([encoder.finish()]);
-        self.timer.after_submit();
-        Ok(())
     }
 
     fn ensure_size(&mut self, size: (u32, u32)) {

@@ -501,3 +501,87 @@ fn probe_mrt_compares_each_block_with_the_brute_force() {
     assert!(ratio.is_finite() && (0.5..=2.0).contains(&ratio), "MRT / brute force {ratio}:\n{text}");
     assert!(text.contains("| block | shape |"), "{text}");
 }
+
+#[test]
+fn probe_judges_a_technique_and_direct_against_the_reference_and_refuses_bad_flags() {
+    if !has_gpu() {
+        return;
+    }
+    let o = bouncelab(&[
+        "probe",
+        "cornell",
+        "--mode",
+        "ism",
+        "--settings",
+        "(vpl_count: 16, bounces: 2, interleave: 2)",
+        "--frames",
+        "3",
+        "--average-from",
+        "1",
+        "--ssaa",
+        "1",
+        "--trace",
+        "--objects",
+    ]);
+    assert!(o.status.success(), "probe cornell: {}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let line = text.lines().find(|l| l.starts_with("cornell")).unwrap_or_else(|| panic!("a cornell line in {text}"));
+    let number = |key: &str| -> f64 {
+        line.split_once(key)
+            .and_then(|(_, rest)| rest.split_whitespace().next())
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("{key} in {line:?}"))
+    };
+    // Two bounces of a handful of VPLs: more light than `direct`, not more than the reference
+    // and a half, and a smaller FLIP than `direct`'s.
+    let (energy, flip, direct_flip) = (number("energy"), number("FLIP"), number("/ direct"));
+    assert!((0.6..1.5).contains(&energy), "energy {energy}: {text}");
+    assert!(flip < direct_flip, "FLIP {flip} against direct's {direct_flip}: {text}");
+    assert!(text.contains("frames:") && text.contains(" px  energy "), "--trace and --objects lines: {text}");
+    for bad in [vec!["probe", "cornell", "--mode", "reference"], vec!["probe", "cornell", "--settings", "(nope: 1)"]] {
+        let o = bouncelab(&bad);
+        assert!(!o.status.success(), "{bad:?} must fail");
+        assert!(!String::from_utf8_lossy(&o.stderr).trim().is_empty(), "{bad:?} says why");
+    }
+}
+
+/// `probe-ism` on the Cornell box with a handful of VPLs and receivers: a map line and a lookup
+/// line per set and a bounce line for the one set compared (no tail), each ratio a number; bad
+/// flag values are refused with a message naming what is wrong, before anything renders.
+#[test]
+fn probe_ism_reports_each_set_and_refuses_bad_flags() {
+    for (bad, says) in [
+        (vec!["probe-ism", "cornell", "--grid", "1"], "two comma-separated numbers"),
+        (vec!["probe-ism", "cornell", "--settings", "(vpl_count: 0)"], "vpl_count"),
+        (vec!["probe-ism", "cornell", "--show", "--show-kind", "9"], "kind of false light"),
+        (vec!["probe-ism", "cornell", "--points", "3,0,0"], "six numbers"),
+        (vec!["probe-ism", "cornell", "--texel", "3,4"], "--points"),
+    ] {
+        let o = bouncelab(&bad);
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert!(!o.status.success(), "{bad:?} must fail");
+        assert!(err.contains(says), "{bad:?} says why ({says}): {err}");
+    }
+    if !has_gpu() {
+        return;
+    }
+    let settings = "(vpl_count: 16, bounces: 2, bounce_tail: false)";
+    let o =
+        bouncelab(&["probe-ism", "cornell", "--settings", settings, "--receivers", "2000", "--power", "--unburied"]);
+    assert!(o.status.success(), "probe-ism cornell: {}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let ratio = |start: &str, key: &str| -> f64 {
+        let line = text.lines().find(|l| l.starts_with(start)).unwrap_or_else(|| panic!("{start:?} in {text}"));
+        line.split_once(key)
+            .and_then(|(_, rest)| rest.split_whitespace().next())
+            .and_then(|v| v.parse().ok())
+            .unwrap_or_else(|| panic!("{key} in {line:?}"))
+    };
+    for set in 0..2 {
+        let hole = ratio(&format!("cornell set {set}: false occluder"), "hole");
+        let lit = ratio(&format!("cornell set {set} lookups:"), "ism/true");
+        assert!((0.0..=1.0).contains(&hole) && lit.is_finite() && lit > 0.0, "set {set}: {text}");
+    }
+    let handed = ratio("cornell bounce power set1/true", "set1/true");
+    assert!(handed.is_finite() && handed > 0.0, "{text}");
+}

@@ -26,6 +26,7 @@ mod ism;
 mod ism_glossy;
 mod ism_inspector;
 mod ism_lights;
+mod ism_oracle;
 mod ism_sh;
 mod ism_temporal;
 mod ism_vpl;

@@ -1,8 +1,8 @@
 //! The ISM atlas word on the CPU: what `ism_pack` in `common/vpl.wgsl` writes (a 17-bit
 //! depth, the slot of the point whose splat it is, the pull-push mark) and the lookup that
-//! `ism_lookup.wgsl` makes of it, for the inspector, the oracle (`examples/ism_oracle.rs`) and
-//! tests. The GPU passes are the product; these twins exist so that what they compute can be
-//! checked against rays.
+//! `ism_lookup.wgsl` makes of it, for the inspector, the oracle (`render::gi::ism::oracle`,
+//! `bouncelab probe-ism`) and tests. The GPU passes are the product; these twins exist so that
+//! what they compute can be checked against rays.
 
 use glam::Vec3;
 
@@ -154,7 +154,7 @@ pub const UNVOUCHED: f32 = 0.98;
 /// nearer and its plane is not crossed) and no neighbour's point blocks is lit only where one of
 /// the five texels shows the way clear: in the held-out maisonette, rays past a door's jamb or
 /// head whose true occluder (the wall beside the door) no texel held were half of the first
-/// set's false light into the camera's room (`ism_oracle`, `GRID=6.15,6.05 PAIR=-1,3`: the
+/// set's false light into the camera's room (`probe-ism --grid 6.15,6.05 --pair -1,3`: the
 /// first set's lookups read 2.73x the rays' light there, 1.86x with this test).
 pub const SHOWN_CLEAR: f32 = 0.9;
 

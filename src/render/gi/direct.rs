@@ -3,7 +3,7 @@
 //! switch to `direct` releases the previous technique's memory like any other switch.
 
 use super::inputs::GiInputs;
-use super::technique::{BufferInfo, GiOutput, GiTechnique, Readiness, ResetReason, SupportQuery, TechniqueStatus};
+use super::technique::{GiOutput, GiTechnique, Readiness, ResetReason, SupportQuery, TechniqueStatus};
 use crate::image_io::HdrImage;
 use crate::render::RenderError;
 use crate::scene::Scene;
@@ -29,10 +29,6 @@ impl GiTechnique for DirectTechnique {
 
     fn render(&mut self, _inputs: &mut GiInputs<'_>) -> Result<GiOutput, RenderError> {
         Ok(GiOutput::Nothing)
-    }
-
-    fn buffers(&self) -> &'static [BufferInfo] {
-        &[]
     }
 
     fn read_buffer(&self, _: &wgpu::Device, _: &wgpu::Queue, _: &str) -> Option<Result<HdrImage, RenderError>> {

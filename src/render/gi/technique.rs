@@ -200,9 +200,6 @@ pub trait GiTechnique {
     /// Records the technique's passes; writes `inputs.targets.indirect` and says what it holds.
     fn render(&mut self, inputs: &mut GiInputs<'_>) -> Result<GiOutput, RenderError>;
 
-    /// The buffers the inspector can show for this technique.
-    fn buffers(&self) -> &'static [BufferInfo];
-
     /// Reads buffer `name` of the last frame; `None` if the name is not this technique's.
     fn read_buffer(
         &self,

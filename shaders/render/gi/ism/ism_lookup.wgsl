@@ -19,8 +19,8 @@
 // A texel holds one surface, so where two meet inside it the farther is lost. At a door's jamb
 // the jamb's point wins the texel, and a receiver whose ray passes the jamb's edge but meets the
 // wall beside the door a centimetre further on was lit: in the held-out four-room flat this was
-// 0.69 of the power wrongly lit from the lamp's room into the camera's (`ism_oracle`,
-// `GRID=4.6,3.6 PAIR=0,3`). When the ray meets the stored point's plane before the receiver but
+// 0.69 of the power wrongly lit from the lamp's room into the camera's (`bouncelab probe-ism
+// --grid 4.6,3.6 --pair 0,3`). When the ray meets the stored point's plane before the receiver but
 // outside its clip lines, the four neighbouring texels' points are asked too. They are tested
 // against their own surfaces (within their open edges and their seams), so they add only real
 // occluders. They are asked too where the texel's point is much nearer than the receiver but
@@ -35,7 +35,7 @@
 // leave gaps). Ritschel's push fills such texels by overwriting them with the coarser level's
 // depth; here the lookup asks the coarse levels instead (`ism_hole_blocks`), which also keeps
 // the occluder the texel holds. The flat's first set then sent 5.3x (of a tiny true amount),
-// and its later sets' lookups read within 0.3% of rays' (`ism_oracle`, `UNBURIED=1`).
+// and its later sets' lookups read within 0.3% of rays' (`probe-ism --unburied`).
 //
 // Every point test also asks whether the ray runs through the solid behind the point's face
 // (`slab_blocks`: the depth of that solid is the point's w, found once per distribution), which
@@ -212,7 +212,7 @@ fn ism_lit(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, bias
 // texel around it shows stands well in front of the receiver, the way is not taken for clear.
 // In the held-out maisonette rays past a jamb or a door's head were half of the first set's
 // false light into the camera's room; with this test its lookups read 1.86x the rays' light
-// there instead of 2.73x (`ism_oracle`). `atlas_word.rs` holds the twin.
+// there instead of 2.73x (`probe-ism`). `atlas_word.rs` holds the twin.
 const SHOWN_CLEAR: f32 = 0.9;
 
 fn ism_shows_clear(w: u32, depth: f32) -> bool {

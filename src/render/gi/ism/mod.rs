@@ -6,11 +6,13 @@
 //! (ISM atlas and further bounces), [`screen`] (split G-buffer, shading, temporal merge,
 //! filter) and [`sh_filter`] (Segovia & Wald's SH filter), with their parameter blocks in
 //! [`params`]. [`technique`] puts them behind the GI seam; [`points`] builds the sample points'
-//! per-point data.
+//! per-point data. [`oracle`] checks a rendered frame's maps, lookups and bounce against rays
+//! through the scene (`bouncelab probe-ism`).
 
 pub mod clusters;
 pub mod gather;
 pub mod light_tiles;
+pub mod oracle;
 pub mod params;
 pub mod points;
 pub mod screen;

@@ -431,10 +431,6 @@ impl GiTechnique for IsmTechnique {
         Ok(if settings.sh_filter { GiOutput::Radiance } else { GiOutput::IrradianceOverPi })
     }
 
-    fn buffers(&self) -> &'static [BufferInfo] {
-        BUFFERS
-    }
-
     fn read_buffer(
         &self,
         device: &wgpu::Device,

@@ -12,7 +12,7 @@ use crate::precompute::bvh::SceneBvh;
 use crate::precompute::mrt::dictionary::Dictionary;
 use crate::precompute::mrt::geometry_image::{TexelSurface, geometry_image};
 use crate::precompute::mrt::level::{self, Level, Operators};
-use crate::precompute::mrt::shape::{Face, Layout};
+use crate::precompute::mrt::shape::{Face, Layout, Shape};
 use crate::scene::Scene;
 
 /// "None" in the index tables.
@@ -150,9 +150,35 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
         res: res as u32,
         ..Packed::default()
     };
-    // Elements' matrices: T_{d->b} then U_b, each element once, every one with the largest
-    // element's k_b modes (an element the precompute gave fewer modes gets zero rows and
-    // columns), so that one stride serves the GPU and the products equal the CPU's.
+    let (k_b, elements) = pack_elements(&mut p, dictionary);
+    p.u_r = dictionary.interfaces.response.u_r.iter().map(|v| *v as f32).collect();
+    let slot_of = pack_slots(&mut p, level, &transfer, res, k_b);
+    let side_first = pack_sides(&mut p, level, &transfer, dictionary, res, k_b);
+    let offsets = Offsets { elements, slot_of, side_first };
+    for (bi, b) in level.blocks.iter().enumerate() {
+        let layout = Layout::new(b.shape, res);
+        let first = pack_texels(&mut p, scene, bvh, level, bi, res);
+        p.blocks.push(block_record(level, bi, &layout, first, &offsets));
+    }
+    end_tables(&mut p);
+    p
+}
+
+/// Where the stages before the blocks' records put what those records point at.
+struct Offsets {
+    /// Per dictionary element: its shape, the offsets of its T_{d->b} and its U_b in `matrices`.
+    elements: Vec<(Shape, u32, u32)>,
+    /// Per directed interface (receiving block, entry side): its slot.
+    slot_of: Vec<((usize, Face), u32)>,
+    /// Per partly open side (block, world side): its first side texel.
+    side_first: Vec<((usize, Face), u32)>,
+}
+
+/// Lays out the elements' matrices: T_{d->b} then U_b, each element once, every one with the
+/// largest element's k_b modes (an element the precompute gave fewer modes gets zero rows and
+/// columns), so that one stride serves the GPU and the products equal the CPU's. Returns that
+/// k_b and each element's offsets.
+fn pack_elements(p: &mut Packed, dictionary: &Dictionary) -> (usize, Vec<(Shape, u32, u32)>) {
     let k_b = dictionary.elements.iter().map(|e| e.k_b).max().unwrap_or(0);
     p.k_b = k_b as u32;
     let mut offsets = Vec::new();
@@ -167,8 +193,20 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
         }
         offsets.push((e.shape, t, u));
     }
-    p.u_r = dictionary.interfaces.response.u_r.iter().map(|v| *v as f32).collect();
-    // Directed interfaces (receiver, entry side) in a fixed order, and their entries.
+    (k_b, offsets)
+}
+
+/// Lays out the directed interfaces (receiver, entry side) in a fixed order: per interface a
+/// slot with its receiving block's response rows and their stretch corrections, then the
+/// T_{b->r} matrices feeding it (k_r x k_b(source), laid out with the common `k_b` stride).
+/// Returns each interface's slot, which the blocks' records list.
+fn pack_slots(
+    p: &mut Packed,
+    level: &Level,
+    transfer: &level::Transfer,
+    res: usize,
+    k_b: usize,
+) -> Vec<((usize, Face), u32)> {
     let mut keys: Vec<(usize, usize, Face)> = transfer.blocks.keys().copied().collect();
     keys.sort_by_key(|(x, y, f)| (*y, *f as usize, *x));
     let mut slot_of: Vec<((usize, Face), u32)> = Vec::new();
@@ -192,7 +230,21 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
             p.transfer.extend((0..k_b).map(|j| if j < source { m[i * source + j] as f32 } else { 0.0 }));
         }
     }
-    // Partly open sides: their P^2 texels follow the block texels in the indirect buffer.
+    slot_of
+}
+
+/// Lays out the partly open sides (the wall around a doorway, which has no texels of its own):
+/// their P^2 texels follow the block texels in the indirect buffer; per side a record, then its
+/// side matrices (P^2 x k_b(source), with the common `k_b` stride). Returns each side's first
+/// side texel, which its block's record points at.
+fn pack_sides(
+    p: &mut Packed,
+    level: &Level,
+    transfer: &level::Transfer,
+    dictionary: &Dictionary,
+    res: usize,
+    k_b: usize,
+) -> Vec<((usize, Face), u32)> {
     p.positions = dictionary.interfaces.positions.positions as u32;
     let per_side = (p.positions * p.positions) as usize;
     let block_texels: usize = level.blocks.iter().map(|b| Layout::new(b.shape, res).len()).sum();
@@ -215,63 +267,92 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
             p.side_matrices.extend((0..k_b).map(|j| if j < source { m[i * source + j] as f32 } else { 0.0 }));
         }
     }
-    for (bi, b) in level.blocks.iter().enumerate() {
-        let layout = Layout::new(b.shape, res);
-        let first = p.texels.len() as u32;
-        let surfaces: Vec<TexelSurface> = geometry_image(scene, bvh, b, res);
-        p.own_scales.extend(level::own_scales(level, bi).iter().flatten().map(|v| *v as f32));
-        for s in &surfaces {
-            p.surfaces_found += u32::from(s.found);
-            p.texels.push(GpuTexel {
-                position: s.position.extend(if s.found { 1.0 } else { 0.0 }).to_array(),
-                normal: s.normal.extend(bi as f32).to_array(),
-                albedo: s.albedo.extend(0.0).to_array(),
-            });
-        }
-        // Every dictionary has all six shapes (`dictionary::build`); a block of a missing one
-        // would read the first element's matrices.
-        let (t, u) = offsets.iter().find(|o| o.0 == b.shape).map_or((0, 0), |o| (o.1, o.2));
-        let mut starts = [NONE; 8];
-        let mut local = [0; 8];
-        for (k, w) in Face::ALL.iter().enumerate() {
-            let f = b.local_face(*w);
-            local[k] = f as u32;
-            starts[f as usize] = layout.face_start(f).map_or(NONE, |s| first + s as u32);
-        }
-        let mut across = [NONE; 8];
-        for f in b.shape.open_faces() {
-            let w = b.world_face(*f);
-            if let Some(j) = level.link(bi, w).filter(|_| level.transmission(bi, w) >= PAD_OPEN) {
-                across[*f as usize] = j as u32;
-            }
-        }
-        let mut sides = [NONE; 8];
-        for ((x, w), first) in &side_first {
-            if *x == bi {
-                sides[*w as usize] = *first;
-            }
-        }
-        let mut slots = [NONE; 4];
-        for (k, (_, s)) in slot_of.iter().filter(|((y, _), _)| *y == bi).take(4).enumerate() {
-            slots[k] = *s;
-        }
-        p.blocks.push(GpuBlock {
-            origin: b.origin.extend(f32::from(b.turns % 4)).to_array(),
-            size: b.size.extend(0.0).to_array(),
-            texels: [first, layout.len() as u32, t, u],
-            starts,
-            local,
-            slots,
-            across,
-            sides,
+    side_first
+}
+
+/// Appends block `bi`'s texels (their real surfaces, traced in the geometry image) and its own
+/// light's stretch corrections; returns its first texel, which its record points at.
+fn pack_texels(p: &mut Packed, scene: &Scene, bvh: &SceneBvh, level: &Level, bi: usize, res: usize) -> u32 {
+    let b = &level.blocks[bi];
+    let first = p.texels.len() as u32;
+    let surfaces: Vec<TexelSurface> = geometry_image(scene, bvh, b, res);
+    p.own_scales.extend(level::own_scales(level, bi).iter().flatten().map(|v| *v as f32));
+    for s in &surfaces {
+        p.surfaces_found += u32::from(s.found);
+        p.texels.push(GpuTexel {
+            position: s.position.extend(if s.found { 1.0 } else { 0.0 }).to_array(),
+            normal: s.normal.extend(bi as f32).to_array(),
+            albedo: s.albedo.extend(0.0).to_array(),
         });
     }
-    // wgpu refuses empty bindings and the upload pads short ones with zeros, which an index
-    // table would read as "block 0" or "row 0": end each with one NONE.
+    first
+}
+
+/// Block `bi`'s record: its box, its texels and element's matrices, its faces' first texels and
+/// world sides, and what the lookup and the runtime reach from it (the blocks across its fully
+/// open faces, its partly open sides, the interfaces entering it).
+fn block_record(level: &Level, bi: usize, layout: &Layout, first: u32, offsets: &Offsets) -> GpuBlock {
+    let b = &level.blocks[bi];
+    // Every dictionary has all six shapes (`dictionary::build`); a block of a missing one
+    // would read the first element's matrices.
+    let (t, u) = offsets.elements.iter().find(|o| o.0 == b.shape).map_or((0, 0), |o| (o.1, o.2));
+    let (starts, local) = face_tables(b, layout, first);
+    let across = pad_across(level, bi);
+    let mut sides = [NONE; 8];
+    for ((x, w), first) in &offsets.side_first {
+        if *x == bi {
+            sides[*w as usize] = *first;
+        }
+    }
+    let mut slots = [NONE; 4];
+    for (k, (_, s)) in offsets.slot_of.iter().filter(|((y, _), _)| *y == bi).take(4).enumerate() {
+        slots[k] = *s;
+    }
+    GpuBlock {
+        origin: b.origin.extend(f32::from(b.turns % 4)).to_array(),
+        size: b.size.extend(0.0).to_array(),
+        texels: [first, layout.len() as u32, t, u],
+        starts,
+        local,
+        slots,
+        across,
+        sides,
+    }
+}
+
+/// Per canonical face its first texel ([`NONE`] where open), and per world side the canonical
+/// face on it: how the runtime finds a world side's texels in a turned block.
+fn face_tables(b: &level::Block, layout: &Layout, first: u32) -> ([u32; 8], [u32; 8]) {
+    let mut starts = [NONE; 8];
+    let mut local = [0; 8];
+    for (k, w) in Face::ALL.iter().enumerate() {
+        let f = b.local_face(*w);
+        local[k] = f as u32;
+        starts[f as usize] = layout.face_start(f).map_or(NONE, |s| first + s as u32);
+    }
+    (starts, local)
+}
+
+/// Per canonical face of block `bi`, the block beyond it where it is linked and open over at
+/// least [`PAD_OPEN`] of its area, else [`NONE`]: where the lookup may pad across.
+fn pad_across(level: &Level, bi: usize) -> [u32; 8] {
+    let b = &level.blocks[bi];
+    let mut across = [NONE; 8];
+    for f in b.shape.open_faces() {
+        let w = b.world_face(*f);
+        if let Some(j) = level.link(bi, w).filter(|_| level.transmission(bi, w) >= PAD_OPEN) {
+            across[*f as usize] = j as u32;
+        }
+    }
+    across
+}
+
+/// Ends each index table with one NONE: wgpu refuses empty bindings and the upload pads short
+/// ones with zeros, which an index table would read as "block 0" or "row 0".
+fn end_tables(p: &mut Packed) {
     p.rows.push(NONE);
     p.row_scales.push(0.0);
     p.object_block.push(NONE);
-    p
 }
 
 #[cfg(test)]

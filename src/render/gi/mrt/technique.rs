@@ -391,10 +391,6 @@ impl GiTechnique for MrtTechnique {
         Ok(GiOutput::IrradianceOverPi)
     }
 
-    fn buffers(&self) -> &'static [BufferInfo] {
-        BUFFERS
-    }
-
     fn read_buffer(
         &self,
         device: &wgpu::Device,

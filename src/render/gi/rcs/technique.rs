@@ -10,7 +10,7 @@ use super::cache::{Cache, changed_boxes, object_boxes};
 use super::coverage::{CoveragePass, order, tiles};
 use super::grid::HashGrid;
 use super::hemisphere::{HemisphereInputs, HemispherePass};
-use super::inspect::{BUFFERS, Inspected};
+use super::inspect::Inspected;
 use super::light_check::{CheckMode, LightCheckPass};
 use super::record::{Candidate, GpuJob, GpuRecord, JobFlags, Site};
 use super::reduce::ReducePass;
@@ -20,8 +20,7 @@ use super::store::Store;
 use crate::image_io::HdrImage;
 use crate::render::gi::inputs::GiInputs;
 use crate::render::gi::technique::{
-    BufferInfo, GiOutput, GiTechnique, Overlay, OverlayPoint, Readiness, ResetReason, SupportQuery, TechniqueStatus,
-    note_reset,
+    GiOutput, GiTechnique, Overlay, OverlayPoint, Readiness, ResetReason, SupportQuery, TechniqueStatus, note_reset,
 };
 use crate::render::readback::ReadbackError;
 use crate::render::{RenderError, readback};
@@ -487,10 +486,6 @@ impl GiTechnique for RcsTechnique {
             if self.cache.room() == 0 { ", cache full" } else { "" }
         ));
         Ok(GiOutput::IrradianceOverPi)
-    }
-
-    fn buffers(&self) -> &'static [BufferInfo] {
-        BUFFERS
     }
 
     fn read_buffer(

@@ -8,9 +8,7 @@
 pub mod job;
 
 use super::inputs::GiInputs;
-use super::technique::{
-    BufferInfo, GiOutput, GiTechnique, Readiness, ResetReason, SupportQuery, TechniqueStatus, note_reset,
-};
+use super::technique::{GiOutput, GiTechnique, Readiness, ResetReason, SupportQuery, TechniqueStatus, note_reset};
 use crate::image_io::HdrImage;
 use crate::render::RenderError;
 use crate::scene::Scene;
@@ -123,10 +121,6 @@ impl GiTechnique for ReferenceTechnique {
             texture.size(),
         );
         Ok(GiOutput::Complete)
-    }
-
-    fn buffers(&self) -> &'static [BufferInfo] {
-        &[]
     }
 
     fn read_buffer(&self, _: &wgpu::Device, _: &wgpu::Queue, _: &str) -> Option<Result<HdrImage, RenderError>> {

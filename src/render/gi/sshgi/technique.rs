@@ -199,10 +199,6 @@ impl GiTechnique for SshgiTechnique {
         Ok(GiOutput::IrradianceOverPi)
     }
 
-    fn buffers(&self) -> &'static [BufferInfo] {
-        BUFFERS
-    }
-
     fn read_buffer(
         &self,
         device: &wgpu::Device,

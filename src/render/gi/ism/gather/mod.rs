@@ -436,11 +436,25 @@ impl IsmGather {
         settings: &IsmSettings,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) {
+        self.ensure_splat_copy(device);
+        let Some(s) = &self.sized else { return };
+        encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(s.key.vpls) * VPL_BYTES);
+        self.write_set_params(queue, s, scale, settings);
+        self.write_pull_push_params(queue, s, scale);
+        self.record_sets(encoder, s, settings, timestamps);
+    }
+
+    /// The atlas side (texels) of these sized resources.
+    fn atlas_side(s: &Sized) -> u32 {
+        s.key.r * Self::tiles_per_row(s.key.vpls * s.key.bounces)
+    }
+
+    /// Creates the inspector's copy of the splatted atlas while `capture_splats` asks for it,
+    /// and frees it when not.
+    fn ensure_splat_copy(&mut self, device: &wgpu::Device) {
         let capture = self.capture_splats;
         let Some(s) = &mut self.sized else { return };
-        let key = s.key;
-        let c = Self::tiles_per_row(key.vpls * key.bounces);
-        let side = key.r * c;
+        let side = Self::atlas_side(s);
         if capture && s.splats.is_none() {
             s.splats = Some(device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("ism atlas splats (inspector copy)"),
@@ -451,12 +465,16 @@ impl IsmGather {
         } else if !capture {
             s.splats = None;
         }
-        let s = &*s;
+    }
+
+    /// Writes each set's select, splat and (from the second set on) bounce parameter blocks.
+    fn write_set_params(&self, queue: &wgpu::Queue, s: &Sized, scale: &MapScale, settings: &IsmSettings) {
+        let key = s.key;
+        let c = Self::tiles_per_row(key.vpls * key.bounces);
         let d_max = scale.d_max.max(1e-3);
         // A point stands for a disk of the area it was chosen to stand for; the splat is that
         // disk's footprint, its radius scaled by `settings.splat_radius`.
         let disk_r2 = settings.splat_radius.powi(2) / std::f32::consts::PI;
-        encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(key.vpls) * VPL_BYTES);
         let n2 = (settings.interleave * settings.interleave) as f32;
         let d_min = settings.clamp_distance;
         let counts = [key.vpls, key.per_ism, key.r, c];
@@ -486,14 +504,22 @@ impl IsmGather {
                 queue.write_buffer(&self.bounce_params, u64::from(b - 1) * SLOT, bytemuck::bytes_of(&bounce));
             }
         }
-        // Pull-push per set: only the tile rows the set occupies (slots: set b, level l).
-        let set_rows = |b: u32| {
-            let first = (b * key.vpls) / c;
-            let last = ((b + 1) * key.vpls - 1) / c;
-            (first * key.r, (last + 1 - first) * key.r)
-        };
-        for b in 0..key.bounces {
-            let (row0, _) = set_rows(b);
+    }
+
+    /// The first fine row and the number of rows of the atlas tiles set `b` occupies.
+    fn set_rows(s: &Sized, b: u32) -> (u32, u32) {
+        let c = Self::tiles_per_row(s.key.vpls * s.key.bounces);
+        let first = (b * s.key.vpls) / c;
+        let last = ((b + 1) * s.key.vpls - 1) / c;
+        (first * s.key.r, (last + 1 - first) * s.key.r)
+    }
+
+    /// Writes the pull-push parameter blocks: per set, only the tile rows it occupies (slots:
+    /// set b, level l).
+    fn write_pull_push_params(&self, queue: &wgpu::Queue, s: &Sized, scale: &MapScale) {
+        let side = Self::atlas_side(s);
+        for b in 0..s.key.bounces {
+            let (row0, _) = Self::set_rows(s, b);
             for l in 0..PULL_LEVELS {
                 let params = PullPushParams {
                     counts: [side >> l, l as u32, row0 >> l, 0],
@@ -503,7 +529,19 @@ impl IsmGather {
                 queue.write_buffer(&self.pp_params, slot, bytemuck::bytes_of(&params));
             }
         }
-        let slots = key.vpls * key.per_ism;
+    }
+
+    /// Records the `ism maps` pass: the atlas cleared, then set after set its bounce (from the
+    /// previous set), point choice, splats, the inspector's copy, and pull-push.
+    fn record_sets(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        s: &Sized,
+        settings: &IsmSettings,
+        timestamps: Option<crate::render::timing::TimestampPair<'_>>,
+    ) {
+        let capture = self.capture_splats;
+        let (key, side) = (s.key, Self::atlas_side(s));
         let begin_writes =
             timestamps.as_ref().map(|t| if capture { t.compute_begin_writes() } else { t.compute_writes() });
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -515,28 +553,7 @@ impl IsmGather {
         pass.dispatch_workgroups(side.div_ceil(8), side.div_ceil(8), 1);
         for b in 0..key.bounces {
             if b > 0 {
-                // One-pass multi-bounce: one lit point per VPL of set b-1 (tested against the
-                // filled ISMs of that set; `settings.bounce_pick` says which) becomes a VPL of
-                // set b.
-                let offset = [((b - 1) as u64 * SLOT) as u32];
-                pass.set_bind_group(0, &s.bounce_group, &offset);
-                pass.set_pipeline(&self.bounce_clear);
-                pass.dispatch_workgroups(key.vpls.div_ceil(64), 1, 1);
-                pass.set_pipeline(&self.bounce_select);
-                pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
-                if settings.bounce_pick == BouncePick::Resampled {
-                    pass.set_pipeline(&self.bounce_scan);
-                    pass.dispatch_workgroups(1, 1, 1);
-                    pass.set_pipeline(&self.bounce_resample);
-                    pass.dispatch_workgroups(key.vpls, 1, 1);
-                } else {
-                    pass.set_pipeline(&self.bounce_write);
-                    pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
-                }
-                if b + 1 == key.bounces && settings.bounce_tail {
-                    pass.set_pipeline(&self.bounce_tail);
-                    pass.dispatch_workgroups(1, 1, 1);
-                }
+                self.record_bounce(&mut pass, s, settings, b);
             }
             // This set's VPLs choose their points (after the bounce pass, which read the
             // previous set's choice).
@@ -545,8 +562,8 @@ impl IsmGather {
             pass.dispatch_workgroups(key.vpls, 1, 1);
             pass.set_bind_group(0, &s.splat_group, &[(u64::from(b) * SLOT) as u32]);
             pass.set_pipeline(&self.splat);
-            pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
-            let (row0, rows) = set_rows(b);
+            pass.dispatch_workgroups((key.vpls * key.per_ism).div_ceil(64), 1, 1);
+            let (row0, rows) = Self::set_rows(s, b);
             if let Some(splats) = &s.splats {
                 // Copies may not happen inside a pass: end it, copy this set's rows, go on.
                 drop(pass);
@@ -557,21 +574,7 @@ impl IsmGather {
                     timestamp_writes: None,
                 });
             }
-            pass.set_pipeline(&self.pull);
-            for l in 0..PULL_LEVELS {
-                let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
-                pass.set_bind_group(0, &s.pp_group, &[slot]);
-                let coarse = (side >> (l + 1)).max(1);
-                pass.dispatch_workgroups(coarse.div_ceil(8), (rows >> (l + 1)).max(1).div_ceil(8), 1);
-            }
-            pass.set_pipeline(&self.push);
-            for l in (0..PULL_LEVELS).rev() {
-                let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
-                pass.set_bind_group(0, &s.pp_group, &[slot]);
-                // One thread per coarse texel (2x2 fine texels each).
-                let coarse = (side >> (l + 1)).max(1);
-                pass.dispatch_workgroups(coarse.div_ceil(8), (rows >> (l + 1)).max(1).div_ceil(8), 1);
-            }
+            self.record_pull_push(&mut pass, s, b, rows);
         }
         drop(pass);
         if let (true, Some(t)) = (capture, timestamps.as_ref()) {
@@ -580,6 +583,53 @@ impl IsmGather {
                 label: Some("ism maps end"),
                 timestamp_writes: Some(t.compute_end_writes()),
             }));
+        }
+    }
+
+    /// One-pass multi-bounce: one lit point per VPL of set b-1 (tested against the filled ISMs
+    /// of that set; `settings.bounce_pick` says which) becomes a VPL of set b.
+    fn record_bounce(&self, pass: &mut wgpu::ComputePass<'_>, s: &Sized, settings: &IsmSettings, b: u32) {
+        let key = s.key;
+        let slots = key.vpls * key.per_ism;
+        let offset = [((b - 1) as u64 * SLOT) as u32];
+        pass.set_bind_group(0, &s.bounce_group, &offset);
+        pass.set_pipeline(&self.bounce_clear);
+        pass.dispatch_workgroups(key.vpls.div_ceil(64), 1, 1);
+        pass.set_pipeline(&self.bounce_select);
+        pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
+        if settings.bounce_pick == BouncePick::Resampled {
+            pass.set_pipeline(&self.bounce_scan);
+            pass.dispatch_workgroups(1, 1, 1);
+            pass.set_pipeline(&self.bounce_resample);
+            pass.dispatch_workgroups(key.vpls, 1, 1);
+        } else {
+            pass.set_pipeline(&self.bounce_write);
+            pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
+        }
+        if b + 1 == key.bounces && settings.bounce_tail {
+            pass.set_pipeline(&self.bounce_tail);
+            pass.dispatch_workgroups(1, 1, 1);
+        }
+    }
+
+    /// Pull-push of set `b`'s `rows` atlas rows: the pull down [`PULL_LEVELS`] levels, then the
+    /// push back up.
+    fn record_pull_push(&self, pass: &mut wgpu::ComputePass<'_>, s: &Sized, b: u32, rows: u32) {
+        let side = Self::atlas_side(s);
+        pass.set_pipeline(&self.pull);
+        for l in 0..PULL_LEVELS {
+            let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
+            pass.set_bind_group(0, &s.pp_group, &[slot]);
+            let coarse = (side >> (l + 1)).max(1);
+            pass.dispatch_workgroups(coarse.div_ceil(8), (rows >> (l + 1)).max(1).div_ceil(8), 1);
+        }
+        pass.set_pipeline(&self.push);
+        for l in (0..PULL_LEVELS).rev() {
+            let slot = ((u64::from(b) * PULL_LEVELS as u64 + l as u64) * SLOT) as u32;
+            pass.set_bind_group(0, &s.pp_group, &[slot]);
+            // One thread per coarse texel (2x2 fine texels each).
+            let coarse = (side >> (l + 1)).max(1);
+            pass.dispatch_workgroups(coarse.div_ceil(8), (rows >> (l + 1)).max(1).div_ceil(8), 1);
         }
     }
 
