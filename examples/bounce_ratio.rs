@@ -1,9 +1,10 @@
 //! Energy check of the ISM bounce passes: renders `ism-ritschel` on a closed glTF level with
-//! every surface one grey albedo (`BR_ALBEDO`, default 0.7) and prints each bounce set's total
+//! every surface one grey albedo (`--albedo`, default 0.7) and prints each bounce set's total
 //! power over the last set's. All the light a set emits lands on some surface of a closed level,
 //! so each ratio must be the albedo; a shortfall is light the bounce passes lose.
 //!
-//! `cargo run --release --example bounce_ratio -- level.gltf "(bounce_tail: false, view_importance: 0.0)" 16`
+//! `cargo run --release --example bounce_ratio -- level.gltf --settings "(bounce_tail: false, view_importance: 0.0)"
+//! --frames 16` (`--help` lists the flags).
 use anyhow::Context;
 use bouncelab::project_file::Project;
 use bouncelab::render::gi::ism::technique::IsmTechnique;
@@ -11,16 +12,30 @@ use bouncelab::render::gi::ism::vpl_pass::set_powers;
 use bouncelab::render::{GpuContext, Renderer};
 use bouncelab::scene::Material;
 use bouncelab::settings::{GiMode, IsmSettings, RenderSettings};
-use std::path::Path;
+use clap::Parser;
+
+/// Each ISM bounce set's power over the previous set's on a closed level of one albedo.
+#[derive(Parser)]
+struct Args {
+    /// A closed glTF level.
+    level: std::path::PathBuf,
+    /// ISM settings (RON); fields left out keep their defaults.
+    #[arg(long, default_value = "()")]
+    settings: String,
+    /// Frames summed.
+    #[arg(long, default_value_t = 16)]
+    frames: u32,
+    /// The grey albedo every surface gets (the ratio each set must reach).
+    #[arg(long, default_value_t = 0.7)]
+    albedo: f32,
+}
 
 fn main() -> anyhow::Result<()> {
-    let args: Vec<String> = std::env::args().collect();
-    let gltf = args.get(1).context("usage: bounce_ratio <level.gltf> [ism settings (RON)] [frames]")?;
-    let ism: IsmSettings = ron::from_str(args.get(2).map_or("()", String::as_str))?;
-    let frames: u32 = args.get(3).map_or(Ok(16), |s| s.parse())?;
-    let albedo: f32 = std::env::var("BR_ALBEDO").ok().and_then(|v| v.parse().ok()).unwrap_or(0.7);
+    let args = Args::parse();
+    let ism: IsmSettings = ron::from_str(&args.settings)?;
+    let (frames, albedo) = (args.frames, args.albedo);
     let ctx = GpuContext::new_headless()?;
-    let mut project = Project::from_gltf(Path::new(gltf))?;
+    let mut project = Project::from_gltf(&args.level)?;
     for m in &mut project.scene.desc_mut().materials {
         *m = Material::diffuse(&m.name, [albedo; 3]);
     }

@@ -7,10 +7,10 @@
 //! voxel visibility lose; the gap between the sum and the one-bounce reference is what screen
 //! space itself loses (off-screen and hidden senders).
 //!
-//! `cargo run --release --example sshgi_oracle -- cornell "()" 16`
+//! `cargo run --release --example sshgi_oracle -- cornell --settings "()" --frames 16`
 //!
-//! `ORACLE_VIEW=128x72` renders at another size; `ORACLE_TIME=640x360` only times the settings
-//! (all bounces, median of the sshgi passes' GPU times over 12 frames) and prints each pass.
+//! `--view 128x72` renders at another size; `--time 640x360` only times the settings (all
+//! bounces, median of the sshgi passes' GPU times over 12 frames) and prints each pass.
 //!
 //! Prints the means of E / pi over the start level: sshgi (mean of the frames), the oracle with
 //! ray-cast visibility and without visibility, and both split by the screen distance each
@@ -27,12 +27,33 @@ use bouncelab::suite;
 use glam::Vec3;
 use rayon::prelude::*;
 
-/// The view size; `ORACLE_VIEW=WxH` sets another.
-fn view() -> (u32, u32) {
-    std::env::var("ORACLE_VIEW")
-        .ok()
-        .and_then(|v| v.split_once('x').and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?))))
-        .unwrap_or((256, 144))
+/// The exact screen-space gather that `sshgi`'s first bounce approximates.
+#[derive(clap::Parser)]
+struct Args {
+    /// Suite scene.
+    #[arg(default_value = "cornell")]
+    scene: String,
+    /// sshgi settings (RON); fields left out keep their defaults.
+    #[arg(long, default_value = "()")]
+    settings: String,
+    /// Frames averaged.
+    #[arg(long, default_value_t = 16)]
+    frames: usize,
+    /// The view size, WxH.
+    #[arg(long, default_value = "256x144", value_parser = parse_size)]
+    view: (u32, u32),
+    /// Only time the settings at WxH (all bounces, temporal as set): the median of the sshgi
+    /// passes' GPU times over 12 frames, and each pass.
+    #[arg(long, value_parser = parse_size)]
+    time: Option<(u32, u32)>,
+}
+
+/// `WxH` as a size.
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    text.split_once('x')
+        .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+        .filter(|(w, h)| *w > 0 && *h > 0)
+        .ok_or_else(|| format!("{text:?} is not a size WxH"))
 }
 
 fn oct_decode(e: [f32; 2]) -> Vec3 {
@@ -48,22 +69,20 @@ fn mean_rgb(img: &HdrImage) -> f64 {
 }
 
 fn main() -> anyhow::Result<()> {
-    let args: Vec<String> = std::env::args().collect();
-    let name = args.get(1).map_or("cornell", String::as_str);
-    let mut settings: SshgiSettings = ron::from_str(args.get(2).map_or("()", String::as_str))?;
-    let frames: usize = args.get(3).map_or(Ok(16), |s| s.parse())?;
+    let args = <Args as clap::Parser>::parse();
+    let name = args.scene.as_str();
+    let mut settings: SshgiSettings = ron::from_str(&args.settings)?;
+    let frames = args.frames;
     settings.bounces = 1;
     settings.temporal_weight = 0.0;
     let ctx = GpuContext::new_headless()?;
-    let view_size = view();
+    let view_size = args.view;
     let mut project = suite::scene(name)?.load(Path::new("."))?;
     project.render.mode = GiMode::Sshgi;
     project.render.sshgi = settings.clone();
-    if let Ok(size) = std::env::var("ORACLE_TIME") {
+    if let Some(size) = args.time {
         // Times the given settings (all bounces, temporal as set) at WxH: median of 8 frames.
-        let (w, h) = size.split_once('x').ok_or_else(|| anyhow::anyhow!("ORACLE_TIME=WxH"))?;
-        let size = (w.parse()?, h.parse()?);
-        project.render.sshgi = ron::from_str(args.get(2).map_or("()", String::as_str))?;
+        project.render.sshgi = ron::from_str(&args.settings)?;
         let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
         let mut gpu = Vec::new();
         for _ in 0..12 {

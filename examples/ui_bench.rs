@@ -3,7 +3,8 @@
 //! Prints a markdown table: UI frame times during the drag (logic and paint), viewport frames
 //! shown during it and their render scale, and the time to full resolution after the drop.
 //!
-//! `cargo run --release --example ui_bench -- [seconds of drag, default 6] [modes]`
+//! `cargo run --release --example ui_bench -- [seconds of drag, default 6] [modes] [--no-paint]`
+//! (`--no-paint` steps the UI without painting it: what the UI logic alone costs).
 
 use std::time::Instant;
 
@@ -18,10 +19,11 @@ fn percentile(v: &mut [f64], p: f64) -> f64 {
 }
 
 fn main() -> anyhow::Result<()> {
-    let args: Vec<String> = std::env::args().collect();
+    let all: Vec<String> = std::env::args().collect();
+    // --no-paint: step the UI without painting it (what the UI logic alone costs).
+    let paint_on = !all.iter().any(|a| a == "--no-paint");
+    let args: Vec<String> = all.into_iter().filter(|a| a != "--no-paint").collect();
     let drag_s: f64 = args.get(1).map_or(Ok(6.0), |s| s.parse())?;
-    // BENCH_NO_PAINT: step the UI without painting it (what the UI logic alone costs).
-    let paint_on = std::env::var_os("BENCH_NO_PAINT").is_none();
     let modes = args.get(2).map_or("direct,ism,ism-ritschel,reference", String::as_str);
     println!(
         "| mode | UI frame median / p95 / max (ms) | egui paint on the adapter, median (ms) | viewport frames in the drag | scale in the drag | preview frame in the drag, median (ms) | full frame (ms) | full resolution after the drop (s) |"

@@ -1,5 +1,8 @@
 // An orthonormal basis around a unit normal (Duff et al. 2017), identical to
-// precompute::brdf::basis on the CPU: the ISM splat and the ISM lookup must agree (PF20).
+// precompute::ism::paraboloid::frame on the CPU (n.z = -0.0 counts as positive on both sides):
+// the ISM splat and the ISM lookup must build the same tangent basis for a VPL, or its
+// paraboloid map is written in one orientation and read in another, and the visibility it
+// gives is garbage.
 fn onb_tangent(n: vec3<f32>) -> vec3<f32> {
     let s = select(-1.0, 1.0, n.z >= 0.0);
     let a = -1.0 / (s + n.z);

@@ -1,6 +1,6 @@
 // Real spherical harmonics up to band 2 (9 coefficients; Ramamoorthi & Hanrahan 2001 order) and
 // the zonal band factors of the radially symmetric lobes used to evaluate a projected BRDF
-// from incident-radiance coefficients (Segovia & Wald; digest technique-rcs-shfilter-sshgi B.2).
+// from incident-radiance coefficients (Segovia & Wald, Sec. 3.3; Lambertian 3.3.1, Phong 3.3.2).
 
 fn sh9_basis(d: vec3<f32>) -> array<f32, 9> {
     return array<f32, 9>(

@@ -28,7 +28,7 @@
 // How much texel b supports texel a (both of the finer level, both with geometry): Eq. 5's
 // depth Gaussian g3, measured as the distance of b's point from a's tangent plane relative to
 // their separation (the slope of the step between them, sigma 0.1). Measured on sshgi's Cornell
-// box (energy against the reference / FLIP): the digest's g3, a depth difference relative to the
+// box (energy against the reference / FLIP): Eq. 5's g3 as a depth difference relative to the
 // distance, is large between neighbours on any surface seen at a grazing angle, so the side
 // walls, floor and ceiling lost every vote at their borders and eroded level by level (0.698 /
 // 0.2526); the slope with the normal Gaussian g2 (sigma 0.2) 0.863 / 0.1551; the slope alone

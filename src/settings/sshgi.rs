@@ -51,8 +51,8 @@ pub struct SshgiSettings {
     /// bounce, against an exact screen-space gather with ray-cast visibility
     /// (`examples/sshgi_oracle.rs`, quarter start): 0 reads 0.980, 1 1.001, 2 1.013; its whole
     /// image's energy 0.899 / 0.905 / 0.910 of the path tracer's. Cost: each step finer doubles
-    /// the march (lavapipe, 640x360, default settings, `ORACLE_TIME=640x360 sshgi_oracle cornell
-    /// "(visibility_detail: N)"`: sshgi 66 / 98 / 165 ms GPU).
+    /// the march (lavapipe, 640x360, default settings, `sshgi_oracle cornell --time 640x360
+    /// --settings "(visibility_detail: N)"`: sshgi 66 / 98 / 165 ms GPU).
     pub visibility_detail: u32,
     /// View-depth range [near, far] in metres that the 128 voxel slices cover; [0, 0] =
     /// automatic, the scene's bounds as seen along the view axis. Geometry beyond it casts no

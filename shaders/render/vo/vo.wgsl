@@ -1,5 +1,5 @@
-// Volumetric obscurance by line sampling (Loos & Sloan 2010, Loos 2015 ch. 6; digest sections
-// 9.3-9.5). Around each pixel's point P a sphere of radius R (metres) with z along the view ray
+// Volumetric obscurance by line sampling (Loos & Sloan 2010; Loos 2015 §6.3.1, §6.3.3 and
+// §6.3.4). Around each pixel's point P a sphere of radius R (metres) with z along the view ray
 // through P: every disk sample (x, y) is a chord of the sphere, -z_s .. z_s with
 // z_s = sqrt(1 - x^2 - y^2), and the depth buffer at the chord's pixel says where matter starts
 // (d_r, in sphere units, from the plane through P). The free length of the chord is integrated

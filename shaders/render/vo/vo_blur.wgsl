@@ -1,4 +1,4 @@
-// Volumetric obscurance's edge-aware blur (digest section 9.3: line samples need a bilateral
+// Volumetric obscurance's edge-aware blur (Loos 2015 §6.3.1: line samples need a bilateral
 // blur), separable: a row of 5 taps then a column of 5 (together they cover the 4 x 4 rotation
 // tile; a 5 x 5 window cost 1.67x a `direct` frame on llvmpipe at 640x360, `bouncelab bench`),
 // weighted by a Gaussian in pixels,

@@ -4,10 +4,15 @@
 
 use glam::{Vec2, Vec3};
 
-/// The VPL's local frame: tangent, bitangent, normal (Duff et al. 2017, branchless).
+/// The VPL's local frame: tangent, bitangent, normal (Duff et al. 2017), with the sign rule of
+/// `onb_tangent` in `common/onb.wgsl` (n.z >= 0 counts as positive, so a normal whose z is -0.0,
+/// as negated axis vectors have, gets the same frame on both sides; `f32::copysign`, which
+/// `scene::basis` uses, would mirror it).
 pub fn frame(n: Vec3) -> (Vec3, Vec3, Vec3) {
-    let (t, b) = crate::scene::basis::basis(n);
-    (t, b, n)
+    let s = if n.z >= 0.0 { 1.0 } else { -1.0 };
+    let a = -1.0 / (s + n.z);
+    let b = n.x * n.y * a;
+    (Vec3::new(1.0 + s * n.x * n.x * a, s * b, -s * n.x), Vec3::new(b, s + n.y * n.y * a, -n.y), n)
 }
 
 /// Paraboloid coordinates in [0, 1]^2 and distance of `p` seen from a VPL at `origin` with
@@ -50,6 +55,15 @@ pub fn tile_origin(k: usize, vpl_count: usize, r: usize) -> (usize, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_negative_zero_z_gets_the_frame_of_positive_zero_as_on_the_gpu() {
+        let n = -Vec3::new(-1.0, 0.0, 0.0);
+        assert!(n.z.is_sign_negative(), "the case under test: z = -0.0");
+        let (t, b, _) = frame(n);
+        let (t0, b0, _) = frame(Vec3::new(1.0, 0.0, 0.0));
+        assert_eq!((t, b), (t0, b0));
+    }
 
     #[test]
     fn project_and_direction_round_trip() {

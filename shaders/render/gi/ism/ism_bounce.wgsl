@@ -1,7 +1,7 @@
 // ISM pass P11: one-pass multi-bounce VPL generation (Knecht 2009 section 3.6). Each VPL of the
 // source set owns the points of its ISM (`ism_select.wgsl`, each with the area it stands for);
 // a point is lit by that VPL (ISM-tested), and per source VPL one lit point becomes the new VPL, carrying the
-// source VPL's whole reflected power in the winner's colour (digest section 6.2):
+// source VPL's whole reflected power in the winner's colour (section 3.6.1 leaves the power open):
 // - the thesis's pick: the brightest lit point (its >= depth test, here an atomic max on the
 //   luminance). The total power is right in expectation, but its position is not: the
 //   brightest point is nearly always the one nearest the source, so light never travels far

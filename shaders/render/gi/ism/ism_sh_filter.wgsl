@@ -1,4 +1,4 @@
-// Segovia & Wald's screen-space SH filter (digest technique-rcs-shfilter-sshgi part B): average
+// Segovia & Wald's screen-space SH filter (their Sec. 3, steps 3 and 4): average
 // the incident-radiance SH coefficients of the n x n window that holds each interleave phase
 // once (offsets [-n/2, n/2 - 1]), rejecting taps across geometric discontinuities only (other
 // object, distance from this pixel's tangent plane >= alpha x scene diameter, geometric normals

@@ -4,7 +4,9 @@
 // per VPL: a Halton point of this frame's window descends the importance pyramid from the 2x2
 // level to the finest (rows first, then the column within the row), lands in texel t with
 // probability p(t) = importance(t) / total, and becomes a VPL on the surface that texel sees,
-// carrying the unbiased power rho I dOmega n^2 / (N p(t)) (digest section 7.3).
+// carrying the unbiased power rho I dOmega n^2 / (N p(t)); the thesis gives no normalisation
+// (sections 4.4 and 4.5), and n^2 is there because a pixel shades only the N / n^2 VPLs of its
+// interleave tile (section 3.4.1).
 #import common/vpl.wgsl
 
 struct GenParams {

@@ -1,4 +1,4 @@
-// DRT pass G1 (Loos 2015 §5.4, digest section 8.7): the light of every patch the delta
+// DRT pass G1 (Loos 2015 §5.4.1): the light of every patch the delta
 // operators read, the mean outgoing radiance of a side x side square of texels of one block face
 // (l_d, direct plus the feedback's bounces) or one clutter face (its radiance this frame).
 // `precompute::drt::operators` says why patches and not the dissertation's L_imp rows.

@@ -1,4 +1,4 @@
-// DRT pass G2 (Loos 2015 §5.4, digest sections 8.2-8.5 and 8.7): the delta operators' sparse rows.
+// DRT pass G2 (Loos 2015 §5.3.1-§5.3.3, §5.4.1-§5.4.2): the delta operators' sparse rows.
 // A delta row adds to a block texel's indirect light (E / pi) the light of the clutter its rays
 // meet (ΔU_c c, weights > 0) less the light the clutter hides (ΔU_b, weights < 0); a gather row
 // writes a clutter texel's indirect light (C_b) from the patches its rays reach; an inpainting

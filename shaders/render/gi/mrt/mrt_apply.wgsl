@@ -1,4 +1,4 @@
-// MRT pass F (digest sections 6.3 and 6.5): the lightmap applied to the real scene. Each pixel
+// MRT pass F (Loos 2015 §3.6.2, §3.6.3 step 7): the lightmap applied to the real scene. Each pixel
 // belongs to the block its surface faces into (the box nearest to the point lifted 5 cm along its
 // normal; or the block an artist assigned its object to) and to that block's present face whose inward normal is closest to the pixel's normal
 // (a floor to the floor, a wall to the wall behind it); its lightmap coordinate is the
@@ -230,7 +230,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let here = block_light(best, p, n);
     var e = here.rgb;
-    // Padding (digest section 6.4): within half a texel of a side open over its whole area, blend
+    // Padding (Loos 2015 §4.6): within half a texel of a side open over its whole area, blend
     // towards the block beyond, so both sides meet at the same value (the dissertation's padded
     // atlas, read here from the neighbour's own faces).
     if mp.sizes.z == 1u {

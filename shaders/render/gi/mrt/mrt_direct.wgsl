@@ -1,4 +1,4 @@
-// MRT pass A (Loos 2015 §3.6.3 step 1, digest section 7.1): the direct light l_d at every block
+// MRT pass A (Loos 2015 §3.6.3 step 1, §4.4.1): the direct light l_d at every block
 // texel, evaluated on the real surface of its geometry image with the frame's shadowed lights,
 // as outgoing radiance (albedo x E / pi). Multi-bounce feedback adds albedo x the previous
 // frame's indirect light, clamped at zero (the reduced reconstructions can ring negative).

@@ -1,4 +1,4 @@
-// MRT pass C (digest section 7.1 step 4): r = T_{b->r} b, the light entering each directed
+// MRT pass C (Loos 2015 §3.6.3 step 4, §4.5.1): r = T_{b->r} b, the light entering each directed
 // interface as k_r response coefficients, summed over every source block whose light the level's
 // propagation carried there (one k_r x k_b matrix each). One thread per (interface, mode).
 #import render/gi/mrt/mrt_common.wgsl

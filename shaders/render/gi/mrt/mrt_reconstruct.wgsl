@@ -1,4 +1,4 @@
-// MRT pass D (digest section 7.1 steps 3 and 5): each texel's indirect light, E / pi of a white
+// MRT pass D (Loos 2015 §3.6.3 steps 3 and 5): each texel's indirect light, E / pi of a white
 // receiver: the block's own U_b b (face by face, U_b b_g scaled by the stretch correction of
 // light from face g on this texel's face) plus, for every interface entering its block, the surface
 // response U_r r at the texel's row (U_r laid out for the canonical entry, the rows turned to

@@ -1,4 +1,4 @@
-// MRT pass B (digest section 7.3): b = T_{d->b} l_d per block, the most expensive indirect stage,
+// MRT pass B (Loos 2015 §4.4): b = T_{d->b} l_d per block, the most expensive indirect stage,
 // kept per emitting face (b_g over face slot g's texels; b = the sum of the six), so that the
 // block's own light gets each face's stretch correction (`precompute::mrt::warp`). One workgroup
 // per (mode, block, face slot): 64 threads each sum a strided share of the face's products, then

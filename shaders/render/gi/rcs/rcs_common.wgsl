@@ -1,4 +1,4 @@
-// Radiance cache splatting (Gautron et al. 2007; digest part A): the record layout every rcs pass
+// Radiance cache splatting (Gautron et al. 2005): the record layout every rcs pass
 // shares (mirrors render::gi::rcs::record::GpuRecord), Ward's weight, the gradient-extrapolated
 // irradiance of a record, and the world hash grid the hemisphere renders look the cache up in
 // for later bounces (render::gi::rcs::grid builds it).

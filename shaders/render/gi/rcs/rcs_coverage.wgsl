@@ -1,5 +1,5 @@
-// rcs coverage detection, the notes' CPU scan moved to the GPU (digest A.1 step 3, GPU
-// variant): a pixel with geometry that no record reaches (summed weight 0) is uncovered; each
+// rcs coverage detection, the CPU scan of Gautron et al. 2005 ("Splatting-Based Rendering") moved
+// to the GPU: a pixel with geometry that no record reaches (summed weight 0) is uncovered; each
 // 8 x 8 tile with uncovered pixels proposes the one nearest its centre as a new record's site.
 // Candidates are appended (the CPU reads them back, orders them and computes the budget's worth).
 // The mask: r = uncovered after this round, g = the round (1-based) whose record this pixel got,

@@ -1,12 +1,13 @@
 // rcs record computation, step 2: one workgroup reduces one record's hemisphere plane.
 // - E: sum over the plane's texels of L cos(theta) dOmega plus the border compensation, weights
 //   precomputed by render::gi::rcs::hemisphere::plane_weights (they sum to pi: the white
-//   furnace), i.e. the notes' Omega_p with the digest's band term L cos^2(theta_b) dPhi / 2.
+//   furnace), i.e. the notes' Omega_p with their border band cos(theta_b) dPhi weighted for
+//   irradiance: L cos^2(theta_b) dPhi / 2 (the band times cos(theta_b) would count it twice).
 // - The plane resampled into M x N strata uniform in projected solid angle (2 x 2 taps each; a
 //   direction beyond the aperture takes the border texel along its azimuth, as the border
 //   compensation does): R_k = the harmonic mean of the strata's nearest distances, limited to
 //   E / |grad_t E| (Ward and Heckbert 1992), and their rotational and translational gradients
-//   (digest A.2).
+//   (also after Ward and Heckbert 1992, over the strata).
 // - 64 check strata (4 x 16, one centre tap each) keep the surface each one sees (distance,
 //   normal, albedo) for the light check (`rcs_check.wgsl`).
 // - Secondary records (classical irradiance caching's recursion): where the bounce lookup found

@@ -1,14 +1,14 @@
-// sshgi gather (Soler et al. 2010, digest C.1 step 4 and C.2): one shader for every level. A
-// texel of level k gathers N samples of the screen-space surface elements of its level: the
-// full disc of radius r texels on the start level, the ring r/2..r on coarser ones (so the
-// levels' rings tile the view without overlap), each with the bounded point-to-disc form factor
-// of Eq. 4, R^2 cos(theta) / (r^2 + R^2) with R^2 = cos(theta') ds / pi, whose 1/pi makes the
-// sum E / pi: the composite multiplies it by the receiver's albedo. ds is Eq. 2, the area the
+// sshgi gather (Soler et al. 2010, Sec. 3 and Sec. 4, "Indirect lighting shader"): one shader for
+// every level. A texel of level k gathers N samples of the screen-space surface elements of its
+// level: the full disc of radius r texels on the start level, the ring r/2..r on coarser ones (so
+// the levels' rings tile the view without overlap), each with the bounded point-to-disc form
+// factor of Eq. 4, R^2 cos(theta) / (r^2 + R^2) with R^2 = cos(theta') ds / pi, whose 1/pi makes
+// the sum E / pi: the composite multiplies it by the receiver's albedo. ds is Eq. 2, the area the
 // sample's share dP of the region covers at its distance and tilt. The 2^(2k) energy scale of
-// coarse levels is in the texel solid angle of level k (4^k that of a view pixel), applied
-// once. Samples are stratified in area with a per-pixel (4x4 interleaved) and per-frame
-// rotation, so the temporal accumulation averages the pattern out. With visibility on, each
-// sample's segment is marched through the view's voxel columns (`sshgi_visibility.wgsl`).
+// coarse levels is in the texel solid angle of level k (4^k that of a view pixel), applied once.
+// Samples are stratified in area with a per-pixel (4x4 interleaved) and per-frame rotation, so the
+// temporal accumulation averages the pattern out. With visibility on, each sample's segment is
+// marched through the view's voxel columns (`sshgi_visibility.wgsl`).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 

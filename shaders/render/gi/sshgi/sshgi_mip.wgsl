@@ -1,8 +1,8 @@
-// sshgi illumination levels (Soler et al. 2010, digest C.1 steps 3 and 8): the start level's
-// outgoing radiance as the box average of the view's 2^s x 2^s blocks, coarser levels by 2x2
-// box averages (the paper does not say how it reduces illumination; depth and normal are voted
-// in `render/pyramid.wgsl`), a later bounce's start level as albedo x the previous bounce's
-// E / pi, and the sum of two levels (bounces).
+// sshgi illumination levels (Soler et al. 2010, Sec. 4, "Filtering of mipmap levels" and
+// "Multi-bounce computation"): the start level's outgoing radiance as the box average of the
+// view's 2^s x 2^s blocks, coarser levels by 2x2 box averages (the paper does not say how it
+// reduces illumination; depth and normal are voted in `render/pyramid.wgsl`), a later bounce's
+// start level as albedo x the previous bounce's E / pi, and the sum of two levels (bounces).
 
 struct MipParams {
     // block side (2^s, `box_seed`), unused x3.

@@ -1,10 +1,10 @@
-// sshgi temporal filter (Soler et al. 2010 Eq. 6, digest C.1 step 6): F_i = a W(H) + (1 - a) I_i,
-// W the warp of the history to this frame through the motion buffer. The history is checked
-// against this pixel's surface: each of the 2x2 bilinear taps around the previous position is
-// kept only where its stored world position lies within 5% of the distance to the camera and
-// its normal within 25 degrees, so disocclusions and moving edges start afresh. H is F_i-1 (a
-// recursive, exponential history: the default) or the previous raw gather I_i-1 (the paper's
-// 2-tap blend).
+// sshgi temporal filter (Soler et al. 2010, Sec. 4, "Temporal filtering", Eq. 6):
+// F_i = a W(H) + (1 - a) I_i, W the warp of the history to this frame through the motion buffer.
+// The history is checked against this pixel's surface: each of the 2x2 bilinear taps around the
+// previous position is kept only where its stored world position lies within 5% of the distance to
+// the camera and its normal within 25 degrees, so disocclusions and moving edges start afresh. H
+// is F_i-1 (a recursive, exponential history: the default) or the previous raw gather I_i-1 (the
+// paper's 2-tap blend).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 

@@ -1,15 +1,15 @@
-// sshgi coarse-to-fine combination (Soler et al. 2010, digest C.1 step 5): joint bilateral
-// up-sampling (Kopf et al. 2007) of a coarse level's sum to the next finer level, guided by both
-// levels' distances and normals, plus the finer level's own gather: Acc_k = JBU(Acc_k+1) + Ind_k.
-// The last step up-samples the start level to the view. Weights (the paper gives none):
-// bilinear x exp(-(h / w)^2) x max(0, n.n')^16, h the coarse texel's distance from the fine
-// texel's tangent plane and w a coarse texel's width at the fine texel's distance, in place of
-// the digest's depth term exp(-(dz / 0.05 z)^2): the plane distance keeps parallel faces at
-// similar depths apart and joins a surface seen at grazing angles, whose depth changes fast across
-// a texel. Measured against the depth term it moved neither the walled floor's leak (0.00245 ->
-// 0.00256) nor the Cornell box's energy (0.886 -> 0.884), both before the voxel and voting changes
-// that followed; it stays for the cases it is built for. A fine texel that no coarse neighbour
-// resembles takes the most similar one's value.
+// sshgi coarse-to-fine combination (Soler et al. 2010, Sec. 4, "Continuous combination of all
+// levels"): joint bilateral up-sampling (Kopf et al. 2007) of a coarse level's sum to the next
+// finer level, guided by both levels' distances and normals, plus the finer level's own gather:
+// Acc_k = JBU(Acc_k+1) + Ind_k. The last step up-samples the start level to the view. Weights (the
+// paper gives none): bilinear x exp(-(h / w)^2) x max(0, n.n')^16, h the coarse texel's distance
+// from the fine texel's tangent plane and w a coarse texel's width at the fine texel's distance,
+// in place of the first version's depth term exp(-(dz / 0.05 z)^2): the plane distance keeps
+// parallel faces at similar depths apart and joins a surface seen at grazing angles, whose depth
+// changes fast across a texel. Measured against the depth term it moved neither the walled floor's
+// leak (0.00245 -> 0.00256) nor the Cornell box's energy (0.886 -> 0.884), both before the voxel
+// and voting changes that followed; it stays for the cases it is built for. A fine texel that no
+// coarse neighbour resembles takes the most similar one's value.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 

@@ -1,4 +1,4 @@
-// sshgi indirect visibility (Soler et al. 2010, digest C.2 "voxel visibility"): the segment
+// sshgi indirect visibility (Soler et al. 2010, Sec. 4, "Visibility computation"): the segment
 // between a receiver's and a sender's voted points is marched through voxel columns. In screen
 // space 1/z is affine, so the segment's view depth over each column it crosses is exact; its
 // slice interval is ANDed with the column, and any common bit is an occluder. The segment runs

@@ -1,12 +1,12 @@
-// sshgi solid voxelisation of the view (Soler et al. 2010 after Eisemann & Décoret 2008; digest
-// C.1 step 2): every surface is rasterised with the camera's projection, no culling and no depth
-// test, and each fragment XORs "all slices from mine to the last" into its pixel's 128-bit
-// column. Afterwards a slice bit is set exactly when an odd number of surfaces lie in front of
-// it along the pixel's ray: inside a closed solid. wgpu has no logic-op blending, so the XOR is a
-// storage atomic. Clip-space z is pinned mid-range so no surface is clipped at the near or far
-// plane (a surface crossing the near plane would otherwise lose its entry and flip the parity of
-// everything behind it); the slice comes from the fragment's own view depth, clamped into the
-// range at the near end, and geometry beyond the range writes nothing.
+// sshgi solid voxelisation of the view (Soler et al. 2010, Sec. 4, "Visibility computation", after
+// Eisemann & Décoret 2008): every surface is rasterised with the camera's projection, no culling
+// and no depth test, and each fragment XORs "all slices from mine to the last" into its pixel's
+// 128-bit column. Afterwards a slice bit is set exactly when an odd number of surfaces lie in
+// front of it along the pixel's ray: inside a closed solid. wgpu has no logic-op blending, so the
+// XOR is a storage atomic. Clip-space z is pinned mid-range so no surface is clipped at the near
+// or far plane (a surface crossing the near plane would otherwise lose its entry and flip the
+// parity of everything behind it); the slice comes from the fragment's own view depth, clamped
+// into the range at the near end, and geometry beyond the range writes nothing.
 #import common/frame.wgsl
 #import common/object.wgsl
 

@@ -119,7 +119,7 @@ impl Site {
     /// The job computing this site into `slot`, its plane at atlas texel `origin`; `propose`:
     /// list secondary sites where its bounce lookups miss.
     pub fn job(&self, slot: u32, origin: (u32, u32), flags: JobFlags, computed: u32) -> GpuJob {
-        let (t, b) = crate::precompute::brdf::basis(self.normal);
+        let (t, b) = crate::scene::basis::basis(self.normal);
         let v = |v: Vec3, w: f32| [v.x, v.y, v.z, w];
         GpuJob {
             position: v(self.position, self.near),
