@@ -74,7 +74,48 @@ pub struct RenderArgs {
 /// Renders and writes the output file; returns a one-line summary.
 pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     let kind = image_io::output_kind(&args.out)?;
-    // Everything about the command line is checked before a long render starts.
+    let (project, size) = checked_project(args)?;
+    // A scene with no light or with emission no mode renders is not what a render asks for
+    // (buffers such as albedo or normal do not need light).
+    let scene_shortfalls = if args.buffer.is_some() { Vec::new() } else { project.shortfalls() };
+    if project.render.mode == GiMode::Reference {
+        if args.buffer.is_some() {
+            anyhow::bail!("--buffer is for raster modes; the reference mode has no intermediate buffers");
+        }
+        super::budget::check_reference(size)?;
+        refuse_partial(&args.out, &scene_shortfalls, args.allow_partial)?;
+        return reference(&project, &args.out, kind, size);
+    }
+    let (ctx, mut renderer, render_size) = raster_renderer(args, size)?;
+    let frames = render_frames(&ctx, &mut renderer, &project, render_size, args.frames)?;
+    report_notes(args, &project, &renderer, frames);
+    let mut shortfalls = renderer.shortfalls(&project.scene, &project.render);
+    shortfalls.extend(scene_shortfalls);
+    // A buffer is inspected to find out what went wrong: it is written whatever it holds.
+    refuse_partial(&args.out, &shortfalls, args.allow_partial || args.buffer.is_some())?;
+    let img = match &args.buffer {
+        Some(name) => renderer.read_buffer(name)?,
+        None => HdrImage {
+            width: size.0,
+            height: size.1,
+            pixels: image_io::box_downsample(&renderer.read_hdr()?, render_size, render_size.0 / size.0),
+        },
+    };
+    write_checked(args, &project, &renderer, kind, &img)?;
+    Ok(format!(
+        "{} ({}x{}, mode {}, {})",
+        args.out.display(),
+        img.width,
+        img.height,
+        project.render.mode.name(),
+        ctx.describe()
+    ))
+}
+
+/// Everything about the command line checked before a long render starts: frames, supersampling,
+/// the output against every input, the overrides applied to the project and validated, the
+/// size, the buffer's name. Returns the project and the output size.
+fn checked_project(args: &RenderArgs) -> anyhow::Result<(Project, (u32, u32))> {
     if args.frames == Some(0) {
         anyhow::bail!("--frames 0: at least one frame is rendered (the last one is written)");
     }
@@ -111,18 +152,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
             );
         }
     }
-    // A scene with no light or with emission no mode renders is not what a render asks for
-    // (buffers such as albedo or normal do not need light).
-    let scene_shortfalls = if args.buffer.is_some() { Vec::new() } else { project.shortfalls() };
-    if project.render.mode == GiMode::Reference {
-        if args.buffer.is_some() {
-            anyhow::bail!("--buffer is for raster modes; the reference mode has no intermediate buffers");
-        }
-        super::budget::check_reference(size)?;
-        refuse_partial(&args.out, &scene_shortfalls, args.allow_partial)?;
-        return reference(&project, &args.out, kind, size);
-    }
-    // Buffers are inspected at their own resolution; the final image is supersampled.
+    Ok((project, size))
+}
+
+/// The device and renderer for a raster render of `size`, with the render size (supersampled,
+/// except for an inspected buffer, which is read at its own resolution) checked against the
+/// memory budget and the adapter's limits.
+fn raster_renderer(args: &RenderArgs, size: (u32, u32)) -> anyhow::Result<(GpuContext, Renderer, (u32, u32))> {
     let k = if args.buffer.is_some() { 1 } else { args.ssaa };
     let render_size = (size.0 * k, size.1 * k);
     let ctx = GpuContext::new_headless()?;
@@ -141,8 +177,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
             render_size.1
         );
     }
-    let frames = render_frames(&ctx, &mut renderer, &project, render_size, args.frames)?;
-    // Say what the technique leaves out (a light type, a feature), so nobody mistakes it for error.
+    Ok((ctx, renderer, render_size))
+}
+
+/// Says what the technique leaves out (a light type, a feature), so nobody mistakes it for
+/// error, and whether it had converged when the image was taken.
+fn report_notes(args: &RenderArgs, project: &Project, renderer: &Renderer, frames: u32) {
     for note in renderer.limitations(&project.scene, &project.render) {
         eprintln!("note: {} {note}", project.render.mode.name());
     }
@@ -162,27 +202,24 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
             project.render.mode.name()
         );
     }
-    let mut shortfalls = renderer.shortfalls(&project.scene, &project.render);
-    shortfalls.extend(scene_shortfalls);
-    // A buffer is inspected to find out what went wrong: it is written whatever it holds.
-    refuse_partial(&args.out, &shortfalls, args.allow_partial || args.buffer.is_some())?;
-    let img = match &args.buffer {
-        Some(name) => renderer.read_buffer(name)?,
-        None => HdrImage {
-            width: size.0,
-            height: size.1,
-            pixels: image_io::box_downsample(&renderer.read_hdr()?, render_size, k),
-        },
-    };
-    let size = (img.width, img.height);
-    // PNGs of buffers show raw values (clamped); the final image uses the project's view.
+}
+
+/// Writes `img` unless it holds a non-finite pixel (then names the first pass of the frame whose
+/// output already holds one). PNGs of buffers show raw values (clamped); the final image uses
+/// the project's view.
+fn write_checked(
+    args: &RenderArgs,
+    project: &Project,
+    renderer: &Renderer,
+    kind: OutputKind,
+    img: &HdrImage,
+) -> anyhow::Result<()> {
     let view = if args.buffer.is_some() {
         ViewSettings { exposure_ev: 0.0, tonemap: Tonemap::Clamp }
     } else {
         project.render.view.clone()
     };
-    if let Some((x, y)) = image_io::first_non_finite(&img) {
-        // Name the first pass of the frame whose output already holds them.
+    if let Some((x, y)) = image_io::first_non_finite(img) {
         let pass = ["direct", "indirect", "hdr"]
             .into_iter()
             .find(|b| renderer.read_buffer(b).is_ok_and(|i| image_io::first_non_finite(&i).is_some()))
@@ -193,15 +230,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
             project.render.mode.name()
         );
     }
-    image_io::write_image(&args.out, kind, &img, &view)?;
-    Ok(format!(
-        "{} ({}x{}, mode {}, {})",
-        args.out.display(),
-        size.0,
-        size.1,
-        project.render.mode.name(),
-        ctx.describe()
-    ))
+    image_io::write_image(&args.out, kind, img, &view)?;
+    Ok(())
 }
 
 /// Most frames `render` gives a technique to converge (and `rcs` to fill its cache).
