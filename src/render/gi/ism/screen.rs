@@ -65,6 +65,15 @@ struct Key {
 }
 
 /// View-sized resources.
+/// The temporal merge's targets and bind groups ([`IsmScreen::ensure`]).
+struct Temporal {
+    history: [Target; 2],
+    confidence: Target,
+    prev_normal: Target,
+    filter_groups: [wgpu::BindGroup; 3],
+    temporal_groups: [wgpu::BindGroup; 2],
+}
+
 struct Sized {
     key: Key,
     split_position: Target,
@@ -232,6 +241,8 @@ impl IsmScreen {
         })
     }
 
+    /// Creates the view-sized targets and bind groups for `key` (the split G-buffer, shading,
+    /// temporal merge, filter and view importance), unless the current ones already fit it.
     fn ensure(
         &mut self,
         device: &wgpu::Device,
@@ -243,12 +254,8 @@ impl IsmScreen {
         if self.sized.as_ref().is_some_and(|s| s.key == key) {
             return;
         }
-        use wgpu::TextureUsages as U;
-        let rw = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
         let split = split_size(key.view, key.n);
-        let split_position = Target::new(device, "ism split positions", split, formats::HDR, rw);
-        let split_normal = Target::new(device, "ism split normals", split, formats::NORMAL, rw);
-        let raw = Target::new(device, "ism split accumulation", split, formats::HDR, rw);
+        let [split_position, split_normal, raw] = Self::split_targets(device, split);
         if key.sh {
             self.sh.ensure(device, split, frame_buffer, targets);
         }
@@ -264,6 +271,58 @@ impl IsmScreen {
                 tex(5, &split_normal.view),
             ],
         });
+        let shade_group = self.shade_group(device, key, ism, [&split_position, &split_normal, &raw]);
+        let temporal = self.temporal_stage(device, key, frame_buffer, targets, &raw);
+        let importance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism view importance bind group"),
+            layout: &self.importance_layout,
+            entries: &[
+                buf(0, frame_buffer),
+                tex(1, &targets.depth.view),
+                buf(2, ism.points),
+                buf(3, ism.normals),
+                buf(4, ism.albedo),
+            ],
+        });
+        let Temporal { history, confidence, prev_normal, filter_groups, temporal_groups } = temporal;
+        self.reset = true;
+        self.sized = Some(Sized {
+            key,
+            split_position,
+            split_normal,
+            raw,
+            split_group,
+            shade_group,
+            history,
+            prev_normal,
+            confidence,
+            temporal_groups,
+            filter_groups,
+            importance_group,
+        });
+    }
+
+    /// The split G-buffer's positions and normals and the split accumulation, at `split`.
+    fn split_targets(device: &wgpu::Device, split: (u32, u32)) -> [Target; 3] {
+        use wgpu::TextureUsages as U;
+        let rw = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
+        [
+            Target::new(device, "ism split positions", split, formats::HDR, rw),
+            Target::new(device, "ism split normals", split, formats::NORMAL, rw),
+            Target::new(device, "ism split accumulation", split, formats::HDR, rw),
+        ]
+    }
+
+    /// The shading pass's bind group: the VPLs, the atlas and its lookups' buffers, the split
+    /// G-buffer and accumulation (`split`: positions, normals, accumulation), and the SH
+    /// projection when the SH filter is on (a 16-byte stand-in otherwise).
+    fn shade_group(
+        &self,
+        device: &wgpu::Device,
+        key: Key,
+        ism: &IsmInputs<'_>,
+        split: [&Target; 3],
+    ) -> wgpu::BindGroup {
         let dummy;
         let sh_buffer = match self.sh.raw().filter(|_| key.sh) {
             Some(b) => b,
@@ -277,16 +336,16 @@ impl IsmScreen {
                 &dummy
             }
         };
-        let shade_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism shade bind group"),
             layout: &self.shade_layout,
             entries: &[
                 buf(0, &self.shade_params),
                 buf(1, ism.vpls),
                 buf(2, ism.atlas),
-                tex(3, &split_position.view),
-                tex(4, &split_normal.view),
-                tex(5, &raw.view),
+                tex(3, &split[0].view),
+                tex(4, &split[1].view),
+                tex(5, &split[2].view),
                 buf(6, sh_buffer),
                 buf(7, ism.points),
                 buf(8, ism.normals),
@@ -295,7 +354,22 @@ impl IsmScreen {
                 buf(11, ism.tail),
                 buf(12, ism.coarse),
             ],
-        });
+        })
+    }
+
+    /// The temporal merge's history (ping-pong), confidence and previous normals, with the
+    /// filter's and the merge's bind groups; the merge reads the split accumulation `raw`, or
+    /// the SH-shaded radiance.
+    fn temporal_stage(
+        &self,
+        device: &wgpu::Device,
+        key: Key,
+        frame_buffer: &wgpu::Buffer,
+        targets: &ViewTargets,
+        raw: &Target,
+    ) -> Temporal {
+        use wgpu::TextureUsages as U;
+        let rw = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
         let history = [
             Target::new(device, "ism history a", key.view, formats::HDR, rw),
             Target::new(device, "ism history b", key.view, formats::HDR, rw),
@@ -323,7 +397,6 @@ impl IsmScreen {
             })
         };
         let filter_groups = [filter_group(&raw.view), filter_group(&history[0].view), filter_group(&history[1].view)];
-        // The temporal merge reads the split accumulation, or the SH-shaded radiance.
         let new_input = self.sh.shaded().filter(|_| key.sh).map_or(&raw.view, |t| &t.view);
         let temporal_group = |p: usize| {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -344,32 +417,7 @@ impl IsmScreen {
             })
         };
         let temporal_groups = [temporal_group(0), temporal_group(1)];
-        let importance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ism view importance bind group"),
-            layout: &self.importance_layout,
-            entries: &[
-                buf(0, frame_buffer),
-                tex(1, &targets.depth.view),
-                buf(2, ism.points),
-                buf(3, ism.normals),
-                buf(4, ism.albedo),
-            ],
-        });
-        self.reset = true;
-        self.sized = Some(Sized {
-            key,
-            split_position,
-            split_normal,
-            raw,
-            split_group,
-            shade_group,
-            history,
-            prev_normal,
-            confidence,
-            temporal_groups,
-            filter_groups,
-            importance_group,
-        });
+        Temporal { history, confidence, prev_normal, filter_groups, temporal_groups }
     }
 
     /// Drops the temporal history (the next frame uses only new VPLs).
