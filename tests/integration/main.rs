@@ -23,6 +23,7 @@ mod editor_ui;
 mod gi_seam;
 mod gltf_import;
 mod ism;
+mod ism_footprint;
 mod ism_glossy;
 mod ism_inspector;
 mod ism_lights;

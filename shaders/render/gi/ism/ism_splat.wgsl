@@ -1,8 +1,8 @@
 // ISM pass P7: imperfect shadow maps by point splatting (Ritschel et al. 2008 as used by Knecht
 // 2009). Each VPL's own points (`ism_select.wgsl`: P pool points chosen by solid angle, each
 // with the area it stands for) are splatted into that VPL's paraboloid tile of the atlas with
-// an atomic min of their packed normalised distance (depth in the high bits). `clear` empties
-// the atlas. Each bounce's VPL set has its own block of tiles (`sets.x` is the
+// an atomic min of their packed normalised distance (depth in the high bits), into an atlas
+// `ism_clear.wgsl` emptied. Each bounce's VPL set has its own block of tiles (`sets.x` is the
 // set's first VPL).
 //
 // A point stands for a disk of its surface (the area it was chosen to stand for), and its splat is
@@ -18,6 +18,7 @@
 #import common/onb.wgsl
 #import common/vpl.wgsl
 #import render/gi/ism/ism_clips.wgsl
+#import render/gi/ism/ism_footprint.wgsl
 
 struct SplatParams {
     // VPL count, points per ISM P, tile side r, tiles per row C.
@@ -43,14 +44,6 @@ struct SplatParams {
 
 // The sine of the elevation, seen from a point, below which the VPL counts as on its plane.
 const ON_PLANE: f32 = 2.0e-3;
-
-@compute @workgroup_size(8, 8, 1)
-fn clear(@builtin(global_invocation_id) id: vec3<u32>) {
-    let side = sp.counts.z * sp.counts.w;
-    if id.x < side && id.y < side {
-        atomicStore(&atlas[id.y * side + id.x], ISM_EMPTY);
-    }
-}
 
 @compute @workgroup_size(64, 1, 1)
 fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -93,28 +86,31 @@ fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
     let ta = paraboloid(vpl.position.xyz, vpl.normal.xyz, p + onb_tangent(nw.xyz) * radius).xy * fr - centre;
     let tb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p + onb_bitangent(nw.xyz) * radius).xy * fr - centre;
     // Its covariance plus half a texel each way; texel offsets q with q^T M^-1 q <= 1 are in.
-    let m00 = ta.x * ta.x + tb.x * tb.x + 0.25;
-    let m01 = ta.x * ta.y + tb.x * tb.y;
-    let m11 = ta.y * ta.y + tb.y * tb.y + 0.25;
-    let det = m00 * m11 - m01 * m01;
+    let m = footprint_moments(ta, tb);
+    let m00 = m.x;
+    let m01 = m.y;
+    let m11 = m.z;
+    let det = m.w;
     let ext = min(vec2<f32>(sqrt(m00), sqrt(m11)), vec2<f32>(sp.params.z));
     let lo = vec2<i32>(floor(centre - ext));
     let hi = vec2<i32>(floor(centre + ext));
     let o = vpl.position.xyz;
     let frame = mat3x3<f32>(onb_tangent(vpl.normal.xyz), onb_bitangent(vpl.normal.xyz), vpl.normal.xyz);
+    // The point's clip lines, read once for the whole footprint (a texel loop that reread them
+    // from storage spent about 40% of the splat pass on lavapipe).
+    let edges = splat_clips(j, 0.01 * radius);
     for (var y = max(lo.y, 0); y <= min(hi.y, i32(r) - 1); y = y + 1) {
-        for (var x = max(lo.x, 0); x <= min(hi.x, i32(r) - 1); x = x + 1) {
-            let q = vec2<f32>(f32(x), f32(y)) + 0.5 - centre;
-            let inside = (m11 * q.x * q.x - 2.0 * m01 * q.x * q.y + m00 * q.y * q.y) <= det;
-            let own = x == i32(centre.x) && y == i32(centre.y);
-            if inside || own {
+        let span = row_span(centre, y, m00, m01, m11, det);
+        for (var x = max(max(lo.x, span.x), 0); x <= min(min(hi.x, span.y), i32(r) - 1); x = x + 1) {
+            if footprint_covers(centre, x, y, m00, m01, m11, det) {
+                let own = x == i32(centre.x) && y == i32(centre.y);
                 let dir = texel_ray(frame, (vec2<f32>(f32(x), f32(y)) + 0.5) / fr);
                 let hit = plane_hit(o, dir, p, nw.xyz);
                 // Texels whose ray meets the plane past the surface's open edges (over a
                 // doorway, past a wall's end) show no surface: the disk does not hang there.
                 // (A margin of 1% of the disk radius: two faces meeting at an edge leave no
                 // crack between them.)
-                if !own && hit > 0.0 && !on_surface(j, o + dir * hit, 0.01 * radius) {
+                if !own && hit > 0.0 && edges.any_line && !splat_clips_admit(edges, o + dir * hit) {
                     continue;
                 }
                 let a = origin + vec2<i32>(x, y);
@@ -158,4 +154,65 @@ fn texel_ray(frame: mat3x3<f32>, uv: vec2<f32>) -> vec3<f32> {
     let s = uv * 2.0 - 1.0;
     let ss = dot(s, s);
     return frame * (vec3<f32>(2.0 * s, 1.0 - ss) / (1.0 + ss));
+}
+
+// A point's clip lines prepared for one splat (`within_edges` in `ism_clips.wgsl` without seams,
+// its per-line terms computed once): `rhs[k]` is the bound dot(xyz, h) / `div[k]` must reach.
+struct SplatClips {
+    l0: vec4<f32>,
+    l1: vec4<f32>,
+    l2: vec4<f32>,
+    l3: vec4<f32>,
+    rhs: vec4<f32>,
+    div: vec4<f32>,
+    // Whether line k is a seam's (divided by its length).
+    seam: vec4<bool>,
+    // Whether any line can reject a hit (empty slots, (0, 0, 0, -1), admit every hit).
+    any_line: bool,
+}
+
+// The bound of one clip line, as `within_edges` computes it per hit: seams by their length s.
+fn clip_bound(line: vec4<f32>, margin: f32) -> vec3<f32> {
+    let s2 = dot(line.xyz, line.xyz);
+    if s2 > 2.0 {
+        let s = sqrt(s2);
+        return vec3<f32>(line.w / s - (s - SEAM_SCALE) - margin, s, 1.0);
+    }
+    return vec3<f32>(line.w - margin, 1.0, 0.0);
+}
+
+fn splat_clips(i: u32, margin: f32) -> SplatClips {
+    let l0 = clips[i * CLIPS];
+    let l1 = clips[i * CLIPS + 1u];
+    let l2 = clips[i * CLIPS + 2u];
+    let l3 = clips[i * CLIPS + 3u];
+    let b0 = clip_bound(l0, margin);
+    let b1 = clip_bound(l1, margin);
+    let b2 = clip_bound(l2, margin);
+    let b3 = clip_bound(l3, margin);
+    let empty = vec4<f32>(0.0, 0.0, 0.0, -1.0);
+    let any_line = any(l0 != empty) || any(l1 != empty) || any(l2 != empty) || any(l3 != empty);
+    return SplatClips(
+        l0, l1, l2, l3,
+        vec4<f32>(b0.x, b1.x, b2.x, b3.x),
+        vec4<f32>(b0.y, b1.y, b2.y, b3.y),
+        vec4<bool>(b0.z > 0.5, b1.z > 0.5, b2.z > 0.5, b3.z > 0.5),
+        any_line,
+    );
+}
+
+fn clip_line_admits(line: vec4<f32>, rhs: f32, div: f32, seam: bool, h: vec3<f32>) -> bool {
+    if seam {
+        return !(dot(line.xyz, h) / div < rhs);
+    }
+    return !(dot(line.xyz, h) < rhs);
+}
+
+// Whether hit `h` is on the point's surface: `on_surface` of `ism_clips.wgsl` with the lines
+// prepared by `splat_clips`.
+fn splat_clips_admit(c: SplatClips, h: vec3<f32>) -> bool {
+    return clip_line_admits(c.l0, c.rhs.x, c.div.x, c.seam.x, h)
+        && clip_line_admits(c.l1, c.rhs.y, c.div.y, c.seam.y, h)
+        && clip_line_admits(c.l2, c.rhs.z, c.div.z, c.seam.z, h)
+        && clip_line_admits(c.l3, c.rhs.w, c.div.w, c.seam.w, h);
 }

@@ -24,6 +24,7 @@ pub mod vpl_pass;
 pub const SHADERS: &[&str] = &[
     "render/gi/ism/importance.wgsl",
     "render/gi/ism/ism_bounce.wgsl",
+    "render/gi/ism/ism_clear.wgsl",
     "render/gi/ism/ism_filter.wgsl",
     "render/gi/ism/ism_shade.wgsl",
     "render/gi/ism/ism_sh_filter.wgsl",

@@ -56,6 +56,11 @@ pub struct PointData {
 /// Bytes of one VPL (`GpuVpl`, WGSL `Vpl`).
 const VPL_BYTES: u64 = std::mem::size_of::<super::vpl_pass::GpuVpl>() as u64;
 
+/// vec4 words one workgroup of the atlas clear fills (`BLOCK` in `ism_clear.wgsl`).
+const CLEAR_BLOCK: u64 = 64 * 16;
+/// Workgroups per dispatch row of the atlas clear (`GROUPS_PER_ROW` in `ism_clear.wgsl`).
+const CLEAR_GROUPS_PER_ROW: u64 = 256;
+
 /// Dynamic-offset slot size of per-set parameters.
 const SLOT: u64 = 256;
 /// Most VPL sets (bounces).
@@ -138,7 +143,8 @@ impl Buffers {
         let clip_bytes = u64::from(key.points) * 16 * crate::precompute::open_edges::CLIPS_PER_POINT as u64;
         let cluster_count = key.points.div_ceil(super::clusters::CLUSTER_POINTS as u32);
         Self {
-            atlas: buffer("ism atlas", side * side),
+            // Whole vec4 words, as the clear writes them (`ism_clear.wgsl`).
+            atlas: buffer("ism atlas", (side * side).next_multiple_of(4)),
             // The coarse levels in one buffer, each after the finer ones (`level_base`): the
             // lookups read them too (`ism_lookup.wgsl`) with one binding.
             coarse: buffer("ism atlas coarse levels", level_base(side, PULL_LEVELS as u32 + 1)),
@@ -251,6 +257,7 @@ impl IsmGather {
         });
         let select_module = shaders::module(device, "render/gi/ism/ism_select.wgsl")?;
         let splat_module = shaders::module(device, "render/gi/ism/ism_splat.wgsl")?;
+        let clear_module = shaders::module(device, "render/gi/ism/ism_clear.wgsl")?;
         let pp_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ism pull-push layout"),
             entries: &[uniform_entry(0, c, true), storage_rw(1), storage_rw(2)],
@@ -306,7 +313,7 @@ impl IsmGather {
             ),
             bounce_params: slots("ism bounce params"),
             bounce_layout,
-            clear: compute_pipeline(device, "ism atlas clear", &splat_layout, &splat_module, "clear"),
+            clear: compute_pipeline(device, "ism atlas clear", &splat_layout, &clear_module, "clear"),
             splat: compute_pipeline(device, "ism splat", &splat_layout, &splat_module, "splat"),
             pull: compute_pipeline(device, "ism pull", &pp_layout, &pp_module, "pull"),
             push: compute_pipeline(device, "ism push", &pp_layout, &pp_module, "push"),
@@ -616,7 +623,8 @@ impl IsmGather {
         });
         pass.set_bind_group(0, &s.splat_group, &[0]);
         pass.set_pipeline(&self.clear);
-        pass.dispatch_workgroups(side.div_ceil(8), side.div_ceil(8), 1);
+        let (x, y) = Self::clear_groups(side);
+        pass.dispatch_workgroups(x, y, 1);
         for b in 0..key.bounces {
             if b > 0 {
                 self.record_bounce(&mut pass, s, settings, b);
@@ -650,6 +658,14 @@ impl IsmGather {
                 timestamp_writes: Some(t.compute_end_writes()),
             }));
         }
+    }
+
+    /// The clear's workgroups for an atlas of `side`^2 words: rows of
+    /// [`CLEAR_GROUPS_PER_ROW`], each group [`CLEAR_BLOCK`] vec4 words (`ism_clear.wgsl`).
+    fn clear_groups(side: u32) -> (u32, u32) {
+        let groups = (u64::from(side) * u64::from(side)).div_ceil(4).div_ceil(CLEAR_BLOCK);
+        let rows = groups.div_ceil(CLEAR_GROUPS_PER_ROW);
+        (CLEAR_GROUPS_PER_ROW.min(groups) as u32, rows as u32)
     }
 
     /// One-pass multi-bounce: one lit point per VPL of set b-1 (tested against the filled ISMs
@@ -745,5 +761,29 @@ impl IsmGather {
     pub fn release(&mut self) {
         self.sized = None;
         self.screen.release();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The clear's dispatch reaches every atlas word (`ism_clear.wgsl` bounds the rest by the
+    /// buffer's length) and stays inside wgpu's 65,535 groups per dimension, from one tile to
+    /// 1,024 VPLs x 6 sets of 256^2 maps.
+    #[test]
+    fn the_clear_dispatch_covers_every_atlas_word_within_the_group_limits() {
+        for (vpls, r) in [(1, 2), (1, 128), (3, 16), (256 * 6, 128), (1024 * 6, 256), (4096 * 6, 512)] {
+            let side = r * IsmGather::tiles_per_row(vpls);
+            let (x, y) = IsmGather::clear_groups(side);
+            let words = u64::from(side) * u64::from(side);
+            let filled = u64::from(x) * u64::from(y) * CLEAR_BLOCK * 4;
+            assert!(filled >= words, "{vpls} tiles of {r}^2: {filled} words cleared of {words}");
+            assert!(
+                filled < words + CLEAR_GROUPS_PER_ROW * CLEAR_BLOCK * 4,
+                "{vpls} tiles of {r}^2: a whole row of groups too many"
+            );
+            assert!((1..=65_535).contains(&x) && (1..=65_535).contains(&y), "{vpls} tiles of {r}^2: groups ({x}, {y})");
+        }
     }
 }
