@@ -7,6 +7,7 @@
 pub mod app;
 pub mod atomic_file;
 pub mod cli;
+pub mod export;
 pub mod image_io;
 pub mod import;
 pub mod input_file;

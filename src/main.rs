@@ -67,6 +67,9 @@ enum Command {
     /// Build (or load from the cache) Modular Radiance Transfer's dictionary and print its
     /// modes, spectra and build time.
     MrtDictionary(cli::mrt::MrtArgs),
+    /// Export a project's scene with its authored lighting (lights, proxy blocks, sampling
+    /// weights, clutter marks, settings) as glTF for the engine or DCC it came from.
+    Export(cli::export::ExportArgs),
     /// Fit MRT proxy blocks to a level's geometry (rooms, and openings where they meet) and
     /// write the project with them.
     FitBlocks(cli::mrt::FitArgs),
@@ -114,6 +117,7 @@ fn main() -> ExitCode {
         }
         Some(Command::GenerateAssets { root }) => cli::generate::generate(&root),
         Some(Command::MrtDictionary(args)) => cli::mrt::run(&args).map(|s| println!("{s}")),
+        Some(Command::Export(args)) => cli::export::run(&args).map(|s| println!("wrote {s}")),
         Some(Command::FitBlocks(args)) => cli::mrt::fit(&args).map(|s| print!("{s}")),
         Some(Command::Probe(args)) => cli::probe::run(&args).map(|s| print!("{s}")),
         Some(Command::ProbeMrt(args)) => cli::probe_mrt::run(&args).map(|s| print!("{s}")),

@@ -44,6 +44,8 @@ pub const PROJECT: Writes = Writes { what: "a RON project file", extensions: &["
 pub const IMAGE: Writes = Writes { what: "an EXR (linear) or PNG (tonemapped) image", extensions: &["exr", "png"] };
 /// A Markdown document (`bench`'s reports).
 pub const MARKDOWN: Writes = Writes { what: "a Markdown document", extensions: &["md"] };
+/// A glTF scene (`bouncelab export`).
+pub const GLTF: Writes = Writes { what: "a glTF scene (.gltf or .glb)", extensions: &["gltf", "glb"] };
 /// A PNG picture (heat maps).
 pub const PNG: Writes = Writes { what: "a PNG image", extensions: &["png"] };
 

@@ -15,7 +15,9 @@ Conventions used:
     baseColorFactor.rgb (textures, metallic, roughness ignored). Back faces are black
     but still occlude. Positions/normals are baked to world space.
   * KHR_lights_punctual: point `color*intensity` = radiant intensity [W/sr];
-    directional `color*intensity` = irradiance [W/m^2] along the node's -Z;
+    directional `color*intensity` = irradiance [W/m^2] along the node's -Z. Intensities
+    are candela and lux (divided by 683 lm/W), as the glTF specification and Bounce Lab's
+    import read them, unless the root `extras.bouncelab.light_units` says "radiometric";
     spot = Mitsuba `spot` whose angular profile is replaced by a projected bitmap of
     the KHR falloff saturate(cos*scale+offset)^2 (bilinear, 512^2). `range` ignored.
   * First camera in depth-first node order; yfov = vertical FOV; aspect = W/H.
@@ -159,8 +161,8 @@ def spot_falloff_texture(inner, outer, cutoff, res=512):
             "filter_type": "bilinear", "wrap_mode": "clamp"}
 
 
-def make_light(L, W, i):
-    rgb = (np.array(L.get("color", [1, 1, 1]), float) * L.get("intensity", 1.0)).tolist()
+def make_light(L, W, i, per_unit):
+    rgb = (np.array(L.get("color", [1, 1, 1]), float) * L.get("intensity", 1.0) * per_unit).tolist()
     pos = xf_point(W, [0, 0, 0])
     fwd = xf_dir(W, [0, 0, -1])
     if "range" in L:
@@ -190,6 +192,8 @@ def build_scene(path, width, height, spp, max_bounces):
     scene = {"type": "scene",
              "integrator": {"type": "path", "max_depth": max_bounces + 1, "rr_depth": 1000}}
     lights = gltf.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+    units = gltf.get("extras", {}).get("bouncelab", {}).get("light_units", "photometric")
+    per_unit = 1.0 if units == "radiometric" else 1.0 / 683.0
     sensor = None
     for k, (node, W) in enumerate(walk(gltf)):
         if "mesh" in node:
@@ -199,7 +203,7 @@ def build_scene(path, width, height, spp, max_bounces):
                     scene[f"mesh_{k}_{j}"] = m
         li = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
         if li is not None:
-            d = make_light(lights[li], W, li)
+            d = make_light(lights[li], W, li, per_unit)
             if d is not None:
                 scene[f"light_{k}"] = d
         if "camera" in node and sensor is None:

@@ -35,6 +35,8 @@ class Writer:
         self.data = bytearray()
         self.doc = {
             "asset": {"version": "2.0", "generator": "bouncelab tools/unseen_levels.py"},
+            # Intensities are W/sr and W/m^2; Bounce Lab reads unrecorded files as candela/lux.
+            "extras": {"bouncelab": {"light_units": "radiometric"}},
             "extensionsUsed": ["KHR_lights_punctual"],
             "extensions": {"KHR_lights_punctual": {"lights": []}},
             "scenes": [{"nodes": []}],

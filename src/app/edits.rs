@@ -190,7 +190,8 @@ pub fn add_clutter_asset(
     history: &mut History,
     path: &std::path::Path,
 ) -> Result<Selection, EditError> {
-    let asset = crate::import::import_gltf(path).map_err(|e| EditError::Import(e.to_string()))?;
+    let options = crate::import::ImportOptions { light_units: project.scene.desc().light_units };
+    let asset = crate::import::import_gltf_with(path, options).map_err(|e| EditError::Import(e.to_string()))?;
     let asset_index = project.imported.len();
     let image_offset: usize = project.imported.iter().map(|a| a.images.len()).sum();
     let centre = project.scene.bounds().map_or(Vec3::ZERO, |b| b.center());

@@ -60,6 +60,30 @@ fn mrt_section(ui: &mut egui::Ui, render: &mut RenderSettings, state: &EditorSta
     super::gi_mrt::mrt_ui(&mut render.mrt, ui, &objects, &blocks)
 }
 
+/// The scene-level choices: the light units the scene's glTF files are read in, an export
+/// writes and the properties panel shows (the lights themselves do not change).
+fn scene_ui(state: &mut EditorState, ui: &mut egui::Ui) {
+    egui::CollapsingHeader::new("Scene").default_open(false).show(ui, |ui| {
+        let mut units = state.project.scene.desc().light_units;
+        egui::ComboBox::from_label("light units").selected_text(units.name()).show_ui(ui, |ui| {
+            for u in crate::scene::LightUnits::ALL {
+                ui.selectable_value(&mut units, u, u.name());
+            }
+        })
+        .response
+        .on_hover_text(
+            "photometric: candela and lux, the glTF specification's units (Blender, Godot and Bevy write and read them); \
+             radiometric: W/sr and W/m². The units the scene's glTF files are read in where they do not record theirs, \
+             that an export writes, and that the properties panel shows. The lights stay as bright as they are.",
+        );
+        if units != state.project.scene.desc().light_units {
+            state.history.begin("Light units", &state.project);
+            state.project.scene.desc_mut().light_units = units;
+            state.history.commit(&state.project);
+        }
+    });
+}
+
 /// Draws the GI panel and records setting changes as undo steps; `renderer` answers which
 /// modes can run at the viewport's `size`.
 pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Renderer>, size: (u32, u32)) {
@@ -112,6 +136,7 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
             Err(e) => state.report("fit proxy blocks", &e),
         }
     }
+    scene_ui(state, ui);
     egui::CollapsingHeader::new("Reference path tracer").default_open(false).show(ui, |ui| {
         let r = &mut render.reference;
         ui.add(egui::Slider::new(&mut r.spp, 1..=16384).logarithmic(true).text("samples per pixel"))

@@ -317,6 +317,32 @@ impl EditorApp {
         }
     }
 
+    fn export_gltf_dialog(&mut self) {
+        let Some(path) =
+            rfd::FileDialog::new().add_filter("glTF", &["glb", "gltf"]).set_file_name("scene.glb").save_file()
+        else {
+            return;
+        };
+        self.export_gltf(&path);
+    }
+
+    /// Exports the scene as glTF to `path` (refused where `path` is one of the project's own
+    /// files); the status bar says what was written.
+    pub fn export_gltf(&mut self, path: &std::path::Path) {
+        let mut inputs = self.state.project.files();
+        inputs.extend(self.state.opened.clone());
+        inputs.extend(self.state.path.clone());
+        let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
+        if let Err(e) = crate::output_path::check(path, crate::output_path::GLTF, &inputs) {
+            self.state.report("export refused", &e);
+            return;
+        }
+        match crate::export::export(&self.state.project, path) {
+            Ok(summary) => self.state.status = format!("exported {}: {summary}", path.display()),
+            Err(e) => self.state.report("export failed", &e),
+        }
+    }
+
     fn export_dialog(&mut self) {
         let Some(path) =
             rfd::FileDialog::new().add_filter("Image", &["png", "exr"]).set_file_name("viewport.png").save_file()
@@ -458,6 +484,11 @@ impl EditorApp {
                 }
                 if ui.button("Export viewport image...").clicked() {
                     self.export_dialog();
+                }
+                if ui.button("Export glTF...").on_hover_text(
+                    "The scene with its authored lights (in the scene's light units), proxy blocks, sampling weights and clutter marks, for the engine or DCC it came from",
+                ).clicked() {
+                    self.export_gltf_dialog();
                 }
             });
             ui.menu_button("Edit", |ui| {

@@ -6,7 +6,7 @@ use glam::{EulerRot, Quat, Vec3};
 
 use super::edits::Selection;
 use super::state::EditorState;
-use crate::scene::{Light, LightKind, Object, ObjectRole};
+use crate::scene::{Light, LightKind, LightUnits, Object, ObjectRole};
 
 fn vec3_ui(ui: &mut egui::Ui, label: &str, v: &mut Vec3, speed: f32) {
     ui.horizontal(|ui| {
@@ -17,7 +17,7 @@ fn vec3_ui(ui: &mut egui::Ui, label: &str, v: &mut Vec3, speed: f32) {
     });
 }
 
-fn light_ui(ui: &mut egui::Ui, light: &mut Light) {
+fn light_ui(ui: &mut egui::Ui, light: &mut Light, units: LightUnits) {
     ui.horizontal(|ui| {
         ui.label("Name");
         ui.text_edit_singleline(&mut light.name);
@@ -26,11 +26,7 @@ fn light_ui(ui: &mut egui::Ui, light: &mut Light) {
         ui.label("Colour");
         ui.color_edit_button_rgb(&mut light.color);
     });
-    let unit = if light.kind == LightKind::Directional { "W/m²" } else { "W/sr" };
-    ui.add(egui::Slider::new(&mut light.intensity, 0.0..=100.0).logarithmic(true).text(format!("intensity ({unit})")))
-        .on_hover_text(
-            "Radiant intensity (point, spot) or irradiance (directional), linear, no photometric conversion.",
-        );
+    intensity_ui(ui, light, units);
     if light.kind != LightKind::Directional {
         vec3_ui(ui, "Position", &mut light.position, 0.01);
         let mut has_range = light.range.is_some();
@@ -61,6 +57,33 @@ fn light_ui(ui: &mut egui::Ui, light: &mut Light) {
         *inner_cone_angle = inner.clamp(0.0, outer - 0.5).to_radians();
     }
     ui.checkbox(&mut light.cast_shadows, "Cast shadows").on_hover_text("Costs one shadow map (six for a point light).");
+}
+
+/// The intensity in the scene's light units (`units`), the other units beside it. The light
+/// keeps its radiometric value; only what is shown and typed converts (683 lm/W).
+fn intensity_ui(ui: &mut egui::Ui, light: &mut Light, units: LightUnits) {
+    let symbol = units.symbol(&light.kind);
+    let mut shown = units.from_radiometric(light.intensity);
+    // A Blender lamp of 1000 W is about 80 W/sr; the slider reaches 10x that, typing goes on.
+    let top = units.from_radiometric(1000.0);
+    let slider = egui::Slider::new(&mut shown, 0.0..=top)
+        .logarithmic(true)
+        .clamping(egui::SliderClamping::Never)
+        .text(format!("intensity ({symbol})"));
+    let what = match (light.kind, units) {
+        (LightKind::Directional, LightUnits::Photometric) => "Illuminance in lux",
+        (LightKind::Directional, LightUnits::Radiometric) => "Irradiance in W/m²",
+        (_, LightUnits::Photometric) => "Luminous intensity in candela",
+        (_, LightUnits::Radiometric) => "Radiant intensity in W/sr",
+    };
+    let tip = format!(
+        "{what}, the scene's light units (Scene > light units); 683 lm/W between the two, as glTF exporters convert."
+    );
+    if ui.add(slider).on_hover_text(tip).changed() && shown.is_finite() {
+        light.intensity = units.to_radiometric(shown.max(0.0));
+    }
+    let other = units.other();
+    ui.label(format!("= {:.4} {}", other.from_radiometric(light.intensity), other.symbol(&light.kind)));
 }
 
 fn object_ui(ui: &mut egui::Ui, object: &mut Object, materials: &[String]) {
@@ -155,7 +178,7 @@ pub fn properties_ui(state: &mut EditorState, ui: &mut egui::Ui) {
         Selection::Light(i) => {
             let Some(original) = state.project.scene.lights().get(i).cloned() else { return };
             let mut light = original.clone();
-            light_ui(ui, &mut light);
+            light_ui(ui, &mut light, state.project.scene.desc().light_units);
             if light != original && light.validate().is_ok() {
                 state.history.begin("Edit light", &state.project);
                 state.project.scene.desc_mut().lights[i] = light;

@@ -60,6 +60,8 @@ pub struct FitArgs {
     /// the inputs: the level keeps its geometry.
     #[arg(long)]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub units: super::LightUnitsArg,
 }
 
 /// Fits proxy blocks to a level and writes the project with them; returns the report. Blocks
@@ -70,7 +72,7 @@ pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
     use crate::project_file::Project;
     use crate::scene::ObjectRole;
     output_path::check(&args.out, output_path::PROJECT, &[&args.input])?;
-    let mut project = Project::open(&args.input)?;
+    let mut project = Project::open_with(&args.input, args.units.options())?;
     let inputs = project.files();
     output_path::check(&args.out, output_path::PROJECT, &inputs.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
     let objects = &mut project.scene.desc_mut().objects;

@@ -70,6 +70,8 @@ pub struct ProbeArgs {
     /// folder.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub units: super::LightUnitsArg,
 }
 
 fn parse_mode(name: &str) -> Result<GiMode, String> {
@@ -115,8 +117,8 @@ fn scene(args: &ProbeArgs, name: &str) -> anyhow::Result<(Project, HdrImage, Str
         (None, None) => suite::scene(name)?.reference(root)?,
     };
     let project = match (&args.gltf, outside) {
-        (Some(path), _) => Project::from_gltf(path)?,
-        (None, Some(gltf)) => Project::from_gltf(gltf)?,
+        (Some(path), _) => Project::from_gltf_with(path, args.units.options().unwrap_or_default())?,
+        (None, Some(gltf)) => Project::from_gltf_with(gltf, args.units.options().unwrap_or_default())?,
         (None, None) => suite::scene(name)?.load(root)?,
     };
     Ok((project, reference, label))

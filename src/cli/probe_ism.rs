@@ -105,6 +105,8 @@ pub struct ProbeIsmArgs {
     /// Receivers spread over the surfaces by area (fewer: faster and noisier).
     #[arg(long, value_name = "N", default_value_t = oracle::RECEIVERS, value_parser = parse_receivers)]
     pub receivers: usize,
+    #[command(flatten)]
+    pub units: super::LightUnitsArg,
 }
 
 fn parse_settings(text: &str) -> Result<IsmSettings, String> {
@@ -150,7 +152,7 @@ pub fn run(args: &ProbeIsmArgs) -> anyhow::Result<String> {
         anyhow::bail!("--show-kind and --show-min-cos pick among the pairs --show lists: add --show");
     }
     let name = args.level.as_str();
-    let mut project = load_level(name)?;
+    let mut project = load_level(name, &args.units)?;
     project.render.ism = args.settings.clone();
     project.render.mode = GiMode::Ism;
     let ctx = GpuContext::new_headless()?;
@@ -191,9 +193,9 @@ pub fn run(args: &ProbeIsmArgs) -> anyhow::Result<String> {
 }
 
 /// The level: a suite scene, or a `.gltf` file.
-fn load_level(name: &str) -> anyhow::Result<Project> {
+fn load_level(name: &str, units: &super::LightUnitsArg) -> anyhow::Result<Project> {
     Ok(if name.ends_with(".gltf") {
-        Project::from_gltf(Path::new(name))?
+        Project::from_gltf_with(Path::new(name), units.options().unwrap_or_default())?
     } else {
         suite::scene(name)?.load(Path::new("."))?
     })

@@ -156,33 +156,26 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
     Ok(md)
 }
 
-/// Lays out the contact sheet: per scene two rows of tiles (images, then error maps).
+/// The contact sheet ([`super::sheet`]): per scene the reference and each mode, each mode's
+/// signed error map beneath, every scene exposed so its reference's mean sits mid-grey.
 fn write_sheet(path: &Path, rows: &[(&SuiteScene, HdrImage, Vec<Cell>)]) -> anyhow::Result<()> {
-    let (w, h) = (REFERENCE_SIZE.0 as usize, REFERENCE_SIZE.1 as usize);
-    let columns = 1 + modes().len();
-    let (sw, sh) = (columns * w, rows.len() * 2 * h);
-    let mut sheet: Vec<u8> = std::iter::repeat_n([0u8, 0, 0, 255], sw * sh).flatten().collect();
-    let mut blit = |tile: &[u8], col: usize, row: usize| {
-        for y in 0..h {
-            let dst = ((row * h + y) * sw + col * w) * 4;
-            sheet[dst..dst + w * 4].copy_from_slice(&tile[y * w * 4..(y + 1) * w * 4]);
-        }
-    };
-    for (r, (_, reference, cells)) in rows.iter().enumerate() {
-        // Expose each scene so its reference's mean sits mid-grey.
-        let view = ViewSettings { exposure_ev: exposure(reference), ..ViewSettings::default() };
-        blit(&tile(reference, &view), 0, 2 * r);
-        for (c, cell) in cells.iter().enumerate() {
-            blit(&tile(&cell.image, &view), c + 1, 2 * r);
-            if let Ok(heat) = metrics::signed_heatmap(&cell.image, reference, 0.5) {
-                blit(&heat, c + 1, 2 * r + 1);
+    let columns: Vec<String> =
+        std::iter::once("reference".to_owned()).chain(modes().into_iter().map(|m| m.name().to_owned())).collect();
+    let rows: Vec<super::sheet::SheetRow> = rows
+        .iter()
+        .map(|(scene, reference, cells)| {
+            let view = ViewSettings { exposure_ev: exposure(reference), ..ViewSettings::default() };
+            super::sheet::SheetRow {
+                scene: scene.name.to_owned(),
+                reference: tile(reference, &view),
+                cells: cells
+                    .iter()
+                    .map(|c| (tile(&c.image, &view), metrics::signed_heatmap(&c.image, reference, 0.5).ok()))
+                    .collect(),
             }
-        }
-    }
-    let tmp = path.with_extension("tmp.png");
-    image_io::write_png(&tmp, sw as u32, sh as u32, sheet)?;
-    std::fs::rename(&tmp, path)?;
-    Ok(())
+        })
+        .collect();
+    super::sheet::write(path, REFERENCE_SIZE, &columns, &rows)
 }
 
 /// `bouncelab suite`: writes the suite's glTF levels and, with `references`, path-traces and

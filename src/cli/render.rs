@@ -69,6 +69,8 @@ pub struct RenderArgs {
     /// down, as a path tracer's pixel filter does (1 = one sample at each pixel centre).
     #[arg(long, default_value_t = 3)]
     pub ssaa: u32,
+    #[command(flatten)]
+    pub units: super::LightUnitsArg,
 }
 
 /// Renders and writes the output file; returns a one-line summary.
@@ -123,7 +125,7 @@ fn checked_project(args: &RenderArgs) -> anyhow::Result<(Project, (u32, u32))> {
         anyhow::bail!("--ssaa {} is outside 1..=8 (samples per axis)", args.ssaa);
     }
     output_path::check(&args.out, output_path::IMAGE, &[&args.input])?;
-    let mut project = Project::open(&args.input)?;
+    let mut project = Project::open_with(&args.input, args.units.options())?;
     let inputs = project.files();
     output_path::check(&args.out, output_path::IMAGE, &inputs.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
     let r = &mut project.render;

@@ -3,10 +3,11 @@
 
 use std::path::Path;
 
-use super::{Asset, ImportError, SUPPORTED_REQUIRED_EXTENSIONS, images, nodes, primitive, uri};
-use crate::scene::{Material, TextureRef};
+use super::{Asset, ImportError, ImportOptions, SUPPORTED_REQUIRED_EXTENSIONS, extras, images, nodes, primitive, uri};
+use crate::scene::{LightUnits, Material, TextureRef};
+use crate::settings::RenderSettings;
 
-pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset, ImportError> {
+pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path, options: ImportOptions) -> Result<Asset, ImportError> {
     let parse = |e: gltf::Error| ImportError::Parse { path: path.to_owned(), message: e.to_string() };
     check_glb_header(bytes, path)?;
     let unvalidated = gltf::Gltf::from_slice_without_validation(bytes).map_err(parse)?;
@@ -32,15 +33,51 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset,
             message: format!("glTF version {version} is not supported (Bounce Lab reads 2.x)"),
         });
     }
+    let (recorded_units, render) = root_extras(doc.as_json(), path)?;
+    let light_units = recorded_units.unwrap_or(options.light_units);
+    if recorded_units.is_some_and(|r| r != options.light_units) {
+        log::debug!("{}: lights read as {light_units}, as the file records", path.display());
+    }
     let buffers = load_buffers(doc, gltf.blob.as_deref(), base_dir, path)?;
     let images = images::load_images(doc, &buffers, base_dir, path)?;
-    let materials = doc.materials().map(|m| material(&m)).collect();
-    let emissive = doc.materials().filter(emits).map(|m| material(&m).name).collect();
+    let materials = doc.materials().map(|m| material(&m, path)).collect::<Result<Vec<_>, _>>()?;
+    let emissive = doc.materials().filter(emits).map(|m| material_name(&m)).collect();
     let primitives = primitive::load_primitives(doc, &buffers, path)?;
     let files = referenced_files(doc, base_dir);
-    let mut asset = Asset { primitives, images, materials, emissive, files, ..Asset::default() };
+    let mut asset = Asset {
+        primitives,
+        images,
+        materials,
+        emissive,
+        files,
+        light_units,
+        recorded_units,
+        render,
+        ..Asset::default()
+    };
     nodes::build_scene(doc, &mut asset, path)?;
     Ok(asset)
+}
+
+/// Bounce Lab's root `extras` (`{"bouncelab": {"light_units": "radiometric", ...}}`, which its
+/// own files carry): the light units the file records (a record naming no known units is an
+/// error rather than a guess) and an export's render settings.
+fn root_extras(
+    root: &gltf::json::Root,
+    path: &Path,
+) -> Result<(Option<LightUnits>, Option<RenderSettings>), ImportError> {
+    let bad = |message: String| ImportError::Parse { path: path.to_owned(), message };
+    let Some(record) = extras::read::<extras::RootExtras>(&root.extras).map_err(bad)? else { return Ok((None, None)) };
+    let units = match record.light_units {
+        None => None,
+        Some(name) => Some(LightUnits::parse(&name).ok_or_else(|| {
+            bad(format!("extras.bouncelab.light_units is {name:?}; expected \"photometric\" or \"radiometric\""))
+        })?),
+    };
+    if let Some(render) = &record.render {
+        render.validate().map_err(|e| bad(format!("extras.bouncelab.render: {e}")))?;
+    }
+    Ok((units, record.render))
 }
 
 /// The gltf crate subtracts the 12-byte header from a GLB's declared length unchecked (found by
@@ -124,17 +161,27 @@ fn emits(m: &gltf::Material<'_>) -> bool {
     m.emissive_factor().iter().any(|c| *c > 0.0)
 }
 
-fn material(m: &gltf::Material<'_>) -> Material {
+fn material_name(m: &gltf::Material<'_>) -> String {
+    m.name().map_or_else(|| format!("material {}", m.index().unwrap_or(0)), str::to_owned)
+}
+
+fn material(m: &gltf::Material<'_>, path: &Path) -> Result<Material, ImportError> {
     let pbr = m.pbr_metallic_roughness();
     let tex = |t: gltf::texture::Texture<'_>, tex_coord: u32| TextureRef { image: t.source().index(), tex_coord };
-    let name = m.name().map_or_else(|| format!("material {}", m.index().unwrap_or(0)), str::to_owned);
-    Material {
+    let name = material_name(m);
+    let own = extras::read::<extras::MaterialExtras>(m.extras()).map_err(|message| ImportError::Node {
+        path: path.to_owned(),
+        what: format!("material {name:?}"),
+        message,
+    })?;
+    let specular = own.and_then(|o| o.specular).unwrap_or([0.0; 3]);
+    Ok(Material {
         name,
         base_color: pbr.base_color_factor(),
         base_color_texture: pbr.base_color_texture().map(|i| tex(i.texture(), i.tex_coord())),
         normal_texture: m.normal_texture().map(|n| tex(n.texture(), n.tex_coord())),
         normal_scale: m.normal_texture().map_or(1.0, |n| n.scale()),
-        specular: [0.0; 3],
+        specular,
         roughness: pbr.roughness_factor().clamp(0.02, 1.0),
-    }
+    })
 }

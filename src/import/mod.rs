@@ -1,12 +1,14 @@
 //! glTF 2.0 import (`.gltf` and `.glb`) into the scene model.
 //!
 //! Exists so that every technique sees a glTF file the same way an independent renderer does:
-//! node hierarchy transforms, KHR_lights_punctual lights in W/sr, perspective cameras,
-//! one-sided CCW triangles. Files are treated as hostile: every problem becomes an
+//! node hierarchy transforms, KHR_lights_punctual lights in the specification's candela and lux
+//! (or in W/sr and W/m^2 where the file or the user says so: [`LightUnits`]), perspective
+//! cameras, one-sided CCW triangles. Files are treated as hostile: every problem becomes an
 //! [`ImportError`] naming the file, never a panic (docs/ARCHITECTURE.md, "Conventions").
 
 mod accessor;
 mod build;
+pub mod extras;
 mod guard;
 mod images;
 mod nodes;
@@ -18,7 +20,15 @@ pub use uri::UriError;
 
 use std::path::{Path, PathBuf};
 
-use crate::scene::{Image, Material, Mesh, SceneDesc};
+use crate::scene::{Image, LightUnits, Material, Mesh, SceneDesc};
+
+/// How to read a file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ImportOptions {
+    /// The units of the file's light intensities where the file does not record them
+    /// (`extras.bouncelab.light_units` at the root, which Bounce Lab's own files carry).
+    pub light_units: LightUnits,
+}
 
 /// Extensions we understand well enough to accept when a file marks them required.
 pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &["KHR_lights_punctual"];
@@ -70,6 +80,13 @@ pub struct Asset {
     /// The default scene: objects (material index local; the default material is appended at
     /// `materials.len()` when used), lights, camera.
     pub scene: SceneDesc,
+    /// The units the file's lights were read in (`scene.light_units`): the file's record, or
+    /// [`ImportOptions::light_units`] where it has none.
+    pub light_units: LightUnits,
+    /// The units the file records, if it does.
+    pub recorded_units: Option<LightUnits>,
+    /// The render settings a Bounce Lab export carries (root `extras`).
+    pub render: Option<crate::settings::RenderSettings>,
     /// Whether the file had a camera (otherwise `scene.camera` frames the bounds).
     pub has_camera: bool,
     /// Names of the materials that emit light, which the scene model does not carry (yet).
@@ -85,19 +102,36 @@ impl Asset {
     }
 }
 
-/// Imports a `.gltf` or `.glb` file.
+/// Imports a `.gltf` or `.glb` file with the default options (photometric lights unless the
+/// file records other units).
 pub fn import_gltf(path: &Path) -> Result<Asset, ImportError> {
+    import_gltf_with(path, ImportOptions::default())
+}
+
+/// Imports a `.gltf` or `.glb` file.
+pub fn import_gltf_with(path: &Path, options: ImportOptions) -> Result<Asset, ImportError> {
     let bytes = crate::input_file::read(path, crate::input_file::Kind::Scene)
         .map_err(|source| ImportError::Io { path: path.to_owned(), source })?;
     let base_dir = path.parent().unwrap_or_else(|| Path::new("."));
-    import_slice(&bytes, base_dir, path)
+    import_slice_with(&bytes, base_dir, path, options)
 }
 
-/// Imports glTF or GLB bytes; `base_dir` resolves relative URIs, `path` names the file in errors.
+/// Imports glTF or GLB bytes with the default options; `base_dir` resolves relative URIs,
+/// `path` names the file in errors.
 pub fn import_slice(bytes: &[u8], base_dir: &Path, path: &Path) -> Result<Asset, ImportError> {
+    import_slice_with(bytes, base_dir, path, ImportOptions::default())
+}
+
+/// Imports glTF or GLB bytes.
+pub fn import_slice_with(
+    bytes: &[u8],
+    base_dir: &Path,
+    path: &Path,
+    options: ImportOptions,
+) -> Result<Asset, ImportError> {
     // Defence in depth: our own checks run before the gltf crate's readers, but a panic inside
     // the third-party parser must still become an error rather than take down the editor.
-    guard::catch_quietly(|| build::build(bytes, base_dir, path))
+    guard::catch_quietly(|| build::build(bytes, base_dir, path, options))
         .unwrap_or_else(|message| Err(ImportError::Internal { path: path.to_owned(), message }))
 }
 

@@ -8,8 +8,9 @@ use std::path::Path;
 use glam::{Mat3, Mat4, Quat, Vec3};
 use gltf::khr_lights_punctual::Kind;
 
+use super::extras::{self, Generated, LightExtras, NodeExtras};
 use super::{Asset, ImportError};
-use crate::scene::{Camera, Light, LightKind, Material, MeshSource, Object, ObjectRole, Transform};
+use crate::scene::{Camera, Light, LightKind, LightUnits, Material, MeshSource, Object, ObjectRole, Transform};
 
 pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) -> Result<(), ImportError> {
     let node_err = |what: String, message: String| ImportError::Node { path: path.to_owned(), what, message };
@@ -60,37 +61,61 @@ pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) 
         if !world.is_finite() {
             return Err(node_err(what, "world transform overflows".into()));
         }
+        let own = extras::read::<NodeExtras>(node.extras()).map_err(|m| node_err(what.clone(), m))?.unwrap_or_default();
+        let exact = Transform::from_matrix_exact(&world);
         if let Some(mesh) = node.mesh() {
             for prim in mesh.primitives().filter(|p| super::primitive::is_triangles(p.mode())) {
                 let material = prim.material().index().unwrap_or_else(|| {
                     uses_default_material = true;
                     default_material
                 });
-                let exact = Transform::from_matrix_exact(&world);
                 let name = match (node.name(), mesh.primitives().len()) {
                     (Some(n), 1) => n.to_owned(),
                     (Some(n), _) => format!("{n}#{}", prim.index()),
                     (None, _) => format!("node {idx}#{}", prim.index()),
                 };
+                let from_file = MeshSource::Asset {
+                    asset: 0,
+                    mesh: mesh.index(),
+                    primitive: prim.index(),
+                    baked: if exact.is_some() { None } else { Some(world) },
+                };
+                // A mesh Bounce Lab generated comes back generated (where its node's transform
+                // is a plain one; otherwise as the file's triangles).
+                let source = generated_source(&own).filter(|_| exact.is_some()).unwrap_or(from_file);
                 asset.scene.objects.push(Object {
                     name,
-                    source: MeshSource::Asset {
-                        asset: 0,
-                        mesh: mesh.index(),
-                        primitive: prim.index(),
-                        baked: if exact.is_some() { None } else { Some(world) },
-                    },
+                    source,
                     mesh: 0,
                     material,
                     transform: exact.unwrap_or_default(),
-                    sampling_weight: 1.0,
-                    role: ObjectRole::Static,
-                    visible: true,
+                    sampling_weight: own.sampling_weight.unwrap_or(1.0),
+                    role: own.role.unwrap_or(ObjectRole::Static),
+                    visible: own.visible.unwrap_or(true),
                 });
             }
+        } else if let (Some(source), Some(transform)) = (generated_source(&own), exact) {
+            // A proxy block: a node without a mesh, so other tools draw nothing over the level.
+            let material = if asset.materials.is_empty() {
+                uses_default_material = true;
+                default_material
+            } else {
+                0
+            };
+            asset.scene.objects.push(Object {
+                name: node.name().map_or_else(|| format!("node {idx}"), str::to_owned),
+                source,
+                mesh: 0,
+                material,
+                transform,
+                sampling_weight: own.sampling_weight.unwrap_or(1.0),
+                role: own.role.unwrap_or(ObjectRole::ProxyBlock),
+                visible: own.visible.unwrap_or(true),
+            });
         }
         if let Some(light) = node.light() {
-            let light = convert_light(&light, &world, node.name()).map_err(|m| node_err(what.clone(), m))?;
+            let light =
+                convert_light(&light, &world, node.name(), asset.light_units).map_err(|m| node_err(what.clone(), m))?;
             asset.scene.lights.push(light);
         }
         if let (Some(cam), None) = (node.camera(), camera) {
@@ -101,6 +126,7 @@ pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) 
         }
     }
 
+    asset.scene.light_units = asset.light_units;
     asset.scene.materials = asset.materials.clone();
     if uses_default_material {
         asset.scene.materials.push(Material::default());
@@ -114,6 +140,7 @@ fn convert_light(
     light: &gltf::khr_lights_punctual::Light<'_>,
     world: &Mat4,
     node_name: Option<&str>,
+    units: LightUnits,
 ) -> Result<Light, String> {
     let kind = match light.kind() {
         Kind::Point => LightKind::Point,
@@ -122,15 +149,17 @@ fn convert_light(
     };
     let direction =
         world.transform_vector3(Vec3::NEG_Z).try_normalize().ok_or("light direction is degenerate (zero scale)")?;
+    let own = extras::read::<LightExtras>(light.extras())?.unwrap_or_default();
     let out = Light {
         name: light.name().or(node_name).unwrap_or("light").to_owned(),
         kind,
         color: light.color(),
-        intensity: light.intensity(),
+        // The scene model is radiometric: candela and lux become W/sr and W/m^2.
+        intensity: units.to_radiometric(light.intensity()),
         range: light.range(),
         position: world.transform_point3(Vec3::ZERO),
         direction,
-        cast_shadows: true,
+        cast_shadows: own.cast_shadows.unwrap_or(true),
     };
     out.validate().map_err(|e| e.to_string())?;
     Ok(out)
@@ -154,4 +183,14 @@ fn convert_camera(cam: &gltf::Camera<'_>, world: &Mat4) -> Result<Camera, String
     };
     out.validate().map_err(|e| e.to_string())?;
     Ok(out)
+}
+
+/// The mesh source a node's extras name, if it names a generated mesh.
+fn generated_source(own: &NodeExtras) -> Option<MeshSource> {
+    match own.generated.as_ref()? {
+        Generated::Cuboid { size, openings } => {
+            Some(MeshSource::Cuboid { size: Vec3::from(*size), openings: *openings })
+        }
+        Generated::Plane { size } => Some(MeshSource::Plane { size: *size }),
+    }
 }

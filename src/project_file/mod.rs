@@ -11,12 +11,13 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::import::{self, ImportError, ResolveError};
+use crate::import::{self, ImportError, ImportOptions, ResolveError};
 use crate::scene::{Scene, SceneDesc};
 use crate::settings::{RenderSettings, SettingsError};
 
-/// The version this build writes.
-pub const FORMAT_VERSION: u32 = 1;
+/// The version this build writes. Version 2 added the scene's `light_units`; a version 1 file
+/// reads as radiometric, which is what it meant ([`crate::scene::LightUnits::legacy`]).
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Why a project could not be loaded or saved. Every variant names the file.
 #[derive(Debug, thiserror::Error)]
@@ -83,19 +84,39 @@ pub struct Project {
 }
 
 impl Project {
-    /// A project made of a single glTF file with default settings.
+    /// A project made of a single glTF file with default settings (its lights photometric
+    /// unless the file records other units).
     pub fn from_gltf(path: &Path) -> Result<Self, ProjectError> {
-        let asset = import::import_gltf(path).map_err(|e| ProjectError::Import(Box::new(e)))?;
+        Self::from_gltf_with(path, ImportOptions::default())
+    }
+
+    /// A project made of a single glTF file read with `options`, with default settings.
+    pub fn from_gltf_with(path: &Path, options: ImportOptions) -> Result<Self, ProjectError> {
+        let asset = import::import_gltf_with(path, options).map_err(|e| ProjectError::Import(Box::new(e)))?;
         let scene = import::scene_from_asset(&asset)
             .map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
-        Ok(Self { assets: vec![path.to_owned()], scene, render: RenderSettings::default(), imported: vec![asset] })
+        // A Bounce Lab export carries the settings of the project it came from.
+        let render = asset.render.clone().unwrap_or_default();
+        Ok(Self { assets: vec![path.to_owned()], scene, render, imported: vec![asset] })
     }
 
     /// Opens a `.ron` project, or a `.gltf` / `.glb` scene as a new project.
     pub fn open(path: &Path) -> Result<Self, ProjectError> {
+        Self::open_with(path, None)
+    }
+
+    /// [`Self::open`], a glTF read with `options` where given; a project reads its assets in
+    /// its own units, unless `options` says otherwise.
+    pub fn open_with(path: &Path, options: Option<ImportOptions>) -> Result<Self, ProjectError> {
         match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-            Some("gltf" | "glb") => Self::from_gltf(path),
-            _ => Self::load(path),
+            Some("gltf" | "glb") => Self::from_gltf_with(path, options.unwrap_or_default()),
+            _ => {
+                let mut project = Self::load(path)?;
+                if let Some(o) = options {
+                    project.scene.desc_mut().light_units = o.light_units;
+                }
+                Ok(project)
+            }
         }
     }
 
@@ -117,11 +138,12 @@ impl Project {
         scene: SceneDesc,
         render: RenderSettings,
     ) -> Result<Self, ProjectError> {
+        let options = ImportOptions { light_units: scene.light_units };
         let imported = assets
             .iter()
             .enumerate()
             .map(|(index, a)| {
-                import::import_gltf(a).map_err(|e| ProjectError::Asset {
+                import::import_gltf_with(a, options).map_err(|e| ProjectError::Asset {
                     project: path.to_owned(),
                     index,
                     source: Box::new(e),
@@ -226,7 +248,8 @@ pub fn parse(text: &str, path: &Path) -> Result<ProjectFileV1, ProjectError> {
     match header.format_version {
         v if v > FORMAT_VERSION => Err(ProjectError::TooNew { path: path.to_owned(), found: v }),
         0 => Err(ProjectError::NoVersion { path: path.to_owned() }),
-        // Version 1 is the first; later versions add `From<ProjectFileV1>` conversions here.
+        // Version 2 added `scene.light_units`, which a version 1 file lacks and serde fills
+        // in as radiometric (`LightUnits::legacy`); the schema is otherwise the same.
         _ => ron::from_str::<ProjectFileV1>(text).map_err(spanned),
     }
 }

@@ -15,12 +15,14 @@ pub mod limits;
 mod material;
 mod mesh;
 mod object;
+mod units;
 
 pub use camera::{Camera, rotation_looking};
 pub use light::{Light, LightKind, spot_attenuation};
 pub use material::{Material, TextureRef};
 pub use mesh::{Aabb, Mesh, MeshError};
 pub use object::{MeshSource, Object, ObjectRole, Transform};
+pub use units::{LUMENS_PER_WATT, LightUnits};
 
 use serde::{Deserialize, Serialize};
 
@@ -53,7 +55,12 @@ pub struct SceneDesc {
     pub materials: Vec<Material>,
     /// Objects (static geometry, proxy blocks, clutter).
     pub objects: Vec<Object>,
-    /// Punctual lights.
+    /// The units the scene's glTF files give their lights in, which an export writes and the
+    /// editor shows first ([`LightUnits`]). The lights below are always radiometric. A project
+    /// file without the field was written before the choice existed and meant radiometric.
+    #[serde(default = "LightUnits::legacy")]
+    pub light_units: LightUnits,
+    /// Punctual lights (radiometric: W/sr, or W/m^2 for directional ones).
     pub lights: Vec<Light>,
     /// The view camera.
     pub camera: Camera,

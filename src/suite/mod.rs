@@ -15,7 +15,7 @@ use crate::image_io::HdrImage;
 use crate::import::writer::GltfWriter;
 use crate::precompute::pathtracer::PathTracer;
 use crate::project_file::Project;
-use crate::scene::{Image, Material, MeshSource, Object, ObjectRole, TextureRef, Transform};
+use crate::scene::{Image, LightUnits, Material, MeshSource, Object, ObjectRole, TextureRef, Transform};
 use crate::settings::ReferenceSettings;
 
 /// Bump when a scene's construction in code changes (the references then read as stale).
@@ -214,14 +214,18 @@ impl SuiteScene {
         root.join("assets/suite/references").join(format!("{}.key", self.name))
     }
 
-    /// What the reference depends on: the scene file's bytes, the suite and tracer versions,
-    /// the size and the sample count (FNV-1a, stable across builds).
+    /// What the reference depends on: the scene file's bytes (less its root `extras`, the
+    /// record of its light units, which enters by name unless it is the radiometric units every
+    /// suite file was read in before files recorded them), the suite and tracer versions, the
+    /// size and the sample count (FNV-1a, stable across builds).
     pub fn reference_key(&self, root: &Path) -> Result<String, SuiteError> {
         let path = self.gltf_path(root);
-        let bytes = std::fs::read(&path).map_err(|source| SuiteError::Io { path, source })?;
+        let bytes = std::fs::read(&path).map_err(|source| SuiteError::Io { path: path.clone(), source })?;
+        let (bytes, units) = without_unit_record(bytes);
+        let units = units.filter(|u| *u != LightUnits::Radiometric).map(|u| format!("|{u}")).unwrap_or_default();
         let mut h = 0xcbf2_9ce4_8422_2325u64;
         let extra = format!(
-            "{}|{}|{}|{:?}|{}",
+            "{}|{}|{}|{:?}|{}{units}",
             self.name,
             SUITE_VERSION,
             crate::precompute::pathtracer::TRACER_VERSION,
@@ -286,4 +290,46 @@ pub fn write_levels(root: &Path) -> Result<Vec<PathBuf>, SuiteError> {
 pub fn downsample(img: &HdrImage, k: u32) -> HdrImage {
     let pixels = crate::image_io::box_downsample(&img.pixels, (img.width, img.height), k);
     HdrImage { width: img.width / k, height: img.height / k, pixels }
+}
+
+/// A glTF text's bytes without its root `extras` member as [`crate::import::writer::GltfWriter`]
+/// prints it (the lines from `  "extras": {` to `  },`, cut as text: parsing and printing the
+/// JSON again would move the last digit of some floats), and the light units that record names.
+/// Any other text is returned whole.
+fn without_unit_record(bytes: Vec<u8>) -> (Vec<u8>, Option<LightUnits>) {
+    const OPEN: &str = "\n  \"extras\": {\n";
+    const CLOSE: &str = "\n  },\n";
+    let Ok(text) = std::str::from_utf8(&bytes) else { return (bytes, None) };
+    let Some(start) = text.find(OPEN).map(|i| i + 1) else { return (bytes, None) };
+    let Some(end) = text[start..].find(CLOSE).map(|i| start + i + CLOSE.len()) else { return (bytes, None) };
+    let member = format!("{{{}}}", &text[start..end - 2]);
+    let units = serde_json::from_str::<serde_json::Value>(&member)
+        .ok()
+        .and_then(|v| v.pointer("/extras/bouncelab/light_units").and_then(|u| u.as_str()).and_then(LightUnits::parse));
+    let cut = format!("{}{}", &text[..start], &text[end..]);
+    (cut.into_bytes(), units)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The suite's levels key their references as they did before files recorded their units:
+    /// cutting the radiometric record gives back the bytes of the file without it; a record of
+    /// other units changes the key.
+    #[test]
+    fn a_radiometric_unit_record_leaves_the_reference_key_as_it_was() {
+        let mut w = crate::import::cornell::cornell_box();
+        let with = w.to_string_pretty();
+        let mut doc = w.to_json();
+        doc.as_object_mut().expect("object").remove("extras");
+        let mut without = serde_json::to_string_pretty(&doc).expect("json");
+        without.push('\n');
+        let (cut, units) = without_unit_record(with.clone().into_bytes());
+        assert_eq!(units, Some(LightUnits::Radiometric));
+        assert!(cut == without.as_bytes(), "the record's lines are cut and nothing else");
+        w.set_light_units(LightUnits::Photometric);
+        assert_eq!(without_unit_record(w.to_string_pretty().into_bytes()).1, Some(LightUnits::Photometric));
+        assert_eq!(without_unit_record(b"{}".to_vec()), (b"{}".to_vec(), None));
+    }
 }

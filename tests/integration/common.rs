@@ -77,7 +77,7 @@ pub fn object(name: &str, source: MeshSource, material: usize, transform: Transf
 
 /// Builds a scene from objects with generated meshes.
 pub fn scene(objects: Vec<Object>, materials: Vec<Material>, lights: Vec<Light>, camera: Camera) -> Scene {
-    let desc = SceneDesc { materials, objects, lights, camera };
+    let desc = SceneDesc { materials, objects, lights, camera, ..SceneDesc::default() };
     bouncelab::import::resolve(desc, &[]).expect("scene resolves")
 }
 

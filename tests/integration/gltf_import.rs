@@ -85,7 +85,11 @@ fn lights_and_camera_follow_khr_conventions() {
     assert_eq!(lights.len(), 3);
     assert_eq!(lights[0].kind, LightKind::Point);
     assert!((lights[0].position - Vec3::new(1.0, 2.0, 3.0)).length() < 1e-6);
-    assert_eq!(lights[0].radiant(), Vec3::new(4.0, 2.0, 1.0), "colour x intensity in W/sr, no conversion");
+    assert_eq!(
+        lights[0].radiant(),
+        Vec3::new(4.0, 2.0, 1.0),
+        "colour x intensity in W/sr, no conversion (the writer records radiometric units)"
+    );
     assert_eq!(lights[1].kind, LightKind::Spot { inner_cone_angle: 0.1, outer_cone_angle: 0.7 });
     assert!((lights[1].direction - Vec3::NEG_Y).length() < 1e-5, "spot points down its node's -Z");
     assert_eq!(lights[2].kind, LightKind::Directional);

@@ -21,7 +21,11 @@ fn default_project_round_trips_byte_identical() {
     let original = std::fs::read_to_string(&path).expect("default project exists");
     let project = Project::load(&path).expect("loads");
     assert_eq!(project.to_ron(&path).expect("serialises"), original, "load + save changes nothing");
-    assert!(project.scene.lights().len() == 1 && project.scene.objects().len() == 7);
+    // The box's five walls, two boxes, their group and the room's proxy block.
+    assert!(project.scene.lights().len() == 1 && project.scene.objects().len() == 8);
+    let blocks = project.scene.objects().iter().filter(|o| o.role == bouncelab::scene::ObjectRole::ProxyBlock).count();
+    assert_eq!(blocks, 1, "the default project carries the Cornell room's proxy block");
+    assert_eq!(project.render.mode, GiMode::Rcs, "the default project opens in a GI mode that settles in seconds");
 }
 
 #[test]
@@ -59,7 +63,7 @@ fn edited_project_saves_and_reopens_exactly() {
     project.save(&path).expect("saves again");
     assert_eq!(std::fs::read(&path).expect("read"), first, "saving twice gives identical bytes");
     let text = String::from_utf8(first.clone()).expect("utf8");
-    assert!(text.trim_start().starts_with("(\n  format_version: 1,"), "format_version comes first");
+    assert!(text.trim_start().starts_with("(\n  format_version: 2,"), "format_version comes first");
     assert!(!text.contains(&*dir.to_string_lossy()), "asset paths are relative");
     let reopened = Project::load(&path).expect("reopens");
     assert_eq!(reopened.scene.desc(), project.scene.desc());
@@ -90,10 +94,10 @@ fn unknown_fields_and_syntax_errors_have_line_and_column() {
     std::fs::write(&path, "(format_version: 1, assets: [").expect("write");
     assert!(matches!(Project::load(&path), Err(ProjectError::Parse { .. })));
 
-    std::fs::write(&path, good.replace("format_version: 1", "format_version: 99")).expect("write");
+    std::fs::write(&path, good.replace("format_version: 2", "format_version: 99")).expect("write");
     assert!(matches!(Project::load(&path), Err(ProjectError::TooNew { found: 99, .. })));
 
-    std::fs::write(&path, good.replace("format_version: 1", "format_version: 0")).expect("write");
+    std::fs::write(&path, good.replace("format_version: 2", "format_version: 0")).expect("write");
     let msg = Project::load(&path).expect_err("version 0").to_string();
     assert!(msg.contains("unknown.ron") && msg.contains("format_version 0"), "{msg}");
 

@@ -128,6 +128,8 @@ pub struct ProbeMrtArgs {
     /// Each block's faces (world side): mean brute-force and MRT light.
     #[arg(long)]
     pub faces: bool,
+    #[command(flatten)]
+    pub units: crate::cli::LightUnitsArg,
 }
 
 fn parse_dictionary(text: &str) -> Result<DictionaryParams, String> {
@@ -188,7 +190,7 @@ pub fn run(args: &ProbeMrtArgs) -> anyhow::Result<String> {
 fn load_level(args: &ProbeMrtArgs, out: &mut String) -> anyhow::Result<Project> {
     let name = args.level.as_str();
     let mut project = if name.ends_with(".gltf") {
-        Project::from_gltf(Path::new(name))?
+        Project::from_gltf_with(Path::new(name), args.units.options().unwrap_or_default())?
     } else {
         suite::scene(name)?.load(Path::new("."))?
     };

@@ -158,6 +158,7 @@ mod tests {
             materials: vec![Material::diffuse("grey", [0.8; 3])],
             lights: Vec::new(),
             camera: Camera::default(),
+            ..SceneDesc::default()
         };
         crate::import::resolve(desc, &[]).expect("scene")
     }
