@@ -4,23 +4,42 @@
 //! when the drag starts, `commit` records it when the drag ends (if anything changed).
 //! Pure (no egui), so it is tested directly.
 
+use std::sync::Arc;
+
+use crate::import::Asset;
 use crate::project_file::Project;
 use crate::scene::SceneDesc;
 use crate::settings::RenderSettings;
 
 /// The authored state one undo step restores.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct Snapshot {
     /// Objects, materials, lights, camera.
     pub desc: SceneDesc,
     /// GI mode and settings.
     pub render: RenderSettings,
+    /// The imported assets, kept only by the steps that change them (a live reload), so that
+    /// undoing one gives back the geometry the description's mesh sources name. Not compared:
+    /// a step is an authored change.
+    pub imported: Option<Arc<Vec<Asset>>>,
+}
+
+impl PartialEq for Snapshot {
+    fn eq(&self, other: &Self) -> bool {
+        self.desc == other.desc && self.render == other.render
+    }
 }
 
 impl Snapshot {
     /// The current state of `project`.
     pub fn of(project: &Project) -> Self {
-        Self { desc: project.scene.desc().clone(), render: project.render.clone() }
+        Self { desc: project.scene.desc().clone(), render: project.render.clone(), imported: None }
+    }
+
+    /// The current state of `project` with its imported assets (before a step that replaces
+    /// them).
+    pub fn with_assets(project: &Project) -> Self {
+        Self { imported: Some(Arc::new(project.imported.clone())), ..Self::of(project) }
     }
 }
 
@@ -88,17 +107,27 @@ impl History {
 
     fn restore(project: &mut Project, state: Snapshot) {
         project.render = state.render;
-        if let Err(e) = project.set_desc(state.desc) {
+        let restored = match state.imported {
+            Some(imported) => project.set_desc_and_assets(state.desc, imported.as_ref().clone()),
+            None => project.set_desc(state.desc),
+        };
+        if let Err(e) = restored {
             // Snapshots were valid when taken; a failure here is a bug, reported not hidden.
             log::error!("undo/redo could not restore the scene: {e}");
         }
+    }
+
+    /// The project's state to keep for the way back from restoring `to`: with the assets when
+    /// `to` replaces them.
+    fn current(project: &Project, to: &Snapshot) -> Snapshot {
+        if to.imported.is_some() { Snapshot::with_assets(project) } else { Snapshot::of(project) }
     }
 
     /// Undoes the last step; returns its label.
     pub fn undo(&mut self, project: &mut Project) -> Option<String> {
         self.commit(project);
         let entry = self.undo.pop()?;
-        let current = Snapshot::of(project);
+        let current = Self::current(project, &entry.state);
         self.redo.push(Entry { label: entry.label.clone(), state: current, id: self.current_id });
         self.current_id = entry.id;
         Self::restore(project, entry.state);
@@ -110,7 +139,7 @@ impl History {
         // An open edit that changed something is a new step, which ends the redo branch.
         self.commit(project);
         let entry = self.redo.pop()?;
-        let current = Snapshot::of(project);
+        let current = Self::current(project, &entry.state);
         self.undo.push(Entry { label: entry.label.clone(), state: current, id: self.current_id });
         self.current_id = entry.id;
         Self::restore(project, entry.state);

@@ -29,6 +29,7 @@ pub mod preview;
 mod properties;
 pub mod recovery;
 mod recovery_actions;
+mod reload;
 mod startup;
 pub mod state;
 mod timings;
@@ -109,6 +110,8 @@ pub struct EditorApp {
     offers: Vec<recovery::Orphan>,
     /// The window title last sent.
     title: String,
+    /// Watches the project's glTF files for live reload.
+    watcher: reload::FileWatcher,
 }
 
 impl EditorApp {
@@ -156,6 +159,7 @@ impl EditorApp {
             autosave,
             offers,
             title: String::new(),
+            watcher: reload::FileWatcher::default(),
         }
     }
 
@@ -314,6 +318,37 @@ impl EditorApp {
                 }
             }
             Err(e) => self.state.report("save failed", &e),
+        }
+    }
+
+    /// Watches the project's files and reloads an asset that changed on disk, as one undo
+    /// step; the status bar says what was kept and what no longer matches, or why a file that
+    /// does not import yet is tried again.
+    fn live_reload(&mut self, ctx: &egui::Context) {
+        let wake = ctx.clone();
+        self.watcher.watch(&self.state.project.files(), move || wake.request_repaint_after(reload::SETTLE));
+        if let Some(problem) = self.watcher.problem.take() {
+            self.state.status = problem;
+        }
+        for (path, failures) in self.watcher.poll() {
+            let Some(index) = self.state.project.asset_of_file(&path) else { continue };
+            let name =
+                path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+            let before = history::Snapshot::with_assets(&self.state.project);
+            match self.state.project.reload_asset(index) {
+                Ok(report) => {
+                    self.state.history.record(&format!("Reload {name}"), before, &self.state.project);
+                    self.state.selection = edits::Selection::None;
+                    self.state.status = report.to_string();
+                }
+                Err(e) if self.watcher.retry(&path, failures + 1) => {
+                    self.state.status = format!("{name} changed but does not import yet, trying again: {e}");
+                }
+                Err(e) => self.state.report(&format!("{name} changed but does not import"), &e),
+            }
+        }
+        if let Some(wait) = self.watcher.next_due() {
+            ctx.request_repaint_after(wait);
         }
     }
 
@@ -634,6 +669,7 @@ impl eframe::App for EditorApp {
             }
         }
         self.shortcuts(ui);
+        self.live_reload(ui.ctx());
         // Drag and drop a project or glTF onto the window to open it.
         let dropped: Vec<PathBuf> = ui.input(|i| {
             i.raw.dropped_files.iter().map(|f| f.path().to_owned()).filter(|p| !p.as_os_str().is_empty()).collect()

@@ -71,12 +71,14 @@ fn open_faces(painter: &egui::Painter, rect: egui::Rect, view: &View, c: &[Vec3;
     }
 }
 
-/// Draws all overlays.
-pub fn draw(painter: &egui::Painter, rect: egui::Rect, view: &View, scene: &Scene, selection: Selection) {
+/// Draws all overlays; proxy blocks only with `blocks` (in `mrt`, the technique they serve) or
+/// when selected, so that they do not cross the view in the other modes.
+pub fn draw(painter: &egui::Painter, rect: egui::Rect, view: &View, scene: &Scene, selection: Selection, blocks: bool) {
     for (i, object) in scene.objects().iter().enumerate() {
         let Some(c) = box_corners(scene, i) else { continue };
         let selected = selection == Selection::Object(i);
         match object.role {
+            ObjectRole::ProxyBlock if !blocks && !selected => {}
             ObjectRole::ProxyBlock => {
                 wire_box(painter, rect, view, &c, egui::Stroke::new(if selected { 2.5 } else { 1.5 }, PROXY));
                 if let MeshSource::Cuboid { openings, .. } = &object.source {

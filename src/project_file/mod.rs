@@ -6,6 +6,8 @@
 
 use crate::atomic_file as atomic;
 mod paths;
+mod reload;
+pub use reload::ReloadReport;
 
 use std::path::{Path, PathBuf};
 
@@ -171,6 +173,15 @@ impl Project {
         } else {
             self.scene = import::resolve(desc, &self.imported)?;
         }
+        Ok(())
+    }
+
+    /// Replaces the description and the imported assets together (undoing a live reload):
+    /// the scene is resolved against `imported`.
+    pub fn set_desc_and_assets(&mut self, desc: SceneDesc, imported: Vec<import::Asset>) -> Result<(), ResolveError> {
+        let scene = import::resolve(desc, &imported)?;
+        self.imported = imported;
+        self.scene = scene;
         Ok(())
     }
 

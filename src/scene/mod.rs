@@ -92,10 +92,20 @@ pub enum SceneError {
     BadValue { what: String, why: String },
 }
 
+/// The source of every scene's revisions: one counter for all scenes, so that a scene built
+/// anew (a structural edit, a reloaded asset) never shows a cache the revision of the scene it
+/// replaced.
+static REVISIONS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
+fn next_revision() -> u64 {
+    REVISIONS.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1
+}
+
 impl Scene {
     /// Builds a scene and checks that every reference resolves and every number is finite.
     pub fn new(desc: SceneDesc, resources: Resources) -> Result<Self, SceneError> {
-        let scene = Self { desc, resources, revision: 1, resources_revision: 1 };
+        let revision = next_revision();
+        let scene = Self { desc, resources, revision, resources_revision: revision };
         scene.validate()?;
         Ok(scene)
     }
@@ -107,7 +117,7 @@ impl Scene {
 
     /// Mutable access to the description; bumps the revision.
     pub fn desc_mut(&mut self) -> &mut SceneDesc {
-        self.revision += 1;
+        self.revision = next_revision();
         &mut self.desc
     }
 
@@ -118,12 +128,13 @@ impl Scene {
 
     /// Mutable access to the resources; bumps the revision.
     pub fn resources_mut(&mut self) -> &mut Resources {
-        self.revision += 1;
-        self.resources_revision += 1;
+        self.revision = next_revision();
+        self.resources_revision = self.revision;
         &mut self.resources
     }
 
-    /// A counter that changes on every edit (every mutable access).
+    /// A counter that changes on every edit (every mutable access); no two scenes' states share
+    /// a value.
     pub fn revision(&self) -> u64 {
         self.revision
     }

@@ -186,3 +186,21 @@ fn the_export_command_writes_the_file_and_never_an_input() {
     let bad = ExportArgs { input: default_project_path(), out: dir.join("scene.obj"), units: Default::default() };
     assert!(run(&bad).is_err(), "only .gltf and .glb");
 }
+
+/// Textures (a base colour checker and a normal map) leave as PNG and come back texel for
+/// texel, with the materials naming them; the mesh keeps its texture coordinates.
+#[test]
+fn textures_and_texture_coordinates_survive_an_export() {
+    let dir = temp_dir("textures");
+    let source = dir.join("textured.gltf");
+    crate::textures::textured_floor(&source);
+    let p = Project::open(&source).expect("textured level");
+    let path = dir.join("textured.glb");
+    let summary = bouncelab::export::export(&p, &path).expect("export");
+    assert_eq!(summary.images, 2);
+    let back = Project::open(&path).expect("imports");
+    assert_eq!(back.scene.resources().images, p.scene.resources().images, "texels");
+    assert_eq!(back.scene.materials(), p.scene.materials());
+    let (a, b) = (&p.scene.resources().meshes[0], &back.scene.resources().meshes[0]);
+    assert_eq!((&a.positions, &a.uvs, &a.indices), (&b.positions, &b.uvs, &b.indices));
+}

@@ -18,6 +18,7 @@ mod cli;
 mod drt;
 mod editor_drt;
 mod editor_preview;
+mod editor_reload;
 mod editor_soak;
 mod editor_ui;
 mod export;

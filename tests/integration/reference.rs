@@ -20,8 +20,12 @@ fn render(project: &Project, size: (u32, u32), settings: ReferenceSettings) -> H
     HdrImage { width: size.0, height: size.1, pixels: t.image() }
 }
 
+/// The default project in `direct` (these tests hold the raster's direct light against the
+/// path tracer's; the project itself opens in a GI mode).
 fn default_project() -> Project {
-    Project::load(&default_project_path()).expect("default project")
+    let mut p = Project::load(&default_project_path()).expect("default project");
+    p.render.mode = bouncelab::settings::GiMode::Direct;
+    p
 }
 
 #[test]
@@ -113,7 +117,10 @@ fn assert_raster_matches_one_bounce(
     k: u32,
     label: &str,
 ) {
-    let big = common::render(ctx, &project.scene, &project.render, (size.0 * k, size.1 * k));
+    // Direct light: the project's own mode may be a GI technique (the default project's is).
+    let direct =
+        bouncelab::settings::RenderSettings { mode: bouncelab::settings::GiMode::Direct, ..project.render.clone() };
+    let big = common::render(ctx, &project.scene, &direct, (size.0 * k, size.1 * k));
     let raster =
         HdrImage { width: size.0, height: size.1, pixels: image_io::box_downsample(&big, (size.0 * k, size.1 * k), k) };
     let one = ReferenceSettings { spp: 256, max_bounces: 1, ..Default::default() };

@@ -22,7 +22,7 @@ fn png_data_uri(w: u32, h: u32, f: impl Fn(u32, u32) -> [u8; 4]) -> String {
 }
 
 /// A 2x2 m floor quad facing +Y with UVs, a checker base colour and a tilted normal map.
-fn textured_floor(path: &std::path::Path) {
+pub(crate) fn textured_floor(path: &std::path::Path) {
     let pos: [[f32; 3]; 4] = [[-1.0, 0.0, 1.0], [1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [-1.0, 0.0, -1.0]];
     let uv: [[f32; 2]; 4] = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
     let idx: [u32; 6] = [0, 1, 2, 0, 2, 3];

@@ -174,7 +174,12 @@ fn clutter_from_a_gltf_joins_the_project_and_saves() {
     let sel = edits::add_clutter_asset(&mut project, &mut history, std::path::Path::new("assets/cornell_box.gltf"))
         .expect("adds");
     assert_eq!(sel, Selection::Object(objects));
-    assert_eq!(project.scene.objects().len(), 2 * objects);
+    let in_file = bouncelab::import::import_gltf(std::path::Path::new("assets/cornell_box.gltf"))
+        .expect("asset")
+        .scene
+        .objects
+        .len();
+    assert_eq!(project.scene.objects().len(), objects + in_file);
     assert!(project.scene.objects()[objects..].iter().all(|o| o.role == ObjectRole::Clutter));
     let dir = std::env::temp_dir().join(format!("bouncelab-clutter-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("dir");

@@ -44,7 +44,8 @@ impl Viewport {
         }
         self.status_text(&painter, rect, state.project.render.mode);
         let view = View { camera: *state.project.scene.camera(), size: Vec2::new(rect.width(), rect.height()) };
-        overlays::draw(&painter, rect, &view, &state.project.scene, state.selection);
+        let blocks = state.project.render.mode == crate::settings::GiMode::Mrt;
+        overlays::draw(&painter, rect, &view, &state.project.scene, state.selection, blocks);
         if self.gizmo.show_points {
             self.draw_points(&painter, rect, &view, state);
         }
