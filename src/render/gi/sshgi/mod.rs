@@ -2,6 +2,7 @@
 //! not depend on the scene's geometry or lights, every light type feeds it through the direct
 //! term, and it adds several bounces, but only surfaces on screen send light.
 
+pub mod oracle;
 pub mod passes;
 pub mod technique;
 pub mod temporal;
