@@ -12,6 +12,8 @@ use clap::{Parser, Subcommand};
 struct Args {
     /// Project (.ron) or scene (.gltf/.glb) to open in the editor; the default project if omitted.
     project: Option<PathBuf>,
+    #[command(flatten)]
+    units: cli::LightUnitsArg,
     #[command(subcommand)]
     command: Option<Command>,
 }
@@ -122,7 +124,7 @@ fn main() -> ExitCode {
         Some(Command::Probe(args)) => cli::probe::run(&args).map(|s| print!("{s}")),
         Some(Command::ProbeMrt(args)) => cli::probe_mrt::run(&args).map(|s| print!("{s}")),
         Some(Command::ProbeIsm(args)) => cli::probe_ism::run(&args).map(|s| print!("{s}")),
-        None => bouncelab::app::run(args.project),
+        None => bouncelab::app::run(args.project, args.units.options()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

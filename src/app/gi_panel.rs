@@ -81,6 +81,16 @@ fn scene_ui(state: &mut EditorState, ui: &mut egui::Ui) {
             state.project.scene.desc_mut().light_units = units;
             state.history.commit(&state.project);
         }
+        if state.project.has_unrecorded_lights() {
+            let tip = "The glTF file does not say what its light numbers are: read them again as the light units above \
+                       (candela and lux, or W/sr and W/m²). Lights edited since keep their values.";
+            if ui.button(format!("Read the file's lights as {}", units.name())).on_hover_text(tip).clicked() {
+                let before = super::history::Snapshot::of(&state.project);
+                let n = state.project.reread_file_lights(units);
+                state.history.record("Read lights as", before, &state.project);
+                state.status = format!("read {n} lights of the glTF file as {}", units.name());
+            }
+        }
     });
 }
 

@@ -54,10 +54,11 @@ const TREE_KEY: &str = "bouncelab.layout";
 const RECENT_KEY: &str = "bouncelab.recent";
 const PREVIEW_KEY: &str = "bouncelab.preview";
 
-/// Opens the editor window on `project` (the default project if `None`).
-pub fn run(project: Option<PathBuf>) -> anyhow::Result<()> {
+/// Opens the editor window on `project` (the default project if `None`), a glTF read with
+/// `options` where given (`--light-units`).
+pub fn run(project: Option<PathBuf>, options: Option<crate::import::ImportOptions>) -> anyhow::Result<()> {
     let path = project.unwrap_or_else(default_project_path);
-    let Startup { project, path, opened, error } = open_or_fallback(&path)?;
+    let Startup { project, path, opened, error } = open_or_fallback(&path, options)?;
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.device_descriptor = Arc::new(device_descriptor);
     let options = eframe::NativeOptions {

@@ -9,9 +9,12 @@ use crate::scene::{Camera, Resources, Scene, SceneDesc};
 /// The project to start with: `path` if it opens, else the default project (or an empty one)
 /// and the reason, which the editor shows in a dialog. Someone who starts the editor from a
 /// desktop never sees stderr, so a bad file must not end in no window at all.
-pub fn open_or_fallback(path: &std::path::Path) -> Result<Startup, crate::scene::SceneError> {
+pub fn open_or_fallback(
+    path: &std::path::Path,
+    options: Option<crate::import::ImportOptions>,
+) -> Result<Startup, crate::scene::SceneError> {
     let is_project = |p: &std::path::Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ron"));
-    match Project::open(path) {
+    match Project::open_with(path, options) {
         Ok(project) => Ok(Startup {
             project,
             path: is_project(path).then(|| path.to_owned()),

@@ -176,6 +176,42 @@ impl Project {
         Ok(())
     }
 
+    /// Reads the lights of the glTF assets that do not record their units again as `units`
+    /// (the file's numbers were candela and the user says they were W/sr, or the reverse): each
+    /// light of the scene that still has the name and intensity it was imported with takes the
+    /// file's number in `units`; lights edited since keep their values. The scene's choice
+    /// becomes `units`. Returns how many lights changed.
+    pub fn reread_file_lights(&mut self, units: crate::scene::LightUnits) -> usize {
+        let mut changed = 0;
+        let mut desc = self.scene.desc().clone();
+        for asset in self.imported.iter_mut().filter(|a| a.recorded_units.is_none()) {
+            for imported in &asset.scene.lights {
+                let written = asset.light_units.from_radiometric(imported.intensity);
+                let now = units.to_radiometric(written);
+                for light in
+                    desc.lights.iter_mut().filter(|l| l.name == imported.name && l.intensity == imported.intensity)
+                {
+                    light.intensity = now;
+                    changed += 1;
+                }
+            }
+            for light in &mut asset.scene.lights {
+                light.intensity = units.to_radiometric(asset.light_units.from_radiometric(light.intensity));
+            }
+            asset.light_units = units;
+            asset.scene.light_units = units;
+        }
+        desc.light_units = units;
+        *self.scene.desc_mut() = desc;
+        changed
+    }
+
+    /// Whether a glTF asset of the project gives its lights without recording their units (so
+    /// the light units say how its numbers are read).
+    pub fn has_unrecorded_lights(&self) -> bool {
+        self.imported.iter().any(|a| a.recorded_units.is_none() && !a.scene.lights.is_empty())
+    }
+
     /// Replaces the description and the imported assets together (undoing a live reload):
     /// the scene is resolved against `imported`.
     pub fn set_desc_and_assets(&mut self, desc: SceneDesc, imported: Vec<import::Asset>) -> Result<(), ResolveError> {

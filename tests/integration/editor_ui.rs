@@ -232,7 +232,7 @@ fn a_project_that_cannot_be_opened_shows_the_error_in_the_window() {
     std::fs::create_dir_all(&dir).expect("dir");
     let bad = dir.join("broken.ron");
     std::fs::write(&bad, "(format_version: 1, assets: [").expect("write");
-    let startup = bouncelab::app::open_or_fallback(&bad).expect("a fallback project");
+    let startup = bouncelab::app::open_or_fallback(&bad, None).expect("a fallback project");
     let error = startup.error.clone().expect("the reason is kept for the window");
     assert!(error.contains("broken.ron") && error.contains("default project"), "{error}");
     assert_eq!(startup.path, None, "saving must not overwrite the broken file unasked");

@@ -205,3 +205,27 @@ fn a_files_unit_record_wins_over_the_choice_and_round_trips_through_the_project(
     let err = import_gltf(&write(&dir, "bad.gltf", &doc)).expect_err("unknown units");
     assert!(err.to_string().contains("bad.gltf") && err.to_string().contains("lumens"), "{err}");
 }
+
+/// A file that does not record its units, opened with the wrong ones, is fixed from the scene
+/// panel's button: the file's lights read again in the other units (unedited ones only), as one
+/// change the project keeps.
+#[test]
+fn the_files_lights_read_again_in_other_units_leave_edited_lights_alone() {
+    let dir = temp_dir("reread");
+    let path = blender_file(&dir);
+    let mut p = Project::from_gltf(&path).expect("opens");
+    assert!(p.has_unrecorded_lights());
+    let as_candela: Vec<f32> = p.scene.lights().iter().map(|l| l.intensity).collect();
+    p.scene.desc_mut().lights[2].intensity = 9.0;
+    let changed = p.reread_file_lights(LightUnits::Radiometric);
+    assert_eq!(changed, 2, "the two unedited lights");
+    assert_eq!(p.scene.desc().light_units, LightUnits::Radiometric);
+    for (l, before) in p.scene.lights().iter().zip(&as_candela).take(2) {
+        assert!((l.intensity / before - 683.0).abs() < 0.01, "{}: {} from {before}", l.name, l.intensity);
+    }
+    assert_eq!(p.scene.lights()[2].intensity, 9.0, "the edited light keeps its value");
+    assert_eq!(p.reread_file_lights(LightUnits::Photometric), 2, "and back");
+    assert!((p.scene.lights()[0].intensity - as_candela[0]).abs() < 1e-6);
+    let recorded = Project::from_gltf(&radiometric_file(&dir)).expect("opens");
+    assert!(!recorded.has_unrecorded_lights(), "a file that records its units is read as it says");
+}
