@@ -69,6 +69,10 @@ enum Command {
     /// Build (or load from the cache) Modular Radiance Transfer's dictionary and print its
     /// modes, spectra and build time.
     MrtDictionary(cli::mrt::MrtArgs),
+    /// The GPU profile: every mode on the suite's scenes at 720p, 1080p and 4K, each
+    /// pass's GPU time, technique against direct, CPU record time; writes docs/gpu-profile.json
+    /// and a Chrome trace per mode (`tools/gpu_bench.sh` packs it for the GPU machine).
+    Profile(cli::profile::ProfileArgs),
     /// Export a project's scene with its authored lighting (lights, proxy blocks, sampling
     /// weights, clutter marks, settings) as glTF for the engine or DCC it came from.
     Export(cli::export::ExportArgs),
@@ -119,6 +123,7 @@ fn main() -> ExitCode {
         }
         Some(Command::GenerateAssets { root }) => cli::generate::generate(&root),
         Some(Command::MrtDictionary(args)) => cli::mrt::run(&args).map(|s| println!("{s}")),
+        Some(Command::Profile(args)) => cli::profile::run(&args).map(|s| print!("{s}")),
         Some(Command::Export(args)) => cli::export::run(&args).map(|s| println!("wrote {s}")),
         Some(Command::FitBlocks(args)) => cli::mrt::fit(&args).map(|s| print!("{s}")),
         Some(Command::Probe(args)) => cli::probe::run(&args).map(|s| print!("{s}")),

@@ -46,6 +46,8 @@ pub const IMAGE: Writes = Writes { what: "an EXR (linear) or PNG (tonemapped) im
 pub const MARKDOWN: Writes = Writes { what: "a Markdown document", extensions: &["md"] };
 /// A glTF scene (`bouncelab export`).
 pub const GLTF: Writes = Writes { what: "a glTF scene (.gltf or .glb)", extensions: &["gltf", "glb"] };
+/// A JSON document (`profile`).
+pub const JSON: Writes = Writes { what: "a JSON document", extensions: &["json"] };
 /// A PNG picture (heat maps).
 pub const PNG: Writes = Writes { what: "a PNG image", extensions: &["png"] };
 

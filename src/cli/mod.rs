@@ -15,6 +15,7 @@ pub mod mrt;
 pub mod probe;
 pub mod probe_ism;
 pub mod probe_mrt;
+pub mod profile;
 pub mod progress;
 pub mod quality;
 pub mod render;

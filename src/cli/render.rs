@@ -347,7 +347,7 @@ fn reference(project: &Project, out: &Path, kind: OutputKind, size: (u32, u32)) 
 }
 
 /// Parses `--mode` (the settings stay free of the command line's types).
-fn parse_mode(name: &str) -> Result<GiMode, String> {
+pub(crate) fn parse_mode(name: &str) -> Result<GiMode, String> {
     GiMode::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = GiMode::ALL.iter().map(|m| m.name()).collect();
         format!("unknown mode {name:?}; the modes are {}", names.join(", "))

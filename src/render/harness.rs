@@ -147,7 +147,7 @@ pub fn measure(
         .into_iter()
         .map(|name| {
             let ms = median(per_pass.iter().filter_map(|f| f.iter().find(|t| t.name == name).map(|t| t.ms)).collect());
-            PassTiming { name, ms }
+            PassTiming { name, ms, start_ms: 0.0 }
         })
         .collect();
     Ok(Timed { frame_ms: median(times), passes })

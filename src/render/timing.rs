@@ -60,6 +60,8 @@ pub struct PassTiming {
     pub name: String,
     /// Milliseconds.
     pub ms: f64,
+    /// When it began, in milliseconds after the frame's first timed pass began (traces).
+    pub start_ms: f64,
 }
 
 struct Gpu {
@@ -163,12 +165,15 @@ impl GpuTimer {
             if ready.load(Ordering::Acquire) {
                 if let Ok(view) = gpu.readback.slice(..).get_mapped_range() {
                     let ticks: &[u64] = bytemuck::cast_slice(&view[..names.len() * 16]);
+                    let to_ms = |t: u64| t as f64 * f64::from(self.period_ns) * 1e-6;
+                    let first = ticks.first().copied().unwrap_or(0);
                     self.latest = names
                         .iter()
                         .enumerate()
                         .map(|(i, name)| PassTiming {
                             name: name.clone(),
-                            ms: ticks[2 * i + 1].saturating_sub(ticks[2 * i]) as f64 * f64::from(self.period_ns) * 1e-6,
+                            ms: to_ms(ticks[2 * i + 1].saturating_sub(ticks[2 * i])),
+                            start_ms: to_ms(ticks[2 * i].saturating_sub(first)),
                         })
                         .collect();
                 }

@@ -585,3 +585,58 @@ fn probe_ism_reports_each_set_and_refuses_bad_flags() {
     let handed = ratio("cornell bounce power set1/true", "set1/true");
     assert!(handed.is_finite() && handed > 0.0, "{text}");
 }
+
+/// `bouncelab profile` writes the profile in the shape the GPU budget is checked against (card,
+/// driver, commit; per row mode, scene, resolution, technique_ms, direct_ms, cpu_ms, cpu_waits),
+/// a Chrome trace per mode, and a table; `direct` has no technique passes of its own and
+/// `sshgi` has some.
+#[test]
+fn profile_writes_the_json_the_budget_is_checked_against_and_a_trace_per_mode() {
+    if !has_gpu() {
+        return;
+    }
+    let dir = scratch("profile");
+    let out = dir.join("gpu-profile.json");
+    let traces = dir.join("trace");
+    let o = bouncelab(&[
+        "profile",
+        "--resolutions",
+        "96x54",
+        "--scenes",
+        "cornell",
+        "--modes",
+        "direct,sshgi",
+        "--frames",
+        "2",
+        "--warm-up",
+        "1",
+        "--commit",
+        "abc123",
+        "--out",
+        out.to_str().expect("utf8"),
+        "--traces",
+        traces.to_str().expect("utf8"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = String::from_utf8_lossy(&o.stdout);
+    assert!(table.contains("| sshgi | cornell | 96x54 |"), "{table}");
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).expect("json")).expect("parses");
+    assert_eq!(doc["commit"], "abc123");
+    assert!(doc["card"].as_str().is_some_and(|c| !c.is_empty()) && doc["driver"].is_string());
+    let rows = doc["rows"].as_array().expect("rows");
+    assert_eq!(rows.len(), 2);
+    for row in rows {
+        for key in ["mode", "scene", "resolution", "technique_ms", "direct_ms", "cpu_ms", "cpu_waits"] {
+            assert!(row.get(key).is_some(), "{key} missing in {row}");
+        }
+        assert!(row["direct_ms"].as_f64().is_some_and(|v| v > 0.0), "{row}");
+    }
+    assert_eq!(rows[0]["technique_ms"].as_f64(), Some(0.0), "direct has no passes of its own");
+    assert!(rows[1]["technique_ms"].as_f64().is_some_and(|v| v > 0.0), "sshgi's passes are timed");
+    for mode in ["direct", "sshgi"] {
+        let trace: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(traces.join(format!("{mode}.json"))).expect("trace"))
+                .expect("parses");
+        assert!(trace["traceEvents"].as_array().is_some_and(|e| e.iter().any(|e| e["name"] == "gbuffer")), "{mode}");
+    }
+}

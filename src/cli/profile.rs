@@ -1,0 +1,277 @@
+//! `bouncelab profile`: the GPU profile one run on the GPU machine produces. Every mode on the
+//! suite's scenes at the given resolutions (default 720p, 1080p and 4K), each after its
+//! technique is ready and warm: per row the median GPU time of every pass, the technique's own
+//! passes summed (`technique_ms`) apart from the shared direct path (`direct_ms`: G-buffer,
+//! shadows, direct light, composite, tonemap), the CPU time to record and submit a frame
+//! (`cpu_ms`), and the frames' wall-clock time; one Chrome trace per mode (chrome://tracing,
+//! Perfetto) of a frame at the first scene and resolution. The JSON is rewritten after every
+//! row, so a run cut short by the machine's time limit keeps what it measured, and rows past
+//! `--budget-s` are skipped and named. `tools/gpu_bench.sh` packs the binary for the machine.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use serde_json::{Value, json};
+
+use crate::render::gi::registry;
+use crate::render::harness::{median, until_ready};
+use crate::render::timing::PassTiming;
+use crate::render::{GpuContext, Renderer};
+use crate::settings::GiMode;
+use crate::suite::SCENES;
+
+/// The passes of the shared direct path; every other pass is the technique's own.
+pub const DIRECT_PASSES: &[&str] = &["gbuffer", "shadows", "lighting", "composite", "tonemap"];
+
+/// Arguments of `bouncelab profile`.
+#[derive(clap::Args, Debug)]
+pub struct ProfileArgs {
+    /// Resolutions, WxH, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "1280x720,1920x1080,3840x2160", value_parser = parse_size)]
+    pub resolutions: Vec<(u32, u32)>,
+    /// Suite scenes (default: every one).
+    #[arg(long, value_delimiter = ',')]
+    pub scenes: Vec<String>,
+    /// Modes (default: every mode but `reference`).
+    #[arg(long, value_delimiter = ',', value_parser = super::render::parse_mode)]
+    pub modes: Vec<GiMode>,
+    /// Frames measured per row, after the technique is ready and `--warm-up` frames.
+    #[arg(long, default_value_t = 8)]
+    pub frames: usize,
+    /// Frames rendered before measuring (pipelines compiled, temporal history and caches warm).
+    #[arg(long, default_value_t = 8)]
+    pub warm_up: usize,
+    /// The profile (JSON).
+    #[arg(long, default_value = "docs/gpu-profile.json")]
+    pub out: PathBuf,
+    /// Folder for the Chrome traces, one per mode.
+    #[arg(long, default_value = "docs/gpu-trace")]
+    pub traces: PathBuf,
+    /// Seconds the whole profile may take; rows not started by then are skipped (and named).
+    #[arg(long, default_value_t = 270)]
+    pub budget_s: u64,
+    /// The commit profiled (default: `BOUNCELAB_COMMIT`, else `git rev-parse HEAD`).
+    #[arg(long)]
+    pub commit: Option<String>,
+}
+
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    text.split_once('x')
+        .and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)))
+        .filter(|(w, h): &(u32, u32)| *w > 0 && *h > 0)
+        .ok_or_else(|| format!("{text:?} is not a size WxH"))
+}
+
+/// One measured row.
+struct Row {
+    mode: GiMode,
+    scene: &'static str,
+    size: (u32, u32),
+    passes: Vec<PassTiming>,
+    cpu_ms: f64,
+    frame_ms: f64,
+    /// One frame's passes with their start times (ms from the frame's first pass).
+    trace: Vec<(String, f64, f64)>,
+}
+
+impl Row {
+    fn split(&self) -> (f64, f64) {
+        let direct: f64 = self.passes.iter().filter(|p| DIRECT_PASSES.contains(&p.name.as_str())).map(|p| p.ms).sum();
+        let all: f64 = self.passes.iter().map(|p| p.ms).sum();
+        (all - direct, direct)
+    }
+
+    fn json(&self) -> Value {
+        let (technique, direct) = self.split();
+        let passes: Vec<Value> = self.passes.iter().map(|p| json!({"name": p.name, "ms": p.ms})).collect();
+        json!({
+            "mode": self.mode.name(),
+            "scene": self.scene,
+            "resolution": format!("{}x{}", self.size.0, self.size.1),
+            "technique_ms": technique,
+            "direct_ms": direct,
+            "cpu_ms": self.cpu_ms,
+            "cpu_waits": Value::Null,
+            "frame_ms": self.frame_ms,
+            "passes": passes,
+        })
+    }
+}
+
+/// Runs the profile; returns the markdown table.
+pub fn run(args: &ProfileArgs) -> anyhow::Result<String> {
+    crate::output_path::check(&args.out, crate::output_path::JSON, &[])?;
+    std::fs::create_dir_all(&args.traces)?;
+    let ctx = GpuContext::new_headless()?;
+    let started = Instant::now();
+    let budget = Duration::from_secs(args.budget_s);
+    let modes: Vec<GiMode> = if args.modes.is_empty() {
+        registry::modes().map(|m| m.mode).filter(|m| *m != GiMode::Reference).collect()
+    } else {
+        args.modes.clone()
+    };
+    let scenes: Vec<&'static crate::suite::SuiteScene> =
+        SCENES.iter().filter(|s| args.scenes.is_empty() || args.scenes.iter().any(|n| n == s.name)).collect();
+    anyhow::ensure!(!scenes.is_empty(), "no suite scene is named {:?}", args.scenes);
+    let header = header(&ctx, args);
+    let (mut rows, mut skipped) = (Vec::new(), Vec::new());
+    for mode in &modes {
+        for scene in &scenes {
+            for &size in &args.resolutions {
+                let what = format!("{} {} {}x{}", mode.name(), scene.name, size.0, size.1);
+                if started.elapsed() > budget {
+                    skipped.push(what);
+                    continue;
+                }
+                eprintln!("profile: {what}");
+                match row(&ctx, *mode, scene, size, args) {
+                    Ok(r) => rows.push(r),
+                    Err(e) => skipped.push(format!("{what}: {e}")),
+                }
+                write_json(&args.out, &header, &rows, &skipped)?;
+            }
+        }
+    }
+    write_traces(&args.traces, &rows)?;
+    write_json(&args.out, &header, &rows, &skipped)?;
+    Ok(table(&header, &rows, &skipped))
+}
+
+/// The card, driver and commit.
+fn header(ctx: &GpuContext, args: &ProfileArgs) -> Value {
+    let info = ctx.adapter.get_info();
+    let commit = args
+        .commit
+        .clone()
+        .or_else(|| std::env::var("BOUNCELAB_COMMIT").ok())
+        .or_else(|| {
+            let out = std::process::Command::new("git").args(["rev-parse", "HEAD"]).output().ok()?;
+            out.status.success().then(|| String::from_utf8_lossy(&out.stdout).trim().to_owned())
+        })
+        .unwrap_or_else(|| "unknown".to_owned());
+    json!({
+        "card": info.name,
+        "driver": format!("{} {}", info.driver, info.driver_info),
+        "backend": format!("{:?}", info.backend),
+        "device_type": format!("{:?}", info.device_type),
+        "commit": commit,
+        "frames": args.frames,
+        "warm_up": args.warm_up,
+    })
+}
+
+/// Measures one (mode, scene, size).
+fn row(
+    ctx: &GpuContext,
+    mode: GiMode,
+    scene: &'static crate::suite::SuiteScene,
+    size: (u32, u32),
+    args: &ProfileArgs,
+) -> anyhow::Result<Row> {
+    let project = scene.load(Path::new("."))?;
+    let mut settings = project.render.clone();
+    settings.mode = mode;
+    let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
+    r.support(&settings, size).map_err(|why| anyhow::anyhow!("cannot run here: {why}"))?;
+    until_ready(&mut r, &project.scene, &settings, size, |_| {})?;
+    for _ in 0..args.warm_up {
+        r.render(&project.scene, &settings, size)?;
+        r.wait_for_gpu()?;
+    }
+    let (mut cpu, mut wall, mut frames) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..args.frames.max(1) {
+        let t = Instant::now();
+        r.render(&project.scene, &settings, size)?;
+        cpu.push(t.elapsed().as_secs_f64() * 1e3);
+        r.wait_for_gpu()?;
+        wall.push(t.elapsed().as_secs_f64() * 1e3);
+        frames.push(r.timings(true));
+    }
+    let names: Vec<String> = frames.last().map(|f| f.iter().map(|p| p.name.clone()).collect()).unwrap_or_default();
+    let passes = names
+        .iter()
+        .map(|name| {
+            let ms = median(frames.iter().filter_map(|f| f.iter().find(|p| &p.name == name).map(|p| p.ms)).collect());
+            PassTiming { name: name.clone(), ms, start_ms: 0.0 }
+        })
+        .collect();
+    let trace =
+        frames.last().map(|f| f.iter().map(|p| (p.name.clone(), p.start_ms, p.ms)).collect()).unwrap_or_default();
+    Ok(Row { mode, scene: scene.name, size, passes, cpu_ms: median(cpu), frame_ms: median(wall), trace })
+}
+
+/// The profile JSON in the shape `docs/gpu-profile.json` is checked against (atomically).
+fn write_json(out: &Path, header: &Value, rows: &[Row], skipped: &[String]) -> anyhow::Result<()> {
+    let mut doc = header.clone();
+    doc["rows"] = Value::Array(rows.iter().map(Row::json).collect());
+    doc["skipped"] = json!(skipped);
+    let mut text = serde_json::to_string_pretty(&doc)?;
+    text.push('\n');
+    crate::atomic_file::write(out, text.as_bytes())?;
+    Ok(())
+}
+
+/// One Chrome trace per mode: the first row's frame, each pass a complete event.
+fn write_traces(folder: &Path, rows: &[Row]) -> anyhow::Result<()> {
+    let mut done: Vec<GiMode> = Vec::new();
+    for r in rows.iter().filter(|r| !r.trace.is_empty()) {
+        if done.contains(&r.mode) {
+            continue;
+        }
+        done.push(r.mode);
+        let events: Vec<Value> = r
+            .trace
+            .iter()
+            .map(|(name, start, ms)| {
+                let direct = DIRECT_PASSES.contains(&name.as_str());
+                json!({"name": name, "cat": if direct { "direct" } else { "technique" }, "ph": "X",
+                       "ts": start * 1e3, "dur": ms * 1e3, "pid": 1, "tid": 1})
+            })
+            .collect();
+        let doc = json!({"traceEvents": events, "displayTimeUnit": "ms",
+                         "otherData": {"mode": r.mode.name(), "scene": r.scene, "resolution": format!("{}x{}", r.size.0, r.size.1)}});
+        let path = folder.join(format!("{}.json", r.mode.name()));
+        crate::atomic_file::write(&path, serde_json::to_string(&doc)?.as_bytes())?;
+    }
+    Ok(())
+}
+
+/// The markdown table of the profile.
+fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "GPU profile on **{}** ({}), commit `{}`: median of {} frames after warm-up; technique = its own passes, direct = G-buffer, shadows, direct light, composite, tonemap.\n",
+        header["card"].as_str().unwrap_or_default(),
+        header["driver"].as_str().unwrap_or_default(),
+        header["commit"].as_str().unwrap_or_default(),
+        header["frames"]
+    );
+    let _ = writeln!(
+        md,
+        "| mode | scene | resolution | technique ms | direct ms | CPU record+submit ms | frame ms | slowest passes |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        let (technique, direct) = r.split();
+        let mut passes = r.passes.clone();
+        passes.sort_by(|a, b| b.ms.total_cmp(&a.ms));
+        let top: Vec<String> = passes.iter().take(3).map(|p| format!("{} {:.2}", p.name, p.ms)).collect();
+        let _ = writeln!(
+            md,
+            "| {} | {} | {}x{} | {technique:.2} | {direct:.2} | {:.2} | {:.2} | {} |",
+            r.mode.name(),
+            r.scene,
+            r.size.0,
+            r.size.1,
+            r.cpu_ms,
+            r.frame_ms,
+            top.join(", ")
+        );
+    }
+    if !skipped.is_empty() {
+        let _ = writeln!(md, "\nSkipped: {}", skipped.join("; "));
+    }
+    md
+}
