@@ -15,7 +15,7 @@ use std::time::{Duration, Instant};
 use serde_json::{Value, json};
 
 use crate::render::gi::registry;
-use crate::render::harness::{median, until_ready};
+use crate::render::harness::{median, median_passes, until_ready};
 use crate::render::timing::PassTiming;
 use crate::render::{GpuContext, Renderer};
 use crate::settings::GiMode;
@@ -188,14 +188,7 @@ fn row(
         wall.push(t.elapsed().as_secs_f64() * 1e3);
         frames.push(r.timings(true));
     }
-    let names: Vec<String> = frames.last().map(|f| f.iter().map(|p| p.name.clone()).collect()).unwrap_or_default();
-    let passes = names
-        .iter()
-        .map(|name| {
-            let ms = median(frames.iter().filter_map(|f| f.iter().find(|p| &p.name == name).map(|p| p.ms)).collect());
-            PassTiming { name: name.clone(), ms, start_ms: 0.0 }
-        })
-        .collect();
+    let passes = median_passes(&frames);
     let trace =
         frames.last().map(|f| f.iter().map(|p| (p.name.clone(), p.start_ms, p.ms)).collect()).unwrap_or_default();
     Ok(Row { mode, scene: scene.name, size, passes, cpu_ms: median(cpu), frame_ms: median(wall), trace })

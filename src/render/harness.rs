@@ -142,15 +142,19 @@ pub fn measure(
         times.push(t.elapsed().as_secs_f64() * 1e3);
         per_pass.push(renderer.timings(true));
     }
-    let names: Vec<String> = per_pass.last().map(|p| p.iter().map(|t| t.name.clone()).collect()).unwrap_or_default();
-    let passes = names
+    Ok(Timed { frame_ms: median(times), passes: median_passes(&per_pass) })
+}
+
+/// Each pass of the last frame in `frames` with its median time over the frames that have it.
+pub fn median_passes(frames: &[Vec<PassTiming>]) -> Vec<PassTiming> {
+    let names: Vec<String> = frames.last().map(|p| p.iter().map(|t| t.name.clone()).collect()).unwrap_or_default();
+    names
         .into_iter()
         .map(|name| {
-            let ms = median(per_pass.iter().filter_map(|f| f.iter().find(|t| t.name == name).map(|t| t.ms)).collect());
+            let ms = median(frames.iter().filter_map(|f| f.iter().find(|t| t.name == name).map(|t| t.ms)).collect());
             PassTiming { name, ms, start_ms: 0.0 }
         })
-        .collect();
-    Ok(Timed { frame_ms: median(times), passes })
+        .collect()
 }
 
 /// The reference path tracer's image of `scene` at `size`, all of `settings.spp` samples (on

@@ -121,3 +121,11 @@ pub fn reference(
 pub fn until_ready(r: &mut Renderer, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) {
     bouncelab::render::harness::until_ready(r, scene, settings, size, |_| {}).expect("render");
 }
+
+/// A fresh, empty folder for one test: `<tmp>/bouncelab-<kind>-<pid>-<name>`.
+pub fn temp_dir(kind: &str, name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("bouncelab-{kind}-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}

@@ -16,10 +16,7 @@ use egui_kittest::Harness;
 use glam::Vec3;
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("bouncelab-reload-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+    common::temp_dir("reload", name)
 }
 
 /// A level of named boxes (name, centre, size) on a floor, with a grey and a red material, as

@@ -19,10 +19,7 @@ use glam::Vec3;
 const SIZE: (u32, u32) = (64, 36);
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("bouncelab-export-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+    common::temp_dir("export", name)
 }
 
 /// The default project (the Cornell box and its proxy block) with an authored spot (range, no

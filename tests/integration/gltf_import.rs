@@ -1,6 +1,8 @@
 //! glTF import: lights, cameras, hierarchy, GLB, computed normals, and every error case ending in
 //! a typed error that names the file (never a panic).
 
+use crate::common;
+
 use std::path::{Path, PathBuf};
 
 use bouncelab::import::writer::{GltfWriter, NodeDesc};
@@ -10,10 +12,7 @@ use glam::{Quat, Vec3};
 use serde_json::{Value, json};
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("bouncelab-gltf-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+    common::temp_dir("gltf", name)
 }
 
 fn write(dir: &Path, name: &str, doc: &Value) -> PathBuf {

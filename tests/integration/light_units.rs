@@ -17,10 +17,7 @@ use glam::{Quat, Vec3};
 use serde_json::{Value, json};
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("bouncelab-units-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+    common::temp_dir("units", name)
 }
 
 fn write(dir: &Path, name: &str, doc: &Value) -> PathBuf {
