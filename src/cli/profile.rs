@@ -70,6 +70,8 @@ struct Row {
     size: (u32, u32),
     passes: Vec<PassTiming>,
     cpu_ms: f64,
+    /// The most blocking GPU waits inside one measured frame's `render`.
+    cpu_waits: u64,
     frame_ms: f64,
     /// One frame's passes with their start times (ms from the frame's first pass).
     trace: Vec<(String, f64, f64)>,
@@ -92,7 +94,7 @@ impl Row {
             "technique_ms": technique,
             "direct_ms": direct,
             "cpu_ms": self.cpu_ms,
-            "cpu_waits": Value::Null,
+            "cpu_waits": self.cpu_waits,
             "frame_ms": self.frame_ms,
             "passes": passes,
         })
@@ -179,11 +181,13 @@ fn row(
         r.render(&project.scene, &settings, size)?;
         r.wait_for_gpu()?;
     }
-    let (mut cpu, mut wall, mut frames) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut cpu, mut wall, mut frames, mut waits) = (Vec::new(), Vec::new(), Vec::new(), 0);
     for _ in 0..args.frames.max(1) {
+        let before = crate::render::readback::blocking_waits();
         let t = Instant::now();
         r.render(&project.scene, &settings, size)?;
         cpu.push(t.elapsed().as_secs_f64() * 1e3);
+        waits = waits.max(crate::render::readback::blocking_waits() - before);
         r.wait_for_gpu()?;
         wall.push(t.elapsed().as_secs_f64() * 1e3);
         frames.push(r.timings(true));
@@ -191,7 +195,16 @@ fn row(
     let passes = median_passes(&frames);
     let trace =
         frames.last().map(|f| f.iter().map(|p| (p.name.clone(), p.start_ms, p.ms)).collect()).unwrap_or_default();
-    Ok(Row { mode, scene: scene.name, size, passes, cpu_ms: median(cpu), frame_ms: median(wall), trace })
+    Ok(Row {
+        mode,
+        scene: scene.name,
+        size,
+        passes,
+        cpu_ms: median(cpu),
+        cpu_waits: waits,
+        frame_ms: median(wall),
+        trace,
+    })
 }
 
 /// The profile JSON in the shape `docs/gpu-profile.json` is checked against (atomically).
@@ -243,9 +256,9 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
     );
     let _ = writeln!(
         md,
-        "| mode | scene | resolution | technique ms | direct ms | CPU record+submit ms | frame ms | slowest passes |"
+        "| mode | scene | resolution | technique ms | direct ms | CPU record+submit ms | CPU waits | frame ms | slowest passes |"
     );
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|");
     for r in rows {
         let (technique, direct) = r.split();
         let mut passes = r.passes.clone();
@@ -253,12 +266,13 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
         let top: Vec<String> = passes.iter().take(3).map(|p| format!("{} {:.2}", p.name, p.ms)).collect();
         let _ = writeln!(
             md,
-            "| {} | {} | {}x{} | {technique:.2} | {direct:.2} | {:.2} | {:.2} | {} |",
+            "| {} | {} | {}x{} | {technique:.2} | {direct:.2} | {:.2} | {} | {:.2} | {} |",
             r.mode.name(),
             r.scene,
             r.size.0,
             r.size.1,
             r.cpu_ms,
+            r.cpu_waits,
             r.frame_ms,
             top.join(", ")
         );

@@ -50,8 +50,19 @@ pub fn read_texture(
     Ok(out)
 }
 
+/// Blocking readbacks so far in this process ([`blocking_waits`]).
+static BLOCKING_WAITS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// How many times this process has waited for the GPU to map a readback: `bouncelab profile`
+/// counts the waits inside a frame's `render` with it (a frame should have none: readbacks
+/// land a frame or more later).
+pub fn blocking_waits() -> u64 {
+    BLOCKING_WAITS.load(std::sync::atomic::Ordering::Relaxed)
+}
+
 /// Maps a readback buffer, waits for the GPU and copies its bytes out.
 pub(crate) fn map_blocking(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Result<Vec<u8>, ReadbackError> {
+    BLOCKING_WAITS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let (tx, rx) = std::sync::mpsc::channel();
     buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);

@@ -632,6 +632,7 @@ fn profile_writes_the_json_the_budget_is_checked_against_and_a_trace_per_mode() 
         assert!(row["direct_ms"].as_f64().is_some_and(|v| v > 0.0), "{row}");
     }
     assert_eq!(rows[0]["technique_ms"].as_f64(), Some(0.0), "direct has no passes of its own");
+    assert_eq!(rows[0]["cpu_waits"].as_u64(), Some(0), "direct never waits for the GPU inside a frame");
     assert!(rows[1]["technique_ms"].as_f64().is_some_and(|v| v > 0.0), "sshgi's passes are timed");
     for mode in ["direct", "sshgi"] {
         let trace: serde_json::Value =
