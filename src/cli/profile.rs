@@ -16,7 +16,7 @@ use serde_json::{Value, json};
 
 use crate::render::gi::registry;
 use crate::render::harness::{median, median_passes, until_ready};
-use crate::render::timing::PassTiming;
+use crate::render::timing::{PassKind, PassTiming};
 use crate::render::{GpuContext, Renderer};
 use crate::settings::GiMode;
 use crate::suite::SCENES;
@@ -84,9 +84,18 @@ impl Row {
         (all - direct, direct)
     }
 
+    /// GPU milliseconds in render passes and in compute passes (an H100 rasterises on a small
+    /// part of the chip only).
+    fn by_kind(&self) -> (f64, f64) {
+        let sum = |k: PassKind| self.passes.iter().filter(|p| p.kind == k).map(|p| p.ms).sum::<f64>();
+        (sum(PassKind::Raster), sum(PassKind::Compute))
+    }
+
     fn json(&self) -> Value {
         let (technique, direct) = self.split();
-        let passes: Vec<Value> = self.passes.iter().map(|p| json!({"name": p.name, "ms": p.ms})).collect();
+        let (raster, compute) = self.by_kind();
+        let passes: Vec<Value> =
+            self.passes.iter().map(|p| json!({"name": p.name, "ms": p.ms, "kind": p.kind.name()})).collect();
         json!({
             "mode": self.mode.name(),
             "scene": self.scene,
@@ -96,6 +105,8 @@ impl Row {
             "cpu_ms": self.cpu_ms,
             "cpu_waits": self.cpu_waits,
             "frame_ms": self.frame_ms,
+            "raster_ms": raster,
+            "compute_ms": compute,
             "passes": passes,
         })
     }
@@ -256,17 +267,18 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
     );
     let _ = writeln!(
         md,
-        "| mode | scene | resolution | technique ms | direct ms | CPU record+submit ms | CPU waits | frame ms | slowest passes |"
+        "| mode | scene | resolution | technique ms | direct ms | raster ms | compute ms | CPU record+submit ms | CPU waits | frame ms | slowest passes |"
     );
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|");
     for r in rows {
         let (technique, direct) = r.split();
+        let (raster, compute) = r.by_kind();
         let mut passes = r.passes.clone();
         passes.sort_by(|a, b| b.ms.total_cmp(&a.ms));
         let top: Vec<String> = passes.iter().take(3).map(|p| format!("{} {:.2}", p.name, p.ms)).collect();
         let _ = writeln!(
             md,
-            "| {} | {} | {}x{} | {technique:.2} | {direct:.2} | {:.2} | {} | {:.2} | {} |",
+            "| {} | {} | {}x{} | {technique:.2} | {direct:.2} | {raster:.2} | {compute:.2} | {:.2} | {} | {:.2} | {} |",
             r.mode.name(),
             r.scene,
             r.size.0,

@@ -151,8 +151,10 @@ pub fn median_passes(frames: &[Vec<PassTiming>]) -> Vec<PassTiming> {
     names
         .into_iter()
         .map(|name| {
+            let kind =
+                frames.last().and_then(|f| f.iter().find(|t| t.name == name)).map(|t| t.kind).unwrap_or_default();
             let ms = median(frames.iter().filter_map(|f| f.iter().find(|t| t.name == name).map(|t| t.ms)).collect());
-            PassTiming { name, ms, start_ms: 0.0 }
+            PassTiming { name, ms, start_ms: 0.0, kind }
         })
         .collect()
 }

@@ -2,22 +2,50 @@
 //! back without stalling: a frame's queries are copied to a readback buffer that is mapped
 //! asynchronously and collected on a later frame (or waited for by `bench`).
 
+use std::cell::Cell;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Queries available per frame (two per pass).
 const MAX_QUERIES: u32 = 64;
 
+/// What kind of GPU work a timed pass is: rasterisation (render passes) or compute. On an H100
+/// only a small part of the chip rasterises, so the profile reads the two apart.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PassKind {
+    /// Not known (the scope's writes were never asked for).
+    #[default]
+    Unknown,
+    /// A render pass.
+    Raster,
+    /// A compute pass.
+    Compute,
+}
+
+impl PassKind {
+    /// "raster", "compute" or "unknown".
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Unknown => "unknown",
+            Self::Raster => "raster",
+            Self::Compute => "compute",
+        }
+    }
+}
+
 /// The begin/end query pair of one pass.
 pub struct TimestampPair<'a> {
     pub query_set: &'a wgpu::QuerySet,
     pub begin: u32,
     pub end: u32,
+    /// Set by the kind of writes the pass asks for.
+    kind: &'a Cell<PassKind>,
 }
 
 impl<'a> TimestampPair<'a> {
     /// Timestamp writes for a render pass that is (or is not) the first / last of the scope.
     pub fn render_writes(&self, first: bool, last: bool) -> wgpu::RenderPassTimestampWrites<'a> {
+        self.kind.set(PassKind::Raster);
         wgpu::RenderPassTimestampWrites {
             query_set: self.query_set,
             beginning_of_pass_write_index: first.then_some(self.begin),
@@ -27,6 +55,7 @@ impl<'a> TimestampPair<'a> {
 
     /// Timestamp writes for a compute pass that ends a scope begun by an earlier pass.
     pub fn compute_end_writes(&self) -> wgpu::ComputePassTimestampWrites<'a> {
+        self.kind.set(PassKind::Compute);
         wgpu::ComputePassTimestampWrites {
             query_set: self.query_set,
             beginning_of_pass_write_index: None,
@@ -36,6 +65,7 @@ impl<'a> TimestampPair<'a> {
 
     /// Timestamp writes for a compute pass that begins a scope a later pass ends.
     pub fn compute_begin_writes(&self) -> wgpu::ComputePassTimestampWrites<'a> {
+        self.kind.set(PassKind::Compute);
         wgpu::ComputePassTimestampWrites {
             query_set: self.query_set,
             beginning_of_pass_write_index: Some(self.begin),
@@ -45,6 +75,7 @@ impl<'a> TimestampPair<'a> {
 
     /// Timestamp writes for a single compute pass.
     pub fn compute_writes(&self) -> wgpu::ComputePassTimestampWrites<'a> {
+        self.kind.set(PassKind::Compute);
         wgpu::ComputePassTimestampWrites {
             query_set: self.query_set,
             beginning_of_pass_write_index: Some(self.begin),
@@ -62,13 +93,15 @@ pub struct PassTiming {
     pub ms: f64,
     /// When it began, in milliseconds after the frame's first timed pass began (traces).
     pub start_ms: f64,
+    /// Raster or compute.
+    pub kind: PassKind,
 }
 
 struct Gpu {
     query_set: wgpu::QuerySet,
     resolve: wgpu::Buffer,
     readback: wgpu::Buffer,
-    pending: Option<(Vec<String>, Arc<AtomicBool>)>,
+    pending: Option<(Vec<String>, Vec<PassKind>, Arc<AtomicBool>)>,
     map_requested: bool,
 }
 
@@ -76,6 +109,8 @@ struct Gpu {
 pub struct GpuTimer {
     gpu: Option<Gpu>,
     names: Vec<String>,
+    /// Per scope of the frame, the kind its pass declared.
+    kinds: Box<[Cell<PassKind>]>,
     period_ns: f32,
     latest: Vec<PassTiming>,
 }
@@ -107,7 +142,8 @@ impl GpuTimer {
                 map_requested: false,
             }
         });
-        Self { gpu, names: Vec::new(), period_ns: queue.get_timestamp_period(), latest: Vec::new() }
+        let kinds = (0..MAX_QUERIES / 2).map(|_| Cell::new(PassKind::Unknown)).collect();
+        Self { gpu, names: Vec::new(), kinds, period_ns: queue.get_timestamp_period(), latest: Vec::new() }
     }
 
     /// Whether timestamps are recorded.
@@ -126,9 +162,12 @@ impl GpuTimer {
         if gpu.pending.is_some() || (self.names.len() as u32 + 1) * 2 > MAX_QUERIES {
             return None;
         }
-        let begin = self.names.len() as u32 * 2;
+        let index = self.names.len();
+        let begin = index as u32 * 2;
         self.names.push(name.to_owned());
-        Some(TimestampPair { query_set: &gpu.query_set, begin, end: begin + 1 })
+        let kind = &self.kinds[index];
+        kind.set(PassKind::Unknown);
+        Some(TimestampPair { query_set: &gpu.query_set, begin, end: begin + 1, kind })
     }
 
     /// Resolves this frame's queries into the readback buffer.
@@ -140,13 +179,14 @@ impl GpuTimer {
         let n = self.names.len() as u32 * 2;
         encoder.resolve_query_set(&gpu.query_set, 0..n, &gpu.resolve, 0);
         encoder.copy_buffer_to_buffer(&gpu.resolve, 0, &gpu.readback, 0, u64::from(n) * 8);
-        gpu.pending = Some((std::mem::take(&mut self.names), Arc::new(AtomicBool::new(false))));
+        let kinds = self.kinds.iter().take(self.names.len()).map(Cell::get).collect();
+        gpu.pending = Some((std::mem::take(&mut self.names), kinds, Arc::new(AtomicBool::new(false))));
     }
 
     /// After submit: starts mapping the readback buffer.
     pub fn after_submit(&mut self) {
         let Some(gpu) = self.gpu.as_mut() else { return };
-        if let Some((_, ready)) = &gpu.pending
+        if let Some((_, _, ready)) = &gpu.pending
             && !gpu.map_requested
         {
             gpu.map_requested = true;
@@ -158,7 +198,7 @@ impl GpuTimer {
     /// Collects finished results (non-blocking unless `wait`); returns the latest timings.
     pub fn collect(&mut self, device: &wgpu::Device, wait: bool) -> &[PassTiming] {
         if let Some(gpu) = self.gpu.as_mut()
-            && let Some((names, ready)) = &gpu.pending
+            && let Some((names, kinds, ready)) = &gpu.pending
         {
             let poll = if wait { wgpu::PollType::wait_indefinitely() } else { wgpu::PollType::Poll };
             let _ = device.poll(poll);
@@ -174,6 +214,7 @@ impl GpuTimer {
                             name: name.clone(),
                             ms: to_ms(ticks[2 * i + 1].saturating_sub(ticks[2 * i])),
                             start_ms: to_ms(ticks[2 * i].saturating_sub(first)),
+                            kind: kinds.get(i).copied().unwrap_or_default(),
                         })
                         .collect();
                 }

@@ -633,6 +633,14 @@ fn profile_writes_the_json_the_budget_is_checked_against_and_a_trace_per_mode() 
     }
     assert_eq!(rows[0]["technique_ms"].as_f64(), Some(0.0), "direct has no passes of its own");
     assert_eq!(rows[0]["cpu_waits"].as_u64(), Some(0), "direct never waits for the GPU inside a frame");
+    let kind = |row: &serde_json::Value, pass: &str| {
+        row["passes"].as_array().and_then(|p| p.iter().find(|p| p["name"] == pass)).map(|p| p["kind"].clone())
+    };
+    assert_eq!(kind(&rows[0], "gbuffer"), Some(serde_json::json!("raster")), "the G-buffer is rasterised");
+    assert_eq!(kind(&rows[0], "lighting"), Some(serde_json::json!("compute")), "direct light is a compute pass");
+    let (raster, compute) =
+        (rows[1]["raster_ms"].as_f64().expect("raster"), rows[1]["compute_ms"].as_f64().expect("compute"));
+    assert!(raster > 0.0 && compute > 0.0, "sshgi's frame has both: {raster} {compute}");
     assert!(rows[1]["technique_ms"].as_f64().is_some_and(|v| v > 0.0), "sshgi's passes are timed");
     for mode in ["direct", "sshgi"] {
         let trace: serde_json::Value =
