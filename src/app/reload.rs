@@ -26,10 +26,9 @@ pub const RETRIES: u32 = 20;
 pub struct FileWatcher {
     watcher: Option<notify::RecommendedWatcher>,
     events: Option<Receiver<notify::Result<notify::Event>>>,
-    /// The files watched as the project names them, canonical, and the folders watched.
+    /// The files watched as the project names them, and canonical.
     given: Vec<PathBuf>,
     files: Vec<PathBuf>,
-    folders: Vec<PathBuf>,
     /// Changed files: when to read them next, and how many reads failed.
     due: HashMap<PathBuf, (Instant, u32)>,
     /// Why watching failed, once (the editor works on without live reload).
@@ -41,26 +40,25 @@ fn canonical(path: &Path) -> PathBuf {
 }
 
 impl FileWatcher {
-    /// Watches exactly `files` (a no-op when they are already the ones watched); `wake` is
-    /// called from the watcher's thread on every change (the editor asks for a repaint, so an
-    /// idle window notices).
-    pub fn watch(&mut self, files: &[PathBuf], wake: impl Fn() + Send + 'static) {
-        // Called every frame: the paths as given decide, no file system call (and a watcher
-        // that could not start is not tried again until the files change).
-        if files == self.given {
+    /// Watches exactly `files` (a no-op when they are already the ones watched; called every
+    /// frame, so it compares without copying or touching the file system, and a watcher that
+    /// could not start is not tried again until the files change). Every change asks `ctx` for
+    /// a repaint from the watcher's thread, so an idle window notices.
+    pub fn watch<'a>(&mut self, files: impl Iterator<Item = &'a Path> + Clone, ctx: &egui::Context) {
+        if self.given.iter().map(PathBuf::as_path).eq(files.clone()) {
             return;
         }
-        self.given = files.to_vec();
-        self.files = files.iter().map(|f| canonical(f)).collect();
+        self.given = files.map(Path::to_owned).collect();
+        self.files = self.given.iter().map(|f| canonical(f)).collect();
         self.due.clear();
         let mut folders: Vec<PathBuf> = self.files.iter().filter_map(|f| f.parent().map(Path::to_owned)).collect();
         folders.sort();
         folders.dedup();
-        self.folders = folders;
         let (tx, rx) = channel();
+        let wake = ctx.clone();
         let watcher = notify::recommended_watcher(move |event| {
             let _ = tx.send(event);
-            wake();
+            wake.request_repaint_after(SETTLE);
         });
         let mut watcher = match watcher {
             Ok(w) => w,
@@ -69,7 +67,7 @@ impl FileWatcher {
                 return;
             }
         };
-        for folder in &self.folders {
+        for folder in &folders {
             if let Err(e) = watcher.watch(folder, notify::RecursiveMode::NonRecursive) {
                 self.problem = Some(format!("live reload is off for {}: {e}", folder.display()));
             }

@@ -59,9 +59,14 @@ impl Canvas {
 
     /// Draws `text` in light grey with its top-left at (x, y), clipped to the canvas.
     fn label(&mut self, text: &str, (x, y): (usize, usize)) {
-        let mut view = self.fonts.with_pixels_per_point(1.0);
-        let galley = view.layout_no_wrap(text.to_owned(), FontId::proportional(TEXT), Color32::WHITE);
-        let atlas = view.image();
+        let galley = self.fonts.with_pixels_per_point(1.0).layout_no_wrap(
+            text.to_owned(),
+            FontId::proportional(TEXT),
+            Color32::WHITE,
+        );
+        // The glyph atlas as laid out so far, borrowed (the view's `image()` copies it whole).
+        let atlas = self.fonts.texture_atlas().image();
+        let (width, height) = (self.width, self.height);
         for row in &galley.rows {
             for glyph in &row.row.glyphs {
                 let uv = glyph.uv_rect;
@@ -72,23 +77,25 @@ impl Canvas {
                         let coverage = atlas[(usize::from(u), usize::from(v))].a();
                         let px = left.round() as i64 + i64::from(u - uv.min[0]);
                         let py = top.round() as i64 + i64::from(v - uv.min[1]);
-                        self.blend(px, py, coverage);
+                        blend(&mut self.rgba, (width, height), px, py, coverage);
                     }
                 }
             }
         }
     }
+}
 
-    fn blend(&mut self, x: i64, y: i64, coverage: u8) {
-        let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) else { return };
-        if x >= self.width || y >= self.height {
-            return;
-        }
-        let i = (y * self.width + x) * 4;
-        let a = f32::from(coverage) / 255.0;
-        for c in &mut self.rgba[i..i + 3] {
-            *c = (f32::from(*c) * (1.0 - a) + 230.0 * a).round() as u8;
-        }
+/// Blends light grey over the pixel (x, y) of an RGBA8 canvas of `size` by `coverage`; pixels
+/// off the canvas are skipped.
+fn blend(rgba: &mut [u8], (width, height): (usize, usize), x: i64, y: i64, coverage: u8) {
+    let (Ok(x), Ok(y)) = (usize::try_from(x), usize::try_from(y)) else { return };
+    if x >= width || y >= height {
+        return;
+    }
+    let i = (y * width + x) * 4;
+    let a = f32::from(coverage) / 255.0;
+    for c in &mut rgba[i..i + 3] {
+        *c = (f32::from(*c) * (1.0 - a) + 230.0 * a).round() as u8;
     }
 }
 

@@ -14,28 +14,12 @@ use crate::scene::{Camera, Light, LightKind, LightUnits, Material, MeshSource, O
 
 pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) -> Result<(), ImportError> {
     let node_err = |what: String, message: String| ImportError::Node { path: path.to_owned(), what, message };
-    let roots: Vec<gltf::Node<'_>> = match doc.default_scene().or_else(|| doc.scenes().next()) {
-        Some(scene) => scene.nodes().collect(),
-        None => {
-            // No scene (the spec allows a file of assets only): treat nodes that are nobody's
-            // child as roots, and say so.
-            log::warn!("{}: the file has no scene; importing every root node", path.display());
-            let mut is_child = vec![false; doc.nodes().len()];
-            for n in doc.nodes() {
-                for c in n.children() {
-                    if let Some(slot) = is_child.get_mut(c.index()) {
-                        *slot = true;
-                    }
-                }
-            }
-            doc.nodes().filter(|n| !is_child.get(n.index()).copied().unwrap_or(true)).collect()
-        }
-    };
     let mut visited = vec![false; doc.nodes().len()];
+    let roots = scene_roots(doc, path);
     let mut stack: Vec<(gltf::Node<'_>, Mat4)> = roots.into_iter().rev().map(|n| (n, Mat4::IDENTITY)).collect();
     let mut camera: Option<Camera> = None;
     let mut uses_default_material = false;
-    let default_material = asset.materials.len();
+    let default_material = DefaultMaterial { index: asset.materials.len(), only: asset.materials.is_empty() };
 
     while let Some((node, parent)) = stack.pop() {
         let idx = node.index();
@@ -44,75 +28,11 @@ pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) 
             return Err(node_err(what, "is reached twice (a cycle or several parents)".into()));
         }
         visited[idx] = true;
-        if let gltf::scene::Transform::Decomposed { rotation, .. } = node.transform() {
-            let len = Quat::from_array(rotation).length();
-            if (len - 1.0).abs() > 1e-2 {
-                return Err(node_err(
-                    what,
-                    format!("rotation {rotation:?} has length {len}; glTF requires a unit quaternion"),
-                ));
-            }
-        }
-        let local = Mat4::from_cols_array_2d(&node.transform().matrix());
-        if !local.is_finite() {
-            return Err(node_err(what, "transform has NaN or infinite values".into()));
-        }
-        let world = parent * local;
-        if !world.is_finite() {
-            return Err(node_err(what, "world transform overflows".into()));
-        }
+        let world = world_transform(&node, parent).map_err(|m| node_err(what.clone(), m))?;
         let own = extras::read::<NodeExtras>(node.extras()).map_err(|m| node_err(what.clone(), m))?.unwrap_or_default();
-        let exact = Transform::from_matrix_exact(&world);
-        if let Some(mesh) = node.mesh() {
-            for prim in mesh.primitives().filter(|p| super::primitive::is_triangles(p.mode())) {
-                let material = prim.material().index().unwrap_or_else(|| {
-                    uses_default_material = true;
-                    default_material
-                });
-                let name = match (node.name(), mesh.primitives().len()) {
-                    (Some(n), 1) => n.to_owned(),
-                    (Some(n), _) => format!("{n}#{}", prim.index()),
-                    (None, _) => format!("node {idx}#{}", prim.index()),
-                };
-                let from_file = MeshSource::Asset {
-                    asset: 0,
-                    mesh: mesh.index(),
-                    primitive: prim.index(),
-                    baked: if exact.is_some() { None } else { Some(world) },
-                };
-                // A mesh Bounce Lab generated comes back generated (where its node's transform
-                // is a plain one; otherwise as the file's triangles).
-                let source = generated_source(&own).filter(|_| exact.is_some()).unwrap_or(from_file);
-                asset.scene.objects.push(Object {
-                    name,
-                    source,
-                    mesh: 0,
-                    material,
-                    transform: exact.unwrap_or_default(),
-                    sampling_weight: own.sampling_weight.unwrap_or(1.0),
-                    role: own.role.unwrap_or(ObjectRole::Static),
-                    visible: own.visible.unwrap_or(true),
-                });
-            }
-        } else if let (Some(source), Some(transform)) = (generated_source(&own), exact) {
-            // A proxy block: a node without a mesh, so other tools draw nothing over the level.
-            let material = if asset.materials.is_empty() {
-                uses_default_material = true;
-                default_material
-            } else {
-                0
-            };
-            asset.scene.objects.push(Object {
-                name: node.name().map_or_else(|| format!("node {idx}"), str::to_owned),
-                source,
-                mesh: 0,
-                material,
-                transform,
-                sampling_weight: own.sampling_weight.unwrap_or(1.0),
-                role: own.role.unwrap_or(ObjectRole::ProxyBlock),
-                visible: own.visible.unwrap_or(true),
-            });
-        }
+        let (objects, used_default) = node_objects(&node, world, &own, default_material);
+        uses_default_material |= used_default;
+        asset.scene.objects.extend(objects);
         if let Some(light) = node.light() {
             let light =
                 convert_light(&light, &world, node.name(), asset.light_units).map_err(|m| node_err(what.clone(), m))?;
@@ -134,6 +54,105 @@ pub(super) fn build_scene(doc: &gltf::Document, asset: &mut Asset, path: &Path) 
     asset.has_camera = camera.is_some();
     asset.scene.camera = camera.unwrap_or_default();
     Ok(())
+}
+
+/// The default scene's root nodes; without a scene (the spec allows a file of assets only),
+/// every node that is nobody's child, and a warning.
+fn scene_roots<'a>(doc: &'a gltf::Document, path: &Path) -> Vec<gltf::Node<'a>> {
+    if let Some(scene) = doc.default_scene().or_else(|| doc.scenes().next()) {
+        return scene.nodes().collect();
+    }
+    log::warn!("{}: the file has no scene; importing every root node", path.display());
+    let mut is_child = vec![false; doc.nodes().len()];
+    for n in doc.nodes() {
+        for c in n.children() {
+            if let Some(slot) = is_child.get_mut(c.index()) {
+                *slot = true;
+            }
+        }
+    }
+    doc.nodes().filter(|n| !is_child.get(n.index()).copied().unwrap_or(true)).collect()
+}
+
+/// The node's world matrix under `parent`: its rotation a unit quaternion, every value finite.
+fn world_transform(node: &gltf::Node<'_>, parent: Mat4) -> Result<Mat4, String> {
+    if let gltf::scene::Transform::Decomposed { rotation, .. } = node.transform() {
+        let len = Quat::from_array(rotation).length();
+        if (len - 1.0).abs() > 1e-2 {
+            return Err(format!("rotation {rotation:?} has length {len}; glTF requires a unit quaternion"));
+        }
+    }
+    let local = Mat4::from_cols_array_2d(&node.transform().matrix());
+    if !local.is_finite() {
+        return Err("transform has NaN or infinite values".into());
+    }
+    let world = parent * local;
+    if !world.is_finite() {
+        return Err("world transform overflows".into());
+    }
+    Ok(world)
+}
+
+/// Where the default material will sit (after the file's) and whether the file has none.
+#[derive(Clone, Copy)]
+struct DefaultMaterial {
+    index: usize,
+    only: bool,
+}
+
+/// The objects of one node: one per triangle primitive of its mesh, or for a mesh-less node
+/// that Bounce Lab's extras name a generated mesh (a proxy block), that object. Also whether
+/// one of them uses the default material.
+fn node_objects(node: &gltf::Node<'_>, world: Mat4, own: &NodeExtras, default: DefaultMaterial) -> (Vec<Object>, bool) {
+    let exact = Transform::from_matrix_exact(&world);
+    let object = |name: String, source: MeshSource, material: usize, role: ObjectRole| Object {
+        name,
+        source,
+        mesh: 0,
+        material,
+        transform: exact.unwrap_or_default(),
+        sampling_weight: own.sampling_weight.unwrap_or(1.0),
+        role: own.role.unwrap_or(role),
+        visible: own.visible.unwrap_or(true),
+    };
+    let Some(mesh) = node.mesh() else {
+        // A proxy block: a node without a mesh, so other tools draw nothing over the level.
+        return match (generated_source(own), exact) {
+            (Some(source), Some(_)) => {
+                let material = if default.only { default.index } else { 0 };
+                let name = node.name().map_or_else(|| format!("node {}", node.index()), str::to_owned);
+                (vec![object(name, source, material, ObjectRole::ProxyBlock)], default.only)
+            }
+            _ => (Vec::new(), false),
+        };
+    };
+    let mut uses_default = false;
+    let objects = mesh
+        .primitives()
+        .filter(|p| super::primitive::is_triangles(p.mode()))
+        .map(|prim| {
+            let material = prim.material().index().unwrap_or_else(|| {
+                uses_default = true;
+                default.index
+            });
+            let name = match (node.name(), mesh.primitives().len()) {
+                (Some(n), 1) => n.to_owned(),
+                (Some(n), _) => format!("{n}#{}", prim.index()),
+                (None, _) => format!("node {}#{}", node.index(), prim.index()),
+            };
+            let from_file = MeshSource::Asset {
+                asset: 0,
+                mesh: mesh.index(),
+                primitive: prim.index(),
+                baked: if exact.is_some() { None } else { Some(world) },
+            };
+            // A mesh Bounce Lab generated comes back generated (where its node's transform is
+            // a plain one; otherwise as the file's triangles).
+            let source = generated_source(own).filter(|_| exact.is_some()).unwrap_or(from_file);
+            object(name, source, material, ObjectRole::Static)
+        })
+        .collect();
+    (objects, uses_default)
 }
 
 fn convert_light(

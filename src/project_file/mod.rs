@@ -224,8 +224,13 @@ impl Project {
     /// Every file the project was read from: its glTF assets and the buffers and images they
     /// name (an output must never replace one of them).
     pub fn files(&self) -> Vec<PathBuf> {
-        let referenced = self.imported.iter().flat_map(|a| a.files.iter().cloned());
-        self.assets.iter().cloned().chain(referenced).collect()
+        self.file_paths().map(Path::to_owned).collect()
+    }
+
+    /// [`Self::files`] without copying them.
+    pub fn file_paths(&self) -> impl Iterator<Item = &Path> + Clone {
+        let referenced = self.imported.iter().flat_map(|a| a.files.iter().map(PathBuf::as_path));
+        self.assets.iter().map(PathBuf::as_path).chain(referenced)
     }
 
     /// What makes any render of this project other than what the user asked for, as sentences:
