@@ -25,12 +25,20 @@ const MIN_STRIP: f32 = 0.3;
 /// the second room from 1.71x to 1.09x of the brute force (16 bounces) and the suite's window,
 /// clutter and hall FLIP from 0.083 / 0.192 / 0.093 to 0.080 / 0.167 / 0.084.
 pub(super) fn split_at_doors(rooms: Vec<FittedBlock>, doors: &[(usize, usize, (Vec3, Vec3))]) -> Vec<FittedBlock> {
-    // Which axis each door crosses (0 x, 2 z), from the rooms' boxes.
+    // Which axis each door crosses (0 x, 2 z), from the rooms' boxes: the one across which they
+    // lie side by side (a gap of at most a wall) while overlapping along the other, the wider
+    // overlap where both would do.
     let crossing = |a: &FittedBlock, b: &FittedBlock| {
-        [0usize, 2].into_iter().find(|&axis| {
-            let gap = (b.min[axis] - a.max[axis]).max(a.min[axis] - b.max[axis]);
-            (-MAX_WALL..=MAX_WALL).contains(&gap)
-        })
+        [0usize, 2]
+            .into_iter()
+            .filter_map(|axis| {
+                let gap = (b.min[axis] - a.max[axis]).max(a.min[axis] - b.max[axis]);
+                let other = 2 - axis;
+                let overlap = a.max[other].min(b.max[other]) - a.min[other].max(b.min[other]);
+                ((-MAX_WALL..=MAX_WALL).contains(&gap) && overlap > 0.0).then_some((axis, overlap))
+            })
+            .max_by(|x, y| x.1.total_cmp(&y.1))
+            .map(|(axis, _)| axis)
     };
     let mut cuts: Vec<[Vec<f32>; 2]> = vec![[Vec::new(), Vec::new()]; rooms.len()];
     let mut crossings = Vec::new();
@@ -55,22 +63,27 @@ pub(super) fn split_at_doors(rooms: Vec<FittedBlock>, doors: &[(usize, usize, (V
     }
     // Long rooms (Loos 2015 §3.7.1: one stretched cube carries light too far along its long
     // axis; the dissertation's fix is more blocks): a room not split at its doorways is cut into
-    // near-cubic parts along a horizontal axis whose two sides have no doorway (such a side would
-    // face its neighbour with several blocks, and a side links to one), each part about as long
-    // as the mean of the room's other two extents.
+    // near-cubic parts along each horizontal axis, each part about as long as the mean of the
+    // room's other two extents. No cut passes through a doorway on a long side (it moves to the
+    // doorway's nearer jamb), so each doorway opens into one part, the one joined through it.
     for (r, room) in rooms.iter().enumerate() {
         if split[r] {
             continue;
         }
         for (k, axis) in [(0usize, 0usize), (1, 2)] {
             let other = 2 - axis;
-            if per_side.keys().any(|(i, ax, _)| *i == r && *ax == other) {
-                continue;
-            }
+            let spans: Vec<(f32, f32)> =
+                crossings.iter().filter(|c| (c.0 == r || c.1 == r) && c.2 == other).map(|c| (c.3, c.4)).collect();
             let size = room.max - room.min;
             let target = 0.5 * (size[other] + size.y);
             let n = (size[axis] / target).round().max(1.0) as usize;
-            cuts[r][k].extend((1..n).map(|i| room.min[axis] + size[axis] * i as f32 / n as f32));
+            cuts[r][k].extend((1..n).map(|i| {
+                let c = room.min[axis] + size[axis] * i as f32 / n as f32;
+                spans
+                    .iter()
+                    .find(|(t0, t1)| c > *t0 && c < *t1)
+                    .map_or(c, |(t0, t1)| if c - t0 < t1 - c { *t0 } else { *t1 })
+            }));
         }
     }
     // Each room's strips: a grid of x intervals by z intervals, open to each other.
@@ -118,11 +131,14 @@ pub(super) fn split_at_doors(rooms: Vec<FittedBlock>, doors: &[(usize, usize, (V
         let along = 2 - axis;
         let inside = |blk: &FittedBlock, whole: bool| {
             let overlap = blk.max[along].min(t1) - blk.min[along].max(t0);
-            whole || overlap > 0.5 * (blk.max[along] - blk.min[along])
+            let centre = 0.5 * (t0 + t1);
+            whole
+                || overlap > 0.5 * (blk.max[along] - blk.min[along])
+                || (blk.min[along]..blk.max[along]).contains(&centre)
         };
         for &sa in &of_room[a] {
             for &sb in &of_room[b] {
-                if inside(&out[sa], !split[a]) && inside(&out[sb], !split[b]) {
+                if inside(&out[sa], of_room[a].len() == 1) && inside(&out[sb], of_room[b].len() == 1) {
                     join(&mut out, sa, sb, axis);
                 }
             }

@@ -1,4 +1,5 @@
 //! The fitter on built levels: rooms, doorways, corridors, solids, and the levels it refuses.
+use super::voxels::inside_solid;
 use super::*;
 use crate::precompute::mrt::level::{Block, Level};
 use crate::precompute::mrt::proxy::{open_faces, shape_for};
@@ -190,3 +191,5 @@ fn levels_it_cannot_fit_get_a_clear_error() {
         cuboid(Vec3::splat(-2.0), Vec3::splat(2.0)).iter().map(|t| t.map(|p| turn * p)).collect();
     assert!(matches!(fit(&turned), Err(FitError::NonRectilinear { .. })), "{:?}", fit(&turned));
 }
+
+mod shapes;
