@@ -79,8 +79,10 @@ pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
     let before = objects.len();
     objects.retain(|o| o.role != ObjectRole::ProxyBlock);
     let replaced = before - objects.len();
-    let fitted = crate::precompute::mrt::proxy::fitted_objects(&project.scene)
-        .map_err(|e| anyhow::anyhow!("{}: cannot fit proxy blocks: {e}", args.input.display()))?;
+    let bvh = crate::precompute::bvh::SceneBvh::build(&project.scene);
+    let crate::precompute::mrt::proxy::Fitted { objects: fitted, gaps } =
+        crate::precompute::mrt::proxy::fit_scene(&project.scene, &bvh)
+            .map_err(|e| anyhow::anyhow!("{}: cannot fit proxy blocks: {e}", args.input.display()))?;
     let mut out = format!("{}: {} proxy blocks\n", args.input.display(), fitted.len());
     if replaced > 0 {
         let _ = writeln!(out, "note: replaced the {replaced} proxy blocks the project had (blocks are never stacked)");
@@ -102,6 +104,14 @@ pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
                 size.z,
                 if open.is_empty() { "none".to_owned() } else { open.join(" ") }
             );
+        }
+    }
+    if gaps.is_empty() {
+        let _ = writeln!(out, "the blocks cover every enclosed space, linked through every opening between them");
+    } else {
+        let _ = writeln!(out, "warning: the fit is partial ({} gaps):", gaps.len());
+        for g in &gaps {
+            let _ = writeln!(out, "  - {g}");
         }
     }
     project.scene.desc_mut().objects.extend(fitted);

@@ -92,27 +92,56 @@ pub fn level_of(all: &[crate::scene::Object]) -> Result<(Level, Vec<usize>), Pro
 /// Proxy boxes fitted to `scene`'s static geometry ([`super::fit`]), as scene objects of role
 /// `ProxyBlock` named "proxy 1", "proxy 2", ... (the scene's first material).
 pub fn fitted_objects(scene: &Scene) -> Result<Vec<crate::scene::Object>, super::fit::FitError> {
-    fitted_objects_in(scene, &crate::precompute::bvh::SceneBvh::build(scene))
+    Ok(fit_scene(scene, &crate::precompute::bvh::SceneBvh::build(scene))?.objects)
 }
 
-/// [`fitted_objects`] with `scene`'s BVH already built.
-pub fn fitted_objects_in(
-    scene: &Scene,
-    bvh: &crate::precompute::bvh::SceneBvh,
-) -> Result<Vec<crate::scene::Object>, super::fit::FitError> {
+/// Blocks fitted to a scene and what they leave out.
+pub struct Fitted {
+    /// The blocks as scene objects ("proxy 1", "proxy 2", ...).
+    pub objects: Vec<crate::scene::Object>,
+    /// One sentence per gap ([`super::fit::Gap::describe`]): where, why, what to do.
+    pub gaps: Vec<String>,
+}
+
+/// The triangles of `scene`'s static objects (what blocks are fitted to: not clutter, not
+/// proxies).
+fn static_tris(scene: &Scene, bvh: &crate::precompute::bvh::SceneBvh) -> Vec<[Vec3; 3]> {
     let objects = scene.objects();
-    let tris: Vec<[Vec3; 3]> = bvh
-        .tris
+    bvh.tris
         .iter()
         .filter(|t| objects.get(t.object as usize).is_some_and(|o| o.role == ObjectRole::Static))
         .map(|t| t.p)
-        .collect();
-    let blocks = super::fit::fit(&tris)?;
-    Ok(blocks
-        .iter()
-        .enumerate()
-        .map(|(i, b)| block_object(&format!("proxy {}", i + 1), b.min, b.max, b.openings))
-        .collect())
+        .collect()
+}
+
+/// Fits proxy blocks to `scene` (its BVH already built) and names what they leave out.
+pub fn fit_scene(scene: &Scene, bvh: &crate::precompute::bvh::SceneBvh) -> Result<Fitted, super::fit::FitError> {
+    let report = super::fit::fit_report(&static_tris(scene, bvh))?;
+    let name = |i: usize| format!("\"proxy {}\"", i + 1);
+    Ok(Fitted {
+        objects: report
+            .blocks
+            .iter()
+            .enumerate()
+            .map(|(i, b)| block_object(&format!("proxy {}", i + 1), b.min, b.max, b.openings))
+            .collect(),
+        gaps: report.gaps.iter().map(|g| g.describe(&name)).collect(),
+    })
+}
+
+/// What the scene's own proxy blocks (`level`, block `i` being object `objects[i]`) leave out of
+/// its enclosed spaces, one sentence per gap; a level the check cannot read (no enclosed space,
+/// not rectilinear) is one sentence saying so.
+pub fn gaps_of(scene: &Scene, bvh: &crate::precompute::bvh::SceneBvh, level: &Level, objects: &[usize]) -> Vec<String> {
+    let boxes: Vec<(Vec3, Vec3)> = level.blocks.iter().map(|b| (b.origin, b.origin + b.size)).collect();
+    let linked = super::fit::pairs_of(level);
+    let name = |i: usize| {
+        objects.get(i).and_then(|&o| scene.objects().get(o)).map_or(format!("block {i}"), |o| format!("{:?}", o.name))
+    };
+    match super::fit::coverage(&static_tris(scene, bvh), &boxes, &linked) {
+        Ok(gaps) => gaps.iter().map(|g| g.describe(&name)).collect(),
+        Err(e) => vec![format!("the blocks' coverage of the level was not checked: {e}")],
+    }
 }
 
 /// An unrotated proxy block object spanning `min .. max` with `openings` (in

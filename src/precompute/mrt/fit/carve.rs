@@ -10,7 +10,7 @@ const STEP: f32 = 0.1;
 
 /// A level under construction.
 #[derive(Default)]
-pub(super) struct Carve {
+pub struct Carve {
     /// Boxes of air (lattice min, max) and whether each is air (true) or rock put back (false).
     boxes: Vec<(IVec3, IVec3, bool)>,
 }
@@ -21,19 +21,19 @@ fn lattice(p: Vec3) -> IVec3 {
 
 impl Carve {
     /// Carves air out of `lo .. hi` (m).
-    pub(super) fn air(mut self, lo: [f32; 3], hi: [f32; 3]) -> Self {
+    pub fn air(mut self, lo: [f32; 3], hi: [f32; 3]) -> Self {
         self.boxes.push((lattice(Vec3::from(lo)), lattice(Vec3::from(hi)), true));
         self
     }
 
     /// Puts rock back in `lo .. hi` (m): a pillar.
-    pub(super) fn rock(mut self, lo: [f32; 3], hi: [f32; 3]) -> Self {
+    pub fn rock(mut self, lo: [f32; 3], hi: [f32; 3]) -> Self {
         self.boxes.push((lattice(Vec3::from(lo)), lattice(Vec3::from(hi)), false));
         self
     }
 
     /// The air/rock boundary as triangles facing the air, coplanar faces merged into rectangles.
-    pub(super) fn tris(&self) -> Vec<[Vec3; 3]> {
+    pub fn tris(&self) -> Vec<[Vec3; 3]> {
         let lo = self.boxes.iter().fold(IVec3::MAX, |a, b| a.min(b.0)) - IVec3::ONE;
         let hi = self.boxes.iter().fold(IVec3::MIN, |a, b| a.max(b.1)) + IVec3::ONE;
         let dims = hi - lo;

@@ -14,10 +14,10 @@
 //! Loos leaves fitting to the artist (§4.3.1) and names it open research (§7.1); thresholds here
 //! are starting values, each a constant below.
 
-#[cfg(test)]
-mod carve;
+pub mod carve;
 mod gaps;
 mod rects;
+pub mod shapes;
 mod storeys;
 mod voxels;
 
@@ -27,7 +27,7 @@ use std::collections::VecDeque;
 use glam::Vec3;
 use thiserror::Error;
 
-pub use gaps::{Gap, GapKind, coverage};
+pub use gaps::{Gap, GapKind, coverage, pairs_of};
 use voxels::{enclosed_air, flood_outside, voxelise};
 
 /// Voxels along the level's longest side (the voxel is at most 0.25 m and at least 2 cm).
@@ -42,7 +42,7 @@ const MIN_SIDE: f32 = 0.5;
 pub(super) const MAX_WALL: f32 = 1.2;
 /// The closing radius of the outside flood (m): windows and exterior doors up to twice it do not
 /// open a room to the outside.
-const CLOSE: f32 = 0.65;
+const CLOSE: f32 = 1.0;
 /// Enclosed air thinner than this along an axis is a wall's or slab's inside (m).
 const THIN: f32 = 0.5;
 /// Below this share of vertical area on the two grid axes the level is not rectilinear.

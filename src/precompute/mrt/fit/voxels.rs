@@ -114,7 +114,7 @@ pub(super) fn voxelise(tris: &[[Vec3; 3]]) -> Voxels {
 
 /// Breadth-first steps from `seeds` through voxels `pass` allows, up to `limit` steps
 /// (`u32::MAX` where unreached): the distance fields the outside flood is made of.
-fn spread(grid: &Grid, seeds: &[IVec3], pass: &dyn Fn(usize) -> bool, limit: u32) -> Vec<u32> {
+fn spread(grid: &Grid, seeds: &[IVec3], pass: &dyn Fn(usize) -> bool, limit: u32, steps: &[IVec3]) -> Vec<u32> {
     let dims = grid.dims;
     let mut d = vec![u32::MAX; grid.len()];
     let mut queue: VecDeque<IVec3> = VecDeque::new();
@@ -127,8 +127,8 @@ fn spread(grid: &Grid, seeds: &[IVec3], pass: &dyn Fn(usize) -> bool, limit: u32
         if next > limit {
             continue;
         }
-        for st in STEPS {
-            let n = c + st;
+        for st in steps {
+            let n = c + *st;
             if n.cmplt(IVec3::ZERO).any() || n.cmpge(dims).any() {
                 continue;
             }
@@ -151,16 +151,22 @@ pub(super) fn flood_outside(voxels: &Voxels) -> Vec<bool> {
         .flat_map(|y| (0..dims.z).flat_map(move |z| (0..dims.x).map(move |x| IVec3::new(x, y, z))))
         .collect();
     let surfaces: Vec<IVec3> = all.iter().copied().filter(|c| wall[grid.index(*c)]).collect();
-    let near = spread(grid, &surfaces, &|i| !wall[i], close);
+    let near = spread(grid, &surfaces, &|i| !wall[i], close, &STEPS);
     let open = |i: usize| !wall[i] && near[i] == u32::MAX;
     let border: Vec<IVec3> = all
         .iter()
         .copied()
         .filter(|c| (c.cmpeq(IVec3::ZERO).any() || c.cmpeq(dims - 1).any()) && open(grid.index(*c)))
         .collect();
-    let flooded = spread(grid, &border, &open, u32::MAX - 1);
+    let flooded = spread(grid, &border, &open, u32::MAX - 1, &STEPS);
     let reached: Vec<IVec3> = all.iter().copied().filter(|c| flooded[grid.index(*c)] != u32::MAX).collect();
-    let back = spread(grid, &reached, &|i| !wall[i], close);
+    // Back by the radius in 26-connected steps (a cube, not a diamond): the outside reaches into
+    // the concave foot of a wall as far as along it, so a courtyard's edges are not enclosed.
+    let cube: Vec<IVec3> = (-1..=1)
+        .flat_map(|y| (-1..=1).flat_map(move |z| (-1..=1).map(move |x| IVec3::new(x, y, z))))
+        .filter(|s| *s != IVec3::ZERO)
+        .collect();
+    let back = spread(grid, &reached, &|i| !wall[i], close, &cube);
     back.iter().map(|d| *d != u32::MAX).collect()
 }
 
@@ -181,14 +187,27 @@ pub(super) fn enclosed_air(voxels: &Voxels, outside: &[bool], tris: &[[Vec3; 3]]
                     continue;
                 }
                 let (piece, lo, hi) = piece_at(grid, &enclosed, &mut seen, c);
-                let centre = grid.origin + (c.as_vec3() + 0.5) * grid.h;
-                if (hi - lo + 1).min_element() < thin || inside_solid(tris, centre) {
+                if (hi - lo + 1).min_element() < thin || mostly_inside_solids(grid, tris, &piece) {
                     piece.iter().for_each(|p| enclosed[grid.index(*p)] = false);
                 }
             }
         }
     }
     enclosed
+}
+
+/// Whether most of five voxels spread through `piece` lie inside closed solids: one voxel's
+/// rays can graze an edge or meet two coincident faces (a crate standing on the floor) and
+/// miscount.
+fn mostly_inside_solids(grid: &Grid, tris: &[[Vec3; 3]], piece: &[IVec3]) -> bool {
+    let votes = (0..5)
+        .filter(|k| {
+            let c = piece[(2 * k + 1) * piece.len() / 10];
+            // Off the voxel's centre, so that axis rays do not run along triangles' edges.
+            inside_solid(tris, grid.origin + (c.as_vec3() + Vec3::new(0.37, 0.53, 0.61)) * grid.h)
+        })
+        .count();
+    votes >= 3
 }
 
 /// The piece of enclosed air holding `c` (its face-connected voxels, marked in `seen`) and its

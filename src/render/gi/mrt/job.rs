@@ -136,14 +136,17 @@ pub fn build_level(
     let started = Instant::now();
     let has_blocks = scene.objects().iter().any(|o| o.role == ObjectRole::ProxyBlock);
     let full_bvh = SceneBvh::build(scene);
-    let (mut level, block_objects) = if has_blocks {
-        proxy::level(scene)
+    let (level, block_objects, gaps) = if has_blocks {
+        let (level, objects) = proxy::level(scene).map_err(|e| e.to_string())?;
+        let gaps = proxy::gaps_of(scene, &full_bvh, &level, &objects);
+        (level, objects, gaps)
     } else {
-        let fitted = proxy::fitted_objects_in(scene, &full_bvh)
+        let fitted = proxy::fit_scene(scene, &full_bvh)
             .map_err(|e| format!("the scene has no proxy blocks and none could be fitted: {e}"))?;
-        proxy::level_of(&fitted)
-    }
-    .map_err(|e| e.to_string())?;
+        let (level, objects) = proxy::level_of(&fitted.objects).map_err(|e| e.to_string())?;
+        (level, objects, fitted.gaps)
+    };
+    let mut level = level;
     // With DRT the blocks' geometry images and openings see the level without its clutter (a
     // crate's top is not the floor's texel); DRT adds what the clutter changes.
     let found = if drt.enabled {
@@ -185,7 +188,8 @@ pub fn build_level(
         .ok_or_else(|| CANCELLED.to_owned())?;
         packed.drt = Some(DrtPacked::new(&built));
     }
-    let (mut table, warnings) = overrides(scene, if has_blocks { &block_objects } else { &[] }, block_overrides);
+    let (mut table, mut warnings) = overrides(scene, if has_blocks { &block_objects } else { &[] }, block_overrides);
+    warnings.extend(gaps);
     // One NONE past the objects (see `pack`: never an empty or zero-padded table).
     table.push(super::pack::NONE);
     packed.object_block = table;

@@ -7,10 +7,10 @@
 use std::collections::VecDeque;
 
 use super::super::carve::Carve;
+use super::super::shapes::{self, ShapeLevel};
 use super::*;
 
-/// A room's air (m).
-type Room = ([f32; 3], [f32; 3]);
+use super::super::shapes::Room;
 
 /// The blocks holding the point `p`.
 fn holding(blocks: &[FittedBlock], p: Vec3) -> Vec<usize> {
@@ -78,117 +78,38 @@ fn fits_whole(carve: &Carve, rooms: &[Room]) -> Vec<FittedBlock> {
     blocks
 }
 
-/// Three 5 x 3 x 4 m rooms along x, joined by 1.8 x 2.4 m passages `length` m long between
-/// 0.2 m walls (0: a doorway in a wall; else a corridor of the doorway's section).
-fn three_rooms_by_corridors(length: f32) -> (Carve, Vec<Room>) {
-    let mut carve = Carve::default();
-    let mut rooms = Vec::new();
-    let mut x = 0.0;
-    for k in 0..3 {
-        let room = ([x, 0.0, 0.0], [x + 5.0, 3.0, 4.0]);
-        carve = carve.air(room.0, room.1);
-        rooms.push(room);
-        x += 5.0;
-        if k < 2 {
-            let passage = 0.4 + length;
-            carve = carve.air([x, 0.0, 1.1], [x + passage, 2.4, 2.9]);
-            x += passage;
-        }
-    }
-    (carve, rooms)
+/// The shape named `name` of [`shapes::levels`].
+fn shape(name: &str) -> ShapeLevel {
+    shapes::levels().into_iter().find(|l| l.name == name).expect("a shape level")
 }
 
 #[test]
-fn rooms_joined_by_corridors_of_any_length_are_covered_and_linked_through_them() {
-    for length in [0.0, 0.6, 3.0] {
-        let (carve, rooms) = three_rooms_by_corridors(length);
-        let blocks = fits_whole(&carve, &rooms);
-        eprintln!("corridors of {length} m: {} blocks", blocks.len());
+fn every_shape_is_covered_and_linked_through_its_doorways_and_corridors() {
+    for level in shapes::levels() {
+        let blocks = fits_whole(&level.carve, &level.rooms);
+        eprintln!("{}: {} blocks", level.name, blocks.len());
     }
-    // The level: the corridor as tall as the rooms, the doorways at either end lower.
-    let mut carve = Carve::default();
-    let mut rooms = Vec::new();
-    for k in 0..3 {
-        let x = k as f32 * 6.0;
-        rooms.push(([x, 0.0, 0.0], [x + 5.0, 3.0, 4.0]));
-        carve = carve.air([x, 0.0, 0.0], [x + 5.0, 3.0, 4.0]);
-        if k < 2 {
-            carve = carve
-                .air([x + 5.0, 0.0, 1.1], [x + 5.2, 2.4, 2.9])
-                .air([x + 5.2, 0.0, 1.1], [x + 5.8, 3.0, 2.9])
-                .air([x + 5.8, 0.0, 1.1], [x + 6.0, 2.4, 2.9]);
-        }
-    }
-    fits_whole(&carve, &rooms);
-}
-
-#[test]
-fn a_turning_corridor_links_the_rooms_at_its_ends() {
-    // Room A, a corridor leaving its east wall and turning north after 2 m, room B at its end.
-    let a = ([0.0, 0.0, 0.0], [5.0, 3.0, 4.0]);
-    let b = ([4.0, 0.0, 9.2], [9.0, 3.0, 13.2]);
-    let carve = Carve::default()
-        .air(a.0, a.1)
-        .air([5.0, 0.0, 1.1], [7.0, 2.5, 2.9])
-        .air([5.2, 0.0, 2.9], [7.0, 2.5, 9.2])
-        .air(b.0, b.1);
-    fits_whole(&carve, &[a, b, ([5.2, 0.0, 1.1], [7.0, 2.5, 9.0])]);
-}
-
-#[test]
-fn l_and_t_shaped_rooms_become_blocks_open_to_each_other() {
-    let l = Carve::default().air([0.0, 0.0, 0.0], [6.0, 3.0, 2.0]).air([0.0, 0.0, 2.0], [2.0, 3.0, 6.0]);
-    let blocks = fits_whole(&l, &[([0.0, 0.0, 0.0], [6.0, 3.0, 2.0]), ([0.0, 0.0, 2.0], [2.0, 3.0, 6.0])]);
-    assert!(blocks.len() >= 2, "{blocks:?}");
-    let t = Carve::default().air([0.0, 0.0, 0.0], [9.0, 3.0, 2.5]).air([3.5, 0.0, 2.5], [5.5, 3.0, 7.0]);
-    fits_whole(&t, &[([0.0, 0.0, 0.0], [9.0, 3.0, 2.5]), ([3.5, 0.0, 2.5], [5.5, 3.0, 7.0])]);
 }
 
 #[test]
 fn rooms_of_different_ceiling_heights_side_by_side_get_blocks_of_their_own_heights() {
-    let a = ([0.0, 0.0, 0.0], [5.0, 3.0, 4.0]);
-    let b = ([5.2, 0.0, 0.0], [9.2, 4.5, 4.0]);
-    // Through a doorway, and open to each other along the whole wall (a step in the ceiling).
-    let through_door = Carve::default().air(a.0, a.1).air(b.0, b.1).air([5.0, 0.0, 1.5], [5.2, 2.1, 2.5]);
-    let open = Carve::default().air(a.0, a.1).air([5.0, 0.0, 0.0], [9.2, 4.5, 4.0]);
-    for carve in [through_door, open] {
-        let blocks = fits_whole(&carve, &[a, b]);
-        for (room, height) in [(a, 3.0), (b, 4.5)] {
+    for name in ["ceilings_doorway", "ceilings_open"] {
+        let level = shape(name);
+        let blocks = fit(&level.carve.tris()).expect("fits");
+        for (room, height) in level.rooms.iter().zip([3.0, 4.5]) {
             let centre = 0.5 * (Vec3::from(room.0) + Vec3::from(room.1));
             for i in holding(&blocks, centre) {
-                assert!((blocks[i].max.y - height).abs() < 0.05, "{:?} under a {height} m ceiling", blocks[i]);
+                assert!((blocks[i].max.y - height).abs() < 0.05, "{name}: {:?} under a {height} m ceiling", blocks[i]);
             }
         }
     }
 }
 
 #[test]
-fn a_doorway_as_wide_as_its_wall_joins_the_two_rooms() {
-    let a = ([0.0, 0.0, 0.0], [5.0, 3.0, 4.0]);
-    let b = ([5.2, 0.0, 0.0], [10.2, 3.0, 4.0]);
-    let carve = Carve::default().air(a.0, a.1).air(b.0, b.1).air([5.0, 0.0, 0.0], [5.2, 2.4, 4.0]);
-    fits_whole(&carve, &[a, b]);
-}
-
-#[test]
-fn a_room_with_pillars_is_covered_whole() {
-    let hall = ([0.0, 0.0, 0.0], [12.0, 4.0, 8.0]);
-    let mut carve = Carve::default().air(hall.0, hall.1);
-    for x in [3.0, 6.0, 9.0] {
-        for z in [2.5, 5.5] {
-            carve = carve.rock([x - 0.25, 0.0, z - 0.25], [x + 0.25, 4.0, z + 0.25]);
-        }
-    }
-    let blocks = fits_whole(&carve, &[hall]);
-    assert!(blocks.len() <= 4, "pillars do not cut the hall into pieces: {blocks:?}");
-}
-
-#[test]
-fn a_60_m_hall_is_cut_into_linked_parts_and_its_side_room_linked() {
-    let hall = ([0.0, 0.0, 0.0], [60.0, 6.0, 10.0]);
-    let side = ([20.0, 0.0, 10.2], [26.0, 3.0, 14.0]);
-    let carve = Carve::default().air(hall.0, hall.1).air(side.0, side.1).air([22.0, 0.0, 10.0], [23.2, 2.2, 10.2]);
-    let blocks = fits_whole(&carve, &[hall, side]);
+fn pillars_do_not_cut_a_room_into_pieces_and_a_60_m_hall_is_cut_into_near_cubic_parts() {
+    let blocks = fit(&shape("pillars").carve.tris()).expect("fits");
+    assert!(blocks.len() <= 4, "{blocks:?}");
+    let blocks = fit(&shape("hall_60m").carve.tris()).expect("fits");
     for b in &blocks {
         assert!((b.max - b.min).max_element() < 16.0, "near-cubic parts: {b:?}");
     }
@@ -196,11 +117,9 @@ fn a_60_m_hall_is_cut_into_linked_parts_and_its_side_room_linked() {
 
 #[test]
 fn two_storeys_with_a_stairwell_are_fitted_each_and_the_stairwell_is_named() {
-    let lower = ([0.0, 0.0, 0.0], [6.0, 3.0, 5.0]);
-    let upper = ([0.0, 3.3, 0.0], [6.0, 6.3, 5.0]);
-    let carve = Carve::default().air(lower.0, lower.1).air(upper.0, upper.1).air([4.0, 3.0, 0.5], [5.5, 3.3, 3.0]);
-    let report = fit_report(&carve.tris()).expect("fits");
-    for room in [lower, upper] {
+    let level = shapes::stacked();
+    let report = fit_report(&level.carve.tris()).expect("fits");
+    for room in &level.rooms {
         let centre = 0.5 * (Vec3::from(room.0) + Vec3::from(room.1));
         let held = holding(&report.blocks, centre);
         assert!(!held.is_empty(), "a block in each storey at {centre}: {:?}", report.blocks);
@@ -234,7 +153,7 @@ fn a_courtyard_open_to_the_sky_is_no_enclosed_space_and_the_error_says_so() {
 
 #[test]
 fn hand_placed_blocks_that_miss_a_room_or_a_link_are_named_with_where_and_what_to_do() {
-    let (carve, rooms) = three_rooms_by_corridors(0.0);
+    let (carve, rooms) = shapes::three_rooms_by_corridors(0.0);
     let tris = carve.tris();
     // Blocks over the first two rooms only, closed: the third room is uncovered and the doorway
     // between the first two joins blocks that are not linked.
