@@ -89,6 +89,13 @@ enum Command {
     /// Check ISM's maps and lookups against rays through the scene, per bounce set: false
     /// occluders and holes, lit share, and the power each set hands the next.
     ProbeIsm(cli::probe_ism::ProbeIsmArgs),
+    /// Write the development levels of the shapes level designers build (rooms joined by
+    /// corridors, L- and T-shaped rooms, ceiling steps, a wall-wide doorway, pillars, a 60 m
+    /// hall, two storeys with a stairwell) as glTF files, to try the fitter and MRT on.
+    DevLevels {
+        /// The folder to write them to.
+        out: PathBuf,
+    },
     /// Regenerate assets/cornell_box.gltf and projects/default.ron from code.
     #[command(hide = true)]
     GenerateAssets {
@@ -121,6 +128,9 @@ fn main() -> ExitCode {
         Some(Command::Suite { references, only, root }) => {
             cli::quality::suite(&root, references, &only).map(|s| println!("{s}"))
         }
+        Some(Command::DevLevels { out }) => bouncelab::suite::shapes::write_all(&out)
+            .map(|paths| paths.iter().for_each(|p| println!("wrote {}", p.display())))
+            .map_err(|e| anyhow::anyhow!("{}: {e}", out.display())),
         Some(Command::GenerateAssets { root }) => cli::generate::generate(&root),
         Some(Command::MrtDictionary(args)) => cli::mrt::run(&args).map(|s| println!("{s}")),
         Some(Command::Profile(args)) => cli::profile::run(&args).map(|s| print!("{s}")),

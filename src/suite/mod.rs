@@ -8,6 +8,7 @@
 //! Pure CPU code (no wgpu): the GPU renders happen in the CLI and the tests.
 
 pub mod levels;
+pub mod shapes;
 
 use std::path::{Path, PathBuf};
 

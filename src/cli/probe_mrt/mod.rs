@@ -44,7 +44,8 @@ use crate::suite;
 /// `bouncelab probe-mrt`'s arguments.
 #[derive(clap::Args, Clone, Debug)]
 pub struct ProbeMrtArgs {
-    /// A suite scene's name, or a `.gltf` level outside the suite (e.g. `tools/dev_levels.py`'s).
+    /// A suite scene's name, a `.gltf` level outside the suite (e.g. `tools/dev_levels.py`'s), or
+    /// `shape:NAME`, one of `bouncelab dev-levels`' shapes (its rooms are the report's rooms).
     #[arg(default_value = "rooms")]
     pub level: String,
     /// The brute force's cosine rays per texel (stratified: the largest square grid within).
@@ -145,16 +146,11 @@ type Light = Vec<Vec<f64>>;
 /// Runs the probe and returns its report.
 pub fn run(args: &ProbeMrtArgs) -> anyhow::Result<String> {
     let mut out = String::new();
-    let project = load_level(args, &mut out)?;
+    let Setup { project, mut lvl, bvh, params, dictionary } = setup(args, &mut out)?;
     let scene = &project.scene;
-    let mut lvl = proxy_level(scene, args, &mut out)?;
-    let bvh = SceneBvh::build(scene);
-    let params = dictionary_params(args);
-    let (dictionary, source) = cache::load_or_build(&cache::default_dir(), &params, &Progress::default())?;
     if !args.full_sides {
         set_openings(scene, &bvh, &mut lvl, &dictionary, args);
     }
-    writeln!(out, "dictionary: {source:?}")?;
     let ops = Operators { dictionary: &dictionary, interfaces: &dictionary.interfaces };
     let transfer = level::assemble(&lvl, &ops, 6);
     let probe = Probe { args, scene, bvh: &bvh, lvl: &lvl, dictionary: &dictionary, params, ops, transfer };
@@ -185,11 +181,65 @@ pub fn run(args: &ProbeMrtArgs) -> anyhow::Result<String> {
     Ok(out)
 }
 
+/// One room's light, summed over the blocks whose centres lie in it (each texel weighted by its
+/// face's area / res²).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RoomLight {
+    /// The brute force's bounce light.
+    pub brute: f64,
+    /// MRT's bounce light.
+    pub mrt: f64,
+    /// The direct light (MRT's l_d).
+    pub direct: f64,
+    /// Blocks counted.
+    pub blocks: usize,
+}
+
+/// Per room box of `rooms` (world min, max), MRT's and the brute force's bounce light over the
+/// blocks whose centres lie in it: how much light reaches the rooms behind the doorways.
+pub fn room_light(args: &ProbeMrtArgs, rooms: &[(Vec3, Vec3)]) -> anyhow::Result<Vec<RoomLight>> {
+    let Setup { project, mut lvl, bvh, params, dictionary } = setup(args, &mut String::new())?;
+    let scene = &project.scene;
+    set_openings(scene, &bvh, &mut lvl, &dictionary, args);
+    let ops = Operators { dictionary: &dictionary, interfaces: &dictionary.interfaces };
+    let transfer = level::assemble(&lvl, &ops, 6);
+    let probe = Probe { args, scene, bvh: &bvh, lvl: &lvl, dictionary: &dictionary, params, ops, transfer };
+    let lit = Lit::new(&probe);
+    let (mrt, _) = mrt_bounces(&probe, &lit);
+    let truth = Brute::new(&probe).texels(&lit.texels);
+    let room_of = |c: Vec3| rooms.iter().position(|(lo, hi)| c.cmpge(*lo).all() && c.cmple(*hi).all());
+    Ok(room_sums(&probe, &lit, &truth, &mrt, &room_of, rooms.len()))
+}
+
+/// What every run needs: the level with its blocks, its BVH and the dictionary.
+struct Setup {
+    project: Project,
+    lvl: Level,
+    bvh: SceneBvh,
+    params: DictionaryParams,
+    dictionary: Dictionary,
+}
+
+fn setup(args: &ProbeMrtArgs, out: &mut String) -> anyhow::Result<Setup> {
+    let project = load_level(args, out)?;
+    let lvl = proxy_level(&project.scene, args, out)?;
+    let bvh = SceneBvh::build(&project.scene);
+    let params = dictionary_params(args);
+    let (dictionary, source) = cache::load_or_build(&cache::default_dir(), &params, &Progress::default())?;
+    writeln!(out, "dictionary: {source:?}")?;
+    Ok(Setup { project, lvl, bvh, params, dictionary })
+}
+
 /// The level, with fitted proxy blocks where it has none (and every block closed with
 /// `--closed`).
 fn load_level(args: &ProbeMrtArgs, out: &mut String) -> anyhow::Result<Project> {
     let name = args.level.as_str();
-    let mut project = if name.ends_with(".gltf") {
+    let mut project = if let Some(shape) = name.strip_prefix("shape:") {
+        let path = std::env::temp_dir().join(format!("bouncelab-{}-{shape}.gltf", std::process::id()));
+        let text = suite::shapes::gltf(&shape_level(shape)?).to_string_pretty();
+        crate::atomic_file::write(&path, text.as_bytes())?;
+        Project::from_gltf(&path)?
+    } else if name.ends_with(".gltf") {
         Project::from_gltf_with(Path::new(name), args.units.options().unwrap_or_default())?
     } else {
         suite::scene(name)?.load(Path::new("."))?
@@ -209,6 +259,14 @@ fn load_level(args: &ProbeMrtArgs, out: &mut String) -> anyhow::Result<Project> 
         }
     }
     Ok(project)
+}
+
+/// The shape level `name` of `bouncelab dev-levels`.
+fn shape_level(name: &str) -> anyhow::Result<crate::precompute::mrt::fit::shapes::ShapeLevel> {
+    suite::shapes::levels().into_iter().find(|l| l.name == name).ok_or_else(|| {
+        let names: Vec<&str> = suite::shapes::levels().iter().map(|l| l.name).collect();
+        anyhow::anyhow!("no shape level {name:?}; the shapes are {}", names.join(", "))
+    })
 }
 
 /// MRT's level of the scene's proxy blocks (printing their boxes with `--boxes`).
@@ -608,30 +666,53 @@ fn sides_report(probe: &Probe, brute: &Brute, last_input: &[Vec<f64>], out: &mut
 /// Area-weighted light per room (a texel stands for its face's area / res^2), the blocks
 /// grouped by their centres along x at `--rooms-x`.
 fn rooms_report(probe: &Probe, lit: &Lit, truth: &[Vec<f64>], mrt: &[Vec<f64>], out: &mut String) -> fmt::Result {
-    let (cuts, res) = (&probe.args.rooms_x, probe.params.res);
-    let mut rooms: Vec<(f64, f64, f64)> = vec![(0.0, 0.0, 0.0); cuts.len() + 1];
-    for (x, b) in probe.lvl.blocks.iter().enumerate() {
-        let layout = Layout::new(b.shape, res);
-        let per = (res * res) as f64;
-        let centre = b.origin.x + 0.5 * b.size.x;
-        let room = cuts.iter().filter(|c| centre > **c).count();
-        for i in 0..layout.len() {
-            let (face, _, _, _) = layout.sample(i);
-            let area = f64::from(face_area(b.size, b.world_face(face).axis())) / per;
-            let r = &mut rooms[room];
-            r.0 += area * truth[x][i];
-            r.1 += area * mrt[x][i];
-            r.2 += area * lit.l_d[x][i];
-        }
-    }
-    for (k, (t, m, d)) in rooms.iter().enumerate() {
-        let ratio = m / t.max(1e-12);
+    let cuts = &probe.args.rooms_x;
+    let shape = probe.args.level.strip_prefix("shape:").and_then(|n| shape_level(n).ok()).filter(|_| cuts.is_empty());
+    let boxes: Vec<(Vec3, Vec3)> =
+        shape.map_or(Vec::new(), |l| l.rooms.iter().map(|(lo, hi)| (Vec3::from(*lo), Vec3::from(*hi))).collect());
+    let sums = if boxes.is_empty() {
+        let room_of = |c: Vec3| Some(cuts.iter().filter(|x| c.x > **x).count());
+        room_sums(probe, lit, truth, mrt, &room_of, cuts.len() + 1)
+    } else {
+        let room_of = |c: Vec3| boxes.iter().position(|(lo, hi)| c.cmpge(*lo).all() && c.cmple(*hi).all());
+        room_sums(probe, lit, truth, mrt, &room_of, boxes.len())
+    };
+    for (k, r) in sums.iter().enumerate() {
+        let ratio = r.mrt / r.brute.max(1e-12);
         writeln!(
             out,
-            "room {k}: direct {d:.4}, brute-force bounce {t:.4}, MRT bounce {m:.4}: MRT / brute force {ratio:.3}"
+            "room {k}: direct {:.4}, brute-force bounce {:.4}, MRT bounce {:.4}: MRT / brute force {ratio:.3}",
+            r.direct, r.brute, r.mrt
         )?;
     }
     Ok(())
+}
+
+/// The light of each block summed into the room `room_of` its centre (of `n` rooms).
+fn room_sums(
+    probe: &Probe,
+    lit: &Lit,
+    truth: &[Vec<f64>],
+    mrt: &[Vec<f64>],
+    room_of: &dyn Fn(Vec3) -> Option<usize>,
+    n: usize,
+) -> Vec<RoomLight> {
+    let res = probe.params.res;
+    let mut rooms = vec![RoomLight::default(); n];
+    for (x, b) in probe.lvl.blocks.iter().enumerate() {
+        let Some(r) = room_of(b.origin + 0.5 * b.size).and_then(|k| rooms.get_mut(k)) else { continue };
+        r.blocks += 1;
+        let layout = Layout::new(b.shape, res);
+        let per = (res * res) as f64;
+        for i in 0..layout.len() {
+            let (face, _, _, _) = layout.sample(i);
+            let area = f64::from(face_area(b.size, b.world_face(face).axis())) / per;
+            r.brute += area * truth[x][i];
+            r.mrt += area * mrt[x][i];
+            r.direct += area * lit.l_d[x][i];
+        }
+    }
+    rooms
 }
 
 /// `--faces`: each block's faces (world side), mean brute-force and MRT light.

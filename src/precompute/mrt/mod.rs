@@ -28,6 +28,7 @@ pub mod operators;
 pub mod prior;
 pub mod propagate;
 pub mod proxy;
+pub mod remap;
 pub mod response;
 pub mod shape;
 pub mod transfer;

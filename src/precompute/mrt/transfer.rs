@@ -44,6 +44,9 @@ struct SideOps {
     reflections: HashMap<(usize, Face), Vec<f64>>,
     /// E_p / pi per position (P^2 x k_rlf): a white receiver's light at each position.
     receiver: Vec<f64>,
+    /// (block, world side) -> R (k_rlf x k_rlf): where the neighbour's side differs from this
+    /// one, the light crossing landing where it is in the world ([`super::remap`]).
+    remaps: HashMap<(usize, Face), Vec<f64>>,
 }
 
 impl SideOps {
@@ -51,10 +54,15 @@ impl SideOps {
         let positions = &ops.interfaces.positions;
         let n = positions.positions * positions.positions;
         let receiver = positions.irradiance.iter().map(|e| e / std::f64::consts::PI).collect();
-        let mut out = Self { masks: HashMap::new(), reflections: HashMap::new(), receiver };
+        let mut out = Self { masks: HashMap::new(), reflections: HashMap::new(), receiver, remaps: HashMap::new() };
         if positions.k != ops.interfaces.k_rlf {
-            // Operators of another basis: every side counts as fully open.
+            // Operators of another basis: every side counts as fully open and matched.
             return out;
+        }
+        for (x, w) in level.linked_sides() {
+            if let Some(weights) = super::remap::weights(level, x, w, positions.positions) {
+                out.remaps.insert((x, w), positions.remap(&weights));
+            }
         }
         for (key, o) in level.openings() {
             // An opening sampled at another resolution counts at its mean share.
@@ -98,10 +106,18 @@ impl SideOps {
             let out = sides.entry((source, x, w)).or_insert_with(|| vec![0.0; n * k_b]);
             mul_add(out, &self.receiver, &scaled, n, k_rlf, k_b);
         }
+        let crossing = match self.masks.get(&(x, w)) {
+            Some(m) => {
+                let mut c = vec![0.0; k_rlf * k_b];
+                mul_add(&mut c, m, &scaled, k_rlf, k_rlf, k_b);
+                c
+            }
+            None => scaled.clone(),
+        };
         let out = into.entry((y, w.opposite())).or_insert_with(|| vec![0.0; k_rlf * k_b]);
-        match self.masks.get(&(x, w)) {
-            Some(m) => mul_add(out, m, &scaled, k_rlf, k_rlf, k_b),
-            None => out.iter_mut().zip(&scaled).for_each(|(o, s)| *o += s),
+        match self.remaps.get(&(x, w)) {
+            Some(r) => mul_add(out, r, &crossing, k_rlf, k_rlf, k_b),
+            None => out.iter_mut().zip(&crossing).for_each(|(o, s)| *o += s),
         }
         if let Some(r) = self.reflections.get(&(x, w)) {
             let back = into.entry((x, w)).or_insert_with(|| vec![0.0; k_rlf * k_b]);
