@@ -117,22 +117,46 @@ pub fn add_box(project: &mut Project, history: &mut History, role: ObjectRole) -
 /// Fits MRT proxy blocks to the level's geometry and adds them as objects the artist can edit
 /// (one undo step). Refused where the scene has proxy blocks already, so that fitting never
 /// overwrites an artist's edits: delete them to fit again.
-pub fn fit_proxy_blocks(project: &mut Project, history: &mut History) -> Result<(Selection, usize), EditError> {
+pub fn fit_proxy_blocks(project: &mut Project, history: &mut History) -> Result<Fitted, EditError> {
     let existing = project.scene.objects().iter().filter(|o| o.role == ObjectRole::ProxyBlock).count();
     if existing > 0 {
         return Err(EditError::Fit(format!(
             "the scene has {existing} proxy blocks already; delete them to fit again (fitting never replaces edited blocks)"
         )));
     }
+    let bvh = crate::precompute::bvh::SceneBvh::build(&project.scene);
     let fitted =
-        crate::precompute::mrt::proxy::fitted_objects(&project.scene).map_err(|e| EditError::Fit(e.to_string()))?;
-    let count = fitted.len();
+        crate::precompute::mrt::proxy::fit_scene(&project.scene, &bvh).map_err(|e| EditError::Fit(e.to_string()))?;
+    let count = fitted.objects.len();
     let first = project.scene.objects().len();
     structural(project, history, "Fit proxy blocks", |d| {
-        d.objects.extend(fitted);
+        d.objects.extend(fitted.objects.iter().cloned());
         Ok(())
     })?;
-    Ok((Selection::Object(first), count))
+    let gaps = fitted.gaps.into_iter().map(|g| g.text).collect();
+    Ok(Fitted { selection: Selection::Object(first), count, gaps })
+}
+
+/// What "Fit proxy blocks" did.
+#[derive(Debug)]
+pub struct Fitted {
+    /// The first fitted block, selected.
+    pub selection: Selection,
+    /// Blocks added.
+    pub count: usize,
+    /// What they leave out, one sentence each (where, why, what to do).
+    pub gaps: Vec<String>,
+}
+
+impl Fitted {
+    /// The status line: the count, and every gap.
+    pub fn status(&self) -> String {
+        if self.gaps.is_empty() {
+            format!("fitted {} proxy blocks, covering every enclosed space", self.count)
+        } else {
+            format!("fitted {} proxy blocks; the fit is partial: {}", self.count, self.gaps.join("; "))
+        }
+    }
 }
 
 /// Deletes the selected light or object.

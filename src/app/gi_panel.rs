@@ -139,9 +139,9 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
     super::gi_vo::vo_ui(&mut render.vo, render.mode, ui);
     if fit {
         match super::edits::fit_proxy_blocks(&mut state.project, &mut state.history) {
-            Ok((selection, n)) => {
-                state.selection = selection;
-                state.status = format!("fitted {n} proxy blocks");
+            Ok(fitted) => {
+                state.selection = fitted.selection;
+                state.status = fitted.status();
             }
             Err(e) => state.report("fit proxy blocks", &e),
         }

@@ -38,9 +38,9 @@ pub fn outliner_ui(state: &mut EditorState, ui: &mut egui::Ui) {
                 .on_hover_text("MRT: find the level's box-shaped rooms and corridors and their doorways, and add a proxy block for each (edit them afterwards)")
                 .clicked()
             {
-                result = Some(edits::fit_proxy_blocks(&mut state.project, &mut state.history).map(|(sel, n)| {
-                    state.status = format!("fitted {n} proxy blocks");
-                    sel
+                result = Some(edits::fit_proxy_blocks(&mut state.project, &mut state.history).map(|fitted| {
+                    state.status = fitted.status();
+                    fitted.selection
                 }));
             }
             if ui.button("Clutter box").clicked() {

@@ -153,6 +153,10 @@ pub fn draw(painter: &egui::Painter, rect: egui::Rect, view: &View, scene: &Scen
 /// Draws a technique's markers (ISM's VPLs, rcs records with the rings of their zones): a dot
 /// coloured by the marker's tone, and a circle of its world radius where it has one.
 pub fn draw_markers(painter: &egui::Painter, rect: egui::Rect, view: &View, markers: &[crate::render::gi::Overlay]) {
+    for l in markers.iter().flat_map(|o| &o.lines) {
+        let [r, g, b] = super::inspector::false_colour(l.tone);
+        line(painter, rect, view, l.a, l.b, egui::Stroke::new(l.width, egui::Color32::from_rgb(r, g, b)));
+    }
     for p in markers.iter().flat_map(|o| &o.points) {
         let Some(s) = view.project(p.position) else { continue };
         let [r, g, b] = super::inspector::false_colour(p.tone);

@@ -111,7 +111,7 @@ pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
     } else {
         let _ = writeln!(out, "warning: the fit is partial ({} gaps):", gaps.len());
         for g in &gaps {
-            let _ = writeln!(out, "  - {g}");
+            let _ = writeln!(out, "  - {}", g.text);
         }
     }
     project.scene.desc_mut().objects.extend(fitted);

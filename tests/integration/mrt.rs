@@ -206,6 +206,13 @@ fn mrt_lights_the_unlit_third_room_of_a_bare_multi_room_level() {
     let mrt = render(&mut r, &project, &settings(&project, small()), 16);
     let notes = r.limitations(&project.scene, &settings(&project, small()));
     assert!(notes.iter().any(|n| n.contains("3 were fitted")), "{notes:?}");
+    assert!(!notes.iter().any(|n| n.contains("no proxy block covers") || n.contains("not linked")), "{notes:?}");
+    // The overlay draws the fitted blocks (12 edges each) and their four linked sides.
+    let overlays = r.overlays();
+    let blocks = overlays.iter().find(|o| o.name.starts_with("MRT blocks")).expect("the blocks' overlay");
+    let (edges, links) =
+        (blocks.lines.iter().filter(|l| l.tone < 0.5).count(), blocks.lines.iter().filter(|l| l.tone == 0.6).count());
+    assert_eq!((edges, links), (36, 4), "{:?}", blocks.lines);
     let mut d = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let direct = render(&mut d, &project, &RenderSettings { mode: GiMode::Direct, ..project.render.clone() }, 1);
     let (m, dc) = (
@@ -358,4 +365,24 @@ fn the_gpu_runtime_computes_what_the_cpu_reference_computes_in_the_reduced_space
     let worst = gpu_sides.iter().zip(&cpu_flat).map(|(g, c)| (f64::from(g[0]) - c).abs()).fold(0.0, f64::max);
     eprintln!("side texels, GPU against CPU: worst difference {worst:.3e} of a peak {peak:.3e}");
     assert!(peak > 0.0 && worst < 1e-3 * peak, "{worst} of {peak}");
+}
+
+#[test]
+fn a_level_the_fitter_covers_only_in_part_says_where_and_draws_the_gap() {
+    let Some(ctx) = common::gpu() else { return };
+    // Two storeys joined by a stairwell: blocks for each storey, the stairwell named and drawn.
+    let dir = common::temp_dir("mrt", "partial");
+    let path = dir.join("stacked.gltf");
+    let level = bouncelab::precompute::mrt::fit::shapes::stacked();
+    std::fs::write(&path, bouncelab::suite::shapes::gltf(&level).to_string_pretty()).expect("write");
+    let project = Project::from_gltf(&path).expect("stacked");
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let image = render(&mut r, &project, &settings(&project, small()), 2);
+    assert!(image.pixels.iter().flatten().all(|v| v.is_finite()));
+    let notes = r.limitations(&project.scene, &settings(&project, small()));
+    let gap = notes.iter().find(|n| n.contains("between storeys")).unwrap_or_else(|| panic!("{notes:?}"));
+    assert!(gap.contains("x 4.0..5.5") && gap.contains("z 0.5..3.0"), "{gap}");
+    let overlays = r.overlays();
+    let blocks = overlays.iter().find(|o| o.name.starts_with("MRT blocks")).expect("the blocks' overlay");
+    assert!(blocks.lines.iter().any(|l| l.tone == 1.0), "the gap is drawn: {:?}", blocks.lines);
 }

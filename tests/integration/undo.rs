@@ -199,9 +199,11 @@ fn fitting_proxy_blocks_is_one_undo_step_and_never_replaces_blocks() {
         bouncelab::suite::scene("rooms").expect("suite scene").load(std::path::Path::new(".")).expect("rooms");
     let before = project.scene.objects().len();
     let mut history = History::default();
-    let (selection, fitted) = edits::fit_proxy_blocks(&mut project, &mut history).expect("fits");
-    assert_eq!(fitted, 3, "the suite's rooms fit to one block each");
-    assert_eq!(selection, Selection::Object(before));
+    let fitted = edits::fit_proxy_blocks(&mut project, &mut history).expect("fits");
+    assert_eq!(fitted.count, 3, "the suite's rooms fit to one block each");
+    assert_eq!(fitted.selection, Selection::Object(before));
+    assert!(fitted.gaps.is_empty(), "{:?}", fitted.gaps);
+    assert!(fitted.status().contains("covering every enclosed space"), "{}", fitted.status());
     let blocks = || project.scene.objects().iter().filter(|o| o.role == ObjectRole::ProxyBlock).count();
     assert_eq!(blocks(), 3);
     // Again: refused, so an artist's edits to the fitted blocks are never overwritten.
@@ -209,4 +211,19 @@ fn fitting_proxy_blocks_is_one_undo_step_and_never_replaces_blocks() {
     assert!(again.to_string().contains("already"), "{again}");
     history.undo(&mut project).expect("one step");
     assert_eq!(project.scene.objects().len(), before);
+}
+
+#[test]
+fn a_partial_fit_names_what_it_leaves_out_in_the_status_line() {
+    // Two storeys joined by a stairwell: each storey gets its blocks, the stairwell is named.
+    let dir = crate::common::temp_dir("undo", "partial_fit");
+    let path = dir.join("stacked.gltf");
+    let level = bouncelab::precompute::mrt::fit::shapes::stacked();
+    std::fs::write(&path, bouncelab::suite::shapes::gltf(&level).to_string_pretty()).expect("write");
+    let mut project = bouncelab::project_file::Project::from_gltf(&path).expect("stacked");
+    let mut history = History::default();
+    let fitted = edits::fit_proxy_blocks(&mut project, &mut history).expect("fits");
+    assert!(fitted.count >= 2, "a block per storey");
+    let status = fitted.status();
+    assert!(status.contains("the fit is partial") && status.contains("between storeys at x 4.0..5.5"), "{status}");
 }

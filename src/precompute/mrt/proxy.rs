@@ -99,8 +99,23 @@ pub fn fitted_objects(scene: &Scene) -> Result<Vec<crate::scene::Object>, super:
 pub struct Fitted {
     /// The blocks as scene objects ("proxy 1", "proxy 2", ...).
     pub objects: Vec<crate::scene::Object>,
-    /// One sentence per gap ([`super::fit::Gap::describe`]): where, why, what to do.
-    pub gaps: Vec<String>,
+    /// What they leave out.
+    pub gaps: Vec<GapNote>,
+}
+
+/// A gap in a level's blocks, described.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GapNote {
+    /// One sentence ([`super::fit::Gap::describe`]): where, why, what to do.
+    pub text: String,
+    /// Its world bounds (for the viewport's overlay).
+    pub min: Vec3,
+    /// Its world bounds.
+    pub max: Vec3,
+}
+
+fn note(g: &super::fit::Gap, name: &dyn Fn(usize) -> String) -> GapNote {
+    GapNote { text: g.describe(name), min: g.min, max: g.max }
 }
 
 /// The triangles of `scene`'s static objects (what blocks are fitted to: not clutter, not
@@ -125,22 +140,31 @@ pub fn fit_scene(scene: &Scene, bvh: &crate::precompute::bvh::SceneBvh) -> Resul
             .enumerate()
             .map(|(i, b)| block_object(&format!("proxy {}", i + 1), b.min, b.max, b.openings))
             .collect(),
-        gaps: report.gaps.iter().map(|g| g.describe(&name)).collect(),
+        gaps: report.gaps.iter().map(|g| note(g, &name)).collect(),
     })
 }
 
 /// What the scene's own proxy blocks (`level`, block `i` being object `objects[i]`) leave out of
-/// its enclosed spaces, one sentence per gap; a level the check cannot read (no enclosed space,
-/// not rectilinear) is one sentence saying so.
-pub fn gaps_of(scene: &Scene, bvh: &crate::precompute::bvh::SceneBvh, level: &Level, objects: &[usize]) -> Vec<String> {
+/// its enclosed spaces; a level the check cannot read (no enclosed space, not rectilinear) is one
+/// note saying so, without bounds.
+pub fn gaps_of(
+    scene: &Scene,
+    bvh: &crate::precompute::bvh::SceneBvh,
+    level: &Level,
+    objects: &[usize],
+) -> Vec<GapNote> {
     let boxes: Vec<(Vec3, Vec3)> = level.blocks.iter().map(|b| (b.origin, b.origin + b.size)).collect();
     let linked = super::fit::pairs_of(level);
     let name = |i: usize| {
         objects.get(i).and_then(|&o| scene.objects().get(o)).map_or(format!("block {i}"), |o| format!("{:?}", o.name))
     };
     match super::fit::coverage(&static_tris(scene, bvh), &boxes, &linked) {
-        Ok(gaps) => gaps.iter().map(|g| g.describe(&name)).collect(),
-        Err(e) => vec![format!("the blocks' coverage of the level was not checked: {e}")],
+        Ok(gaps) => gaps.iter().map(|g| note(g, &name)).collect(),
+        Err(e) => vec![GapNote {
+            text: format!("the blocks' coverage of the level was not checked: {e}"),
+            min: Vec3::ZERO,
+            max: Vec3::ZERO,
+        }],
     }
 }
 

@@ -124,13 +124,28 @@ pub struct OverlayPoint {
     pub ring: f32,
 }
 
-/// A named set of overlay markers.
+/// A world-space line a technique draws over the viewport (MRT's blocks, links and gaps).
 #[derive(Clone, Debug, PartialEq)]
+pub struct OverlayLine {
+    /// One end.
+    pub a: Vec3,
+    /// The other.
+    pub b: Vec3,
+    /// Colour ramp parameter in 0..=1.
+    pub tone: f32,
+    /// Width in screen points.
+    pub width: f32,
+}
+
+/// A named set of overlay markers.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Overlay {
     /// Shown in the viewport toolbar.
     pub name: &'static str,
     /// The markers.
     pub points: Vec<OverlayPoint>,
+    /// The lines.
+    pub lines: Vec<OverlayLine>,
 }
 
 /// What a technique reports about itself for the editor and tests.

@@ -491,7 +491,7 @@ impl GiTechnique for IsmTechnique {
                 ring: 0.0,
             })
             .collect();
-        vec![Overlay { name: "VPLs", points }]
+        vec![Overlay { name: "VPLs", points, ..Default::default() }]
     }
 
     fn reset(&mut self, reason: ResetReason) {

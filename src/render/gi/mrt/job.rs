@@ -100,8 +100,27 @@ pub struct BuiltLevel {
     pub warnings: Vec<String>,
     /// Open sides leading nowhere.
     pub unlinked: usize,
+    /// What the blocks leave out (their bounds, for the overlay; their sentences are in
+    /// `warnings`).
+    pub gaps: Vec<proxy::GapNote>,
+    /// Per linked side, its block's centre and the side's centre (the overlay's links).
+    pub link_lines: Vec<(glam::Vec3, glam::Vec3)>,
     /// CPU time of the build (ms).
     pub millis: f64,
+}
+
+/// Per linked side of `level`, its block's centre and the side's centre.
+fn link_lines(level: &crate::precompute::mrt::level::Level) -> Vec<(glam::Vec3, glam::Vec3)> {
+    level
+        .linked_sides()
+        .into_iter()
+        .map(|(i, w)| {
+            let (plane, lo, hi) = level.side_rect(i, w);
+            let mut side = 0.5 * (lo + hi);
+            side[w.axis()] = plane;
+            (0.5 * (lo + hi), side)
+        })
+        .collect()
 }
 
 /// Each object's overridden block (level block index, or `pack::NONE`), and a sentence for each
@@ -189,7 +208,7 @@ pub fn build_level(
         packed.drt = Some(DrtPacked::new(&built));
     }
     let (mut table, mut warnings) = overrides(scene, if has_blocks { &block_objects } else { &[] }, block_overrides);
-    warnings.extend(gaps);
+    warnings.extend(gaps.iter().map(|g| g.text.clone()));
     // One NONE past the objects (see `pack`: never an empty or zero-padded table).
     table.push(super::pack::NONE);
     packed.object_block = table;
@@ -200,6 +219,8 @@ pub fn build_level(
         openings,
         warnings,
         unlinked: level.unlinked().len(),
+        gaps,
+        link_lines: link_lines(&level),
         blocks: level.blocks,
         millis: started.elapsed().as_secs_f64() * 1e3,
     })

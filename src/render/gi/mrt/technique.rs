@@ -12,8 +12,8 @@ use crate::image_io::HdrImage;
 use crate::precompute::mrt::dictionary::{Dictionary, DictionaryParams};
 use crate::render::gi::inputs::GiInputs;
 use crate::render::gi::technique::{
-    BufferInfo, BufferView, GiOutput, GiTechnique, Overlay, OverlayPoint, Readiness, ResetReason, SupportQuery,
-    TechniqueStatus, note_reset,
+    BufferInfo, BufferView, GiOutput, GiTechnique, Overlay, OverlayLine, OverlayPoint, Readiness, ResetReason,
+    SupportQuery, TechniqueStatus, note_reset,
 };
 use crate::render::{RenderError, readback};
 use crate::scene::Scene;
@@ -127,6 +127,35 @@ struct Shown {
     links: usize,
     unlinked: usize,
     millis: f64,
+    /// What the blocks leave out, and each link as two lines (block centre to side centre).
+    gaps: Vec<crate::precompute::mrt::proxy::GapNote>,
+    link_lines: Vec<(glam::Vec3, glam::Vec3)>,
+}
+
+/// The blocks' edges (fitted or the scene's), each link from a block's centre to its side, and
+/// the gaps' boxes (the part of the level no block covers or links), so a partial fit shows.
+fn block_overlay(s: &Shown) -> Overlay {
+    let mut lines = Vec::new();
+    let mut boxed = |lo: glam::Vec3, hi: glam::Vec3, tone: f32, width: f32| {
+        let c = |k: usize| {
+            glam::Vec3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            )
+        };
+        for (a, b) in [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5), (2, 6), (3, 7)] {
+            lines.push(OverlayLine { a: c(a), b: c(b), tone, width });
+        }
+    };
+    for b in &s.blocks {
+        boxed(b.origin, b.origin + b.size, 0.3, 1.0);
+    }
+    for g in s.gaps.iter().filter(|g| g.max != g.min) {
+        boxed(g.min, g.max, 1.0, 2.5);
+    }
+    lines.extend(s.link_lines.iter().map(|(a, b)| OverlayLine { a: *a, b: *b, tone: 0.6, width: 2.0 }));
+    Overlay { name: "MRT blocks, links (green) and gaps (red)", points: Vec::new(), lines }
 }
 
 /// Modular radiance transfer.
@@ -268,6 +297,8 @@ impl MrtTechnique {
             links: level.links,
             unlinked: level.unlinked,
             millis: level.millis,
+            gaps: level.gaps,
+            link_lines: level.link_lines,
             packed: level.packed,
         });
         self.level_error = None;
@@ -497,8 +528,9 @@ impl GiTechnique for MrtTechnique {
             })
             .collect();
         vec![
-            Overlay { name: "MRT openings (tone: open share)", points: openings },
-            Overlay { name: "MRT texels (geometry images)", points: texels },
+            block_overlay(s),
+            Overlay { name: "MRT openings (tone: open share)", points: openings, ..Default::default() },
+            Overlay { name: "MRT texels (geometry images)", points: texels, ..Default::default() },
         ]
     }
 

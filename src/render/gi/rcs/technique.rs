@@ -516,7 +516,7 @@ impl GiTechnique for RcsTechnique {
                 ring: if r.depth == 0 { accuracy * r.radius } else { 0.0 },
             })
             .collect();
-        vec![Overlay { name: "rcs records", points }]
+        vec![Overlay { name: "rcs records", points, ..Default::default() }]
     }
 
     fn reset(&mut self, reason: ResetReason) {
