@@ -35,6 +35,7 @@ mod ism_temporal;
 mod ism_vpl;
 mod light_units;
 mod mrt;
+mod mrt_shapes;
 mod project_file;
 mod rcs;
 mod reference;
