@@ -23,7 +23,6 @@ const DICTIONARY: &str = "(res: 4, k_d: 32, k_b: 16, rays: 256, enrichment: 1, s
                           directions: 8, supersample: 1, k_rlf: 48, k_r: 16, enrichment: 1, bands: 2))";
 
 #[test]
-#[ignore = "heavy: twelve levels fitted, lit and path traced on the CPU in a debug build (about two minutes)"]
 fn light_reaches_every_room_behind_the_doorways_and_corridors_of_every_shape() {
     let mut failures = Vec::new();
     for level in shapes::levels() {
