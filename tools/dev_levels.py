@@ -5,6 +5,11 @@ level issue 12 names), for diagnosing the runtime against a brute force at its t
 `tools/unseen_levels.py`. Sizes, doorway places and the spot differ per seed.
 
 Usage: python3 tools/dev_levels.py OUT_DIR [COUNT]  (writes OUT_DIR/dev_rooms_<seed>.gltf)
+
+The shapes level designers build (corridors of any length, L- and T-shaped rooms, ceiling steps,
+wall-wide doorways, pillars, a 60 m hall, two storeys with a stairwell) are written by
+`bouncelab dev-levels OUT_DIR` from the fitter's own test levels, and `bouncelab probe-mrt
+shape:NAME` compares MRT with a brute-force path tracer in each of their rooms.
 """
 
 import random

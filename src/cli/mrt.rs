@@ -109,7 +109,8 @@ pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
     if gaps.is_empty() {
         let _ = writeln!(out, "the blocks cover every enclosed space, linked through every opening between them");
     } else {
-        let _ = writeln!(out, "warning: the fit is partial ({} gaps):", gaps.len());
+        let plural = if gaps.len() == 1 { "" } else { "s" };
+        let _ = writeln!(out, "warning: the fit is partial ({} gap{plural}):", gaps.len());
         for g in &gaps {
             let _ = writeln!(out, "  - {}", g.text);
         }

@@ -24,13 +24,20 @@ pub fn gltf(level: &ShapeLevel) -> GltfWriter {
     let mut w = GltfWriter::default();
     w.set_light_units(LightUnits::Radiometric);
     let tris = level.carve.tris();
-    let parts: [(&str, [f32; 4], fn(Vec3) -> bool); 3] =
-        [("floor", FLOOR, |n| n.y > 0.5), ("ceiling", CEILING, |n| n.y < -0.5), ("wall", WALL, |n| n.y.abs() <= 0.5)];
+    // Each surface's material by the way it faces: floors up, ceilings down, walls sideways.
+    let parts = [("floor", FLOOR, 1.0f32), ("ceiling", CEILING, -1.0), ("wall", WALL, 0.0)];
     for (name, colour, keep) in parts {
         let (mut positions, mut normals) = (Vec::new(), Vec::new());
         for t in &tris {
             let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
-            if keep(n) {
+            let facing = if n.y > 0.5 {
+                1.0
+            } else if n.y < -0.5 {
+                -1.0
+            } else {
+                0.0
+            };
+            if facing == keep {
                 positions.extend(t);
                 normals.extend([n; 3]);
             }

@@ -652,3 +652,29 @@ fn profile_writes_the_json_the_budget_is_checked_against_and_a_trace_per_mode() 
         assert!(trace["traceEvents"].as_array().is_some_and(|e| e.iter().any(|e| e["name"] == "gbuffer")), "{mode}");
     }
 }
+
+#[test]
+fn dev_levels_writes_every_shape_and_probe_mrt_names_the_shapes_it_knows() {
+    let dir = scratch("dev-levels");
+    let run = bouncelab(&["dev-levels", dir.to_str().expect("utf-8")]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let written: Vec<_> = std::fs::read_dir(&dir).expect("dir").flatten().collect();
+    assert_eq!(written.len(), 13, "{written:?}");
+    // Each is a level a user could bring: it opens, and the fitter fits it.
+    let corridors = dir.join("corridors_3m.gltf");
+    let out = dir.join("corridors.ron");
+    let run = bouncelab(&["fit-blocks", corridors.to_str().expect("utf-8"), "--out", out.to_str().expect("utf-8")]);
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success() && text.contains("cover every enclosed space"), "{text}");
+    let stacked = dir.join("stacked_stairwell.gltf");
+    let run = bouncelab(&["fit-blocks", stacked.to_str().expect("utf-8"), "--out", out.to_str().expect("utf-8")]);
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(text.contains("warning: the fit is partial (1 gap):") && text.contains("between storeys"), "{text}");
+    let run = bouncelab(&["probe-mrt", "shape:nowhere"]);
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        !run.status.success() && err.contains("no shape level \"nowhere\"") && err.contains("corridors_3m"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -69,7 +69,7 @@ pub(super) fn fill_pillars(plan: &Plan) -> Plan {
     let mut out = plan.clone();
     let (nx, nz) = (plan.nx, plan.nz);
     let max_cells = (PILLAR_AREA / (plan.h * plan.h)) as usize;
-    let on_border = |i: usize| i % nx == 0 || i % nx == nx - 1 || i / nx == 0 || i / nx == nz - 1;
+    let on_border = |i: usize| i.is_multiple_of(nx) || i % nx == nx - 1 || i / nx == 0 || i / nx == nz - 1;
     for piece in components(plan, &|i| plan.air[i].is_none()) {
         if piece.len() > max_cells || piece.iter().any(|&i| on_border(i)) {
             continue;
