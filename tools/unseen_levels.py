@@ -549,6 +549,40 @@ def workshop():
     return w
 
 
+def slab_corridors():
+    """Added at stop 52 (issue 46's corridor level, rebuilt from its description), never used for
+    tuning: three 5 x 3 x 4 m rooms of 0.2 m slabs in a row, a 0.6 m corridor of slabs (floor,
+    2.4 m ceiling, side walls) between each pair with 1.8 x 2.4 m doorways at its ends; a spot in
+    the first room, the camera in the second looking back through the corridor."""
+    w = Writer()
+    wall, floor, ceil = w.material("wall", WALL), w.material("floor", FLOOR), w.material("ceiling", CEILING)
+    t, h, X, Z, gap = 0.2, 3.0, 5.0, 4.0, 0.6
+    dz0, dz1, dh = 1.1, 2.9, 2.4
+    for k in range(3):
+        x0 = k * (X + 2 * t + gap)
+        w.slab(f"floor{k}", [x0 - t, -t, -t], [x0 + X + t, 0, Z + t], floor)
+        w.slab(f"ceiling{k}", [x0 - t, h, -t], [x0 + X + t, h + t, Z + t], ceil)
+        w.slab(f"south{k}", [x0 - t, 0, -t], [x0 + X + t, h, 0], wall)
+        w.slab(f"north{k}", [x0 - t, 0, Z], [x0 + X + t, h, Z + t], wall)
+        for side, xa in (("west", x0 - t), ("east", x0 + X)):
+            if (side == "east" and k < 2) or (side == "west" and k > 0):
+                w.slab(f"{side}{k}_a", [xa, 0, 0], [xa + t, h, dz0], wall)
+                w.slab(f"{side}{k}_b", [xa, 0, dz1], [xa + t, h, Z], wall)
+                w.slab(f"{side}{k}_lintel", [xa, dh, dz0], [xa + t, h, dz1], wall)
+            else:
+                w.slab(f"{side}{k}", [xa, 0, 0], [xa + t, h, Z], wall)
+    for k in range(2):
+        xa = k * (X + 2 * t + gap) + X + t
+        w.slab(f"corridor{k}_floor", [xa, -t, dz0 - t], [xa + gap, 0, dz1 + t], floor)
+        w.slab(f"corridor{k}_ceiling", [xa, dh, dz0 - t], [xa + gap, dh + t, dz1 + t], ceil)
+        w.slab(f"corridor{k}_south", [xa, 0, dz0 - t], [xa + gap, dh, dz0], wall)
+        w.slab(f"corridor{k}_north", [xa, 0, dz1], [xa + gap, dh, dz1 + t], wall)
+    w.light("spot", "spot", 40.0, [1.0, 2.7, 1.2], [0.5, -1.0, 0.6], cone=(0.35, 0.6))
+    x1 = X + 2 * t + gap
+    w.camera([x1 + 4.6, 1.6, 3.6], [x1 + 0.5, 0.9, 1.0], 1.2, 0.05)
+    return w
+
+
 def main():
     import argparse
 
@@ -560,6 +594,7 @@ def main():
     levels += [("cluttered", cluttered), ("cornell_b", cornell_b)]
     levels += [("three_rooms_b", lambda: three_rooms("b")), ("three_rooms_c", lambda: three_rooms("c"))]
     levels += [("maisonette", maisonette), ("studio", studio), ("workshop", workshop)]
+    levels += [("slab_corridors", slab_corridors)]
     for name, make in levels:
         make().write(out / f"{name}.gltf")
         print(out / f"{name}.gltf")
