@@ -145,8 +145,8 @@ pub fn fit_scene(scene: &Scene, bvh: &crate::precompute::bvh::SceneBvh) -> Resul
 }
 
 /// What the scene's own proxy blocks (`level`, block `i` being object `objects[i]`) leave out of
-/// its enclosed spaces; a level the check cannot read (no enclosed space, not rectilinear) is one
-/// note saying so, without bounds.
+/// its enclosed spaces; a level with nothing enclosed has none, and one the check cannot read
+/// (not rectilinear) is one note saying so, without bounds.
 pub fn gaps_of(
     scene: &Scene,
     bvh: &crate::precompute::bvh::SceneBvh,
@@ -158,14 +158,40 @@ pub fn gaps_of(
     let name = |i: usize| {
         objects.get(i).and_then(|&o| scene.objects().get(o)).map_or(format!("block {i}"), |o| format!("{:?}", o.name))
     };
-    match super::fit::coverage(&static_tris(scene, bvh), &boxes, &linked) {
+    match cached_survey(&static_tris(scene, bvh)).map(|s| s.gaps(&boxes, &linked)) {
         Ok(gaps) => gaps.iter().map(|g| note(g, &name)).collect(),
+        // Nothing enclosed to cover (an open-fronted box, a diorama): nothing to say.
+        Err(super::fit::FitError::NoEnclosure { .. } | super::fit::FitError::NoRoom | super::fit::FitError::Empty) => {
+            Vec::new()
+        }
         Err(e) => vec![GapNote {
             text: format!("the blocks' coverage of the level was not checked: {e}"),
             min: Vec3::ZERO,
             max: Vec3::ZERO,
         }],
     }
+}
+
+/// The survey of the last level checked, by a hash of its triangles: moving a block rebuilds
+/// the level, not the survey of a geometry that did not change.
+static SURVEY: std::sync::Mutex<Option<(u64, std::sync::Arc<super::fit::Survey>)>> = std::sync::Mutex::new(None);
+
+/// [`super::fit::survey`] of `tris`, from [`SURVEY`] when the triangles are the last ones.
+fn cached_survey(tris: &[[Vec3; 3]]) -> Result<std::sync::Arc<super::fit::Survey>, super::fit::FitError> {
+    use std::hash::{Hash as _, Hasher as _};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    tris.iter().flatten().for_each(|p| p.to_array().map(f32::to_bits).hash(&mut h));
+    let key = h.finish();
+    if let Some((k, s)) = SURVEY.lock().ok().and_then(|g| g.clone())
+        && k == key
+    {
+        return Ok(s);
+    }
+    let survey = std::sync::Arc::new(super::fit::survey(tris)?);
+    if let Ok(mut g) = SURVEY.lock() {
+        *g = Some((key, survey.clone()));
+    }
+    Ok(survey)
 }
 
 /// An unrotated proxy block object spanning `min .. max` with `openings` (in

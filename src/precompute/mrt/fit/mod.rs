@@ -27,7 +27,7 @@ use std::collections::VecDeque;
 use glam::Vec3;
 use thiserror::Error;
 
-pub use gaps::{Gap, GapKind, coverage, pairs_of};
+pub use gaps::{Gap, GapKind, Survey, coverage, pairs_of, survey};
 use voxels::{enclosed_air, flood_outside, voxelise};
 
 /// Voxels along the level's longest side (the voxel is at most 0.25 m and at least 2 cm).
