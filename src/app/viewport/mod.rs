@@ -438,7 +438,7 @@ impl Viewport {
             ui.checkbox(&mut self.gizmo.local, "local axes");
             ui.checkbox(&mut self.gizmo.snap, "snap");
             ui.checkbox(&mut self.gizmo.show_overlays, "overlays").on_hover_text(
-                "The active technique's markers: ISM's virtual point lights, coloured by bounce (refreshed every 10 frames).",
+                "The active technique's markers: ISM's virtual point lights, coloured by bounce (refreshed every 10 frames); MRT's blocks, their links and the gaps they leave.",
             );
             ui.checkbox(&mut self.gizmo.show_points, "sample points")
                 .on_hover_text("Where scene sample points land: area x sampling weight per object.");

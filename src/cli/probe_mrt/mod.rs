@@ -211,7 +211,9 @@ fn load_level(args: &ProbeMrtArgs, out: &mut String) -> anyhow::Result<Project> 
         let path = std::env::temp_dir().join(format!("bouncelab-{}-{shape}.gltf", std::process::id()));
         let text = suite::shapes::gltf(&shape_level(shape)?).to_string_pretty();
         crate::atomic_file::write(&path, text.as_bytes())?;
-        Project::from_gltf(&path)?
+        let project = Project::from_gltf(&path);
+        let _ = std::fs::remove_file(&path);
+        project?
     } else if name.ends_with(".gltf") {
         Project::from_gltf_with(Path::new(name), args.units.options().unwrap_or_default())?
     } else {

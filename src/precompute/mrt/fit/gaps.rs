@@ -187,15 +187,14 @@ fn uncovered(plan: &Plan, cover: &[usize]) -> Vec<Gap> {
     let free = |i: usize| plan.air[i].is_some() && cover[i] == usize::MAX;
     let min_cells = (MIN_ROOM_AREA / (plan.h * plan.h)).ceil() as usize;
     let sliver = ((SLIVER / plan.h).ceil() as usize).max(2);
-    let taken: Vec<bool> = (0..cover.len()).map(|i| !free(i)).collect();
     let mut out = Vec::new();
     for cells in super::rects::components(plan, &free) {
         if cells.len() < min_cells {
             continue;
         }
-        let mut alone = taken.clone();
-        let mine: std::collections::HashSet<usize> = cells.iter().copied().collect();
-        alone.iter_mut().enumerate().for_each(|(i, t)| *t |= !mine.contains(&i));
+        // The component alone: every other cell taken.
+        let mut alone = vec![true; cover.len()];
+        cells.iter().for_each(|&i| alone[i] = false);
         let side = super::rects::square_side(plan, &alone);
         if side < sliver {
             continue;
