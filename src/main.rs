@@ -89,6 +89,9 @@ enum Command {
     /// Check ISM's maps and lookups against rays through the scene, per bounce set: false
     /// occluders and holes, lit share, and the power each set hands the next.
     ProbeIsm(cli::probe_ism::ProbeIsmArgs),
+    /// The share of each view's indirect light (path-traced) that leaves surfaces off screen or
+    /// hidden: what a screen-space technique (`sshgi`) cannot send.
+    UnseenLight(cli::unseen::UnseenArgs),
     /// Write the development levels of the shapes level designers build (rooms joined by
     /// corridors, L- and T-shaped rooms, ceiling steps, a wall-wide doorway, pillars, a 60 m
     /// hall, two storeys with a stairwell) as glTF files, to try the fitter and MRT on.
@@ -139,6 +142,7 @@ fn main() -> ExitCode {
         Some(Command::Probe(args)) => cli::probe::run(&args).map(|s| print!("{s}")),
         Some(Command::ProbeMrt(args)) => cli::probe_mrt::run(&args).map(|s| print!("{s}")),
         Some(Command::ProbeIsm(args)) => cli::probe_ism::run(&args).map(|s| print!("{s}")),
+        Some(Command::UnseenLight(args)) => cli::unseen::run(&args).map(|s| print!("{s}")),
         None => bouncelab::app::run(args.project, args.units.options()),
     };
     match result {

@@ -117,6 +117,12 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
             .clicked()
             .then(|| render.mode = mode);
     }
+    if render.mode == GiMode::Sshgi {
+        state.unseen.update(&state.project.scene, size);
+        if state.unseen.wants_repaint(&state.project.scene) {
+            ui.ctx().request_repaint_after(std::time::Duration::from_millis(100));
+        }
+    }
     if let Some(r) = renderer {
         technique_summary(ui, r, state);
     }
@@ -189,6 +195,13 @@ fn technique_summary(ui: &mut egui::Ui, renderer: &Renderer, state: &EditorState
     }
     for note in renderer.limitations(&state.project.scene, &state.project.render) {
         ui.colored_label(warn, note);
+    }
+    if state.project.render.mode == GiMode::Sshgi {
+        ui.colored_label(warn, state.unseen.line(&state.project.scene)).on_hover_text(
+            "Measured with the path tracer on the CPU: the indirect light of the view by the surface it left last. \
+             sshgi gathers from the screen only; light from surfaces off screen or behind others is missing from it. \
+             `bouncelab unseen-light` prints it per scene.",
+        );
     }
     if let Some(s) = renderer.technique_status().filter(|s| s.history_frames > 0) {
         let reset = s.last_reset.map_or("none".to_owned(), |r| r.label().to_owned());

@@ -33,6 +33,7 @@ mod reload;
 mod startup;
 pub mod state;
 mod timings;
+mod unseen;
 mod viewport;
 mod writes;
 

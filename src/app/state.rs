@@ -30,6 +30,8 @@ pub struct EditorState {
     pub status: String,
     /// Recently opened files, newest first.
     pub recent: Vec<PathBuf>,
+    /// `sshgi`'s known limitation measured on the view (the GI panel shows it).
+    pub unseen: super::unseen::UnseenProbe,
 }
 
 impl EditorState {
@@ -46,6 +48,7 @@ impl EditorState {
             selection: Selection::None,
             status: String::new(),
             recent: Vec::new(),
+            unseen: super::unseen::UnseenProbe::default(),
         }
     }
 

@@ -21,6 +21,7 @@ pub mod quality;
 pub mod render;
 pub mod report;
 pub mod sheet;
+pub mod unseen;
 
 pub use report::error_report;
 

@@ -14,3 +14,4 @@ pub mod rng;
 pub mod sample_points;
 #[cfg(test)]
 pub(crate) mod test_scenes;
+pub mod unseen;

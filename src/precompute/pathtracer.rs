@@ -191,16 +191,45 @@ impl PathTracer {
 
     /// One path through pixel (x, y): radiance and the number of rays traced.
     fn trace(&self, x: f32, y: f32, rng: &mut Pcg32) -> (Vec3, u64) {
-        let (w, h) = self.size;
-        let dir = self.camera.ray_direction(x + rng.next_f32(), y + rng.next_f32(), w, h);
+        let dir = self.camera_ray(x, y, rng);
         self.radiance(self.camera.position, dir, rng)
+    }
+
+    /// The direction of a camera ray through pixel (x, y), jittered within the pixel.
+    pub fn camera_ray(&self, x: f32, y: f32, rng: &mut Pcg32) -> Vec3 {
+        let (w, h) = self.size;
+        self.camera.ray_direction(x + rng.next_f32(), y + rng.next_f32(), w, h)
+    }
+
+    /// The scene's ray-tracing BVH.
+    pub fn bvh(&self) -> &SceneBvh {
+        &self.bvh
+    }
+
+    /// The camera the view is traced from.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
     }
 
     /// One path estimate of the radiance arriving at `origin` from direction `-dir` (the ray
     /// `origin + t dir`), and the number of rays traced.
-    pub fn radiance(&self, mut origin: Vec3, mut dir: Vec3, rng: &mut Pcg32) -> (Vec3, u64) {
-        let mut throughput = Vec3::ONE;
+    pub fn radiance(&self, origin: Vec3, dir: Vec3, rng: &mut Pcg32) -> (Vec3, u64) {
         let mut radiance = Vec3::ZERO;
+        let rays = self.walk(origin, dir, rng, |vertex| radiance += vertex.light);
+        if let Some(c) = self.settings.clamp {
+            let m = radiance.max_element();
+            if m > c {
+                radiance *= c / m;
+            }
+        }
+        (radiance, rays)
+    }
+
+    /// Follows one path from `origin` along `dir`, handing each surface it meets to `visit`
+    /// with the light that surface sends along the path to `origin` (its next-event estimate
+    /// times the path's throughput); returns the rays traced.
+    pub fn walk(&self, mut origin: Vec3, mut dir: Vec3, rng: &mut Pcg32, mut visit: impl FnMut(Vertex)) -> u64 {
+        let mut throughput = Vec3::ONE;
         let mut rays = 0u64;
         let eps = 1e-4 * self.bvh.scale;
         for depth in 0..self.settings.max_bounces {
@@ -212,24 +241,8 @@ impl PathTracer {
                 break; // One-sided: the back of a surface is black.
             }
             let lifted = p + ng * eps;
-            for light in &self.lights {
-                let (l, e) = light.incident(p);
-                if ng.dot(l) <= 0.0 || e.max_element() <= 0.0 {
-                    continue;
-                }
-                let cos = surface.n.dot(l);
-                if cos <= 0.0 {
-                    continue;
-                }
-                let dist = match light.kind {
-                    LightKind::Directional => f32::INFINITY,
-                    _ => (light.position - lifted).length(),
-                };
-                rays += 1;
-                if !self.bvh.occluded(lifted, l, dist) {
-                    radiance += throughput * surface.eval(v, l) * e * cos;
-                }
-            }
+            let reflected = self.next_event(p, ng, lifted, v, &surface, &mut rays);
+            visit(Vertex { depth, p, ng, light: throughput * reflected });
             if depth + 1 >= self.settings.max_bounces {
                 break;
             }
@@ -252,12 +265,43 @@ impl PathTracer {
             origin = lifted;
             dir = l;
         }
-        if let Some(c) = self.settings.clamp {
-            let m = radiance.max_element();
-            if m > c {
-                radiance *= c / m;
+        rays
+    }
+
+    /// The light every punctual light sends off `p` towards `v` (next-event estimation with a
+    /// shadow ray each); counts the shadow rays in `rays`.
+    fn next_event(&self, p: Vec3, ng: Vec3, lifted: Vec3, v: Vec3, surface: &Surface, rays: &mut u64) -> Vec3 {
+        let mut out = Vec3::ZERO;
+        for light in &self.lights {
+            let (l, e) = light.incident(p);
+            if ng.dot(l) <= 0.0 || e.max_element() <= 0.0 {
+                continue;
+            }
+            let cos = surface.n.dot(l);
+            if cos <= 0.0 {
+                continue;
+            }
+            let dist = match light.kind {
+                LightKind::Directional => f32::INFINITY,
+                _ => (light.position - lifted).length(),
+            };
+            *rays += 1;
+            if !self.bvh.occluded(lifted, l, dist) {
+                out += surface.eval(v, l) * e * cos;
             }
         }
-        (radiance, rays)
+        out
     }
+}
+
+/// A surface a path meets ([`PathTracer::walk`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Vertex {
+    /// 0 for the first surface (the one a camera ray shows).
+    pub depth: u32,
+    /// The point and its geometric normal.
+    pub p: Vec3,
+    pub ng: Vec3,
+    /// The light this surface sends along the path to its origin.
+    pub light: Vec3,
 }

@@ -494,3 +494,54 @@ fn opening_another_project_or_a_new_one_keeps_unsaved_work_for_later() {
     assert!(h.state().recovery_offered().is_some_and(|m| m.contains("b.ron")), "b's too");
     settle(&mut h);
 }
+
+/// Steps the editor until the GI panel shows `sshgi`'s measured share of the view's indirect
+/// light from surfaces off screen or hidden; returns (missing %, off screen %).
+fn measured_unseen_light(h: &mut Harness<'static, EditorApp>) -> (f64, f64) {
+    use egui_kittest::kittest::NodeT as _;
+    let start = std::time::Instant::now();
+    loop {
+        h.run_steps(1);
+        let text = h
+            .query_by_label_contains("of this view's indirect light leaves")
+            .and_then(|node| node.accesskit_node().value());
+        if let Some(text) = text {
+            let percent = |after: &str| -> f64 {
+                let at = text.find(after).map_or(0, |i| i + after.len());
+                text[at..].split('%').next().and_then(|n| n.trim().parse().ok()).expect("a percentage")
+            };
+            return (percent(""), percent("("));
+        }
+        assert!(start.elapsed().as_secs() < 180, "no measurement in the GI panel after three minutes");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+}
+
+#[test]
+fn the_gi_panel_measures_the_light_sshgi_cannot_see_and_again_when_the_view_moves() {
+    if !has_gpu() {
+        return;
+    }
+    let mut h = harness();
+    h.get_by_label("sshgi").click();
+    let (whole, _) = measured_unseen_light(&mut h);
+    // The Cornell box from its open side: only the hidden faces (the blocks' backs and tops).
+    assert!((5.0..=40.0).contains(&whole), "the whole box in view misses {whole}%");
+    // The same box in a project of its own whose camera looks down at the floor, close up.
+    let mut project = Project::load(&default_project_path()).expect("default project");
+    project.render.mode = GiMode::Sshgi;
+    let eye = glam::Vec3::new(0.0, 1.2, 0.5);
+    project.scene.set_camera(bouncelab::scene::Camera::look_at(eye, glam::Vec3::new(0.0, 0.0, 0.3), 0.5));
+    let dir = std::env::temp_dir().join(format!("bouncelab-unseen-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let file = dir.join("close_up.ron");
+    project.save(&file).expect("save");
+    h.state_mut().open(&file);
+    let (missing, off_screen) = measured_unseen_light(&mut h);
+    assert!(
+        off_screen > 50.0 && missing >= off_screen,
+        "a close-up of the floor: {missing}% missing, {off_screen}% off screen"
+    );
+    settle(&mut h);
+    let _ = std::fs::remove_dir_all(&dir);
+}
