@@ -51,9 +51,9 @@ pub fn run(args: &UnseenArgs) -> anyhow::Result<String> {
     );
     let _ = writeln!(
         out,
-        "| scene | indirect / all | first sender on screen | off screen | hidden | every sender on screen | seconds |"
+        "| scene | indirect / all | first sender on screen | off screen | of which its direct light | hidden | every sender on screen | seconds |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
     let cancel = AtomicBool::new(false);
     for name in args.scenes.split(',').map(str::trim).filter(|n| !n.is_empty()) {
         let project = open(args, name)?;
@@ -62,10 +62,11 @@ pub fn run(args: &UnseenArgs) -> anyhow::Result<String> {
         let all = s.direct + s.indirect();
         let _ = writeln!(
             out,
-            "| {name} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} |",
+            "| {name} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} |",
             if all > 0.0 { s.indirect() / all } else { 0.0 },
             s.share(s.on_screen),
             s.share(s.off_screen),
+            s.share(s.off_screen_direct),
             s.share(s.hidden),
             s.share(s.screen),
             start.elapsed().as_secs_f64()

@@ -40,6 +40,9 @@ pub struct UnseenShare {
     pub hidden: f64,
     /// Indirect light every bounce of which left a surface on screen (part of `on_screen`).
     pub screen: f64,
+    /// Light an off-screen first sender reflects of the lights directly (part of `off_screen`):
+    /// what a panorama of the direct light around the camera can add.
+    pub off_screen_direct: f64,
 }
 
 impl UnseenShare {
@@ -94,10 +97,10 @@ pub fn unseen_share(scene: &Scene, size: (u32, u32), spp: u32, cancel: &AtomicBo
     let seed = settings.seed;
     let tracer = PathTracer::new(scene, size, settings);
     let aspect = size.0 as f32 / size.1.max(1) as f32;
-    let rows: Vec<[f64; 5]> = (0..size.1)
+    let rows: Vec<[f64; 6]> = (0..size.1)
         .into_par_iter()
         .map(|y| {
-            let mut sum = [0.0f64; 5];
+            let mut sum = [0.0f64; 6];
             if cancel.load(Ordering::Relaxed) {
                 return sum;
             }
@@ -119,7 +122,7 @@ pub fn unseen_share(scene: &Scene, size: (u32, u32), spp: u32, cancel: &AtomicBo
         return None;
     }
     let n = f64::from(size.0) * f64::from(size.1) * f64::from(spp.max(1));
-    let total = rows.iter().fold([0.0f64; 5], |a, r| std::array::from_fn(|i| a[i] + r[i]));
+    let total = rows.iter().fold([0.0f64; 6], |a, r| std::array::from_fn(|i| a[i] + r[i]));
     Some(UnseenShare {
         size,
         spp,
@@ -128,12 +131,14 @@ pub fn unseen_share(scene: &Scene, size: (u32, u32), spp: u32, cancel: &AtomicBo
         off_screen: total[2] / n,
         hidden: total[3] / n,
         screen: total[4] / n,
+        off_screen_direct: total[5] / n,
     })
 }
 
-/// One path's walk into the sums (direct, on screen, off screen, hidden, all on screen).
+/// One path's walk into the sums (direct, on screen, off screen, hidden, all on screen, off
+/// screen's direct light).
 struct Path<'a> {
-    sums: &'a mut [f64; 5],
+    sums: &'a mut [f64; 6],
     /// The first sender's slot in the sums.
     first: Option<usize>,
     /// Every sender so far was on screen.
@@ -158,6 +163,9 @@ impl Path<'_> {
         self.sums[first] += light;
         if self.all_on_screen {
             self.sums[4] += light;
+        }
+        if v.depth == 1 && first == 2 {
+            self.sums[5] += light;
         }
     }
 }

@@ -386,7 +386,7 @@ impl Renderer {
             lighting_inputs,
             &sized.lighting_targets,
             plan.size,
-            self.timer.scope("lighting"),
+            self.timer.scope("lighting").map(|t| t.compute_writes()),
         );
         if plan.needs.wants_pyramid {
             let ts = self.timer.scope("pyramid");

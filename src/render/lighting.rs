@@ -7,7 +7,6 @@ use super::layouts::{
 };
 use super::shaders::{self, ShaderError};
 use super::targets::{ViewTargets, formats};
-use super::timing::TimestampPair;
 
 /// Workgroup edge of the full-screen compute passes.
 pub const TILE: u32 = 8;
@@ -109,11 +108,11 @@ impl LightingPass {
         inputs: &wgpu::BindGroup,
         targets: &wgpu::BindGroup,
         size: (u32, u32),
-        timestamps: Option<TimestampPair<'_>>,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("lighting pass"),
-            timestamp_writes: timestamps.as_ref().map(TimestampPair::compute_writes),
+            timestamp_writes: timestamps,
         });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, inputs, &[]);

@@ -63,6 +63,14 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/gi/sshgi/sshgi_voxelize.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_voxelize.wgsl")),
     ("render/gi/sshgi/sshgi_visibility.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_visibility.wgsl")),
     ("render/gi/sshgi/sshgi_temporal.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_temporal.wgsl")),
+    (
+        "render/gi/sshgi/sshgi_panorama_pack.wgsl",
+        include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_pack.wgsl"),
+    ),
+    (
+        "render/gi/sshgi/sshgi_panorama_gather.wgsl",
+        include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_gather.wgsl"),
+    ),
     ("render/lighting.wgsl", include_str!("../../shaders/render/lighting.wgsl")),
     ("render/vo/vo.wgsl", include_str!("../../shaders/render/vo/vo.wgsl")),
     ("render/vo/vo_blur.wgsl", include_str!("../../shaders/render/vo/vo_blur.wgsl")),

@@ -66,6 +66,15 @@ pub struct SshgiSettings {
     /// Blend with the previous frame's raw gather (the paper's 2-tap Eq. 6) instead of the
     /// recursive history (an exponential average, the default: stronger noise reduction).
     pub temporal_two_tap: bool,
+    /// Side in texels of each face of a cube G-buffer around the camera whose surfaces the view
+    /// does not show send light too (0: off, the paper's screen alone; 8..=128). Not in the
+    /// paper: it reaches light beside and behind the camera, not light hidden from the camera's
+    /// position, and has no visibility. Cost: six more G-buffer and direct-light passes of
+    /// F x F texels, and `panorama_samples` per start-level texel.
+    pub panorama: u32,
+    /// Panorama senders gathered per start-level texel and frame (1..=1024; the temporal filter
+    /// averages them over frames). Cost: linear, as a screen level's samples.
+    pub panorama_samples: u32,
 }
 
 impl Default for SshgiSettings {
@@ -82,6 +91,8 @@ impl Default for SshgiSettings {
             voxel_range: [0.0, 0.0],
             temporal_weight: 0.85,
             temporal_two_tap: false,
+            panorama: 32,
+            panorama_samples: 64,
         }
     }
 }
@@ -89,7 +100,7 @@ impl Default for SshgiSettings {
 impl SshgiSettings {
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
-        let checks: [(&'static str, bool, String, &'static str); 8] = [
+        let checks: [(&'static str, bool, String, &'static str); 10] = [
             ("sshgi.start_level", self.start_level <= 2, self.start_level.to_string(), "0..=2"),
             ("sshgi.levels", (1..=6).contains(&self.levels), self.levels.to_string(), "1..=6"),
             ("sshgi.samples", (1..=1024).contains(&self.samples), self.samples.to_string(), "1..=1024"),
@@ -107,6 +118,18 @@ impl SshgiSettings {
                     && (self.voxel_range == [0.0, 0.0] || self.voxel_range[1] > self.voxel_range[0]),
                 format!("{:?}", self.voxel_range),
                 "[0, 0] (automatic) or 0 <= near < far",
+            ),
+            (
+                "sshgi.panorama",
+                self.panorama == 0 || (8..=128).contains(&self.panorama),
+                self.panorama.to_string(),
+                "0 (off) or 8..=128 texels",
+            ),
+            (
+                "sshgi.panorama_samples",
+                (1..=1024).contains(&self.panorama_samples),
+                self.panorama_samples.to_string(),
+                "1..=1024",
             ),
             (
                 "sshgi.temporal_weight",

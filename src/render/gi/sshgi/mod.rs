@@ -3,6 +3,7 @@
 //! term, and it adds several bounces, but only surfaces on screen send light.
 
 pub mod oracle;
+pub mod panorama;
 pub mod passes;
 pub mod technique;
 pub mod temporal;
@@ -12,6 +13,8 @@ pub mod voxels;
 pub const SHADERS: &[&str] = &[
     "render/gi/sshgi/sshgi_gather.wgsl",
     "render/gi/sshgi/sshgi_mip.wgsl",
+    "render/gi/sshgi/sshgi_panorama_gather.wgsl",
+    "render/gi/sshgi/sshgi_panorama_pack.wgsl",
     "render/gi/sshgi/sshgi_upsample.wgsl",
     "render/gi/sshgi/sshgi_voxel_mip.wgsl",
     "render/gi/sshgi/sshgi_voxelize.wgsl",
@@ -29,4 +32,6 @@ pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/gi/sshgi/sshgi_voxelize.wgsl", "VoxelParams", size_of::<voxels::VoxelParams>()),
     ("render/gi/sshgi/sshgi_voxel_mip.wgsl", "VoxelMipParams", size_of::<voxels::MipParams>()),
     ("render/gi/sshgi/sshgi_temporal.wgsl", "TemporalParams", size_of::<temporal::TemporalParams>()),
+    ("render/gi/sshgi/sshgi_panorama_pack.wgsl", "PackParams", size_of::<panorama::PackParams>()),
+    ("render/gi/sshgi/sshgi_panorama_gather.wgsl", "PanoramaParams", size_of::<panorama::PanoramaParams>()),
 ];

@@ -1,6 +1,7 @@
 //! The `sshgi` technique behind the GI seam: asks the frame for the shared voted depth/normal
 //! pyramid, runs [`super::passes`] and returns E / pi for the composite to multiply by albedo.
 
+use super::panorama::Panorama;
 use super::passes::{Plan, SshgiPasses, ViewAxis, Visibility};
 use super::temporal::TemporalPass;
 use super::voxels::{VoxelParams, VoxelPass, automatic_range};
@@ -33,7 +34,11 @@ pub const BUFFERS: &[BufferInfo] = &[
     level("sshgi_sum_0", "levels 0.. summed by joint bilateral up-sampling: smooth, no halos at edges"),
     level("sshgi_sum_1", "levels 1.. summed by joint bilateral up-sampling"),
     level("sshgi_sum_2", "levels 2.. summed by joint bilateral up-sampling"),
-    level("sshgi_bounce_1", "first bounce's E / pi at the start level"),
+    level("sshgi_bounce_1", "first bounce's E / pi at the start level (the screen's and the panorama's)"),
+    level(
+        "sshgi_screen_bounce",
+        "first bounce's E / pi from the screen alone, before the panorama's senders join it (sshgi_bounce_1 minus this is their light)",
+    ),
     level("sshgi_bounce_2", "second bounce's E / pi (albedo x the first, gathered again)"),
     level("sshgi_bounce_3", "third bounce's E / pi"),
     level("sshgi_bounce_4", "fourth bounce's E / pi"),
@@ -72,6 +77,8 @@ pub const BUFFERS: &[BufferInfo] = &[
 /// Screen-space hierarchical GI.
 pub struct SshgiTechnique {
     passes: SshgiPasses,
+    /// The cube G-buffer around the camera whose senders the view does not show.
+    panorama: Panorama,
     voxels: VoxelPass,
     /// The voxel level the last frame's gathers marched (`visibility_detail` finer than the start;
     /// only levels up to it are reduced).
@@ -87,6 +94,7 @@ impl SshgiTechnique {
     pub fn new(device: &wgpu::Device, layouts: &crate::render::layouts::Layouts) -> Result<Self, RenderError> {
         Ok(Self {
             passes: SshgiPasses::new(device)?,
+            panorama: Panorama::new(device, layouts)?,
             voxels: VoxelPass::new(device, layouts)?,
             voxel_marched: 0,
             temporal: TemporalPass::new(device)?,
@@ -116,9 +124,9 @@ impl SshgiTechnique {
 
     /// The inspector's visibility difference: the unshadowed first bounce minus the shadowed one.
     fn visibility_difference(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<HdrImage, RenderError> {
-        let (Some(open), Some(shadowed)) =
-            (self.passes.buffer("sshgi_unshadowed"), self.passes.buffer("sshgi_bounce_1"))
-        else {
+        // The screen's own first bounce where the panorama joins it (the unshadowed chain has none).
+        let shadowed = self.passes.buffer("sshgi_screen_bounce").or_else(|| self.passes.buffer("sshgi_bounce_1"));
+        let (Some(open), Some(shadowed)) = (self.passes.buffer("sshgi_unshadowed"), shadowed) else {
             return Err(RenderError::UnknownBuffer {
                 name: "sshgi_visibility_difference".into(),
                 known: "render a frame with visibility on while this buffer is inspected".into(),
@@ -182,14 +190,20 @@ impl GiTechnique for SshgiTechnique {
         }
         let visibility =
             range.and_then(|range| Some(Visibility { columns: self.voxels.level(level as usize)?, range, level }));
+        let panorama = if settings.panorama > 0 {
+            self.panorama.record(inputs, settings.panorama)
+        } else {
+            self.panorama.release();
+            None
+        };
         let targets = inputs.targets;
         if settings.temporal_weight > 0.0 {
             self.temporal.ensure(inputs.device, targets.size);
             let Some(current) = self.temporal.current() else { return Ok(GiOutput::Nothing) };
-            self.passes.record(inputs, pyramid, plan, &axis, visibility.as_ref(), current);
+            self.passes.record(inputs, pyramid, plan, &axis, visibility.as_ref(), panorama, current);
             self.temporal.record(inputs, settings.temporal_weight, settings.temporal_two_tap);
         } else {
-            self.passes.record(inputs, pyramid, plan, &axis, visibility.as_ref(), &targets.indirect);
+            self.passes.record(inputs, pyramid, plan, &axis, visibility.as_ref(), panorama, &targets.indirect);
         }
         self.status.history_frames = self.status.history_frames.saturating_add(1);
         // The history has converged when the first frame's weight a^n is below 1%.
@@ -276,12 +290,13 @@ impl GiTechnique for SshgiTechnique {
 
     fn release(&mut self) {
         self.passes.release();
+        self.panorama.release();
         self.voxels.release();
         self.temporal.release();
     }
 
     fn gpu_bytes(&self) -> u64 {
-        self.passes.gpu_bytes() + self.voxels.gpu_bytes() + self.temporal.gpu_bytes()
+        self.passes.gpu_bytes() + self.panorama.gpu_bytes() + self.voxels.gpu_bytes() + self.temporal.gpu_bytes()
     }
 
     fn limitations(&self, _scene: &Scene, _settings: &RenderSettings) -> Vec<String> {

@@ -13,11 +13,15 @@ use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::{Target, formats};
 use crate::settings::SshgiSettings;
 
+mod steps;
+
+use steps::{StepBuilder, gather_slot, panorama_slot};
+
 /// Bytes between two parameter slots (WebGPU's minimum uniform offset alignment).
 const SLOT: u64 = 256;
 
-/// Parameter slots: 2 + levels + (bounces + 1) x levels <= 2 + 6 + 5 x 6 (the settings' ranges,
-/// with the inspector's unshadowed first bounce).
+/// Parameter slots: 2 + levels + (bounces + 1) x levels + 1 <= 2 + 6 + 5 x 6 + 1 (the settings'
+/// ranges, with the inspector's unshadowed first bounce and the panorama's gather).
 const PARAM_SLOTS: u64 = 40;
 
 /// `MipParams` and `UpParams` in the shaders.
@@ -115,6 +119,8 @@ pub struct Plan {
     /// Also gather the first bounce without visibility, with the same samples (the inspector's
     /// visibility on/off difference; one more gather chain while it is shown).
     pub unshadowed: bool,
+    /// The panorama's senders join the first bounce ([`super::panorama`]).
+    pub panorama: bool,
 }
 
 impl Plan {
@@ -123,7 +129,8 @@ impl Plan {
     pub fn new(settings: &SshgiSettings, view: (u32, u32), pyramid_levels: u32) -> Self {
         let start = settings.start_level.min(pyramid_levels.saturating_sub(1));
         let levels = settings.levels.clamp(1, (pyramid_levels - start).max(1));
-        Self { view, start, levels, bounces: settings.bounces.max(1), unshadowed: false }
+        let panorama = settings.panorama > 0;
+        Self { view, start, levels, bounces: settings.bounces.max(1), unshadowed: false, panorama }
     }
 
     /// Size of gather level k (pyramid level start + k).
@@ -150,6 +157,8 @@ struct Sized {
     sums: [Target; 2],
     /// Start level: the first bounce gathered without visibility (when the plan asks).
     unshadowed: Option<Target>,
+    /// Start level: the screen's own first bounce, before the panorama's senders join it.
+    screen_bounce: Option<Target>,
     /// Which of `bounce[0]` and `sums` holds the bounces' sum.
     total: Total,
 }
@@ -172,6 +181,8 @@ pub struct SshgiPasses {
     add: wgpu::ComputePipeline,
     gather: wgpu::ComputePipeline,
     upsample: wgpu::ComputePipeline,
+    panorama_layout: wgpu::BindGroupLayout,
+    panorama: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     /// Bound in place of voxel columns when visibility is off.
     no_voxels: wgpu::Buffer,
@@ -192,6 +203,8 @@ struct Inputs {
     out: wgpu::TextureView,
     voxels: wgpu::Buffer,
     frame: wgpu::Buffer,
+    /// The panorama's sender list.
+    senders: Option<wgpu::Buffer>,
 }
 
 /// Which pipeline a [`Step`] runs.
@@ -203,6 +216,7 @@ enum Pipe {
     Add,
     Gather,
     Upsample,
+    Panorama,
 }
 
 /// One dispatch: the (timed) pass it belongs to, its pipeline, bind group, parameter slot and
@@ -213,213 +227,6 @@ struct Step {
     group: wgpu::BindGroup,
     slot: u32,
     size: (u32, u32),
-}
-
-/// The parameter slot of bounce `b`'s gather of level `k`: after the two mip slots and the
-/// levels' up-sampling slots.
-fn gather_slot(plan: Plan, b: usize, k: usize) -> u32 {
-    2 + plan.levels + (b * plan.levels as usize + k) as u32
-}
-
-/// What the stages of [`SshgiPasses::build_steps`] share: the layouts and parameter buffer, the
-/// plan's targets, the frame's inputs and the dispatches built so far.
-struct StepBuilder<'a> {
-    passes: &'a SshgiPasses,
-    device: &'a wgpu::Device,
-    key: &'a Inputs,
-    s: &'a Sized,
-    steps: Vec<Step>,
-}
-
-impl<'a> StepBuilder<'a> {
-    /// The parameter buffer's first `size` bytes (bound at each step's slot offset).
-    fn params_binding(&self, size: u64) -> wgpu::BindingResource<'a> {
-        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-            buffer: &self.passes.params,
-            offset: 0,
-            size: wgpu::BufferSize::new(size),
-        })
-    }
-
-    /// A bind group of the mip pipelines: sources `a` and `b` into `dest`.
-    fn mip_group(&self, a: &wgpu::TextureView, b: &wgpu::TextureView, dest: &wgpu::TextureView) -> wgpu::BindGroup {
-        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("sshgi mip bind group"),
-            layout: &self.passes.mip_layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: self.params_binding(16) },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(a) },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(b) },
-                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(dest) },
-            ],
-        })
-    }
-
-    /// A bind group of the up-sampling pipeline: `coarse` joint-bilateral up-sampled along the
-    /// two levels' geometry, plus `add`, into `dest`.
-    fn up_group(
-        &self,
-        coarse: &wgpu::TextureView,
-        coarse_geo: &wgpu::TextureView,
-        fine_geo: &wgpu::TextureView,
-        add: &wgpu::TextureView,
-        dest: &wgpu::TextureView,
-    ) -> wgpu::BindGroup {
-        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("sshgi upsample bind group"),
-            layout: &self.passes.up_layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: self.params_binding(32) },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(coarse) },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(coarse_geo) },
-                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(fine_geo) },
-                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(add) },
-                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(dest) },
-                wgpu::BindGroupEntry { binding: 6, resource: self.key.frame.as_entire_binding() },
-            ],
-        })
-    }
-
-    /// A bind group of the gather of level `k`: its geometry and illumination into `dest`.
-    fn gather_group(&self, k: usize, dest: &Target) -> wgpu::BindGroup {
-        let (s, key) = (self.s, self.key);
-        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("sshgi gather bind group"),
-            layout: &self.passes.gather_layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(80) },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(self.geo(k)) },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(&s.illumination[k].view),
-                },
-                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&dest.view) },
-                // Every level marches the start level's columns (`sshgi_visibility.wgsl`).
-                wgpu::BindGroupEntry { binding: 5, resource: key.voxels.as_entire_binding() },
-            ],
-        })
-    }
-
-    /// The geometry pyramid's level under sshgi's level `k`.
-    fn geo(&self, k: usize) -> &'a wgpu::TextureView {
-        &self.key.pyramid[self.s.plan.start as usize + k]
-    }
-
-    /// Appends a dispatch of `pipeline` writing `dest`.
-    fn step(&mut self, pass: String, pipeline: Pipe, group: wgpu::BindGroup, slot: u32, dest: &Target) {
-        let size = (dest.texture.width(), dest.texture.height());
-        self.steps.push(Step { pass, pipeline, group, slot, size });
-    }
-
-    /// The timed pass of chain `b`'s `phase`: the first bounce's phases are timed apart, the
-    /// other chains as a whole.
-    fn pass(&self, b: usize, phase: &str) -> String {
-        if b == self.s.plan.bounces as usize {
-            "sshgi unshadowed (inspector)".to_owned()
-        } else if b == 0 {
-            phase.to_owned()
-        } else {
-            format!("sshgi bounce {}", b + 1)
-        }
-    }
-
-    /// One chain into its target: illumination levels, a gather per level, then up-sampling.
-    fn chain(&mut self, b: usize) {
-        let s = self.s;
-        let (first, out) = match (b == s.plan.bounces as usize, &s.unshadowed) {
-            (true, Some(u)) => (true, u),
-            _ => (b == 0, &s.bounce[b.min(s.bounce.len() - 1)]),
-        };
-        self.illumination(b, first);
-        self.gathers(b, out);
-        self.up_sampling(b, out);
-    }
-
-    /// Illumination levels: the direct term (first bounce) or albedo x the previous bounce's
-    /// E / pi, then 2x2 box averages.
-    fn illumination(&mut self, b: usize, first: bool) {
-        let (s, key) = (self.s, self.key);
-        let illumination = &s.illumination[0];
-        if first {
-            let g = self.mip_group(&key.direct, &key.albedo, &illumination.view);
-            self.step(self.pass(b, "sshgi illumination"), Pipe::BoxSeed, g, 0, illumination);
-        } else {
-            let g = self.mip_group(&s.albedo.view, &s.bounce[b - 1].view, &illumination.view);
-            self.step(self.pass(b, "sshgi illumination"), Pipe::Product, g, 1, illumination);
-        }
-        if b == 0 {
-            // The start level's albedo, for the later bounces (once, whatever the chains).
-            let g = self.mip_group(&key.albedo, &key.albedo, &s.albedo.view);
-            self.step(self.pass(b, "sshgi illumination"), Pipe::BoxSeed, g, 0, &s.albedo);
-        }
-        for k in 1..s.plan.levels as usize {
-            let (fine, coarse) = (&s.illumination[k - 1], &s.illumination[k]);
-            self.step(
-                self.pass(b, "sshgi illumination"),
-                Pipe::Reduce,
-                self.mip_group(&fine.view, &fine.view, &coarse.view),
-                1,
-                coarse,
-            );
-        }
-    }
-
-    /// One gather per level; a single level writes the bounce (`out`) directly.
-    fn gathers(&mut self, b: usize, out: &Target) {
-        let s = self.s;
-        let levels = s.plan.levels as usize;
-        for k in 0..levels {
-            let dest = if levels == 1 { out } else { &s.gathered[k] };
-            let group = self.gather_group(k, dest);
-            self.step(
-                self.pass(b, &format!("sshgi gather level {k}")),
-                Pipe::Gather,
-                group,
-                gather_slot(s.plan, b, k),
-                dest,
-            );
-        }
-    }
-
-    /// Coarse to fine: Acc_k = JBU(Acc_k+1) + Ind_k; level 0's sum is the bounce (`out`).
-    fn up_sampling(&mut self, b: usize, out: &Target) {
-        let s = self.s;
-        let levels = s.plan.levels as usize;
-        for k in (0..levels.saturating_sub(1)).rev() {
-            let coarse = if k + 1 == levels - 1 { &s.gathered[k + 1] } else { &s.summed[k + 1] };
-            let dest = if k == 0 { out } else { &s.summed[k] };
-            let g = self.up_group(&coarse.view, self.geo(k + 1), self.geo(k), &s.gathered[k].view, &dest.view);
-            self.step(self.pass(b, "sshgi up-sampling"), Pipe::Upsample, g, 2 + k as u32, dest);
-        }
-    }
-
-    /// The bounces' running sum (ping-pong); returns the target that holds it.
-    fn bounce_sum(&mut self) -> &'a Target {
-        let s = self.s;
-        let mut total = &s.bounce[0];
-        for b in 1..s.plan.bounces as usize {
-            let dest = &s.sums[b % 2];
-            let g = self.mip_group(&total.view, &s.bounce[b].view, &dest.view);
-            self.step("sshgi output".to_owned(), Pipe::Add, g, 1, dest);
-            total = dest;
-        }
-        total
-    }
-
-    /// The bounces' sum (`total`), up-sampled to the view into the output.
-    fn output(&mut self, total: &Target) {
-        let key = self.key;
-        let g = self.up_group(&total.view, self.geo(0), &key.pyramid[0], &total.view, &key.out);
-        let out_size = (key.out.texture().width(), key.out.texture().height());
-        self.steps.push(Step {
-            pass: "sshgi output".to_owned(),
-            pipeline: Pipe::Upsample,
-            group: g,
-            slot: 2 + self.s.plan.levels - 1,
-            size: out_size,
-        });
-    }
 }
 
 impl SshgiPasses {
@@ -462,6 +269,7 @@ impl SshgiPasses {
         let mip = shaders::module(device, "render/gi/sshgi/sshgi_mip.wgsl")?;
         let gather = shaders::module(device, "render/gi/sshgi/sshgi_gather.wgsl")?;
         let up = shaders::module(device, "render/gi/sshgi/sshgi_upsample.wgsl")?;
+        let (panorama_layout, panorama) = super::panorama::gather_pipeline(device)?;
         Ok(Self {
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
             reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
@@ -469,6 +277,8 @@ impl SshgiPasses {
             add: compute_pipeline(device, "sshgi add", &mip_layout, &mip, "add"),
             gather: compute_pipeline(device, "sshgi gather", &gather_layout, &gather, "gather"),
             upsample: compute_pipeline(device, "sshgi upsample", &up_layout, &up, "upsample"),
+            panorama_layout,
+            panorama,
             params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("sshgi params"),
                 size: PARAM_SLOTS * SLOT,
@@ -507,6 +317,7 @@ impl SshgiPasses {
             bounce: (0..plan.bounces).map(|_| target("sshgi bounce", 0)).collect(),
             sums: [target("sshgi bounce sum", 0), target("sshgi bounce sum", 0)],
             unshadowed: plan.unshadowed.then(|| target("sshgi unshadowed bounce", 0)),
+            screen_bounce: plan.panorama.then(|| target("sshgi screen bounce", 0)),
             total: if plan.bounces > 1 { Total::Sum((plan.bounces as usize - 1) % 2) } else { Total::Bounce },
         });
     }
@@ -521,8 +332,10 @@ impl SshgiPasses {
         plan: Plan,
         axis: &ViewAxis,
         visibility: Option<&Visibility<'_>>,
+        panorama: Option<(&wgpu::Buffer, u32)>,
         out: &Target,
     ) {
+        let plan = Plan { panorama: plan.panorama && panorama.is_some(), ..plan };
         self.ensure(inputs.device, plan);
         let key = Inputs {
             pyramid: pyramid.iter().map(|t| t.view.clone()).collect(),
@@ -531,12 +344,13 @@ impl SshgiPasses {
             out: out.view.clone(),
             voxels: visibility.map_or(&self.no_voxels, |v| v.columns).clone(),
             frame: inputs.frame_buffer.clone(),
+            senders: panorama.map(|(b, _)| b.clone()),
         };
         if self.steps.as_ref().is_none_or(|(k, _)| *k != key) {
             let steps = self.build_steps(inputs.device, &key);
             self.steps = Some((key, steps));
         }
-        self.write_params(inputs, plan, axis, visibility);
+        self.write_params(inputs, plan, axis, visibility, panorama.map_or(0, |(_, n)| n));
         let Some((_, steps)) = &self.steps else { return };
         // Consecutive steps of one pass share it: bounce 1's phases are timed one by one, a later
         // bounce as a whole.
@@ -555,6 +369,7 @@ impl SshgiPasses {
                 Pipe::Add => &self.add,
                 Pipe::Gather => &self.gather,
                 Pipe::Upsample => &self.upsample,
+                Pipe::Panorama => &self.panorama,
             });
             pass.set_bind_group(0, &step.group, &[step.slot * SLOT as u32]);
             pass.dispatch_workgroups(step.size.0.div_ceil(8), step.size.1.div_ceil(8), 1);
@@ -570,12 +385,13 @@ impl SshgiPasses {
         plan: Plan,
         axis: &ViewAxis,
         visibility: Option<&Visibility<'_>>,
+        senders: u32,
     ) {
         let settings = &inputs.settings.sshgi;
         let bytes = &mut self.staging;
         bytes.clear();
         let chains = plan.bounces as usize + usize::from(plan.unshadowed);
-        bytes.resize((gather_slot(plan, chains, 0) as usize) * SLOT as usize, 0);
+        bytes.resize((panorama_slot(plan) as usize + 1) * SLOT as usize, 0);
         let mut put = |slot: u32, data: &[u8]| {
             let at = slot as usize * SLOT as usize;
             bytes[at..at + data.len()].copy_from_slice(data);
@@ -620,6 +436,9 @@ impl SshgiPasses {
                 put(gather_slot(plan, b as usize, k as usize), bytemuck::bytes_of(&p));
             }
         }
+        let seed = inputs.frame_index.wrapping_mul(0x9e37_79b9);
+        let counts = [senders, settings.panorama_samples, seed, 0];
+        put(panorama_slot(plan), bytemuck::bytes_of(&super::panorama::PanoramaParams { counts }));
         inputs.queue.write_buffer(&self.params, 0, bytes);
     }
 
@@ -633,6 +452,9 @@ impl SshgiPasses {
         let chains = (plan.unshadowed.then_some(plan.bounces as usize)).into_iter().chain(0..plan.bounces as usize);
         for b in chains {
             steps.chain(b);
+            if b == 0 && plan.panorama {
+                steps.panorama();
+            }
         }
         let total = steps.bounce_sum();
         steps.output(total);
@@ -650,6 +472,7 @@ impl SshgiPasses {
                 });
             }
             "sshgi_unshadowed" => return s.unshadowed.as_ref().map(|t| &t.texture),
+            "sshgi_screen_bounce" => return s.screen_bounce.as_ref().map(|t| &t.texture),
             _ => {}
         }
         let (kind, index) = name.rsplit_once('_')?;
@@ -674,7 +497,7 @@ impl SshgiPasses {
     pub fn gpu_bytes(&self) -> u64 {
         let Some(s) = &self.sized else { return 0 };
         let all = s.illumination.iter().chain(&s.gathered).chain(&s.summed).chain(&s.bounce).chain(&s.sums);
-        let all = all.chain(&s.unshadowed);
+        let all = all.chain(&s.unshadowed).chain(&s.screen_bounce);
         all.chain(std::iter::once(&s.albedo)).map(|t| crate::render::gi::technique::texture_bytes(&t.texture)).sum()
     }
 }

@@ -1,0 +1,75 @@
+// sshgi panorama, pack (an extension of Soler et al. 2010, not in the paper): one face of a
+// low-resolution cube G-buffer around the camera, lit by the same direct-light pass as the view,
+// turned into senders: per texel its world point, the area ds it stands for (a cube texel's solid
+// angle, (2/F)^2 / (1 + u^2 + v^2)^(3/2), times distance^2 over the tilt), its geometric normal and
+// outgoing radiance. A texel the view itself shows (its point projects into the view, and the
+// view's depth there reaches the same distance within 5%) is left out (ds = 0): the screen's own
+// gathers send it.
+#import common/frame.wgsl
+#import common/octahedral.wgsl
+
+struct PackParams {
+    // face index, face size F (texels), unused x2.
+    face: vec4<u32>,
+}
+
+struct Sender {
+    // xyz the point, w the area ds it stands for (m^2; 0: no sender).
+    point: vec4<f32>,
+    // rgb outgoing radiance, a unused.
+    radiance: vec4<f32>,
+    // xyz geometric normal, w unused.
+    normal: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> face_frame: Frame;
+@group(0) @binding(1) var<uniform> view_frame: Frame;
+@group(0) @binding(2) var<uniform> pp: PackParams;
+@group(0) @binding(3) var face_depth: texture_depth_2d;
+@group(0) @binding(4) var face_normal: texture_2d<f32>;
+@group(0) @binding(5) var face_direct: texture_2d<f32>;
+@group(0) @binding(6) var view_depth: texture_depth_2d;
+@group(0) @binding(7) var<storage, read_write> senders: array<Sender>;
+
+// Whether the view shows the point p (inside its frustum, and its depth buffer reaches p).
+fn on_screen(p: vec3<f32>, dist: f32) -> bool {
+    let clip = view_frame.clip_from_world * vec4<f32>(p, 1.0);
+    if clip.w <= 0.0 {
+        return false;
+    }
+    let ndc = clip.xyz / clip.w;
+    if any(abs(ndc.xy) > vec2<f32>(1.0)) || ndc.z < 0.0 || ndc.z > 1.0 {
+        return false;
+    }
+    let size = vec2<u32>(view_frame.size.xy);
+    let pixel = min(vec2<u32>(vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * view_frame.size.xy), size - 1u);
+    let seen = position_at(view_frame, view_depth, pixel);
+    if seen.w < 0.5 {
+        return false;
+    }
+    return abs(distance(seen.xyz, view_frame.camera_position.xyz) - dist) <= 0.05 * dist;
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
+    let f = pp.face.y;
+    if id.x >= f || id.y >= f {
+        return;
+    }
+    let index = pp.face.x * f * f + id.y * f + id.x;
+    var sender = Sender(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+    let p = position_at(face_frame, face_depth, id.xy);
+    if p.w > 0.5 {
+        let cam = face_frame.camera_position.xyz;
+        let dist = distance(p.xyz, cam);
+        let n = oct_decode(textureLoad(face_normal, id.xy, 0).zw);
+        let dir = (p.xyz - cam) / max(dist, 1.0e-20);
+        if !on_screen(p.xyz, dist) && dot(n, -dir) > 0.0 {
+            let uv = (vec2<f32>(id.xy) + 0.5) / f32(f) * 2.0 - 1.0;
+            let solid_angle = 4.0 / f32(f * f) / pow(1.0 + dot(uv, uv), 1.5);
+            let ds = solid_angle * dist * dist / max(dot(n, -dir), 0.05);
+            sender = Sender(vec4<f32>(p.xyz, ds), vec4<f32>(textureLoad(face_direct, id.xy, 0).rgb, 0.0), vec4<f32>(n, 0.0));
+        }
+    }
+    senders[index] = sender;
+}

@@ -1,0 +1,308 @@
+//! `sshgi`'s panorama: what the screen cannot send, from a low-resolution cube G-buffer around
+//! the camera (an extension of Soler et al. 2010, whose gathers read the view alone). Each
+//! frame the six faces (F x F texels, 90 degrees each) are rasterised with the view's G-buffer
+//! pass, lit by its direct-light pass (the same lights and shadow maps), and packed
+//! (`sshgi_panorama_pack.wgsl`) into a list of senders: the surfaces around the camera that the
+//! view does not show, each with its point, area, normal and outgoing radiance. The start level
+//! then gathers N of them per texel (`sshgi_panorama_gather.wgsl`) into the first bounce, so the
+//! later bounces carry that light on over the screen.
+//!
+//! It reaches surfaces beside and behind the camera but not those hidden from the camera's
+//! position (the back of a pillar), and has no visibility: light passes through whatever lies
+//! between a receiver and a panorama sender.
+
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+
+use crate::render::gbuffer::GbufferPass;
+use crate::render::gi::inputs::GiInputs;
+use crate::render::gi::technique::texture_bytes;
+use crate::render::layouts::{
+    Layouts, compute_pipeline, storage_entry, storage_rw_entry, storage_texture_entry, texture_entry, uniform_entry,
+};
+use crate::render::lighting::{LightingInputs, LightingPass, TILE};
+use crate::render::shaders::{self, ShaderError};
+use crate::render::targets::{ViewTargets, formats};
+use crate::render::uniforms::FrameUniforms;
+use crate::scene::{Camera, rotation_looking};
+
+/// The cube faces' view directions.
+const FACES: [Vec3; 6] = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z];
+
+/// Bytes of one sender (`Sender` in the WGSL: point and area, radiance, normal).
+const SENDER_BYTES: u64 = 48;
+
+/// The pack's parameters (`PackParams` in `sshgi_panorama_pack.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct PackParams {
+    /// Face index, face size F, unused x2.
+    pub face: [u32; 4],
+}
+
+/// The gather's parameters (`PanoramaParams` in `sshgi_panorama_gather.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct PanoramaParams {
+    /// Senders in the list, samples per texel, frame seed, unused.
+    pub counts: [u32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<PackParams>() == 16);
+const _: () = assert!(std::mem::size_of::<PanoramaParams>() == 16);
+
+/// One cube face: its G-buffer and direct light, camera constants and bind groups.
+struct Face {
+    targets: ViewTargets,
+    frame: wgpu::Buffer,
+    frame_group: wgpu::BindGroup,
+    lighting_targets: wgpu::BindGroup,
+    params: wgpu::Buffer,
+}
+
+/// The textures and buffers the per-face bind groups name besides the faces' own: when one of
+/// them is another object than last frame's, the groups are rebuilt.
+#[derive(PartialEq)]
+struct GroupKey {
+    lights: wgpu::Buffer,
+    shadow_views: wgpu::Buffer,
+    shadow_maps: wgpu::TextureView,
+    view_frame: wgpu::Buffer,
+    view_depth: wgpu::TextureView,
+}
+
+/// The faces of one size and the sender list.
+struct Faces {
+    size: u32,
+    faces: Vec<Face>,
+    senders: wgpu::Buffer,
+    /// Per face: the lighting inputs' and the pack's bind groups, for the inputs they name.
+    groups: Option<(GroupKey, Vec<(wgpu::BindGroup, wgpu::BindGroup)>)>,
+}
+
+/// The panorama's passes and targets.
+pub struct Panorama {
+    gbuffer: GbufferPass,
+    lighting: LightingPass,
+    pack_layout: wgpu::BindGroupLayout,
+    pack: wgpu::ComputePipeline,
+    faces: Option<Faces>,
+}
+
+impl Panorama {
+    /// Creates the pipelines.
+    pub fn new(device: &wgpu::Device, layouts: &Layouts) -> Result<Self, ShaderError> {
+        let c = wgpu::ShaderStages::COMPUTE;
+        let float = wgpu::TextureSampleType::Float { filterable: false };
+        let pack_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("sshgi panorama pack layout"),
+            entries: &[
+                uniform_entry(0, c, false),
+                uniform_entry(1, c, false),
+                uniform_entry(2, c, false),
+                texture_entry(3, c, wgpu::TextureSampleType::Depth),
+                texture_entry(4, c, float),
+                texture_entry(5, c, float),
+                texture_entry(6, c, wgpu::TextureSampleType::Depth),
+                storage_rw_entry(7),
+            ],
+        });
+        let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_pack.wgsl")?;
+        Ok(Self {
+            gbuffer: GbufferPass::new(device, layouts)?,
+            lighting: LightingPass::new(device)?,
+            pack: compute_pipeline(device, "sshgi panorama pack", &pack_layout, &module, "pack"),
+            pack_layout,
+            faces: None,
+        })
+    }
+
+    /// Renders, lights and packs the faces (`size` texels a side); returns the sender list and
+    /// its length.
+    pub fn record(&mut self, inputs: &mut GiInputs<'_>, size: u32) -> Option<(&wgpu::Buffer, u32)> {
+        self.ensure(inputs.device, inputs.layouts, size);
+        let Self { gbuffer, lighting, pack_layout, pack, faces } = self;
+        let faces = faces.as_mut()?;
+        write_frames(inputs.queue, faces, inputs.frame, inputs.scene.camera());
+        let key = GroupKey {
+            lights: inputs.lights.buffer.clone(),
+            shadow_views: inputs.lights.shadow_views.clone(),
+            shadow_maps: inputs.lights.shadow_maps.clone(),
+            view_frame: inputs.frame_buffer.clone(),
+            view_depth: inputs.targets.depth.view.clone(),
+        };
+        if faces.groups.as_ref().is_none_or(|(k, _)| *k != key) {
+            let groups = faces
+                .faces
+                .iter()
+                .map(|f| face_groups(lighting, pack_layout, inputs.device, f, &key, &faces.senders))
+                .collect();
+            faces.groups = Some((key, groups));
+        }
+        let Some((_, groups)) = &faces.groups else { return None };
+        let GiInputs { encoder, timer, scene_gpu, .. } = inputs;
+        let last = faces.faces.len() - 1;
+        {
+            let scope = timer.scope("sshgi panorama raster");
+            for (i, face) in faces.faces.iter().enumerate() {
+                let writes = scope.as_ref().filter(|_| i == 0 || i == last).map(|t| t.render_writes(i == 0, i == last));
+                gbuffer.record(encoder, &face.targets, &face.frame_group, scene_gpu, writes);
+            }
+        }
+        let scope = timer.scope("sshgi panorama lighting");
+        for (i, (face, (inputs_group, _))) in faces.faces.iter().zip(groups).enumerate() {
+            let writes = scope.as_ref().filter(|_| i == 0).map(|t| t.compute_begin_writes());
+            lighting.record(encoder, inputs_group, &face.lighting_targets, (size, size), writes);
+        }
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("sshgi panorama pack"),
+            timestamp_writes: scope.as_ref().map(|t| t.compute_end_writes()),
+        });
+        pass.set_pipeline(pack);
+        for (_, group) in groups {
+            pass.set_bind_group(0, group, &[]);
+            pass.dispatch_workgroups(size.div_ceil(TILE), size.div_ceil(TILE), 1);
+        }
+        drop(pass);
+        Some((&faces.senders, faces.faces.len() as u32 * size * size))
+    }
+
+    /// Creates the faces when their size changes.
+    fn ensure(&mut self, device: &wgpu::Device, layouts: &Layouts, size: u32) {
+        if self.faces.as_ref().is_some_and(|f| f.size == size) {
+            return;
+        }
+        let faces = (0..FACES.len() as u32).map(|i| self.face(device, layouts, i, size)).collect();
+        let senders = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sshgi panorama senders"),
+            size: FACES.len() as u64 * u64::from(size * size) * SENDER_BYTES,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        self.faces = Some(Faces { size, faces, senders, groups: None });
+    }
+
+    /// Face `index`'s targets, constants and fixed bind groups.
+    fn face(&self, device: &wgpu::Device, layouts: &Layouts, index: u32, size: u32) -> Face {
+        use wgpu::util::DeviceExt as _;
+        let targets = ViewTargets::new(device, (size, size));
+        let frame = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sshgi panorama face frame"),
+            size: std::mem::size_of::<FrameUniforms>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi panorama face frame bind group"),
+            layout: &layouts.frame,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame.as_entire_binding() }],
+        });
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("sshgi panorama pack params"),
+            contents: bytemuck::bytes_of(&PackParams { face: [index, size, 0, 0] }),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        let lighting_targets = self.lighting.targets_bind_group(device, &targets);
+        Face { targets, frame, frame_group, lighting_targets, params }
+    }
+
+    /// Frees the faces.
+    pub fn release(&mut self) {
+        self.faces = None;
+    }
+
+    /// Bytes of the faces' targets and the sender list.
+    pub fn gpu_bytes(&self) -> u64 {
+        let Some(f) = &self.faces else { return 0 };
+        let targets: u64 = f
+            .faces
+            .iter()
+            .map(|face| {
+                let t = &face.targets;
+                [&t.albedo, &t.normal, &t.material, &t.motion, &t.object_id, &t.depth, &t.direct, &t.indirect]
+                    .iter()
+                    .chain([&t.hdr, &t.ldr, &t.vo_raw, &t.vo_rows, &t.vo].iter())
+                    .map(|target| texture_bytes(&target.texture))
+                    .sum::<u64>()
+            })
+            .sum();
+        targets + f.senders.size()
+    }
+}
+
+/// The lighting inputs' and the pack's bind groups of `face`.
+fn face_groups(
+    lighting: &LightingPass,
+    pack_layout: &wgpu::BindGroupLayout,
+    device: &wgpu::Device,
+    face: &Face,
+    key: &GroupKey,
+    senders: &wgpu::Buffer,
+) -> (wgpu::BindGroup, wgpu::BindGroup) {
+    let lighting = lighting.inputs_bind_group(
+        device,
+        &LightingInputs {
+            frame: &face.frame,
+            lights: &key.lights,
+            shadow_views: &key.shadow_views,
+            shadow_maps: &key.shadow_maps,
+        },
+    );
+    let view = |binding, view| wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(view) };
+    let pack = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("sshgi panorama pack bind group"),
+        layout: pack_layout,
+        entries: &[
+            wgpu::BindGroupEntry { binding: 0, resource: face.frame.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 1, resource: key.view_frame.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 2, resource: face.params.as_entire_binding() },
+            view(3, &face.targets.depth.view),
+            view(4, &face.targets.normal.view),
+            view(5, &face.targets.direct.view),
+            view(6, &key.view_depth),
+            wgpu::BindGroupEntry { binding: 7, resource: senders.as_entire_binding() },
+        ],
+    });
+    (lighting, pack)
+}
+
+/// Each face's frame constants: the view's, from the camera's position along the face's axis
+/// with a 90-degree square frustum.
+fn write_frames(queue: &wgpu::Queue, faces: &Faces, view: &FrameUniforms, camera: &Camera) {
+    let size = faces.size as f32;
+    for (face, forward) in faces.faces.iter().zip(FACES) {
+        let cube = Camera { rotation: rotation_looking(forward), yfov: std::f32::consts::FRAC_PI_2, ..*camera };
+        let clip_from_world = cube.clip_from_view(1.0) * cube.view_from_world();
+        let frame = FrameUniforms {
+            clip_from_world: clip_from_world.to_cols_array_2d(),
+            world_from_clip: clip_from_world.inverse().to_cols_array_2d(),
+            prev_clip_from_world: clip_from_world.to_cols_array_2d(),
+            size: [size, size, 1.0 / size, 1.0 / size],
+            ..*view
+        };
+        queue.write_buffer(&face.frame, 0, bytemuck::bytes_of(&frame));
+    }
+}
+
+/// The gather's bind group layout and pipeline (dispatched among `sshgi`'s steps,
+/// [`super::passes`]): the view's frame constants, its parameters (a dynamic slot of the
+/// steps' parameter buffer), the start level's geometry, the screen's first bounce, the output
+/// and the sender list.
+pub fn gather_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
+    let c = wgpu::ShaderStages::COMPUTE;
+    let float = wgpu::TextureSampleType::Float { filterable: false };
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("sshgi panorama gather layout"),
+        entries: &[
+            uniform_entry(0, c, false),
+            uniform_entry(1, c, true),
+            texture_entry(2, c, float),
+            texture_entry(3, c, float),
+            storage_texture_entry(4, formats::HDR),
+            storage_entry(5, c),
+        ],
+    });
+    let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_gather.wgsl")?;
+    let pipeline = compute_pipeline(device, "sshgi panorama gather", &layout, &module, "gather");
+    Ok((layout, pipeline))
+}

@@ -1,0 +1,241 @@
+//! The dispatches of one `sshgi` frame, built once per plan and set of inputs: per bounce the
+//! illumination levels, a gather per level and the up-sampling that sums them, the panorama's
+//! gather into the first bounce, the bounces' sum and the output to the view.
+
+use super::{Inputs, Pipe, Plan, Sized, SshgiPasses, Step};
+use crate::render::targets::Target;
+
+/// The parameter slot of bounce `b`'s gather of level `k`: after the two mip slots and the
+/// levels' up-sampling slots.
+pub(super) fn gather_slot(plan: Plan, b: usize, k: usize) -> u32 {
+    2 + plan.levels + (b * plan.levels as usize + k) as u32
+}
+
+/// The parameter slot of the panorama's gather: after every chain's gathers.
+pub(super) fn panorama_slot(plan: Plan) -> u32 {
+    gather_slot(plan, plan.bounces as usize + usize::from(plan.unshadowed), 0)
+}
+
+/// What the stages of [`SshgiPasses::build_steps`] share: the layouts and parameter buffer, the
+/// plan's targets, the frame's inputs and the dispatches built so far.
+pub(super) struct StepBuilder<'a> {
+    pub(super) passes: &'a SshgiPasses,
+    pub(super) device: &'a wgpu::Device,
+    pub(super) key: &'a Inputs,
+    pub(super) s: &'a Sized,
+    pub(super) steps: Vec<Step>,
+}
+
+impl<'a> StepBuilder<'a> {
+    /// The parameter buffer's first `size` bytes (bound at each step's slot offset).
+    fn params_binding(&self, size: u64) -> wgpu::BindingResource<'a> {
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer: &self.passes.params,
+            offset: 0,
+            size: wgpu::BufferSize::new(size),
+        })
+    }
+
+    /// A bind group of the mip pipelines: sources `a` and `b` into `dest`.
+    fn mip_group(&self, a: &wgpu::TextureView, b: &wgpu::TextureView, dest: &wgpu::TextureView) -> wgpu::BindGroup {
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi mip bind group"),
+            layout: &self.passes.mip_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: self.params_binding(16) },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(a) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(b) },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(dest) },
+            ],
+        })
+    }
+
+    /// A bind group of the up-sampling pipeline: `coarse` joint-bilateral up-sampled along the
+    /// two levels' geometry, plus `add`, into `dest`.
+    fn up_group(
+        &self,
+        coarse: &wgpu::TextureView,
+        coarse_geo: &wgpu::TextureView,
+        fine_geo: &wgpu::TextureView,
+        add: &wgpu::TextureView,
+        dest: &wgpu::TextureView,
+    ) -> wgpu::BindGroup {
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi upsample bind group"),
+            layout: &self.passes.up_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: self.params_binding(32) },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(coarse) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(coarse_geo) },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(fine_geo) },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(add) },
+                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(dest) },
+                wgpu::BindGroupEntry { binding: 6, resource: self.key.frame.as_entire_binding() },
+            ],
+        })
+    }
+
+    /// A bind group of the gather of level `k`: its geometry and illumination into `dest`.
+    fn gather_group(&self, k: usize, dest: &Target) -> wgpu::BindGroup {
+        let (s, key) = (self.s, self.key);
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi gather bind group"),
+            layout: &self.passes.gather_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(80) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(self.geo(k)) },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&s.illumination[k].view),
+                },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&dest.view) },
+                // Every level marches the start level's columns (`sshgi_visibility.wgsl`).
+                wgpu::BindGroupEntry { binding: 5, resource: key.voxels.as_entire_binding() },
+            ],
+        })
+    }
+
+    /// The geometry pyramid's level under sshgi's level `k`.
+    fn geo(&self, k: usize) -> &'a wgpu::TextureView {
+        &self.key.pyramid[self.s.plan.start as usize + k]
+    }
+
+    /// Appends a dispatch of `pipeline` writing `dest`.
+    fn step(&mut self, pass: String, pipeline: Pipe, group: wgpu::BindGroup, slot: u32, dest: &Target) {
+        let size = (dest.texture.width(), dest.texture.height());
+        self.steps.push(Step { pass, pipeline, group, slot, size });
+    }
+
+    /// The timed pass of chain `b`'s `phase`: the first bounce's phases are timed apart, the
+    /// other chains as a whole.
+    fn pass(&self, b: usize, phase: &str) -> String {
+        if b == self.s.plan.bounces as usize {
+            "sshgi unshadowed (inspector)".to_owned()
+        } else if b == 0 {
+            phase.to_owned()
+        } else {
+            format!("sshgi bounce {}", b + 1)
+        }
+    }
+
+    /// One chain into its target: illumination levels, a gather per level, then up-sampling.
+    /// The first bounce goes to the screen bounce when the panorama joins it after.
+    pub(super) fn chain(&mut self, b: usize) {
+        let s = self.s;
+        let (first, out) = match (b == s.plan.bounces as usize, &s.unshadowed, &s.screen_bounce) {
+            (true, Some(u), _) => (true, u),
+            (false, _, Some(screen)) if b == 0 => (true, screen),
+            _ => (b == 0, &s.bounce[b.min(s.bounce.len() - 1)]),
+        };
+        self.illumination(b, first);
+        self.gathers(b, out);
+        self.up_sampling(b, out);
+    }
+
+    /// Illumination levels: the direct term (first bounce) or albedo x the previous bounce's
+    /// E / pi, then 2x2 box averages.
+    fn illumination(&mut self, b: usize, first: bool) {
+        let (s, key) = (self.s, self.key);
+        let illumination = &s.illumination[0];
+        if first {
+            let g = self.mip_group(&key.direct, &key.albedo, &illumination.view);
+            self.step(self.pass(b, "sshgi illumination"), Pipe::BoxSeed, g, 0, illumination);
+        } else {
+            let g = self.mip_group(&s.albedo.view, &s.bounce[b - 1].view, &illumination.view);
+            self.step(self.pass(b, "sshgi illumination"), Pipe::Product, g, 1, illumination);
+        }
+        if b == 0 {
+            // The start level's albedo, for the later bounces (once, whatever the chains).
+            let g = self.mip_group(&key.albedo, &key.albedo, &s.albedo.view);
+            self.step(self.pass(b, "sshgi illumination"), Pipe::BoxSeed, g, 0, &s.albedo);
+        }
+        for k in 1..s.plan.levels as usize {
+            let (fine, coarse) = (&s.illumination[k - 1], &s.illumination[k]);
+            self.step(
+                self.pass(b, "sshgi illumination"),
+                Pipe::Reduce,
+                self.mip_group(&fine.view, &fine.view, &coarse.view),
+                1,
+                coarse,
+            );
+        }
+    }
+
+    /// One gather per level; a single level writes the bounce (`out`) directly.
+    fn gathers(&mut self, b: usize, out: &Target) {
+        let s = self.s;
+        let levels = s.plan.levels as usize;
+        for k in 0..levels {
+            let dest = if levels == 1 { out } else { &s.gathered[k] };
+            let group = self.gather_group(k, dest);
+            self.step(
+                self.pass(b, &format!("sshgi gather level {k}")),
+                Pipe::Gather,
+                group,
+                gather_slot(s.plan, b, k),
+                dest,
+            );
+        }
+    }
+
+    /// Coarse to fine: Acc_k = JBU(Acc_k+1) + Ind_k; level 0's sum is the bounce (`out`).
+    fn up_sampling(&mut self, b: usize, out: &Target) {
+        let s = self.s;
+        let levels = s.plan.levels as usize;
+        for k in (0..levels.saturating_sub(1)).rev() {
+            let coarse = if k + 1 == levels - 1 { &s.gathered[k + 1] } else { &s.summed[k + 1] };
+            let dest = if k == 0 { out } else { &s.summed[k] };
+            let g = self.up_group(&coarse.view, self.geo(k + 1), self.geo(k), &s.gathered[k].view, &dest.view);
+            self.step(self.pass(b, "sshgi up-sampling"), Pipe::Upsample, g, 2 + k as u32, dest);
+        }
+    }
+
+    /// The bounces' running sum (ping-pong); returns the target that holds it.
+    pub(super) fn bounce_sum(&mut self) -> &'a Target {
+        let s = self.s;
+        let mut total = &s.bounce[0];
+        for b in 1..s.plan.bounces as usize {
+            let dest = &s.sums[b % 2];
+            let g = self.mip_group(&total.view, &s.bounce[b].view, &dest.view);
+            self.step("sshgi output".to_owned(), Pipe::Add, g, 1, dest);
+            total = dest;
+        }
+        total
+    }
+
+    /// The bounces' sum (`total`), up-sampled to the view into the output.
+    pub(super) fn output(&mut self, total: &Target) {
+        let key = self.key;
+        let g = self.up_group(&total.view, self.geo(0), &key.pyramid[0], &total.view, &key.out);
+        let out_size = (key.out.texture().width(), key.out.texture().height());
+        self.steps.push(Step {
+            pass: "sshgi output".to_owned(),
+            pipeline: Pipe::Upsample,
+            group: g,
+            slot: 2 + self.s.plan.levels - 1,
+            size: out_size,
+        });
+    }
+
+    /// The panorama's senders gathered into the first bounce: the screen bounce plus their
+    /// light ([`super::super::panorama`]).
+    pub(super) fn panorama(&mut self) {
+        let (s, key) = (self.s, self.key);
+        let (Some(screen), Some(senders)) = (&s.screen_bounce, &key.senders) else { return };
+        let dest = &s.bounce[0];
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi panorama gather bind group"),
+            layout: &self.passes.panorama_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(16) },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(self.geo(0)) },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(&screen.view) },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&dest.view) },
+                wgpu::BindGroupEntry { binding: 5, resource: senders.as_entire_binding() },
+            ],
+        });
+        self.step("sshgi panorama gather".to_owned(), Pipe::Panorama, group, panorama_slot(s.plan), dest);
+    }
+}
