@@ -71,6 +71,14 @@ pub const SHADERS: &[(&str, &str)] = &[
         "render/gi/sshgi/sshgi_panorama_gather.wgsl",
         include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_gather.wgsl"),
     ),
+    (
+        "render/gi/sshgi/sshgi_panorama_receive.wgsl",
+        include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_receive.wgsl"),
+    ),
+    (
+        "render/gi/sshgi/sshgi_panorama_common.wgsl",
+        include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_common.wgsl"),
+    ),
     ("render/lighting.wgsl", include_str!("../../shaders/render/lighting.wgsl")),
     ("render/vo/vo.wgsl", include_str!("../../shaders/render/vo/vo.wgsl")),
     ("render/vo/vo_blur.wgsl", include_str!("../../shaders/render/vo/vo_blur.wgsl")),

@@ -2,7 +2,8 @@
 // low-resolution cube G-buffer around the camera, lit by the same direct-light pass as the view,
 // turned into senders: per texel its world point, the area ds it stands for (a cube texel's solid
 // angle, (2/F)^2 / (1 + u^2 + v^2)^(3/2), times distance^2 over the tilt), its geometric normal and
-// outgoing radiance. A texel the view itself shows (its point projects into the view, and the
+// outgoing radiance (the first bounce's sender radiance; later bounces' come from
+// `sshgi_panorama_receive.wgsl`) and albedo. A texel the view itself shows (its point projects into the view, and the
 // view's depth there reaches the same distance within 5%) is left out (ds = 0): the screen's own
 // gathers send it.
 #import common/frame.wgsl
@@ -16,10 +17,10 @@ struct PackParams {
 struct Sender {
     // xyz the point, w the area ds it stands for (m^2; 0: no sender).
     point: vec4<f32>,
-    // rgb outgoing radiance, a unused.
-    radiance: vec4<f32>,
     // xyz geometric normal, w unused.
     normal: vec4<f32>,
+    // rgb albedo, a unused.
+    albedo: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> face_frame: Frame;
@@ -30,6 +31,9 @@ struct Sender {
 @group(0) @binding(5) var face_direct: texture_2d<f32>;
 @group(0) @binding(6) var view_depth: texture_depth_2d;
 @group(0) @binding(7) var<storage, read_write> senders: array<Sender>;
+// The senders' outgoing radiance of the first bounce (rgb).
+@group(0) @binding(8) var<storage, read_write> radiance: array<vec4<f32>>;
+@group(0) @binding(9) var face_albedo: texture_2d<f32>;
 
 // Whether the view shows the point p (inside its frustum, and its depth buffer reaches p).
 fn on_screen(p: vec3<f32>, dist: f32) -> bool {
@@ -58,6 +62,7 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let index = pp.face.x * f * f + id.y * f + id.x;
     var sender = Sender(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+    var light = vec4<f32>(0.0);
     let p = position_at(face_frame, face_depth, id.xy);
     if p.w > 0.5 {
         let cam = face_frame.camera_position.xyz;
@@ -68,8 +73,11 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
             let uv = (vec2<f32>(id.xy) + 0.5) / f32(f) * 2.0 - 1.0;
             let solid_angle = 4.0 / f32(f * f) / pow(1.0 + dot(uv, uv), 1.5);
             let ds = solid_angle * dist * dist / max(dot(n, -dir), 0.05);
-            sender = Sender(vec4<f32>(p.xyz, ds), vec4<f32>(textureLoad(face_direct, id.xy, 0).rgb, 0.0), vec4<f32>(n, 0.0));
+            let albedo = textureLoad(face_albedo, id.xy, 0).rgb;
+            sender = Sender(vec4<f32>(p.xyz, ds), vec4<f32>(n, 0.0), vec4<f32>(albedo, 0.0));
+            light = vec4<f32>(textureLoad(face_direct, id.xy, 0).rgb, 0.0);
         }
     }
     senders[index] = sender;
+    radiance[index] = light;
 }

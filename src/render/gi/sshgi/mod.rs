@@ -15,6 +15,7 @@ pub const SHADERS: &[&str] = &[
     "render/gi/sshgi/sshgi_mip.wgsl",
     "render/gi/sshgi/sshgi_panorama_gather.wgsl",
     "render/gi/sshgi/sshgi_panorama_pack.wgsl",
+    "render/gi/sshgi/sshgi_panorama_receive.wgsl",
     "render/gi/sshgi/sshgi_upsample.wgsl",
     "render/gi/sshgi/sshgi_voxel_mip.wgsl",
     "render/gi/sshgi/sshgi_voxelize.wgsl",
@@ -34,4 +35,5 @@ pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/gi/sshgi/sshgi_temporal.wgsl", "TemporalParams", size_of::<temporal::TemporalParams>()),
     ("render/gi/sshgi/sshgi_panorama_pack.wgsl", "PackParams", size_of::<panorama::PackParams>()),
     ("render/gi/sshgi/sshgi_panorama_gather.wgsl", "PanoramaParams", size_of::<panorama::PanoramaParams>()),
+    ("render/gi/sshgi/sshgi_panorama_receive.wgsl", "PanoramaParams", size_of::<panorama::PanoramaParams>()),
 ];

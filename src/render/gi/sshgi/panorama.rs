@@ -3,9 +3,11 @@
 //! frame the six faces (F x F texels, 90 degrees each) are rasterised with the view's G-buffer
 //! pass, lit by its direct-light pass (the same lights and shadow maps), and packed
 //! (`sshgi_panorama_pack.wgsl`) into a list of senders: the surfaces around the camera that the
-//! view does not show, each with its point, area, normal and outgoing radiance. The start level
-//! then gathers N of them per texel (`sshgi_panorama_gather.wgsl`) into the first bounce, so the
-//! later bounces carry that light on over the screen.
+//! view does not show, each with its point, area, normal, albedo and outgoing radiance. In every
+//! bounce the start level gathers N of them per texel (`sshgi_panorama_gather.wgsl`) beside
+//! the screen's own gathers, and the senders gather that bounce's light from the screen and
+//! from each other (`sshgi_panorama_receive.wgsl`) for their radiance of the next: light that
+//! leaves the view, lights a wall behind the camera and comes back is carried too.
 //!
 //! It reaches surfaces beside and behind the camera but not those hidden from the camera's
 //! position (the back of a pillar), and has no visibility: light passes through whatever lies
@@ -29,8 +31,10 @@ use crate::scene::{Camera, rotation_looking};
 /// The cube faces' view directions.
 const FACES: [Vec3; 6] = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z];
 
-/// Bytes of one sender (`Sender` in the WGSL: point and area, radiance, normal).
+/// Bytes of one sender (`Sender` in the WGSL: point and area, normal, albedo).
 const SENDER_BYTES: u64 = 48;
+/// Bytes of one sender's radiance (rgb and a pad).
+const RADIANCE_BYTES: u64 = 16;
 
 /// The pack's parameters (`PackParams` in `sshgi_panorama_pack.wgsl`).
 #[repr(C)]
@@ -40,16 +44,35 @@ pub struct PackParams {
     pub face: [u32; 4],
 }
 
-/// The gather's parameters (`PanoramaParams` in `sshgi_panorama_gather.wgsl`).
+/// The gather's and the receive's parameters (`PanoramaParams` in
+/// `sshgi_panorama_common.wgsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct PanoramaParams {
-    /// Senders in the list, samples per texel, frame seed, unused.
+    /// Senders in the list, samples per texel, frame seed, face size F.
     pub counts: [u32; 4],
+    /// The start level's width and height, unused x2.
+    pub screen: [u32; 4],
+    /// Solid angle of one start-level texel on the optical axis (sr), unused x3.
+    pub geo: [f32; 4],
+    /// The camera's forward axis, unused.
+    pub forward: [f32; 4],
+}
+
+/// What the panorama hands `sshgi`'s steps: the sender list, the ping-pong radiance buffers
+/// (the first holds the first bounce's after the pack) and their size.
+#[derive(Clone, Copy)]
+pub struct Senders<'a> {
+    pub list: &'a wgpu::Buffer,
+    pub radiance: [&'a wgpu::Buffer; 2],
+    /// Senders in the list (6 F^2).
+    pub count: u32,
+    /// The face size F.
+    pub face: u32,
 }
 
 const _: () = assert!(std::mem::size_of::<PackParams>() == 16);
-const _: () = assert!(std::mem::size_of::<PanoramaParams>() == 16);
+const _: () = assert!(std::mem::size_of::<PanoramaParams>() == 64);
 
 /// One cube face: its G-buffer and direct light, camera constants and bind groups.
 struct Face {
@@ -76,6 +99,7 @@ struct Faces {
     size: u32,
     faces: Vec<Face>,
     senders: wgpu::Buffer,
+    radiance: [wgpu::Buffer; 2],
     /// Per face: the lighting inputs' and the pack's bind groups, for the inputs they name.
     groups: Option<(GroupKey, Vec<(wgpu::BindGroup, wgpu::BindGroup)>)>,
 }
@@ -105,6 +129,8 @@ impl Panorama {
                 texture_entry(5, c, float),
                 texture_entry(6, c, wgpu::TextureSampleType::Depth),
                 storage_rw_entry(7),
+                storage_rw_entry(8),
+                texture_entry(9, c, float),
             ],
         });
         let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_pack.wgsl")?;
@@ -117,9 +143,8 @@ impl Panorama {
         })
     }
 
-    /// Renders, lights and packs the faces (`size` texels a side); returns the sender list and
-    /// its length.
-    pub fn record(&mut self, inputs: &mut GiInputs<'_>, size: u32) -> Option<(&wgpu::Buffer, u32)> {
+    /// Renders, lights and packs the faces (`size` texels a side); returns the senders.
+    pub fn record(&mut self, inputs: &mut GiInputs<'_>, size: u32) -> Option<Senders<'_>> {
         self.ensure(inputs.device, inputs.layouts, size);
         let Self { gbuffer, lighting, pack_layout, pack, faces } = self;
         let faces = faces.as_mut()?;
@@ -135,7 +160,9 @@ impl Panorama {
             let groups = faces
                 .faces
                 .iter()
-                .map(|f| face_groups(lighting, pack_layout, inputs.device, f, &key, &faces.senders))
+                .map(|f| {
+                    face_groups(lighting, pack_layout, inputs.device, f, &key, (&faces.senders, &faces.radiance[0]))
+                })
                 .collect();
             faces.groups = Some((key, groups));
         }
@@ -164,7 +191,9 @@ impl Panorama {
             pass.dispatch_workgroups(size.div_ceil(TILE), size.div_ceil(TILE), 1);
         }
         drop(pass);
-        Some((&faces.senders, faces.faces.len() as u32 * size * size))
+        let [first, second] = &faces.radiance;
+        let count = faces.faces.len() as u32 * size * size;
+        Some(Senders { list: &faces.senders, radiance: [first, second], count, face: size })
     }
 
     /// Creates the faces when their size changes.
@@ -173,13 +202,19 @@ impl Panorama {
             return;
         }
         let faces = (0..FACES.len() as u32).map(|i| self.face(device, layouts, i, size)).collect();
-        let senders = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("sshgi panorama senders"),
-            size: FACES.len() as u64 * u64::from(size * size) * SENDER_BYTES,
-            usage: wgpu::BufferUsages::STORAGE,
-            mapped_at_creation: false,
-        });
-        self.faces = Some(Faces { size, faces, senders, groups: None });
+        let count = FACES.len() as u64 * u64::from(size * size);
+        let buffer = |label: &str, bytes: u64| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: count * bytes,
+                usage: wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            })
+        };
+        let senders = buffer("sshgi panorama senders", SENDER_BYTES);
+        let radiance =
+            [buffer("sshgi panorama radiance", RADIANCE_BYTES), buffer("sshgi panorama radiance", RADIANCE_BYTES)];
+        self.faces = Some(Faces { size, faces, senders, radiance, groups: None });
     }
 
     /// Face `index`'s targets, constants and fixed bind groups.
@@ -226,7 +261,7 @@ impl Panorama {
                     .sum::<u64>()
             })
             .sum();
-        targets + f.senders.size()
+        targets + f.senders.size() + f.radiance.iter().map(wgpu::Buffer::size).sum::<u64>()
     }
 }
 
@@ -237,7 +272,7 @@ fn face_groups(
     device: &wgpu::Device,
     face: &Face,
     key: &GroupKey,
-    senders: &wgpu::Buffer,
+    (senders, radiance): (&wgpu::Buffer, &wgpu::Buffer),
 ) -> (wgpu::BindGroup, wgpu::BindGroup) {
     let lighting = lighting.inputs_bind_group(
         device,
@@ -261,6 +296,8 @@ fn face_groups(
             view(5, &face.targets.direct.view),
             view(6, &key.view_depth),
             wgpu::BindGroupEntry { binding: 7, resource: senders.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 8, resource: radiance.as_entire_binding() },
+            view(9, &face.targets.albedo.view),
         ],
     });
     (lighting, pack)
@@ -300,9 +337,34 @@ pub fn gather_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, 
             texture_entry(3, c, float),
             storage_texture_entry(4, formats::HDR),
             storage_entry(5, c),
+            storage_entry(6, c),
         ],
     });
     let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_gather.wgsl")?;
     let pipeline = compute_pipeline(device, "sshgi panorama gather", &layout, &module, "gather");
+    Ok((layout, pipeline))
+}
+
+/// The receive's bind group layout and pipeline (dispatched among `sshgi`'s steps after each
+/// bounce but the last): the view's frame constants, the parameter slot, the start level's
+/// geometry and this bounce's screen radiance, the sender list, this bounce's and the next
+/// bounce's sender radiance.
+pub fn receive_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
+    let c = wgpu::ShaderStages::COMPUTE;
+    let float = wgpu::TextureSampleType::Float { filterable: false };
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("sshgi panorama receive layout"),
+        entries: &[
+            uniform_entry(0, c, false),
+            uniform_entry(1, c, true),
+            texture_entry(2, c, float),
+            texture_entry(3, c, float),
+            storage_entry(4, c),
+            storage_entry(5, c),
+            storage_rw_entry(6),
+        ],
+    });
+    let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_receive.wgsl")?;
+    let pipeline = compute_pipeline(device, "sshgi panorama receive", &layout, &module, "receive");
     Ok((layout, pipeline))
 }

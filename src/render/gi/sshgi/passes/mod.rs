@@ -15,14 +15,15 @@ use crate::settings::SshgiSettings;
 
 mod steps;
 
+use super::panorama::{PanoramaParams, Senders};
 use steps::{StepBuilder, gather_slot, panorama_slot};
 
 /// Bytes between two parameter slots (WebGPU's minimum uniform offset alignment).
 const SLOT: u64 = 256;
 
-/// Parameter slots: 2 + levels + (bounces + 1) x levels + 1 <= 2 + 6 + 5 x 6 + 1 (the settings'
-/// ranges, with the inspector's unshadowed first bounce and the panorama's gather).
-const PARAM_SLOTS: u64 = 40;
+/// Parameter slots: 2 + levels + (bounces + 1) x levels + bounces <= 2 + 6 + 5 x 6 + 4 (the
+/// settings' ranges, with the inspector's unshadowed first bounce and the panorama's per bounce).
+const PARAM_SLOTS: u64 = 48;
 
 /// `MipParams` and `UpParams` in the shaders.
 #[repr(C)]
@@ -157,8 +158,9 @@ struct Sized {
     sums: [Target; 2],
     /// Start level: the first bounce gathered without visibility (when the plan asks).
     unshadowed: Option<Target>,
-    /// Start level: the screen's own first bounce, before the panorama's senders join it.
-    screen_bounce: Option<Target>,
+    /// Start level, per bounce: the screen's own gather, before the panorama's senders join it
+    /// (empty without the panorama).
+    screen_bounce: Vec<Target>,
     /// Which of `bounce[0]` and `sums` holds the bounces' sum.
     total: Total,
 }
@@ -183,6 +185,8 @@ pub struct SshgiPasses {
     upsample: wgpu::ComputePipeline,
     panorama_layout: wgpu::BindGroupLayout,
     panorama: wgpu::ComputePipeline,
+    receive_layout: wgpu::BindGroupLayout,
+    receive: wgpu::ComputePipeline,
     params: wgpu::Buffer,
     /// Bound in place of voxel columns when visibility is off.
     no_voxels: wgpu::Buffer,
@@ -203,8 +207,8 @@ struct Inputs {
     out: wgpu::TextureView,
     voxels: wgpu::Buffer,
     frame: wgpu::Buffer,
-    /// The panorama's sender list.
-    senders: Option<wgpu::Buffer>,
+    /// The panorama's sender list, radiance buffers and face size.
+    senders: Option<([wgpu::Buffer; 3], u32)>,
 }
 
 /// Which pipeline a [`Step`] runs.
@@ -217,6 +221,7 @@ enum Pipe {
     Gather,
     Upsample,
     Panorama,
+    Receive,
 }
 
 /// One dispatch: the (timed) pass it belongs to, its pipeline, bind group, parameter slot and
@@ -270,6 +275,7 @@ impl SshgiPasses {
         let gather = shaders::module(device, "render/gi/sshgi/sshgi_gather.wgsl")?;
         let up = shaders::module(device, "render/gi/sshgi/sshgi_upsample.wgsl")?;
         let (panorama_layout, panorama) = super::panorama::gather_pipeline(device)?;
+        let (receive_layout, receive) = super::panorama::receive_pipeline(device)?;
         Ok(Self {
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
             reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
@@ -279,6 +285,8 @@ impl SshgiPasses {
             upsample: compute_pipeline(device, "sshgi upsample", &up_layout, &up, "upsample"),
             panorama_layout,
             panorama,
+            receive_layout,
+            receive,
             params: device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("sshgi params"),
                 size: PARAM_SLOTS * SLOT,
@@ -317,7 +325,9 @@ impl SshgiPasses {
             bounce: (0..plan.bounces).map(|_| target("sshgi bounce", 0)).collect(),
             sums: [target("sshgi bounce sum", 0), target("sshgi bounce sum", 0)],
             unshadowed: plan.unshadowed.then(|| target("sshgi unshadowed bounce", 0)),
-            screen_bounce: plan.panorama.then(|| target("sshgi screen bounce", 0)),
+            screen_bounce: (0..if plan.panorama { plan.bounces } else { 0 })
+                .map(|_| target("sshgi screen bounce", 0))
+                .collect(),
             total: if plan.bounces > 1 { Total::Sum((plan.bounces as usize - 1) % 2) } else { Total::Bounce },
         });
     }
@@ -332,7 +342,7 @@ impl SshgiPasses {
         plan: Plan,
         axis: &ViewAxis,
         visibility: Option<&Visibility<'_>>,
-        panorama: Option<(&wgpu::Buffer, u32)>,
+        panorama: Option<Senders<'_>>,
         out: &Target,
     ) {
         let plan = Plan { panorama: plan.panorama && panorama.is_some(), ..plan };
@@ -344,13 +354,13 @@ impl SshgiPasses {
             out: out.view.clone(),
             voxels: visibility.map_or(&self.no_voxels, |v| v.columns).clone(),
             frame: inputs.frame_buffer.clone(),
-            senders: panorama.map(|(b, _)| b.clone()),
+            senders: panorama.map(|p| ([p.list.clone(), p.radiance[0].clone(), p.radiance[1].clone()], p.face)),
         };
         if self.steps.as_ref().is_none_or(|(k, _)| *k != key) {
             let steps = self.build_steps(inputs.device, &key);
             self.steps = Some((key, steps));
         }
-        self.write_params(inputs, plan, axis, visibility, panorama.map_or(0, |(_, n)| n));
+        self.write_params(inputs, plan, axis, visibility, panorama.map_or((0, 0), |p| (p.count, p.face)));
         let Some((_, steps)) = &self.steps else { return };
         // Consecutive steps of one pass share it: bounce 1's phases are timed one by one, a later
         // bounce as a whole.
@@ -370,6 +380,7 @@ impl SshgiPasses {
                 Pipe::Gather => &self.gather,
                 Pipe::Upsample => &self.upsample,
                 Pipe::Panorama => &self.panorama,
+                Pipe::Receive => &self.receive,
             });
             pass.set_bind_group(0, &step.group, &[step.slot * SLOT as u32]);
             pass.dispatch_workgroups(step.size.0.div_ceil(8), step.size.1.div_ceil(8), 1);
@@ -385,13 +396,13 @@ impl SshgiPasses {
         plan: Plan,
         axis: &ViewAxis,
         visibility: Option<&Visibility<'_>>,
-        senders: u32,
+        (senders, face): (u32, u32),
     ) {
         let settings = &inputs.settings.sshgi;
         let bytes = &mut self.staging;
         bytes.clear();
         let chains = plan.bounces as usize + usize::from(plan.unshadowed);
-        bytes.resize((panorama_slot(plan) as usize + 1) * SLOT as usize, 0);
+        bytes.resize((panorama_slot(plan, plan.bounces as usize) as usize) * SLOT as usize, 0);
         let mut put = |slot: u32, data: &[u8]| {
             let at = slot as usize * SLOT as usize;
             bytes[at..at + data.len()].copy_from_slice(data);
@@ -436,9 +447,16 @@ impl SshgiPasses {
                 put(gather_slot(plan, b as usize, k as usize), bytemuck::bytes_of(&p));
             }
         }
-        let seed = inputs.frame_index.wrapping_mul(0x9e37_79b9);
-        let counts = [senders, settings.panorama_samples, seed, 0];
-        put(panorama_slot(plan), bytemuck::bytes_of(&super::panorama::PanoramaParams { counts }));
+        for b in 0..plan.bounces {
+            let seed = inputs.frame_index.wrapping_mul(0x9e37_79b9).wrapping_add(b);
+            let p = PanoramaParams {
+                counts: [senders, settings.panorama_samples, seed, face],
+                screen: [start_size.0, start_size.1, 0, 0],
+                geo: [pixel_sr * (1u32 << (2 * plan.start)) as f32, 0.0, 0.0, 0.0],
+                forward: [forward.x, forward.y, forward.z, 0.0],
+            };
+            put(panorama_slot(plan, b as usize), bytemuck::bytes_of(&p));
+        }
         inputs.queue.write_buffer(&self.params, 0, bytes);
     }
 
@@ -452,8 +470,8 @@ impl SshgiPasses {
         let chains = (plan.unshadowed.then_some(plan.bounces as usize)).into_iter().chain(0..plan.bounces as usize);
         for b in chains {
             steps.chain(b);
-            if b == 0 && plan.panorama {
-                steps.panorama();
+            if plan.panorama && b < plan.bounces as usize {
+                steps.panorama(b);
             }
         }
         let total = steps.bounce_sum();
@@ -472,7 +490,7 @@ impl SshgiPasses {
                 });
             }
             "sshgi_unshadowed" => return s.unshadowed.as_ref().map(|t| &t.texture),
-            "sshgi_screen_bounce" => return s.screen_bounce.as_ref().map(|t| &t.texture),
+            "sshgi_screen_bounce" => return s.screen_bounce.first().map(|t| &t.texture),
             _ => {}
         }
         let (kind, index) = name.rsplit_once('_')?;

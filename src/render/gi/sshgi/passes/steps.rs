@@ -11,9 +11,10 @@ pub(super) fn gather_slot(plan: Plan, b: usize, k: usize) -> u32 {
     2 + plan.levels + (b * plan.levels as usize + k) as u32
 }
 
-/// The parameter slot of the panorama's gather: after every chain's gathers.
-pub(super) fn panorama_slot(plan: Plan) -> u32 {
-    gather_slot(plan, plan.bounces as usize + usize::from(plan.unshadowed), 0)
+/// The parameter slot of the panorama's gather and receive of bounce `b`: after every chain's
+/// gathers.
+pub(super) fn panorama_slot(plan: Plan, b: usize) -> u32 {
+    gather_slot(plan, plan.bounces as usize + usize::from(plan.unshadowed), 0) + b as u32
 }
 
 /// What the stages of [`SshgiPasses::build_steps`] share: the layouts and parameter buffer, the
@@ -120,12 +121,12 @@ impl<'a> StepBuilder<'a> {
     }
 
     /// One chain into its target: illumination levels, a gather per level, then up-sampling.
-    /// The first bounce goes to the screen bounce when the panorama joins it after.
+    /// A bounce goes to its screen bounce when the panorama joins it after.
     pub(super) fn chain(&mut self, b: usize) {
         let s = self.s;
-        let (first, out) = match (b == s.plan.bounces as usize, &s.unshadowed, &s.screen_bounce) {
+        let (first, out) = match (b == s.plan.bounces as usize, &s.unshadowed, s.screen_bounce.get(b)) {
             (true, Some(u), _) => (true, u),
-            (false, _, Some(screen)) if b == 0 => (true, screen),
+            (false, _, Some(screen)) => (b == 0, screen),
             _ => (b == 0, &s.bounce[b.min(s.bounce.len() - 1)]),
         };
         self.illumination(b, first);
@@ -218,24 +219,51 @@ impl<'a> StepBuilder<'a> {
         });
     }
 
-    /// The panorama's senders gathered into the first bounce: the screen bounce plus their
-    /// light ([`super::super::panorama`]).
-    pub(super) fn panorama(&mut self) {
+    /// The panorama's senders gathered into bounce `b` (its screen bounce plus their light),
+    /// then, but after the last bounce, the senders' radiance of the next bounce
+    /// ([`super::super::panorama`]).
+    pub(super) fn panorama(&mut self, b: usize) {
         let (s, key) = (self.s, self.key);
-        let (Some(screen), Some(senders)) = (&s.screen_bounce, &key.senders) else { return };
-        let dest = &s.bounce[0];
+        let (Some(screen), Some(([list, first, second], side))) = (s.screen_bounce.get(b), &key.senders) else {
+            return;
+        };
+        let (radiance, next) = if b % 2 == 0 { (first, second) } else { (second, first) };
+        let slot = panorama_slot(s.plan, b);
+        let dest = &s.bounce[b];
+        let texture =
+            |binding, view| wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(view) };
+        let buffer = |binding, b: &'a wgpu::Buffer| wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() };
         let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("sshgi panorama gather bind group"),
             layout: &self.passes.panorama_layout,
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(16) },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(self.geo(0)) },
-                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(&screen.view) },
-                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(&dest.view) },
-                wgpu::BindGroupEntry { binding: 5, resource: senders.as_entire_binding() },
+                buffer(0, &key.frame),
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(64) },
+                texture(2, self.geo(0)),
+                texture(3, &screen.view),
+                texture(4, &dest.view),
+                buffer(5, list),
+                buffer(6, radiance),
             ],
         });
-        self.step("sshgi panorama gather".to_owned(), Pipe::Panorama, group, panorama_slot(s.plan), dest);
+        self.step(self.pass(b, "sshgi panorama gather"), Pipe::Panorama, group, slot, dest);
+        if b + 1 >= s.plan.bounces as usize {
+            return;
+        }
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi panorama receive bind group"),
+            layout: &self.passes.receive_layout,
+            entries: &[
+                buffer(0, &key.frame),
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(64) },
+                texture(2, self.geo(0)),
+                texture(3, &s.illumination[0].view),
+                buffer(4, list),
+                buffer(5, radiance),
+                buffer(6, next),
+            ],
+        });
+        let pass = self.pass(b, "sshgi panorama receive");
+        self.steps.push(Step { pass, pipeline: Pipe::Receive, group, slot, size: (*side, 6 * side) });
     }
 }

@@ -1,0 +1,64 @@
+// sshgi panorama, receive (an extension of Soler et al. 2010, not in the paper): the panorama's
+// senders' outgoing radiance of the next bounce, albedo x E / pi, where E comes from this
+// bounce's senders on screen (N start-level texels, one per stratum, each with the texel area of
+// the screen gathers' Eq. 2) and in the panorama (N senders, `gather_senders`). So light that
+// leaves the screen, lights a surface off screen and comes back reaches the view in the later
+// bounces. No visibility.
+#import common/frame.wgsl
+#import common/octahedral.wgsl
+#import render/gi/sshgi/sshgi_panorama_common.wgsl
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<uniform> pg: PanoramaParams;
+// The depth/normal pyramid's start level.
+@group(0) @binding(2) var geometry: texture_2d<f32>;
+// The screen senders' outgoing radiance of this bounce, at the start level.
+@group(0) @binding(3) var illumination: texture_2d<f32>;
+@group(0) @binding(4) var<storage, read> senders: array<Sender>;
+// The panorama senders' outgoing radiance of this bounce.
+@group(0) @binding(5) var<storage, read> radiance: array<vec4<f32>>;
+// Their outgoing radiance of the next bounce.
+@group(0) @binding(6) var<storage, read_write> next: array<vec4<f32>>;
+
+// E / pi at x (normal nx) from N start-level texels of the screen, one per stratum.
+fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32) -> vec3<f32> {
+    let w = pg.screen.x;
+    let count = w * pg.screen.y;
+    let n = pg.counts.y;
+    let stratum = f32(count) / f32(n);
+    let cam = frame.camera_position.xyz;
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < n; i = i + 1u) {
+        let pick = min(u32((f32(i) + fract(jitter + f32(i) * 0.618034)) * stratum), count - 1u);
+        let t = vec2<u32>(pick % w, pick / w);
+        let g = textureLoad(geometry, t, 0);
+        if g.a < 0.5 {
+            continue;
+        }
+        let y = pyramid_point(frame, g);
+        let ny = oct_decode(g.gb);
+        let dir_y = (y - cam) / max(g.r, 1.0e-20);
+        let cos_a = max(dot(dir_y, pg.forward.xyz), 0.0);
+        let cos_b = max(dot(ny, -dir_y), 0.05);
+        let ds = pg.geo.x * cos_a * cos_a * cos_a * g.r * g.r / cos_b;
+        sum = sum + textureLoad(illumination, t, 0).rgb * disc_form_factor(y - x, nx, ny, ds);
+    }
+    return sum * stratum;
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
+    let f = pg.counts.w;
+    if id.x >= f || id.y >= 6u * f {
+        return;
+    }
+    let index = id.y * f + id.x;
+    let s = senders[index];
+    if s.point.w <= 0.0 {
+        next[index] = vec4<f32>(0.0);
+        return;
+    }
+    let jitter = hash01(id.x, id.y, pg.counts.z ^ 0x68bc21ebu);
+    let e = gather_screen(s.point.xyz, s.normal.xyz, jitter) + gather_senders(s.point.xyz, s.normal.xyz, fract(jitter + 0.5));
+    next[index] = vec4<f32>(s.albedo.rgb * e, 0.0);
+}
