@@ -41,6 +41,7 @@ mod rcs;
 mod reference;
 mod shaders;
 mod sshgi;
+mod sshgi_panorama;
 mod suite;
 mod textures;
 mod undo;

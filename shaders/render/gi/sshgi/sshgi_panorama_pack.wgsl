@@ -3,9 +3,8 @@
 // turned into senders: per texel its world point, the area ds it stands for (a cube texel's solid
 // angle, (2/F)^2 / (1 + u^2 + v^2)^(3/2), times distance^2 over the tilt), its geometric normal and
 // outgoing radiance (the first bounce's sender radiance; later bounces' come from
-// `sshgi_panorama_receive.wgsl`) and albedo. A texel the view itself shows (its point projects into the view, and the
-// view's depth there reaches the same distance within 5%) is left out (ds = 0): the screen's own
-// gathers send it.
+// `sshgi_panorama_receive.wgsl`) and albedo. A texel inside the view's frustum is left out
+// (ds = 0): the view shows it, and the screen's own gathers send it.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 
@@ -29,29 +28,22 @@ struct Sender {
 @group(0) @binding(3) var face_depth: texture_depth_2d;
 @group(0) @binding(4) var face_normal: texture_2d<f32>;
 @group(0) @binding(5) var face_direct: texture_2d<f32>;
-@group(0) @binding(6) var view_depth: texture_depth_2d;
 @group(0) @binding(7) var<storage, read_write> senders: array<Sender>;
 // The senders' outgoing radiance of the first bounce (rgb).
 @group(0) @binding(8) var<storage, read_write> radiance: array<vec4<f32>>;
 @group(0) @binding(9) var face_albedo: texture_2d<f32>;
 
-// Whether the view shows the point p (inside its frustum, and its depth buffer reaches p).
-fn on_screen(p: vec3<f32>, dist: f32) -> bool {
+// Whether the view shows the point p: whether it lies inside the view's frustum. The faces are
+// rendered from the view's own centre of projection, so what a face sees inside that frustum is
+// what the view sees (up to their sampling); comparing depths instead lets silhouettes, where
+// the two samplings land on different surfaces, through twice.
+fn on_screen(p: vec3<f32>) -> bool {
     let clip = view_frame.clip_from_world * vec4<f32>(p, 1.0);
     if clip.w <= 0.0 {
         return false;
     }
     let ndc = clip.xyz / clip.w;
-    if any(abs(ndc.xy) > vec2<f32>(1.0)) || ndc.z < 0.0 || ndc.z > 1.0 {
-        return false;
-    }
-    let size = vec2<u32>(view_frame.size.xy);
-    let pixel = min(vec2<u32>(vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * view_frame.size.xy), size - 1u);
-    let seen = position_at(view_frame, view_depth, pixel);
-    if seen.w < 0.5 {
-        return false;
-    }
-    return abs(distance(seen.xyz, view_frame.camera_position.xyz) - dist) <= 0.05 * dist;
+    return all(abs(ndc.xy) <= vec2<f32>(1.0)) && ndc.z >= 0.0 && ndc.z <= 1.0;
 }
 
 @compute @workgroup_size(8, 8, 1)
@@ -69,7 +61,7 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
         let dist = distance(p.xyz, cam);
         let n = oct_decode(textureLoad(face_normal, id.xy, 0).zw);
         let dir = (p.xyz - cam) / max(dist, 1.0e-20);
-        if !on_screen(p.xyz, dist) && dot(n, -dir) > 0.0 {
+        if !on_screen(p.xyz) && dot(n, -dir) > 0.0 {
             let uv = (vec2<f32>(id.xy) + 0.5) / f32(f) * 2.0 - 1.0;
             let solid_angle = 4.0 / f32(f * f) / pow(1.0 + dot(uv, uv), 1.5);
             let ds = solid_angle * dist * dist / max(dot(n, -dir), 0.05);

@@ -1,6 +1,7 @@
 //! `sshgi`: screen-space hierarchical indirect light (Soler, Hoel, Rochet and Holzschuch 2010). A purely deferred technique: its cost does
 //! not depend on the scene's geometry or lights, every light type feeds it through the direct
-//! term, and it adds several bounces, but only surfaces on screen send light.
+//! term, and it adds several bounces, but in the paper only surfaces on screen send light; the
+//! panorama ([`panorama`], not in the paper) adds the surfaces around the camera off screen.
 
 pub mod oracle;
 pub mod panorama;

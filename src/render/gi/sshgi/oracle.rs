@@ -51,7 +51,8 @@ pub fn first_bounce(
 ) -> Result<GatherReport, RenderError> {
     let mut render = project.render.clone();
     render.mode = GiMode::Sshgi;
-    render.sshgi = SshgiSettings { bounces: 1, temporal_weight: 0.0, ..settings.clone() };
+    // The screen's own gather: the panorama's senders are not what it approximates.
+    render.sshgi = SshgiSettings { bounces: 1, temporal_weight: 0.0, panorama: 0, ..settings.clone() };
     let levels = render.sshgi.levels as usize;
     let frames = frames.max(1);
     let (mut bounce, mut gathers, mut carried) = (None::<HdrImage>, vec![0.0f64; levels], vec![0.0f64; levels]);

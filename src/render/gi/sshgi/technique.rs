@@ -2,7 +2,7 @@
 //! pyramid, runs [`super::passes`] and returns E / pi for the composite to multiply by albedo.
 
 use super::panorama::Panorama;
-use super::passes::{Plan, SshgiPasses, ViewAxis, Visibility};
+use super::passes::{Plan, Sources, SshgiPasses, ViewAxis, Visibility};
 use super::temporal::TemporalPass;
 use super::voxels::{VoxelParams, VoxelPass, automatic_range};
 use crate::image_io::HdrImage;
@@ -197,13 +197,14 @@ impl GiTechnique for SshgiTechnique {
             None
         };
         let targets = inputs.targets;
+        let sources = Sources { axis: &axis, visibility: visibility.as_ref(), panorama };
         if settings.temporal_weight > 0.0 {
             self.temporal.ensure(inputs.device, targets.size);
             let Some(current) = self.temporal.current() else { return Ok(GiOutput::Nothing) };
-            self.passes.record(inputs, pyramid, plan, &axis, visibility.as_ref(), panorama, current);
+            self.passes.record(inputs, pyramid, plan, &sources, current);
             self.temporal.record(inputs, settings.temporal_weight, settings.temporal_two_tap);
         } else {
-            self.passes.record(inputs, pyramid, plan, &axis, visibility.as_ref(), panorama, &targets.indirect);
+            self.passes.record(inputs, pyramid, plan, &sources, &targets.indirect);
         }
         self.status.history_frames = self.status.history_frames.saturating_add(1);
         // The history has converged when the first frame's weight a^n is below 1%.
@@ -299,9 +300,14 @@ impl GiTechnique for SshgiTechnique {
         self.passes.gpu_bytes() + self.panorama.gpu_bytes() + self.voxels.gpu_bytes() + self.temporal.gpu_bytes()
     }
 
-    fn limitations(&self, _scene: &Scene, _settings: &RenderSettings) -> Vec<String> {
+    fn limitations(&self, _scene: &Scene, settings: &RenderSettings) -> Vec<String> {
+        let senders = if settings.sshgi.panorama > 0 {
+            "surfaces hidden from the camera's position send no indirect light; those off screen send it through the panorama, without indirect shadows"
+        } else {
+            "only surfaces on screen send indirect light: off-screen and hidden senders are missing (the panorama setting adds those off screen)"
+        };
         vec![
-            "only surfaces on screen send indirect light: off-screen and hidden senders are missing".to_owned(),
+            senders.to_owned(),
             "indirect shadows come from a voxelisation of the view: occluders hidden behind others or off screen cast none, and meshes must be closed".to_owned(),
             "senders are diffuse: they send the direct term's outgoing radiance".to_owned(),
         ]

@@ -106,6 +106,15 @@ impl ViewAxis {
     }
 }
 
+/// What a frame's gathers read besides the pyramid: the view's axis, the voxel columns (when
+/// visibility is on) and the panorama's senders (when it is on).
+#[derive(Clone, Copy)]
+pub struct Sources<'a> {
+    pub axis: &'a ViewAxis,
+    pub visibility: Option<&'a Visibility<'a>>,
+    pub panorama: Option<Senders<'a>>,
+}
+
 /// The levels a frame gathers: which pyramid level starts, how many, how many bounces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Plan {
@@ -340,11 +349,10 @@ impl SshgiPasses {
         inputs: &mut GiInputs<'_>,
         pyramid: &[Target],
         plan: Plan,
-        axis: &ViewAxis,
-        visibility: Option<&Visibility<'_>>,
-        panorama: Option<Senders<'_>>,
+        sources: &Sources<'_>,
         out: &Target,
     ) {
+        let Sources { axis, visibility, panorama } = *sources;
         let plan = Plan { panorama: plan.panorama && panorama.is_some(), ..plan };
         self.ensure(inputs.device, plan);
         let key = Inputs {

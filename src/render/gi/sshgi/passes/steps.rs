@@ -227,7 +227,7 @@ impl<'a> StepBuilder<'a> {
         let (Some(screen), Some(([list, first, second], side))) = (s.screen_bounce.get(b), &key.senders) else {
             return;
         };
-        let (radiance, next) = if b % 2 == 0 { (first, second) } else { (second, first) };
+        let (radiance, next) = if b.is_multiple_of(2) { (first, second) } else { (second, first) };
         let slot = panorama_slot(s.plan, b);
         let dest = &s.bounce[b];
         let texture =
