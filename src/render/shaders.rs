@@ -75,6 +75,7 @@ pub const SHADERS: &[(&str, &str)] = &[
         "render/gi/sshgi/sshgi_panorama_receive.wgsl",
         include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_receive.wgsl"),
     ),
+    ("render/gi/sshgi/sshgi_hash.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_hash.wgsl")),
     (
         "render/gi/sshgi/sshgi_panorama_common.wgsl",
         include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_common.wgsl"),

@@ -11,6 +11,7 @@
 // marched through the view's voxel columns (`sshgi_visibility.wgsl`).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
+#import render/gi/sshgi/sshgi_hash.wgsl
 
 struct GatherParams {
     // pyramid level l of this level, ring (0: full disc), samples N, frame seed.
@@ -42,13 +43,6 @@ struct GatherParams {
 const PI: f32 = 3.14159265358979;
 const GOLDEN_ANGLE: f32 = 2.39996322972865;
 
-// A hash of (x, y, seed) to [0, 1) (PCG, Jarzynski & Olano 2020).
-fn hash01(x: u32, y: u32, seed: u32) -> f32 {
-    var v = x * 747796405u + y * 2891336453u + seed * 277803737u + 1442695041u;
-    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
-    v = (v >> 22u) ^ v;
-    return f32(v >> 8u) / 16777216.0;
-}
 
 @compute @workgroup_size(8, 8, 1)
 fn gather(@builtin(global_invocation_id) id: vec3<u32>) {

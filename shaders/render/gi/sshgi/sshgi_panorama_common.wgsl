@@ -2,6 +2,8 @@
 // `sshgi_panorama_receive.wgsl`): the parameters, the sender list and the estimate of E / pi at a
 // point from the senders. The including shader binds `pg`, `senders` and `radiance`.
 
+#import render/gi/sshgi/sshgi_hash.wgsl
+
 struct PanoramaParams {
     // senders in the list S, samples N, frame seed, face size F.
     counts: vec4<u32>,
@@ -24,13 +26,6 @@ struct Sender {
 
 const PI: f32 = 3.14159265358979;
 
-// A hash of (x, y, seed) to [0, 1) (PCG, Jarzynski & Olano 2020).
-fn hash01(x: u32, y: u32, seed: u32) -> f32 {
-    var v = x * 747796405u + y * 2891336453u + seed * 277803737u + 1442695041u;
-    v = ((v >> ((v >> 28u) + 4u)) ^ v) * 277803737u;
-    v = (v >> 22u) ^ v;
-    return f32(v >> 8u) / 16777216.0;
-}
 
 // The bounded disc form factor of a sender of area ds at offset v from a receiver of normal nx
 // with sender normal ns (Eq. 4; R^2 = cos(theta') ds / pi): E / pi per unit radiance.

@@ -335,26 +335,12 @@ fn write_frames(queue: &wgpu::Queue, faces: &Faces, view: &FrameUniforms, camera
 
 /// The gather's bind group layout and pipeline (dispatched among `sshgi`'s steps,
 /// [`super::passes`]): the view's frame constants, its parameters (a dynamic slot of the
-/// steps' parameter buffer), the start level's geometry, the screen's first bounce, the output
-/// and the sender list.
+/// steps' parameter buffer), the start level's geometry, the screen's bounce, the output, the
+/// sender list and the senders' radiance of the bounce.
 pub fn gather_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
     let c = wgpu::ShaderStages::COMPUTE;
-    let float = wgpu::TextureSampleType::Float { filterable: false };
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("sshgi panorama gather layout"),
-        entries: &[
-            uniform_entry(0, c, false),
-            uniform_entry(1, c, true),
-            texture_entry(2, c, float),
-            texture_entry(3, c, float),
-            storage_texture_entry(4, formats::HDR),
-            storage_entry(5, c),
-            storage_entry(6, c),
-        ],
-    });
-    let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_gather.wgsl")?;
-    let pipeline = compute_pipeline(device, "sshgi panorama gather", &layout, &module, "gather");
-    Ok((layout, pipeline))
+    let rest = [storage_texture_entry(4, formats::HDR), storage_entry(5, c), storage_entry(6, c)];
+    step_pipeline(device, "sshgi panorama gather", "render/gi/sshgi/sshgi_panorama_gather.wgsl", "gather", &rest)
 }
 
 /// The receive's bind group layout and pipeline (dispatched among `sshgi`'s steps after each
@@ -363,20 +349,29 @@ pub fn gather_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, 
 /// bounce's sender radiance.
 pub fn receive_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
     let c = wgpu::ShaderStages::COMPUTE;
+    let rest = [storage_entry(4, c), storage_entry(5, c), storage_rw_entry(6)];
+    step_pipeline(device, "sshgi panorama receive", "render/gi/sshgi/sshgi_panorama_receive.wgsl", "receive", &rest)
+}
+
+/// A pipeline whose bindings start with the view's frame constants, a dynamic parameter slot
+/// and two start-level textures, followed by `rest`.
+fn step_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    file: &str,
+    entry: &str,
+    rest: &[wgpu::BindGroupLayoutEntry],
+) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
+    let c = wgpu::ShaderStages::COMPUTE;
     let float = wgpu::TextureSampleType::Float { filterable: false };
+    let mut entries = vec![uniform_entry(0, c, false), uniform_entry(1, c, true)];
+    entries.extend([texture_entry(2, c, float), texture_entry(3, c, float)]);
+    entries.extend_from_slice(rest);
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("sshgi panorama receive layout"),
-        entries: &[
-            uniform_entry(0, c, false),
-            uniform_entry(1, c, true),
-            texture_entry(2, c, float),
-            texture_entry(3, c, float),
-            storage_entry(4, c),
-            storage_entry(5, c),
-            storage_rw_entry(6),
-        ],
+        label: Some(&format!("{label} layout")),
+        entries: &entries,
     });
-    let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_receive.wgsl")?;
-    let pipeline = compute_pipeline(device, "sshgi panorama receive", &layout, &module, "receive");
+    let module = shaders::module(device, file)?;
+    let pipeline = compute_pipeline(device, label, &layout, &module, entry);
     Ok((layout, pipeline))
 }
