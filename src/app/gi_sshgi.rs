@@ -37,7 +37,7 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
         .on_hover_text("The 128 slices cover this view depth; occluders thinner than a slice can vanish.");
         let mut panorama = m.panorama > 0;
         ui.checkbox(&mut panorama, "panorama: light from surfaces off screen")
-            .on_hover_text("Not in the paper. A cube G-buffer around the camera: the surfaces beside and behind the view send light too, in every bounce (the suite's window room: 0.60 to 0.87 of the path tracer's energy, hall 0.73 to 0.82, clutter 0.60 to 0.72). It cannot see what is hidden from the camera's position, and its light has no indirect shadows. Cost: six small G-buffer and lighting passes and two gathers per bounce (lavapipe: sshgi's frame x1.7).");
+            .on_hover_text("Not in the paper. A cube G-buffer around the camera: the surfaces beside and behind the view send light too, in every bounce (the suite's window room: 0.60 to 0.88 of the path tracer's energy, hall 0.73 to 0.82, clutter 0.60 to 0.72). It cannot see what is hidden from the camera's position, and its light has no indirect shadows. Cost: six small G-buffer and lighting passes and two gathers per bounce (lavapipe: sshgi's frame x1.7).");
         if panorama != (m.panorama > 0) {
             m.panorama = if panorama { 32 } else { 0 };
         }
