@@ -28,10 +28,10 @@ struct Sender {
 @group(0) @binding(3) var face_depth: texture_depth_2d;
 @group(0) @binding(4) var face_normal: texture_2d<f32>;
 @group(0) @binding(5) var face_direct: texture_2d<f32>;
-@group(0) @binding(7) var<storage, read_write> senders: array<Sender>;
+@group(0) @binding(6) var<storage, read_write> senders: array<Sender>;
 // The senders' outgoing radiance of the first bounce (rgb).
-@group(0) @binding(8) var<storage, read_write> radiance: array<vec4<f32>>;
-@group(0) @binding(9) var face_albedo: texture_2d<f32>;
+@group(0) @binding(7) var<storage, read_write> radiance: array<vec4<f32>>;
+@group(0) @binding(8) var face_albedo: texture_2d<f32>;
 
 // Whether the view shows the point p: whether it lies inside the view's frustum. The faces are
 // rendered from the view's own centre of projection, so what a face sees inside that frustum is

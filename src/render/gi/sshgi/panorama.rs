@@ -126,9 +126,9 @@ impl Panorama {
                 texture_entry(3, c, wgpu::TextureSampleType::Depth),
                 texture_entry(4, c, float),
                 texture_entry(5, c, float),
+                storage_rw_entry(6),
                 storage_rw_entry(7),
-                storage_rw_entry(8),
-                texture_entry(9, c, float),
+                texture_entry(8, c, float),
             ],
         });
         let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_pack.wgsl")?;
@@ -292,9 +292,9 @@ fn face_groups(
             view(3, &face.targets.depth.view),
             view(4, &face.targets.normal.view),
             view(5, &face.targets.direct.view),
-            wgpu::BindGroupEntry { binding: 7, resource: senders.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 8, resource: radiance.as_entire_binding() },
-            view(9, &face.targets.albedo.view),
+            wgpu::BindGroupEntry { binding: 6, resource: senders.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 7, resource: radiance.as_entire_binding() },
+            view(8, &face.targets.albedo.view),
         ],
     });
     (lighting, pack)
