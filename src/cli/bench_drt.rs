@@ -101,7 +101,7 @@ pub fn drt_rows(md: &mut String, ctx: &GpuContext, quick: bool) -> anyhow::Resul
     let _ = writeln!(md, "| mrt | energy | FLIP | relMSE |");
     let _ = writeln!(md, "|---|---|---|---|");
     for (name, p) in variants {
-        let (image, _) = super::quality::render_project(ctx, p, GiMode::Mrt)?;
+        let image = super::quality::render_project(ctx, p, GiMode::Mrt)?.image;
         let m = crate::metrics::compare(&image, &reference, ev)?;
         let _ = writeln!(md, "| {name} | {:.3} | {:.4} | {:.4} |", m.luminance_ratio, m.flip, m.relmse);
     }

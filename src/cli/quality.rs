@@ -27,6 +27,8 @@ const FILL_FRAMES: usize = 128;
 const FRAMES: usize = 32;
 /// Frames rendered per mode without history (the timing takes the last eight).
 const STATIC_FRAMES: usize = 9;
+/// A temporal mode's frames from this index on count as settled (frames 9-32: 24 frames).
+const SETTLED_FROM: usize = 8;
 /// Supersampling per axis, as the reference's box-filtered pixels.
 const SSAA: u32 = 2;
 
@@ -38,11 +40,48 @@ struct Cell {
     energy: f64,
     frame_ms: f64,
     image: HdrImage,
+    /// A temporal mode's settled frames, judged one by one.
+    settled: Option<Settled>,
+}
+
+/// A temporal mode's settled frames against the reference (`docs/QUALITY.md`'s second table).
+struct Settled {
+    /// The energy of the frame furthest from the reference's.
+    worst: f64,
+    /// The frames' energies: standard deviation over mean.
+    spread: f64,
+    /// `metrics::temporal_instability` against the static reference.
+    instability: f64,
+}
+
+impl Settled {
+    /// The figures of `frames` against `reference`; `None` for fewer than two frames.
+    fn of(frames: &[HdrImage], reference: &HdrImage) -> anyhow::Result<Option<Self>> {
+        if frames.len() < 2 {
+            return Ok(None);
+        }
+        let energies = frames.iter().map(|f| metrics::luminance_ratio(f, reference)).collect::<Result<Vec<_>, _>>()?;
+        let worst = energies.iter().copied().fold(1.0f64, |w, e| if (e - 1.0).abs() > (w - 1.0).abs() { e } else { w });
+        let mean = energies.iter().sum::<f64>() / energies.len() as f64;
+        let var = energies.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / energies.len() as f64;
+        let spread = if mean > 0.0 { var.sqrt() / mean } else { 0.0 };
+        let statics = [reference.clone(), reference.clone()];
+        let instability = metrics::temporal_instability(frames, &statics)?;
+        Ok(Some(Self { worst, spread, instability }))
+    }
+}
+
+/// A mode's render of a scene: the last frame, the median frame time of the last eight, and a
+/// temporal mode's settled frames (each box-filtered to the reference's size).
+pub(crate) struct Rendered {
+    pub image: HdrImage,
+    pub frame_ms: f64,
+    pub settled: Vec<HdrImage>,
 }
 
 /// Renders `scene` in `mode`: the last of [`FRAMES`] frames, box-filtered to the reference's
 /// size, and the median wall-clock frame time of the last eight.
-fn render(ctx: &GpuContext, scene: &SuiteScene, root: &Path, mode: GiMode) -> anyhow::Result<(HdrImage, f64)> {
+fn render(ctx: &GpuContext, scene: &SuiteScene, root: &Path, mode: GiMode) -> anyhow::Result<Rendered> {
     render_project(ctx, scene.load(root)?, mode)
 }
 
@@ -51,7 +90,7 @@ pub(crate) fn render_project(
     ctx: &GpuContext,
     mut project: crate::project_file::Project,
     mode: GiMode,
-) -> anyhow::Result<(HdrImage, f64)> {
+) -> anyhow::Result<Rendered> {
     project.render.mode = mode;
     let size = (REFERENCE_SIZE.0 * SSAA, REFERENCE_SIZE.1 * SSAA);
     let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
@@ -60,7 +99,8 @@ pub(crate) fn render_project(
     let mut times = Vec::new();
     let mut first = super::render::until_ready(&mut r, &project, size)? as usize;
     let mut end = frames;
-    if registry::entry(mode).is_some_and(|e| e.fill_before_final) {
+    let fills = registry::entry(mode).is_some_and(|e| e.fill_before_final);
+    if fills {
         // The cache fills and its bounce passes converge first; nine more frames reuse it.
         while first < FILL_FRAMES && (first == 0 || r.technique_status().is_some_and(|s| s.refining)) {
             r.render(&project.scene, &project.render, size)?;
@@ -68,6 +108,11 @@ pub(crate) fn render_project(
         }
         end = first + STATIC_FRAMES;
     }
+    let read = |r: &Renderer| -> anyhow::Result<HdrImage> {
+        let pixels = image_io::box_downsample(&r.read_hdr()?, size, SSAA);
+        Ok(HdrImage { width: REFERENCE_SIZE.0, height: REFERENCE_SIZE.1, pixels })
+    };
+    let mut settled = Vec::new();
     for f in first..end {
         let t = Instant::now();
         r.render(&project.scene, &project.render, size)?;
@@ -75,9 +120,11 @@ pub(crate) fn render_project(
         if f + 8 >= end {
             times.push(t.elapsed().as_secs_f64() * 1e3);
         }
+        if temporal && !fills && f >= SETTLED_FROM {
+            settled.push(read(&r)?);
+        }
     }
-    let pixels = image_io::box_downsample(&r.read_hdr()?, size, SSAA);
-    Ok((HdrImage { width: REFERENCE_SIZE.0, height: REFERENCE_SIZE.1, pixels }, median(times)))
+    Ok(Rendered { image: read(&r)?, frame_ms: median(times), settled })
 }
 
 /// The judging exposure; it lives in [`metrics::judging_exposure`] so tests and examples use it
@@ -99,10 +146,19 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
         let ev = exposure(&reference);
         let mut cells = Vec::new();
         for mode in modes() {
-            let (image, frame_ms) = render(&ctx, scene, root, mode)?;
+            let Rendered { image, frame_ms, settled } = render(&ctx, scene, root, mode)?;
             // FLIP compares display images: expose each scene as the sheet shows it.
             let c = metrics::compare(&image, &reference, ev)?;
-            cells.push(Cell { mode, flip: c.flip, relmse: c.relmse, energy: c.luminance_ratio, frame_ms, image });
+            let settled = Settled::of(&settled, &reference)?;
+            cells.push(Cell {
+                mode,
+                flip: c.flip,
+                relmse: c.relmse,
+                energy: c.luminance_ratio,
+                frame_ms,
+                image,
+                settled,
+            });
             eprintln!("{}: {} FLIP {:.4} energy {:.3}", scene.name, mode.name(), c.flip, c.luminance_ratio);
         }
         rows.push((scene, reference, cells));
@@ -144,6 +200,7 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
             );
         }
     }
+    settled_table(&mut md, &rows);
     let sheet = out.with_file_name("quality_sheet.png");
     let _ = writeln!(
         md,
@@ -154,6 +211,37 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
     write_sheet(&sheet, &rows)?;
     crate::atomic_file::write(out, md.as_bytes())?;
     Ok(md)
+}
+
+/// The second table: each temporal mode's settled frames per scene.
+fn settled_table(md: &mut String, rows: &[(&SuiteScene, HdrImage, Vec<Cell>)]) {
+    let _ = writeln!(
+        md,
+        "\n## Settled frames\n\nThe temporal modes' frames {}-{FRAMES} ({} frames after the history has settled; `rcs` fills \
+         its cache first and is left out), each judged on its own: the energy of the frame furthest from the \
+         reference's, the spread of the frames' energies (standard deviation over mean), and `metrics::temporal`'s \
+         instability against the static reference (mean absolute change of luminance between consecutive frames; 0 \
+         is steady).\n",
+        SETTLED_FROM + 1,
+        FRAMES - SETTLED_FROM
+    );
+    let _ = writeln!(md, "| scene | mode | worst frame's energy | energy spread | temporal instability |");
+    let _ = writeln!(md, "|---|---|---|---|---|");
+    for (scene, _, cells) in rows {
+        for c in cells {
+            if let Some(s) = &c.settled {
+                let _ = writeln!(
+                    md,
+                    "| {} | `{}` | {:.3} | {:.1}% | {:.5} |",
+                    scene.name,
+                    c.mode.name(),
+                    s.worst,
+                    100.0 * s.spread,
+                    s.instability
+                );
+            }
+        }
+    }
 }
 
 /// The contact sheet ([`super::sheet`]): per scene the reference and each mode, each mode's
