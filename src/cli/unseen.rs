@@ -51,7 +51,7 @@ pub fn run(args: &UnseenArgs) -> anyhow::Result<String> {
     );
     let _ = writeln!(
         out,
-        "| scene | indirect / all | first sender on screen | off screen | of which its direct light | hidden | every sender on screen | seconds |"
+        "| scene | indirect / all | first sender on screen | off screen | of which its direct light | hidden | every sender on screen | ms |"
     );
     let _ = writeln!(out, "|---|---|---|---|---|---|---|---|");
     let cancel = AtomicBool::new(false);
@@ -62,14 +62,14 @@ pub fn run(args: &UnseenArgs) -> anyhow::Result<String> {
         let all = s.direct + s.indirect();
         let _ = writeln!(
             out,
-            "| {name} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} |",
+            "| {name} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.0} |",
             if all > 0.0 { s.indirect() / all } else { 0.0 },
             s.share(s.on_screen),
             s.share(s.off_screen),
             s.share(s.off_screen_direct),
             s.share(s.hidden),
             s.share(s.screen),
-            start.elapsed().as_secs_f64()
+            start.elapsed().as_secs_f64() * 1e3
         );
     }
     Ok(out)

@@ -96,7 +96,7 @@ pub fn unseen_share(scene: &Scene, size: (u32, u32), spp: u32, cancel: &AtomicBo
     let settings = ReferenceSettings { spp, ..ReferenceSettings::default() };
     let seed = settings.seed;
     let tracer = PathTracer::new(scene, size, settings);
-    let aspect = size.0 as f32 / size.1.max(1) as f32;
+    let frustum = Frustum::of(tracer.camera(), size);
     let rows: Vec<[f64; 6]> = (0..size.1)
         .into_par_iter()
         .map(|y| {
@@ -111,7 +111,7 @@ pub fn unseen_share(scene: &Scene, size: (u32, u32), spp: u32, cancel: &AtomicBo
                     let dir = tracer.camera_ray(x as f32, y as f32, &mut rng);
                     let mut path = Path { sums: &mut sum, first: None, all_on_screen: true };
                     tracer.walk(tracer.camera().position, dir, &mut rng, |v| {
-                        path.add(&v, || classify(tracer.camera(), aspect, tracer.bvh(), v.p, v.ng));
+                        path.add(&v, || frustum.classify(tracer.bvh(), v.p, v.ng));
                     });
                 }
             }
@@ -170,21 +170,39 @@ impl Path<'_> {
     }
 }
 
-/// Whether the camera's view shows the point `p` (geometric normal `ng`).
-fn classify(camera: &Camera, aspect: f32, bvh: &SceneBvh, p: Vec3, ng: Vec3) -> Sender {
-    let local = camera.view_from_world().transform_point3(p);
-    let depth = -local.z;
-    let t = (0.5 * camera.yfov).tan();
-    if depth <= camera.znear || local.x.abs() > depth * t * aspect || local.y.abs() > depth * t {
-        return Sender::OffScreen;
+/// The view's frustum, with what [`Frustum::classify`] needs computed once per measure.
+struct Frustum {
+    position: Vec3,
+    view_from_world: glam::Mat4,
+    /// tan of half the vertical field of view, and that times the aspect.
+    tan_y: f32,
+    tan_x: f32,
+    znear: f32,
+}
+
+impl Frustum {
+    fn of(camera: &Camera, size: (u32, u32)) -> Self {
+        let tan_y = (0.5 * camera.yfov).tan();
+        let aspect = size.0 as f32 / size.1.max(1) as f32;
+        let view_from_world = camera.view_from_world();
+        Self { position: camera.position, view_from_world, tan_y, tan_x: tan_y * aspect, znear: camera.znear }
     }
-    let to = p - camera.position;
-    let dist = to.length();
-    if ng.dot(-to) <= 0.0 {
-        return Sender::Hidden; // The camera sees its back: the screen shows another side.
+
+    /// Whether the view shows the point `p` (geometric normal `ng`).
+    fn classify(&self, bvh: &SceneBvh, p: Vec3, ng: Vec3) -> Sender {
+        let local = self.view_from_world.transform_point3(p);
+        let depth = -local.z;
+        if depth <= self.znear || local.x.abs() > depth * self.tan_x || local.y.abs() > depth * self.tan_y {
+            return Sender::OffScreen;
+        }
+        let to = p - self.position;
+        let dist = to.length();
+        if ng.dot(-to) <= 0.0 {
+            return Sender::Hidden; // The camera sees its back: the screen shows another side.
+        }
+        let eps = 1e-3 * bvh.scale;
+        if bvh.occluded(self.position, to / dist, dist - eps) { Sender::Hidden } else { Sender::OnScreen }
     }
-    let eps = 1e-3 * bvh.scale;
-    if bvh.occluded(camera.position, to / dist, dist - eps) { Sender::Hidden } else { Sender::OnScreen }
 }
 
 #[cfg(test)]

@@ -80,6 +80,25 @@ pub struct ViewTargets {
 }
 
 impl ViewTargets {
+    /// Every target.
+    pub fn all(&self) -> [&Target; 13] {
+        [
+            &self.albedo,
+            &self.normal,
+            &self.material,
+            &self.motion,
+            &self.object_id,
+            &self.depth,
+            &self.direct,
+            &self.indirect,
+            &self.hdr,
+            &self.ldr,
+            &self.vo_raw,
+            &self.vo_rows,
+            &self.vo,
+        ]
+    }
+
     /// Creates targets of `size` pixels.
     pub fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
         use wgpu::TextureUsages as U;

@@ -60,13 +60,11 @@ pub struct PanoramaParams {
 }
 
 /// What the panorama hands `sshgi`'s steps: the sender list, the ping-pong radiance buffers
-/// (the first holds the first bounce's after the pack) and their size.
+/// (the first holds the first bounce's after the pack) and the face size.
 #[derive(Clone, Copy)]
 pub struct Senders<'a> {
     pub list: &'a wgpu::Buffer,
     pub radiance: [&'a wgpu::Buffer; 2],
-    /// Senders in the list (6 F^2).
-    pub count: u32,
     /// The face size F.
     pub face: u32,
 }
@@ -110,6 +108,13 @@ pub struct Panorama {
     pack_layout: wgpu::BindGroupLayout,
     pack: wgpu::ComputePipeline,
     faces: Option<Faces>,
+}
+
+impl Senders<'_> {
+    /// Senders in the list: six faces of F^2.
+    pub fn count(&self) -> u32 {
+        FACES.len() as u32 * self.face * self.face
+    }
 }
 
 impl Panorama {
@@ -190,8 +195,7 @@ impl Panorama {
         }
         drop(pass);
         let [first, second] = &faces.radiance;
-        let count = faces.faces.len() as u32 * size * size;
-        Some(Senders { list: &faces.senders, radiance: [first, second], count, face: size })
+        Some(Senders { list: &faces.senders, radiance: [first, second], face: size })
     }
 
     /// Creates the faces when their size changes.
@@ -247,18 +251,8 @@ impl Panorama {
     /// Bytes of the faces' targets and the sender list.
     pub fn gpu_bytes(&self) -> u64 {
         let Some(f) = &self.faces else { return 0 };
-        let targets: u64 = f
-            .faces
-            .iter()
-            .map(|face| {
-                let t = &face.targets;
-                [&t.albedo, &t.normal, &t.material, &t.motion, &t.object_id, &t.depth, &t.direct, &t.indirect]
-                    .iter()
-                    .chain([&t.hdr, &t.ldr, &t.vo_raw, &t.vo_rows, &t.vo].iter())
-                    .map(|target| texture_bytes(&target.texture))
-                    .sum::<u64>()
-            })
-            .sum();
+        let targets: u64 =
+            f.faces.iter().flat_map(|face| face.targets.all()).map(|target| texture_bytes(&target.texture)).sum();
         targets + f.senders.size() + f.radiance.iter().map(wgpu::Buffer::size).sum::<u64>()
     }
 }

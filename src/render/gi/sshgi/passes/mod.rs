@@ -368,7 +368,7 @@ impl SshgiPasses {
             let steps = self.build_steps(inputs.device, &key);
             self.steps = Some((key, steps));
         }
-        self.write_params(inputs, plan, axis, visibility, panorama.map_or((0, 0), |p| (p.count, p.face)));
+        self.write_params(inputs, plan, axis, visibility, panorama.map_or((0, 0), |p| (p.count(), p.face)));
         let Some((_, steps)) = &self.steps else { return };
         // Consecutive steps of one pass share it: bounce 1's phases are timed one by one, a later
         // bounce as a whole.
