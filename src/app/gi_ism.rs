@@ -22,6 +22,8 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut m.bounces, 1..=6).text("bounces")).on_hover_text("Each extra bounce: one VPL, ISM and shading pass.");
         ui.add(egui::Slider::new(&mut m.base_confidence, 0.0..=0.99).text("base confidence"))
             .on_hover_text("Higher: smoother over time, more afterglow after lighting changes.");
+        ui.add(egui::Slider::new(&mut m.still_frames, 0..=256).logarithmic(true).text("still frames"))
+            .on_hover_text("While nothing moves, the history keeps refining over this many frames (0: base confidence only). Any edit or camera move returns to the base confidence.");
         ui.add(egui::Slider::new(&mut m.w_position, 0.0..=100.0).text("w position"));
         ui.add(egui::Slider::new(&mut m.w_normal, 0.0..=100.0).text("w normal"));
         ui.add(egui::Slider::new(&mut m.w_illumination, 0.0..=100.0).text("w illumination"))

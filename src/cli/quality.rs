@@ -23,12 +23,11 @@ fn modes() -> Vec<GiMode> {
 /// Most frames a technique whose cache must fill first (`fill_before_final`) may take to fill
 /// it and converge its bounce passes.
 const FILL_FRAMES: usize = 128;
-/// Frames rendered per temporal mode (it converges; the last one is compared).
-const FRAMES: usize = 32;
+/// Frames a temporal mode renders after its history has settled (the technique stops
+/// refining): each is judged on its own, the last is compared.
+const SETTLED_FRAMES: usize = 24;
 /// Frames rendered per mode without history (the timing takes the last eight).
 const STATIC_FRAMES: usize = 9;
-/// A temporal mode's frames from this index on count as settled (frames 9-32: 24 frames).
-const SETTLED_FROM: usize = 8;
 /// Supersampling per axis, as the reference's box-filtered pixels.
 const SSAA: u32 = 2;
 
@@ -52,11 +51,13 @@ struct Settled {
     spread: f64,
     /// `metrics::temporal_instability` against the static reference.
     instability: f64,
+    /// Frames the history took to settle before the judged ones.
+    after: usize,
 }
 
 impl Settled {
     /// The figures of `frames` against `reference`; `None` for fewer than two frames.
-    fn of(frames: &[HdrImage], reference: &HdrImage) -> anyhow::Result<Option<Self>> {
+    fn of(frames: &[HdrImage], reference: &HdrImage, after: usize) -> anyhow::Result<Option<Self>> {
         if frames.len() < 2 {
             return Ok(None);
         }
@@ -67,20 +68,24 @@ impl Settled {
         let spread = if mean > 0.0 { var.sqrt() / mean } else { 0.0 };
         let statics = [reference.clone(), reference.clone()];
         let instability = metrics::temporal_instability(frames, &statics)?;
-        Ok(Some(Self { worst, spread, instability }))
+        Ok(Some(Self { worst, spread, instability, after }))
     }
 }
 
 /// A mode's render of a scene: the last frame, the median frame time of the last eight, and a
-/// temporal mode's settled frames (each box-filtered to the reference's size).
+/// temporal mode's settled frames (each box-filtered to the reference's size) with the frames
+/// rendered before them.
 pub(crate) struct Rendered {
     pub image: HdrImage,
     pub frame_ms: f64,
     pub settled: Vec<HdrImage>,
+    pub settle_frames: usize,
 }
 
-/// Renders `scene` in `mode`: the last of [`FRAMES`] frames, box-filtered to the reference's
-/// size, and the median wall-clock frame time of the last eight.
+/// Renders `scene` in `mode`: a temporal mode until its history has settled and then
+/// [`SETTLED_FRAMES`] more, a cache-filling one until its cache is warm and then
+/// [`STATIC_FRAMES`], others [`STATIC_FRAMES`]; the last frame box-filtered to the
+/// reference's size, and the median wall-clock frame time of the last eight.
 fn render(ctx: &GpuContext, scene: &SuiteScene, root: &Path, mode: GiMode) -> anyhow::Result<Rendered> {
     render_project(ctx, scene.load(root)?, mode)
 }
@@ -95,18 +100,17 @@ pub(crate) fn render_project(
     let size = (REFERENCE_SIZE.0 * SSAA, REFERENCE_SIZE.1 * SSAA);
     let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
     let temporal = registry::mode_row(mode).is_some_and(|m| m.temporal);
-    let frames = if temporal { FRAMES } else { STATIC_FRAMES };
     let mut times = Vec::new();
     let mut first = super::render::until_ready(&mut r, &project, size)? as usize;
-    let mut end = frames;
+    let mut end = STATIC_FRAMES;
     let fills = registry::entry(mode).is_some_and(|e| e.fill_before_final);
-    if fills {
-        // The cache fills and its bounce passes converge first; nine more frames reuse it.
+    if fills || temporal {
+        // The cache fills (and its bounce passes converge), or the history settles, first.
         while first < FILL_FRAMES && (first == 0 || r.technique_status().is_some_and(|s| s.refining)) {
             r.render(&project.scene, &project.render, size)?;
             first += 1;
         }
-        end = first + STATIC_FRAMES;
+        end = first + if fills { STATIC_FRAMES } else { SETTLED_FRAMES };
     }
     let read = |r: &Renderer| -> anyhow::Result<HdrImage> {
         let pixels = image_io::box_downsample(&r.read_hdr()?, size, SSAA);
@@ -120,11 +124,11 @@ pub(crate) fn render_project(
         if f + 8 >= end {
             times.push(t.elapsed().as_secs_f64() * 1e3);
         }
-        if temporal && !fills && f >= SETTLED_FROM {
+        if temporal && !fills {
             settled.push(read(&r)?);
         }
     }
-    Ok(Rendered { image: read(&r)?, frame_ms: median(times), settled })
+    Ok(Rendered { image: read(&r)?, frame_ms: median(times), settled, settle_frames: first })
 }
 
 /// The judging exposure; it lives in [`metrics::judging_exposure`] so tests and examples use it
@@ -146,10 +150,10 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
         let ev = exposure(&reference);
         let mut cells = Vec::new();
         for mode in modes() {
-            let Rendered { image, frame_ms, settled } = render(&ctx, scene, root, mode)?;
+            let Rendered { image, frame_ms, settled, settle_frames } = render(&ctx, scene, root, mode)?;
             // FLIP compares display images: expose each scene as the sheet shows it.
             let c = metrics::compare(&image, &reference, ev)?;
-            let settled = Settled::of(&settled, &reference)?;
+            let settled = Settled::of(&settled, &reference, settle_frames)?;
             cells.push(Cell {
                 mode,
                 flip: c.flip,
@@ -170,7 +174,7 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
         "Written by `bouncelab bench --quality` (release build). Adapter: **{}**. Every mode on every \
          scene of the suite (`src/suite/`) at {}x{} ({}x{} supersampling), against the cached \
          {}-spp path-traced reference (32768 spp for the rooms, seen from the unlit room); FLIP at the exposure that puts the reference's mean at 0.18 (`assets/suite/references/`, `bouncelab suite --references`). \
-         `ism`, `sshgi` and `mrt` are the last of {FRAMES} frames (temporal, or multi-bounce feedback for `mrt`, whose blocks are fitted on the fly where a scene has none); `rcs` renders until its cache has filled and its bounce passes converged (at most {FILL_FRAMES} frames), then 9 frames with the warm cache; `direct` and `ism-ritschel` single frames. Energy is the \
+         `ism`, `sshgi` and `mrt` (temporal, or multi-bounce feedback for `mrt`, whose blocks are fitted on the fly where a scene has none) render until the technique says its history has settled (the viewport's refining indicator ends), then {SETTLED_FRAMES} frames, the last of which is compared here; `rcs` renders until its cache has filled and its bounce passes converged (at most {FILL_FRAMES} frames), then 9 frames with the warm cache; `direct` and `ism-ritschel` single frames. Energy is the \
          mean-luminance ratio to the reference; frame time is relative to `direct` on the same scene in \
          the same run (wall clock, median of the last 8 frames; `rcs`: with the warm cache).\n",
         ctx.describe(),
@@ -217,24 +221,23 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
 fn settled_table(md: &mut String, rows: &[(&SuiteScene, HdrImage, Vec<Cell>)]) {
     let _ = writeln!(
         md,
-        "\n## Settled frames\n\nThe temporal modes' frames {}-{FRAMES} ({} frames after the history has settled; `rcs` fills \
-         its cache first and is left out), each judged on its own: the energy of the frame furthest from the \
+        "\n## Settled frames\n\nThe temporal modes' {SETTLED_FRAMES} frames after the history has settled (after the frames the \
+         technique refines for, listed; `rcs` fills its cache first and is left out), each judged on its own: the energy of the frame furthest from the \
          reference's, the spread of the frames' energies (standard deviation over mean), and `metrics::temporal`'s \
          instability against the static reference (mean absolute change of luminance between consecutive frames; 0 \
-         is steady).\n",
-        SETTLED_FROM + 1,
-        FRAMES - SETTLED_FROM
+         is steady).\n"
     );
-    let _ = writeln!(md, "| scene | mode | worst frame's energy | energy spread | temporal instability |");
-    let _ = writeln!(md, "|---|---|---|---|---|");
+    let _ = writeln!(md, "| scene | mode | settled after | worst frame's energy | energy spread | temporal instability |");
+    let _ = writeln!(md, "|---|---|---|---|---|---|");
     for (scene, _, cells) in rows {
         for c in cells {
             if let Some(s) = &c.settled {
                 let _ = writeln!(
                     md,
-                    "| {} | `{}` | {:.3} | {:.1}% | {:.5} |",
+                    "| {} | `{}` | {} frames | {:.3} | {:.1}% | {:.5} |",
                     scene.name,
                     c.mode.name(),
+                    s.after,
                     s.worst,
                     100.0 * s.spread,
                     s.instability

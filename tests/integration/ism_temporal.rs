@@ -1,7 +1,8 @@
 //! Temporal behaviour of `ism` (Knecht 2009) against `ism-ritschel`: less flicker on a static
 //! view while VPLs are resampled every frame and while a light and an object move, a bounded
 //! afterglow after the light is switched off, and zero confidence where a moving object
-//! uncovers the background.
+//! uncovers the background, and a still view refining past c_base (`IsmSettings::still_frames`)
+//! except while an edit's old history fades.
 
 use crate::common;
 
@@ -171,4 +172,48 @@ fn moving_light_and_object_flicker_less_than_ritschel() {
         "moving light and box: reference change {change:.5}; temporal instability ism {ti:.5}, ism-ritschel {tr:.5}"
     );
     assert!(ti < 0.7 * tr, "ism must flicker measurably less than ism-ritschel under motion: {ti} vs {tr}");
+}
+
+/// The mean of channel `c` over the pixels that see geometry (confidence buffers are 0 elsewhere).
+fn mean_on_geometry(img: &HdrImage, ids: &HdrImage, c: usize) -> f32 {
+    let on: Vec<f32> = img.pixels.iter().zip(&ids.pixels).filter(|(_, id)| id[0] != 0.0).map(|(p, _)| p[c]).collect();
+    on.iter().sum::<f32>() / on.len().max(1) as f32
+}
+
+#[test]
+fn a_still_view_refines_past_c_base_and_a_light_edit_returns_to_it_until_the_old_history_fades() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = Project::load(&default_project_path()).expect("default project");
+    let mut settings = project.render.clone();
+    settings.mode = GiMode::Ism;
+    settings.ism.vpl_count = 64;
+    settings.ism.bounces = 2;
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let read = |r: &Renderer, name: &str| r.read_buffer(name).expect(name);
+    r.render(&project.scene, &settings, SIZE).expect("render");
+    let ids = read(&r, "object_id");
+    let first = mean_on_geometry(&read(&r, "ism_history_count"), &ids, 0);
+    assert!((first - 1.0).abs() < 1e-4, "a new history is worth one frame: {first}");
+    for _ in 1..12 {
+        r.render(&project.scene, &settings, SIZE).expect("render");
+    }
+    let count = mean_on_geometry(&read(&r, "ism_history_count"), &ids, 0);
+    let still = mean_on_geometry(&read(&r, "ism_confidence"), &ids, 3);
+    eprintln!("after 12 still frames: history worth {count:.2} frames, confidence {still:.3}");
+    // The plain mean of its frames: 12 at most, and past the 10 an exponential average at
+    // c_base could ever reach at its first frames.
+    assert!(count > 10.0 && count <= 12.0 + 1e-3, "history worth {count} frames");
+    assert!(still > 0.91, "a still view refines past c_base: confidence {still}");
+    project.scene.desc_mut().lights[0].position.x += 0.01;
+    let mut after_edit = Vec::new();
+    for _ in 0..10 {
+        r.render(&project.scene, &settings, SIZE).expect("render");
+        let conf = read(&r, "ism_confidence");
+        after_edit.push(conf.pixels.iter().map(|c| c[3]).fold(0.0f32, f32::max));
+    }
+    eprintln!("largest confidence in the 10 frames after a light edit: {after_edit:.3?}");
+    assert!(
+        after_edit.iter().all(|c| *c <= settings.ism.base_confidence + 1e-5),
+        "after an edit the confidence keeps c_base while the old history fades: {after_edit:?}"
+    );
 }

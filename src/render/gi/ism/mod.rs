@@ -17,6 +17,7 @@ pub mod params;
 pub mod points;
 pub mod screen;
 pub mod sh_filter;
+pub mod stillness;
 pub mod technique;
 pub mod vpl_pass;
 

@@ -109,7 +109,8 @@ pub struct TemporalParams {
     pub flags: [u32; 4],
     /// c_base, w_pos, w_normal, w_illum.
     pub weights: [f32; 4],
-    /// Depth range (metres), exposure multiplier, unused x2.
+    /// Depth range (metres), exposure multiplier, the confidence's cap (`c_base`, or
+    /// 1 - 1 / `still_frames` while nothing moves), unused.
     pub params: [f32; 4],
 }
 

@@ -68,6 +68,7 @@ struct Key {
 /// The temporal merge's targets and bind groups ([`IsmScreen::ensure`]).
 struct Temporal {
     history: [Target; 2],
+    count: [Target; 2],
     confidence: Target,
     prev_normal: Target,
     filter_groups: [wgpu::BindGroup; 3],
@@ -82,6 +83,8 @@ struct Sized {
     split_group: wgpu::BindGroup,
     shade_group: wgpu::BindGroup,
     history: [Target; 2],
+    /// The histories' effective sample counts (`ism_temporal.wgsl`), ping-pong like `history`.
+    count: [Target; 2],
     prev_normal: Target,
     confidence: Target,
     /// Temporal merge reading history[p], writing history[1 - p].
@@ -198,6 +201,8 @@ impl IsmScreen {
                 texture_entry(7, c, unfilterable),
                 storage_texture_entry(8, formats::HDR),
                 storage_texture_entry(9, formats::HDR),
+                texture_entry(10, c, unfilterable),
+                storage_texture_entry(11, wgpu::TextureFormat::R32Float),
             ],
         });
         let temporal_module = shaders::module(device, "render/gi/ism/ism_temporal.wgsl")?;
@@ -284,7 +289,7 @@ impl IsmScreen {
                 buf(4, ism.albedo),
             ],
         });
-        let Temporal { history, confidence, prev_normal, filter_groups, temporal_groups } = temporal;
+        let Temporal { history, count, confidence, prev_normal, filter_groups, temporal_groups } = temporal;
         self.reset = true;
         self.sized = Some(Sized {
             key,
@@ -294,6 +299,7 @@ impl IsmScreen {
             split_group,
             shade_group,
             history,
+            count,
             prev_normal,
             confidence,
             temporal_groups,
@@ -374,6 +380,10 @@ impl IsmScreen {
             Target::new(device, "ism history a", key.view, formats::HDR, rw),
             Target::new(device, "ism history b", key.view, formats::HDR, rw),
         ];
+        let count = [
+            Target::new(device, "ism history count a", key.view, wgpu::TextureFormat::R32Float, rw),
+            Target::new(device, "ism history count b", key.view, wgpu::TextureFormat::R32Float, rw),
+        ];
         let confidence = Target::new(device, "ism confidence", key.view, formats::HDR, rw);
         let prev_normal = Target::new(
             device,
@@ -413,11 +423,13 @@ impl IsmScreen {
                     tex(7, &targets.motion.view),
                     tex(8, &history[1 - p].view),
                     tex(9, &confidence.view),
+                    tex(10, &count[p].view),
+                    tex(11, &count[1 - p].view),
                 ],
             })
         };
         let temporal_groups = [temporal_group(0), temporal_group(1)];
-        Temporal { history, confidence, prev_normal, filter_groups, temporal_groups }
+        Temporal { history, count, confidence, prev_normal, filter_groups, temporal_groups }
     }
 
     /// Drops the temporal history (the next frame uses only new VPLs).
@@ -435,8 +447,18 @@ impl IsmScreen {
     /// Bytes of GPU memory held by the view-sized resources.
     pub fn gpu_bytes(&self) -> u64 {
         let own = self.sized.as_ref().map_or(0, |s| {
-            [&s.split_position, &s.split_normal, &s.raw, &s.history[0], &s.history[1], &s.prev_normal, &s.confidence]
-                .iter()
+            [
+                &s.split_position,
+                &s.split_normal,
+                &s.raw,
+                &s.history[0],
+                &s.history[1],
+                &s.count[0],
+                &s.count[1],
+                &s.prev_normal,
+                &s.confidence,
+            ]
+            .iter()
                 .map(|t| texture_bytes(&t.texture))
                 .sum::<u64>()
         });
@@ -452,6 +474,11 @@ impl IsmScreen {
     /// The history written by the last temporal frame.
     pub fn history(&self) -> Option<&Target> {
         self.sized.as_ref().map(|s| &s.history[self.parity])
+    }
+
+    /// The effective sample count of that history, per pixel (`ism_temporal.wgsl`).
+    pub fn history_count(&self) -> Option<&Target> {
+        self.sized.as_ref().map(|s| &s.count[self.parity])
     }
 
     /// The split accumulation buffer (the unfiltered interleaved result in the split layout);
@@ -471,7 +498,9 @@ impl IsmScreen {
     }
 
     /// Records the screen passes into `targets.indirect` (E / pi for the composite to multiply
-    /// by albedo, or outgoing radiance when `settings.sh_filter` is on).
+    /// by albedo, or outgoing radiance when `settings.sh_filter` is on). `temporal` is the
+    /// temporal merge's confidence cap (`c_base`, or higher while nothing moves); `None` renders
+    /// without temporal reuse (`ism-ritschel`).
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -482,10 +511,12 @@ impl IsmScreen {
         targets: &ViewTargets,
         ism: &IsmInputs<'_>,
         settings: &IsmSettings,
-        temporal: bool,
+        temporal: Option<f32>,
         exposure: f32,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) {
+        let confidence_cap = temporal.unwrap_or(0.0);
+        let temporal = temporal.is_some();
         let n = settings.interleave.max(1);
         let key = Key { view: targets.size, n, sh: settings.sh_filter, generation: ism.generation };
         self.ensure(device, key, frame_buffer, targets, ism);
@@ -505,7 +536,7 @@ impl IsmScreen {
         let merge = TemporalParams {
             flags: [reset, raw_split, 0, 0],
             weights: [settings.base_confidence, settings.w_position, settings.w_normal, settings.w_illumination],
-            params: [ism.d_max, exposure, 0.0, 0.0],
+            params: [ism.d_max, exposure, confidence_cap, 0.0],
         };
         queue.write_buffer(&self.temporal_params, 0, bytemuck::bytes_of(&merge));
         let filter_split = if temporal { 0 } else { n };

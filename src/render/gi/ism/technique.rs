@@ -4,12 +4,15 @@
 //!
 //! What each reset reason invalidates (Knecht 2009 section 3.5: the confidence already follows
 //! moving lights and objects, so their edits keep the temporal history):
-//! - light edited: nothing (VPLs are regenerated every frame anyway);
+//! - light edited: nothing (VPLs are regenerated every frame anyway), but a still view refines
+//!   past c_base (`IsmSettings::still_frames`) only once the history from before the edit has
+//!   faded ([`super::stillness::refresh_frames`]);
 //! - scene edited: the uploaded point data (positions, albedo) is re-checked by its key and the
-//!   point distribution by its own key; the temporal history stays;
+//!   point distribution by its own key; the temporal history stays; as for a light edit;
 //! - camera cut, settings changed, mode entered, resized: the temporal history.
 
 use super::gather::{IsmGather, MapScale, PointData};
+use super::stillness::Stillness;
 use super::light_tiles::LightTiles;
 use super::points::{mean_linear_colour, point_data, point_data_key};
 use super::vpl_pass::{GpuVpl, VplPass};
@@ -50,15 +53,6 @@ pub struct IsmVpls {
     pub frame: u32,
 }
 
-/// Frames after which the temporal blend is at its steady state: with confidence at most
-/// `c_base` the history is an exponential average whose first frame keeps a weight below
-/// c_base^n; at n = 3 / (1 - c_base) (30 frames at the default 0.9) that is under 5%, and
-/// further frames of an unchanged view only trade one sample of the average for another.
-/// Without temporal reuse (`ism-ritschel`) a frame is final at once.
-pub fn settle_frames(base_confidence: f32) -> u32 {
-    (3.0 / (1.0 - base_confidence).max(1e-3)).ceil().clamp(1.0, 3000.0) as u32
-}
-
 /// The point pool and what is derived from it once per distribution: the key it was made for,
 /// the points, the textures' mean colours, each point's clip lines, and whether it lies inside
 /// solid geometry and how deep the solid behind it runs (`facing::point_solids`).
@@ -74,6 +68,8 @@ pub struct IsmTechnique {
     /// point data; the upload is skipped while it stays equal.
     uploaded: Option<(u64, u64, Vec<u32>)>,
     last_frame: u32,
+    /// Whether the view stands still (`IsmSettings::still_frames`).
+    stillness: Stillness,
     status: TechniqueStatus,
     rebuilds: u64,
     uploads: u64,
@@ -148,6 +144,12 @@ pub const BUFFERS: &[BufferInfo] = &[
         view: BufferView::Colour,
     },
     BufferInfo {
+        name: "ism_history_count",
+        description: "The frames the history's average is worth (effective sample count); it caps the confidence at m / (m + 1).",
+        format: "r32f",
+        view: BufferView::Scalar,
+    },
+    BufferInfo {
         name: "ism_sh_shaded",
         description: "SH filter: outgoing indirect radiance; a = accepted taps / n^2.",
         format: "rgba32f",
@@ -177,6 +179,7 @@ impl IsmTechnique {
             points_generation: 0,
             uploaded: None,
             last_frame: 0,
+            stillness: Stillness::default(),
             status: TechniqueStatus::default(),
             rebuilds: 0,
             uploads: 0,
@@ -409,7 +412,10 @@ impl GiTechnique for IsmTechnique {
             settings,
             inputs.timer.scope("ism maps"),
         );
-        let temporal = inputs.mode == GiMode::Ism;
+        // Still: the camera where it was last frame, and no light or object edited for a while.
+        let camera_still = inputs.frame.clip_from_world == inputs.frame.prev_clip_from_world;
+        let (cap, settle_at) = self.stillness.next(settings, self.status.history_frames, camera_still);
+        let temporal = (inputs.mode == GiMode::Ism).then_some(cap);
         let exposure = inputs.settings.view.exposure_ev.exp2();
         let ts = inputs.timer.scope("ism shade");
         self.gather.record_screen(
@@ -424,8 +430,8 @@ impl GiTechnique for IsmTechnique {
             exposure,
             ts,
         );
-        self.status.history_frames = if temporal { self.status.history_frames.saturating_add(1) } else { 1 };
-        self.status.refine_target = if temporal { settle_frames(settings.base_confidence) } else { 0 };
+        self.status.history_frames = if temporal.is_some() { self.status.history_frames.saturating_add(1) } else { 1 };
+        self.status.refine_target = if temporal.is_some() { settle_at } else { 0 };
         self.status.refining = self.status.history_frames < self.status.refine_target;
         // The SH filter shades with the full BRDF: `indirect` is outgoing radiance.
         Ok(if settings.sh_filter { GiOutput::Radiance } else { GiOutput::IrradianceOverPi })
@@ -465,6 +471,7 @@ impl GiTechnique for IsmTechnique {
             }),
             "ism_confidence" => screen.confidence().map(|t| &t.texture).ok_or_else(missing),
             "ism_history" => screen.history().map(|t| &t.texture).ok_or_else(missing),
+            "ism_history_count" => screen.history_count().map(|t| &t.texture).ok_or_else(missing),
             "ism_sh_shaded" => screen.sh_views().map(|v| &v.0.texture).ok_or_else(sh_missing),
             "ism_sh_dc" => screen.sh_views().map(|v| &v.1.texture).ok_or_else(sh_missing),
             "ism_sh_direction" => screen.sh_views().map(|v| &v.2.texture).ok_or_else(sh_missing),
@@ -498,11 +505,12 @@ impl GiTechnique for IsmTechnique {
         note_reset(&mut self.status, reason);
         match reason {
             // The confidence follows moving lights and objects (Knecht 2009 section 3.5); the
-            // point data is re-checked by its keys every frame.
-            ResetReason::LightEdited | ResetReason::SceneEdited => {}
+            // point data is re-checked by its keys every frame. The next frame is not still.
+            ResetReason::LightEdited | ResetReason::SceneEdited => self.stillness.edited = true,
             ResetReason::CameraCut | ResetReason::SettingsChanged | ResetReason::ModeEntered | ResetReason::Resized => {
                 self.gather.screen.reset_history();
                 self.status.history_frames = 0;
+                self.stillness = Stillness::default();
             }
         }
     }
@@ -512,6 +520,7 @@ impl GiTechnique for IsmTechnique {
         self.gather.release();
         self.uploaded = None;
         self.status.history_frames = 0;
+        self.stillness = Stillness::default();
     }
 
     fn gpu_bytes(&self) -> u64 {

@@ -416,6 +416,9 @@ impl GiTechnique for MrtTechnique {
         let m = &inputs.settings.mrt;
         let (feedback, padding) = (m.feedback, m.padding);
         if !self.passes.record(inputs, feedback, padding) {
+            // No level to light (no enclosed space was fitted): there is nothing to refine, so
+            // an editor that renders while "refining" stops.
+            self.status.history_frames = self.status.refine_target;
             return Ok(GiOutput::Nothing);
         }
         self.status.history_frames = self.status.history_frames.saturating_add(1);

@@ -576,7 +576,7 @@ impl IsmGather {
         targets: &ViewTargets,
         scale: &MapScale,
         settings: &IsmSettings,
-        temporal: bool,
+        temporal: Option<f32>,
         exposure: f32,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) {
