@@ -227,7 +227,8 @@ fn settled_table(md: &mut String, rows: &[(&SuiteScene, HdrImage, Vec<Cell>)]) {
          instability against the static reference (mean absolute change of luminance between consecutive frames; 0 \
          is steady).\n"
     );
-    let _ = writeln!(md, "| scene | mode | settled after | worst frame's energy | energy spread | temporal instability |");
+    let _ =
+        writeln!(md, "| scene | mode | settled after | worst frame's energy | energy spread | temporal instability |");
     let _ = writeln!(md, "|---|---|---|---|---|---|");
     for (scene, _, cells) in rows {
         for c in cells {

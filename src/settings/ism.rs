@@ -56,7 +56,11 @@ pub struct IsmSettings {
     /// pixel's confidence is also held at m / (m + 1), m its history's effective sample count,
     /// so a new history is the plain mean of its frames (the thesis's blend kept the first
     /// frame at weight 0.9^k). Cost: two R32 float textures and 8 bytes read and written per
-    /// pixel in `ism shade`. MEASURED_STILL_FRAMES
+    /// pixel in the temporal merge (which already reads six view-sized textures). Measured with
+    /// `bouncelab bench --quality` (lavapipe; the 24 frames after the history has settled, 9-32
+    /// before and 33-56 now): the suite's three rooms, lit only through doorways, went from a
+    /// worst frame of 0.718 of the reference's energy and an 8.9% spread to 0.942 and 1.3%;
+    /// the other scenes stay within 0.2-0.3% spread.
     pub still_frames: u32,
     /// Weight of the screen-space/depth movement in the confidence. Higher: history dropped
     /// sooner under motion (less ghosting, more noise).

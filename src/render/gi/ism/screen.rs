@@ -459,8 +459,8 @@ impl IsmScreen {
                 &s.confidence,
             ]
             .iter()
-                .map(|t| texture_bytes(&t.texture))
-                .sum::<u64>()
+            .map(|t| texture_bytes(&t.texture))
+            .sum::<u64>()
         });
         own + self.sh.gpu_bytes()
     }

@@ -12,9 +12,9 @@
 //! - camera cut, settings changed, mode entered, resized: the temporal history.
 
 use super::gather::{IsmGather, MapScale, PointData};
-use super::stillness::Stillness;
 use super::light_tiles::LightTiles;
 use super::points::{mean_linear_colour, point_data, point_data_key};
+use super::stillness::Stillness;
 use super::vpl_pass::{GpuVpl, VplPass};
 use crate::image_io::HdrImage;
 use crate::precompute::open_edges::PointClips;
