@@ -95,6 +95,16 @@ struct Sized {
     importance_group: wgpu::BindGroup,
 }
 
+/// The temporal merge's blend for one frame (`ism_temporal.wgsl`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Blend {
+    /// The confidence's cap: `c_base`, or 1 - 1 / `still_frames` while nothing moves.
+    pub confidence_cap: f32,
+    /// The illumination change's weight: `w_illumination`, or 0 while nothing moves (no light
+    /// changed, and the term would only let VPL noise's bright frames through).
+    pub w_illumination: f32,
+}
+
 /// Pipelines and view-sized resources of the ISM screen passes.
 pub struct IsmScreen {
     split_layout: wgpu::BindGroupLayout,
@@ -499,8 +509,7 @@ impl IsmScreen {
 
     /// Records the screen passes into `targets.indirect` (E / pi for the composite to multiply
     /// by albedo, or outgoing radiance when `settings.sh_filter` is on). `temporal` is the
-    /// temporal merge's confidence cap (`c_base`, or higher while nothing moves); `None` renders
-    /// without temporal reuse (`ism-ritschel`).
+    /// temporal merge's blend; `None` renders without temporal reuse (`ism-ritschel`).
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -511,11 +520,11 @@ impl IsmScreen {
         targets: &ViewTargets,
         ism: &IsmInputs<'_>,
         settings: &IsmSettings,
-        temporal: Option<f32>,
+        temporal: Option<Blend>,
         exposure: f32,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) {
-        let confidence_cap = temporal.unwrap_or(0.0);
+        let blend = temporal.unwrap_or(Blend { confidence_cap: 0.0, w_illumination: 0.0 });
         let temporal = temporal.is_some();
         let n = settings.interleave.max(1);
         let key = Key { view: targets.size, n, sh: settings.sh_filter, generation: ism.generation };
@@ -535,8 +544,8 @@ impl IsmScreen {
         let raw_split = if settings.sh_filter { 0 } else { n };
         let merge = TemporalParams {
             flags: [reset, raw_split, 0, 0],
-            weights: [settings.base_confidence, settings.w_position, settings.w_normal, settings.w_illumination],
-            params: [ism.d_max, exposure, confidence_cap, 0.0],
+            weights: [settings.base_confidence, settings.w_position, settings.w_normal, blend.w_illumination],
+            params: [ism.d_max, exposure, blend.confidence_cap, 0.0],
         };
         queue.write_buffer(&self.temporal_params, 0, bytemuck::bytes_of(&merge));
         let filter_split = if temporal { 0 } else { n };

@@ -414,8 +414,8 @@ impl GiTechnique for IsmTechnique {
         );
         // Still: the camera where it was last frame, and no light or object edited for a while.
         let camera_still = inputs.frame.clip_from_world == inputs.frame.prev_clip_from_world;
-        let (cap, settle_at) = self.stillness.next(settings, self.status.history_frames, camera_still);
-        let temporal = (inputs.mode == GiMode::Ism).then_some(cap);
+        let (blend, settle_at) = self.stillness.next(settings, self.status.history_frames, camera_still);
+        let temporal = (inputs.mode == GiMode::Ism).then_some(blend);
         let exposure = inputs.settings.view.exposure_ev.exp2();
         let ts = inputs.timer.scope("ism shade");
         self.gather.record_screen(

@@ -576,7 +576,7 @@ impl IsmGather {
         targets: &ViewTargets,
         scale: &MapScale,
         settings: &IsmSettings,
-        temporal: Option<f32>,
+        temporal: Option<super::screen::Blend>,
         exposure: f32,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) {
