@@ -52,7 +52,11 @@ pub struct IsmSettings {
     /// stand still (0: off, c_base throughout as in the thesis; values up to 1 / (1 - c_base)
     /// change nothing). The confidence's cap rises from c_base to 1 - 1 / this after one still
     /// frame, and any edit or camera move drops it back to c_base for the frames it moves, so
-    /// the thesis's behaviour under motion is unchanged while a still view keeps refining. Each
+    /// the thesis's behaviour under motion is unchanged while a still view keeps refining (a
+    /// still view also drops the illumination term: no light changed, and the term weighted the
+    /// bright frames of VPL noise up, 1.5% too bright on the Cornell box). After a light or
+    /// object edit the view stays at c_base until the light from before it has faded (44
+    /// frames at 0.9), so the afterglow is the thesis's. Each
     /// pixel's confidence is also held at m / (m + 1), m its history's effective sample count,
     /// so a new history is the plain mean of its frames (the thesis's blend kept the first
     /// frame at weight 0.9^k). Cost: two R32 float textures and 8 bytes read and written per
@@ -68,7 +72,8 @@ pub struct IsmSettings {
     /// Weight of the normal change in the confidence.
     pub w_normal: f32,
     /// Weight of the illumination change in the confidence. Higher: reacts faster to lighting
-    /// changes (less afterglow) but lets VPL resampling noise through.
+    /// changes (less afterglow) but lets VPL resampling noise through. Off while the view
+    /// stands still (`still_frames`).
     pub w_illumination: f32,
     /// Light bounces (1..=6); each extra bounce costs one VPL generation, ISM and shading pass
     /// (shading time grows linearly). The thesis's figures use 1; the default is 6, which

@@ -9,9 +9,10 @@
 //   confidence at m / (m + 1), so a fresh history is a plain mean of its frames instead of
 //   keeping its first frame's noise at weight c_base^k for tens of frames;
 // - c_base is replaced by `params.z`: c_base while anything moves, and 1 - 1 / still_frames
-//   once the camera, lights and objects have stood still for a frame, so a still view keeps
-//   refining (a time constant of still_frames frames) instead of holding VPL resampling noise
-//   of 1 / sqrt(19) of a frame's.
+//   once the camera, lights and objects stand still (after an edit: once its old light has
+//   faded, `stillness.rs`), so a still view keeps refining (a time constant of still_frames
+//   frames) instead of holding VPL resampling noise of 1 / sqrt(19) of a frame's; a still view
+//   also gets w_illum = 0 (no light changed; the term only weighted VPL noise's bright frames up).
 // m follows the blend exactly: the variance of conf h + (1 - conf) x is sigma^2 (conf^2 / m +
 // (1 - conf)^2), so m' = 1 / (conf^2 / m + (1 - conf)^2) (m + 1 at conf = m / (m + 1)).
 #import common/frame.wgsl
