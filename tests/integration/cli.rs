@@ -410,18 +410,20 @@ fn temporal_modes_converge_before_writing_unless_frames_cap_them() {
     }
     let dir = scratch("converge");
     let s = |p: &std::path::Path| p.to_string_lossy().into_owned();
-    // ISM settles in 3 / (1 - base confidence) frames: 6 at 0.5.
+    // A still ISM view settles in its still frames (`IsmSettings::still_frames`): 8 here, above
+    // the 2 of base confidence 0.5.
     let project = dir.join("quick.ron");
     let mut loaded =
         bouncelab::project_file::Project::load(std::path::Path::new("projects/default.ron")).expect("default");
     loaded.render.ism.base_confidence = 0.5;
+    loaded.render.ism.still_frames = 8;
     loaded.save(&project).expect("save");
     let out = dir.join("ism.png");
     let args =
         ["render", &s(&project), "--mode", "ism", "--width", "16", "--height", "9", "--ssaa", "1", "--out", &s(&out)];
     let o = bouncelab(&args);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("frame 6/6"), "converged over its 6 frames: {}", stderr(&o));
+    assert!(stderr(&o).contains("frame 8/8"), "converged over its 8 frames: {}", stderr(&o));
     assert!(!stderr(&o).contains("had not converged"), "{}", stderr(&o));
     let o = bouncelab(&[&args[..], &["--frames", "2"]].concat());
     assert!(o.status.success(), "{}", stderr(&o));

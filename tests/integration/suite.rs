@@ -148,7 +148,7 @@ fn ism_energy_is_within_ten_percent_on_the_diorama() {
 fn raw_spread(ctx: &bouncelab::render::GpuContext, name: &str, ism: IsmSettings, frames: usize) -> f64 {
     let mut project = suite::scene(name).expect("scene").load(Path::new(".")).expect("loads");
     project.render.mode = GiMode::Ism;
-    project.render.ism = IsmSettings { base_confidence: 0.0, ..ism };
+    project.render.ism = IsmSettings { base_confidence: 0.0, still_frames: 0, ..ism };
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let mut energies = Vec::new();
     for frame in 0..frames {
