@@ -63,9 +63,7 @@ impl Settled {
         }
         let energies = frames.iter().map(|f| metrics::luminance_ratio(f, reference)).collect::<Result<Vec<_>, _>>()?;
         let worst = energies.iter().copied().fold(1.0f64, |w, e| if (e - 1.0).abs() > (w - 1.0).abs() { e } else { w });
-        let mean = energies.iter().sum::<f64>() / energies.len() as f64;
-        let var = energies.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / energies.len() as f64;
-        let spread = if mean > 0.0 { var.sqrt() / mean } else { 0.0 };
+        let spread = metrics::relative_spread(&energies);
         let statics = [reference.clone(), reference.clone()];
         let instability = metrics::temporal_instability(frames, &statics)?;
         Ok(Some(Self { worst, spread, instability, after }))

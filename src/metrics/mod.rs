@@ -8,7 +8,7 @@ mod temporal;
 
 pub use flip::{FLIP_PIXELS_PER_DEGREE, flip, ldr_srgb8};
 pub use heatmap::signed_heatmap;
-pub use temporal::{mean_frame_change, temporal_instability};
+pub use temporal::{mean_frame_change, relative_spread, temporal_instability};
 
 use serde::Serialize;
 

@@ -7,6 +7,18 @@
 use super::{MetricsError, check, luminance};
 use crate::image_io::HdrImage;
 
+/// The relative spread of a sequence of per-frame values (energies): population standard
+/// deviation over mean; 0 for an empty sequence or a mean of 0.
+pub fn relative_spread(values: &[f64]) -> f64 {
+    let n = values.len() as f64;
+    if values.is_empty() {
+        return 0.0;
+    }
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n;
+    if mean > 0.0 { var.sqrt() / mean } else { 0.0 }
+}
+
 /// Mean absolute luminance change between consecutive frames.
 pub fn mean_frame_change(frames: &[HdrImage]) -> Result<f64, MetricsError> {
     if frames.len() < 2 {
@@ -58,6 +70,13 @@ pub fn temporal_instability(candidate: &[HdrImage], reference: &[HdrImage]) -> R
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn relative_spread_is_the_population_standard_deviation_over_the_mean() {
+        assert!((relative_spread(&[0.9, 1.1]) - 0.1).abs() < 1e-12);
+        assert_eq!(relative_spread(&[1.0, 1.0, 1.0]), 0.0);
+        assert_eq!(relative_spread(&[]), 0.0);
+    }
 
     #[test]
     fn flicker_scores_positive() {

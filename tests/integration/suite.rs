@@ -107,8 +107,7 @@ fn ism_puts_no_light_through_the_walls_into_the_unlit_room_and_its_settled_frame
     // and their spread (standard deviation over mean) at most 3%. Before `still_frames` the
     // matrix's frames 9-32 of this view read 0.72 at worst with an 8.9% spread.
     let frames: Vec<f64> = settled.iter().map(|f| mean(f) / truth).collect();
-    let m = frames.iter().sum::<f64>() / frames.len() as f64;
-    let spread = (frames.iter().map(|e| (e - m).powi(2)).sum::<f64>() / frames.len() as f64).sqrt() / m;
+    let spread = metrics::relative_spread(&frames);
     eprintln!("unlit third room, frames 33-48 one by one: {frames:.3?}, spread {:.1}%", 100.0 * spread);
     assert!(frames.iter().all(|e| (e - 1.0).abs() < 0.1), "a settled frame off by 10% or more: {frames:.3?}");
     assert!(spread <= 0.03, "settled frames wander: spread {:.1}%", 100.0 * spread);

@@ -22,7 +22,7 @@
 struct TemporalParams {
     // reset (1 = ignore history), n when `raw` is in the split layout (0: full layout), unused x2.
     flags: vec4<u32>,
-    // c_base, w_pos, w_normal, w_illum.
+    // c_base (unused here: the cap in params.z stands for it), w_pos, w_normal, w_illum.
     weights: vec4<f32>,
     // depth range (metres), exposure multiplier, the confidence's cap (c_base, or
     // 1 - 1 / still_frames while nothing moves), unused.

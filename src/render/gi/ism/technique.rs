@@ -505,7 +505,8 @@ impl GiTechnique for IsmTechnique {
         note_reset(&mut self.status, reason);
         match reason {
             // The confidence follows moving lights and objects (Knecht 2009 section 3.5); the
-            // point data is re-checked by its keys every frame. The next frame is not still.
+            // point data is re-checked by its keys every frame. A still view refines again only
+            // once the light from before the edit has faded (`Stillness`).
             ResetReason::LightEdited | ResetReason::SceneEdited => self.stillness.edited = true,
             ResetReason::CameraCut | ResetReason::SettingsChanged | ResetReason::ModeEntered | ResetReason::Resized => {
                 self.gather.screen.reset_history();
