@@ -106,7 +106,7 @@ fn level(count: usize, triangles: u32) -> anyhow::Result<Scene> {
         camera: Camera::look_at(Vec3::new(0.0, 0.6 * extent + 4.0, 0.9 * extent + 4.0), Vec3::ZERO, 0.9),
         light_units: bouncelab::scene::LightUnits::Radiometric,
     };
-    Ok(Scene::new(desc, Resources { meshes, images: vec![] })?)
+    Ok(Scene::new(desc, Resources { meshes, images: vec![], sky: None })?)
 }
 
 fn main() -> anyhow::Result<()> {

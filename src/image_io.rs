@@ -88,7 +88,8 @@ pub fn write_image(
 const MAX_SIDE: u32 = 16384;
 const MAX_DECODE_BYTES: u64 = 2 << 30;
 
-/// Reads an image as linear RGBA float: EXR as stored, PNG/JPEG decoded from sRGB.
+/// Reads an image as linear RGBA float: EXR and Radiance HDR as stored, PNG/JPEG decoded from
+/// sRGB.
 pub fn read_linear(path: &Path) -> Result<HdrImage, ImageIoError> {
     let bytes = crate::input_file::read(path, crate::input_file::Kind::Image)
         .map_err(|e| ImageIoError::Codec { path: path.to_owned(), message: e.to_string() })?;
@@ -111,21 +112,29 @@ pub fn decode_linear(bytes: &[u8], path: &Path) -> Result<HdrImage, ImageIoError
     limits.max_alloc = Some(MAX_DECODE_BYTES);
     reader.limits(limits);
     let img = reader.decode().map_err(codec)?;
-    let is_exr = reader_is_exr(path, bytes);
+    let is_linear = reader_is_linear(path, bytes);
     let rgba = img.to_rgba32f();
     let (width, height) = rgba.dimensions();
     let pixels = rgba
         .pixels()
         .map(|p| {
-            if is_exr { p.0 } else { [srgb_to_linear(p.0[0]), srgb_to_linear(p.0[1]), srgb_to_linear(p.0[2]), p.0[3]] }
+            if is_linear {
+                p.0
+            } else {
+                [srgb_to_linear(p.0[0]), srgb_to_linear(p.0[1]), srgb_to_linear(p.0[2]), p.0[3]]
+            }
         })
         .collect();
     Ok(HdrImage { width, height, pixels })
 }
 
-/// Whether the bytes are (or the path names) OpenEXR: linear data, no sRGB decoding.
-fn reader_is_exr(path: &Path, bytes: &[u8]) -> bool {
-    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr")) || bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01])
+/// Whether the bytes are (or the path names) OpenEXR or Radiance HDR: linear data, no sRGB
+/// decoding.
+fn reader_is_linear(path: &Path, bytes: &[u8]) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr") || e.eq_ignore_ascii_case("hdr"))
+        || bytes.starts_with(&[0x76, 0x2f, 0x31, 0x01])
+        || bytes.starts_with(b"#?RADIANCE")
+        || bytes.starts_with(b"#?RGBE")
 }
 
 /// The sRGB decoding curve.

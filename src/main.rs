@@ -13,7 +13,7 @@ struct Args {
     /// Project (.ron) or scene (.gltf/.glb) to open in the editor; the default project if omitted.
     project: Option<PathBuf>,
     #[command(flatten)]
-    units: cli::LightUnitsArg,
+    units: cli::SceneArgs,
     #[command(subcommand)]
     command: Option<Command>,
 }

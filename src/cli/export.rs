@@ -3,7 +3,6 @@
 use std::path::{Path, PathBuf};
 
 use crate::output_path;
-use crate::project_file::Project;
 
 /// Arguments of `bouncelab export`.
 #[derive(clap::Args, Debug)]
@@ -17,13 +16,13 @@ pub struct ExportArgs {
     /// Units the lights are written in (default: the project's own choice, photometric for a
     /// glTF opened without a record of its units); a glTF input is read in them too.
     #[command(flatten)]
-    pub units: super::LightUnitsArg,
+    pub units: super::SceneArgs,
 }
 
 /// Exports and returns a one-line summary.
 pub fn run(args: &ExportArgs) -> anyhow::Result<String> {
     output_path::check(&args.out, output_path::GLTF, &[&args.input])?;
-    let project = Project::open_with(&args.input, args.units.options())?;
+    let project = args.units.open(&args.input)?;
     let inputs = project.files();
     output_path::check(&args.out, output_path::GLTF, &inputs.iter().map(PathBuf::as_path).collect::<Vec<&Path>>())?;
     let summary = crate::export::export(&project, &args.out)?;

@@ -26,24 +26,91 @@ pub mod unseen;
 pub use report::error_report;
 
 use crate::import::ImportOptions;
-use crate::scene::LightUnits;
+use crate::project_file::Project;
+use crate::scene::{LightUnits, Sky};
 
-/// `--light-units`, on every command that opens a glTF file.
-#[derive(Clone, Copy, Debug, Default, clap::Args)]
-pub struct LightUnitsArg {
-    /// The units of a glTF file's light intensities where the file does not record them:
-    /// `photometric` (the glTF specification's candela and lux, as Blender, Godot and Bevy
-    /// write and read them; the default) or `radiometric` (W/sr and W/m²). A project file
-    /// carries its own choice, which this replaces.
+/// How to read the scene, on every command that opens one: `--light-units` for a glTF file's
+/// lights and emission, and the sky (glTF has none) with `--sky`, `--sky-intensity` and
+/// `--sky-rotation`, which replace a project's own.
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct SceneArgs {
+    /// The units of a glTF file's light intensities and emission where the file does not record
+    /// them: `photometric` (the glTF specification's candela and lux, and cd/m² for emission, as
+    /// Blender, Godot and Bevy write and read them; the default) or `radiometric` (W/sr, W/m²
+    /// and W/(sr m²)). A project file carries its own choice, which this replaces.
     #[arg(long = "light-units", value_parser = parse_light_units)]
     pub light_units: Option<LightUnits>,
+    /// The sky: `R,G,B` (a constant sky of that radiance in the scene's light units: W/(sr m²)
+    /// when radiometric, cd/m² when photometric), `FILE.hdr` or `FILE.exr` (an equirectangular
+    /// image, its texels radiance in the same units), or `none`.
+    #[arg(long, value_parser = parse_sky)]
+    pub sky: Option<Sky>,
+    /// A scale on the sky's radiance (default 1).
+    #[arg(long)]
+    pub sky_intensity: Option<f32>,
+    /// The sky's rotation about +Y in degrees.
+    #[arg(long, allow_negative_numbers = true)]
+    pub sky_rotation: Option<f32>,
 }
 
-impl LightUnitsArg {
+impl SceneArgs {
     /// The import options the flag asks for, if it was given.
     pub fn options(&self) -> Option<ImportOptions> {
         self.light_units.map(|light_units| ImportOptions { light_units })
     }
+
+    /// Opens a project or glTF file as these flags say.
+    pub fn open(&self, path: &std::path::Path) -> anyhow::Result<Project> {
+        let mut project = Project::open_with(path, self.options())?;
+        self.apply_sky(&mut project)?;
+        Ok(project)
+    }
+
+    /// Gives `project` the sky these flags ask for (a constant sky's colour read in the scene's
+    /// light units) and loads its image.
+    pub fn apply_sky(&self, project: &mut Project) -> anyhow::Result<()> {
+        if self.sky.is_none() && self.sky_intensity.is_none() && self.sky_rotation.is_none() {
+            return Ok(());
+        }
+        let mut desc = project.scene.desc().clone();
+        let units = desc.light_units;
+        let env = &mut desc.environment;
+        if let Some(sky) = &self.sky {
+            env.sky = match sky {
+                Sky::Constant(c) => Sky::Constant(c.map(|v| units.to_radiometric(v))),
+                other => other.clone(),
+            };
+        }
+        // The image's texels are in the scene's light units, the intensity a plain scale.
+        let scale = self.sky_intensity.or(self.sky.as_ref().map(|_| 1.0));
+        if let Some(i) = scale {
+            env.intensity = if matches!(env.sky, Sky::Image(_)) { units.to_radiometric(i) } else { i };
+        }
+        if let Some(r) = self.sky_rotation {
+            env.rotation_degrees = r;
+        }
+        project.set_desc(desc)?;
+        Ok(())
+    }
+}
+
+fn parse_sky(text: &str) -> Result<Sky, String> {
+    if text == "none" {
+        return Ok(Sky::None);
+    }
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() == 3 {
+        let rgb: Result<Vec<f32>, _> = parts.iter().map(|p| p.trim().parse::<f32>()).collect();
+        return match rgb {
+            Ok(v) if v.iter().all(|c| c.is_finite() && *c >= 0.0) => Ok(Sky::Constant([v[0], v[1], v[2]])),
+            _ => Err(format!("--sky {text:?}: a colour is three numbers >= 0, R,G,B")),
+        };
+    }
+    let lower = text.to_ascii_lowercase();
+    if lower.ends_with(".hdr") || lower.ends_with(".exr") {
+        return Ok(Sky::Image(text.to_owned()));
+    }
+    Err(format!("--sky {text:?}: expected R,G,B, an .hdr or .exr file, or none"))
 }
 
 fn parse_light_units(text: &str) -> Result<LightUnits, String> {

@@ -61,7 +61,7 @@ pub struct FitArgs {
     #[arg(long)]
     pub out: PathBuf,
     #[command(flatten)]
-    pub units: super::LightUnitsArg,
+    pub units: super::SceneArgs,
 }
 
 /// Fits proxy blocks to a level and writes the project with them; returns the report. Blocks
@@ -69,10 +69,9 @@ pub struct FitArgs {
 /// `mrt` render twice the light.
 pub fn fit(args: &FitArgs) -> anyhow::Result<String> {
     use crate::output_path;
-    use crate::project_file::Project;
     use crate::scene::ObjectRole;
     output_path::check(&args.out, output_path::PROJECT, &[&args.input])?;
-    let mut project = Project::open_with(&args.input, args.units.options())?;
+    let mut project = args.units.open(&args.input)?;
     let inputs = project.files();
     output_path::check(&args.out, output_path::PROJECT, &inputs.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
     let objects = &mut project.scene.desc_mut().objects;

@@ -71,7 +71,7 @@ pub struct ProbeArgs {
     #[arg(long)]
     pub out: Option<PathBuf>,
     #[command(flatten)]
-    pub units: super::LightUnitsArg,
+    pub units: super::SceneArgs,
 }
 
 fn parse_mode(name: &str) -> Result<GiMode, String> {
@@ -116,11 +116,12 @@ fn scene(args: &ProbeArgs, name: &str) -> anyhow::Result<(Project, HdrImage, Str
         (None, Some(gltf)) => image_io::read_linear(&gltf.with_extension("exr"))?,
         (None, None) => suite::scene(name)?.reference(root)?,
     };
-    let project = match (&args.gltf, outside) {
+    let mut project = match (&args.gltf, outside) {
         (Some(path), _) => Project::from_gltf_with(path, args.units.options().unwrap_or_default())?,
         (None, Some(gltf)) => Project::from_gltf_with(gltf, args.units.options().unwrap_or_default())?,
         (None, None) => suite::scene(name)?.load(root)?,
     };
+    args.units.apply_sky(&mut project)?;
     Ok((project, reference, label))
 }
 

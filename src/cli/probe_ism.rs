@@ -106,7 +106,7 @@ pub struct ProbeIsmArgs {
     #[arg(long, value_name = "N", default_value_t = oracle::RECEIVERS, value_parser = parse_receivers)]
     pub receivers: usize,
     #[command(flatten)]
-    pub units: super::LightUnitsArg,
+    pub units: super::SceneArgs,
 }
 
 fn parse_settings(text: &str) -> Result<IsmSettings, String> {
@@ -193,12 +193,14 @@ pub fn run(args: &ProbeIsmArgs) -> anyhow::Result<String> {
 }
 
 /// The level: a suite scene, or a `.gltf` file.
-fn load_level(name: &str, units: &super::LightUnitsArg) -> anyhow::Result<Project> {
-    Ok(if name.ends_with(".gltf") {
+fn load_level(name: &str, units: &super::SceneArgs) -> anyhow::Result<Project> {
+    let mut project = if name.ends_with(".gltf") {
         Project::from_gltf_with(Path::new(name), units.options().unwrap_or_default())?
     } else {
         suite::scene(name)?.load(Path::new("."))?
-    })
+    };
+    units.apply_sky(&mut project)?;
+    Ok(project)
 }
 
 /// Which pairs the lookup check counts and lists, from the flags.

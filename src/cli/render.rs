@@ -37,7 +37,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub frames: Option<u32>,
     /// Write the image even when it is not what was asked for (a technique could not do its
-    /// work, the scene has no light, it has emissive surfaces no mode renders): the problems
+    /// work, the scene has no light, the mode does not light with its sky or emission): the problems
     /// are still printed. Without it, such a render writes nothing and exits non-zero.
     #[arg(long)]
     pub allow_partial: bool,
@@ -70,14 +70,14 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 3)]
     pub ssaa: u32,
     #[command(flatten)]
-    pub units: super::LightUnitsArg,
+    pub units: super::SceneArgs,
 }
 
 /// Renders and writes the output file; returns a one-line summary.
 pub fn run(args: &RenderArgs) -> anyhow::Result<String> {
     let kind = image_io::output_kind(&args.out)?;
     let (project, size) = checked_project(args)?;
-    // A scene with no light or with emission no mode renders is not what a render asks for
+    // A scene with no light is not what a render asks for
     // (buffers such as albedo or normal do not need light).
     let scene_shortfalls = if args.buffer.is_some() { Vec::new() } else { project.shortfalls() };
     if project.render.mode == GiMode::Reference {
@@ -125,7 +125,7 @@ fn checked_project(args: &RenderArgs) -> anyhow::Result<(Project, (u32, u32))> {
         anyhow::bail!("--ssaa {} is outside 1..=8 (samples per axis)", args.ssaa);
     }
     output_path::check(&args.out, output_path::IMAGE, &[&args.input])?;
-    let mut project = Project::open_with(&args.input, args.units.options())?;
+    let mut project = args.units.open(&args.input)?;
     let inputs = project.files();
     output_path::check(&args.out, output_path::IMAGE, &inputs.iter().map(PathBuf::as_path).collect::<Vec<_>>())?;
     let r = &mut project.render;

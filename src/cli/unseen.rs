@@ -27,7 +27,7 @@ pub struct UnseenArgs {
     #[arg(long, default_value_t = 64)]
     pub spp: u32,
     #[command(flatten)]
-    pub units: super::LightUnitsArg,
+    pub units: super::SceneArgs,
 }
 
 fn parse_size(text: &str) -> Result<(u32, u32), String> {
@@ -78,7 +78,7 @@ pub fn run(args: &UnseenArgs) -> anyhow::Result<String> {
 /// A suite scene by name, or a project or glTF file.
 fn open(args: &UnseenArgs, name: &str) -> anyhow::Result<Project> {
     if name.ends_with(".ron") || name.ends_with(".gltf") || name.ends_with(".glb") {
-        return Ok(Project::open_with(Path::new(name), args.units.options())?);
+        return args.units.open(Path::new(name));
     }
     Ok(suite::scene(name)?.load(Path::new("."))?)
 }

@@ -40,8 +40,8 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path, options: ImportO
     }
     let buffers = load_buffers(doc, gltf.blob.as_deref(), base_dir, path)?;
     let images = images::load_images(doc, &buffers, base_dir, path)?;
-    let materials = doc.materials().map(|m| material(&m, path)).collect::<Result<Vec<_>, _>>()?;
-    let emissive = doc.materials().filter(emits).map(|m| material_name(&m)).collect();
+    let materials = doc.materials().map(|m| material(&m, light_units, path)).collect::<Result<Vec<_>, _>>()?;
+    let emissive = materials.iter().filter(|m| m.emits()).map(|m| m.name.clone()).collect();
     let primitives = primitive::load_primitives(doc, &buffers, path)?;
     let files = referenced_files(doc, base_dir);
     let mut asset = Asset {
@@ -155,17 +155,14 @@ fn referenced_files(doc: &gltf::Document, base_dir: &Path) -> Vec<std::path::Pat
     buffers.chain(images).collect()
 }
 
-/// Whether a material gives off light (an emissive factor or texture): the scene model has no
-/// emission yet, so the importer names these materials and every technique says it ignores them.
-fn emits(m: &gltf::Material<'_>) -> bool {
-    m.emissive_factor().iter().any(|c| *c > 0.0)
-}
-
 fn material_name(m: &gltf::Material<'_>) -> String {
     m.name().map_or_else(|| format!("material {}", m.index().unwrap_or(0)), str::to_owned)
 }
 
-fn material(m: &gltf::Material<'_>, path: &Path) -> Result<Material, ImportError> {
+/// One glTF material. Emission: `emissiveFactor` is the colour, `KHR_materials_emissive_strength`
+/// (1 without it) the strength, read in the file's light units (photometric: cd/m², divided by
+/// 683 lm/W like the lights; radiometric: W/(sr m²)).
+fn material(m: &gltf::Material<'_>, units: LightUnits, path: &Path) -> Result<Material, ImportError> {
     let pbr = m.pbr_metallic_roughness();
     let tex = |t: gltf::texture::Texture<'_>, tex_coord: u32| TextureRef { image: t.source().index(), tex_coord };
     let name = material_name(m);
@@ -183,5 +180,8 @@ fn material(m: &gltf::Material<'_>, path: &Path) -> Result<Material, ImportError
         normal_scale: m.normal_texture().map_or(1.0, |n| n.scale()),
         specular,
         roughness: pbr.roughness_factor().clamp(0.02, 1.0),
+        emissive_color: m.emissive_factor(),
+        emissive_strength: units.to_radiometric(m.emissive_strength().unwrap_or(1.0)),
+        emissive_texture: m.emissive_texture().map(|i| tex(i.texture(), i.tex_coord())),
     })
 }

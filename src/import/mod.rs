@@ -13,6 +13,7 @@ mod guard;
 mod images;
 mod nodes;
 mod primitive;
+pub mod sky;
 mod uri;
 
 pub use accessor::AccessorError;
@@ -31,7 +32,7 @@ pub struct ImportOptions {
 }
 
 /// Extensions we understand well enough to accept when a file marks them required.
-pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &["KHR_lights_punctual"];
+pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] = &["KHR_lights_punctual", "KHR_materials_emissive_strength"];
 
 /// Why a glTF file could not be imported. Every variant names the file.
 #[derive(Debug, thiserror::Error)]
@@ -89,7 +90,7 @@ pub struct Asset {
     pub render: Option<crate::settings::RenderSettings>,
     /// Whether the file had a camera (otherwise `scene.camera` frames the bounds).
     pub has_camera: bool,
-    /// Names of the materials that emit light, which the scene model does not carry (yet).
+    /// Names of the materials that emit light.
     pub emissive: Vec<String>,
     /// The buffer and image files it read besides itself.
     pub files: Vec<PathBuf>,

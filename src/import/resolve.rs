@@ -17,6 +17,9 @@ pub enum ResolveError {
     /// The resolved scene is inconsistent.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The environment's sky image could not be loaded.
+    #[error(transparent)]
+    Sky(#[from] super::sky::SkyError),
 }
 
 /// What makes two objects' meshes the same: objects with equal keys share one [`Mesh`] (on the

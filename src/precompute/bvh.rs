@@ -202,8 +202,8 @@ mod tests {
             }],
             ..SceneDesc::default()
         };
-        let scene =
-            Scene::new(desc, Resources { meshes: vec![Mesh::plane("floor", 4.0)], images: vec![] }).expect("scene");
+        let scene = Scene::new(desc, Resources { meshes: vec![Mesh::plane("floor", 4.0)], images: vec![], sky: None })
+            .expect("scene");
         let bvh = SceneBvh::build(&scene);
         let o = Vec3::new(0.48, 1.0, 0.13);
         let hit = bvh.intersect(o, Vec3::new(-0.0, -1.0, -0.0), f32::INFINITY).expect("hits the floor");

@@ -176,8 +176,11 @@ mod tests {
             objects: vec![obj("a", -1.0, w0, 0), obj("b", 1.0, w1, 1)],
             ..SceneDesc::default()
         };
-        Scene::new(desc, Resources { meshes: vec![Mesh::plane("a", 1.0), Mesh::plane("b", 1.0)], images: vec![] })
-            .expect("scene")
+        Scene::new(
+            desc,
+            Resources { meshes: vec![Mesh::plane("a", 1.0), Mesh::plane("b", 1.0)], images: vec![], sky: None },
+        )
+        .expect("scene")
     }
 
     #[test]

@@ -30,5 +30,5 @@ pub fn scene_of_slabs(parts: &[(&str, Vec3, Vec3)], more: Vec<(Object, Mesh)>) -
         meshes.push(mesh);
     }
     let desc = SceneDesc { materials: vec![Material::default()], objects, ..SceneDesc::default() };
-    Scene::new(desc, Resources { meshes, images: vec![] }).expect("scene")
+    Scene::new(desc, Resources { meshes, images: vec![], sky: None }).expect("scene")
 }

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::import::{self, ImportError, ImportOptions, ResolveError};
-use crate::scene::{Scene, SceneDesc};
+use crate::scene::{Scene, SceneDesc, Sky};
 use crate::settings::{RenderSettings, SettingsError};
 
 /// The version this build writes. Version 2 added the scene's `light_units`; a version 1 file
@@ -126,9 +126,12 @@ impl Project {
     pub fn load(path: &Path) -> Result<Self, ProjectError> {
         let text = crate::input_file::read_text(path, crate::input_file::Kind::Project)
             .map_err(|source| ProjectError::Io { path: path.to_owned(), source })?;
-        let file = parse(&text, path)?;
+        let mut file = parse(&text, path)?;
         let dir = path.parent().unwrap_or_else(|| Path::new("."));
         let assets: Vec<PathBuf> = file.assets.iter().map(|a| dir.join(a)).collect();
+        if let Sky::Image(name) = &mut file.scene.environment.sky {
+            *name = dir.join(&*name).to_string_lossy().into_owned();
+        }
         Self::from_parts(path, assets, file.scene, file.render)
     }
 
@@ -152,8 +155,9 @@ impl Project {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let scene = import::resolve(scene, &imported)
+        let mut scene = import::resolve(scene, &imported)
             .map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
+        attach_sky(&mut scene).map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
         render.validate().map_err(|source| ProjectError::Settings { path: path.to_owned(), source })?;
         Ok(Self { assets, scene, render, imported })
     }
@@ -168,10 +172,16 @@ impl Project {
             for (new, old) in desc.objects.iter_mut().zip(self.scene.objects()) {
                 new.mesh = old.mesh;
             }
+            let new_sky = desc.environment.sky != self.scene.environment().sky;
             desc_validate(&desc, &self.scene)?;
             *self.scene.desc_mut() = desc;
+            if new_sky {
+                attach_sky(&mut self.scene)?;
+            }
         } else {
-            self.scene = import::resolve(desc, &self.imported)?;
+            let mut scene = import::resolve(desc, &self.imported)?;
+            attach_sky(&mut scene)?;
+            self.scene = scene;
         }
         Ok(())
     }
@@ -215,7 +225,8 @@ impl Project {
     /// Replaces the description and the imported assets together (undoing a live reload):
     /// the scene is resolved against `imported`.
     pub fn set_desc_and_assets(&mut self, desc: SceneDesc, imported: Vec<import::Asset>) -> Result<(), ResolveError> {
-        let scene = import::resolve(desc, &imported)?;
+        let mut scene = import::resolve(desc, &imported)?;
+        attach_sky(&mut scene)?;
         self.imported = imported;
         self.scene = scene;
         Ok(())
@@ -230,38 +241,35 @@ impl Project {
     /// [`Self::files`] without copying them.
     pub fn file_paths(&self) -> impl Iterator<Item = &Path> + Clone {
         let referenced = self.imported.iter().flat_map(|a| a.files.iter().map(PathBuf::as_path));
-        self.assets.iter().map(PathBuf::as_path).chain(referenced)
+        let sky = match &self.scene.environment().sky {
+            Sky::Image(name) => Some(Path::new(name.as_str())),
+            _ => None,
+        };
+        self.assets.iter().map(PathBuf::as_path).chain(referenced).chain(sky)
     }
 
     /// What makes any render of this project other than what the user asked for, as sentences:
-    /// no light at all, or materials whose emission no mode renders (the scene model has none).
+    /// no light at all (no punctual light, no sky, no emissive surface).
     pub fn shortfalls(&self) -> Vec<String> {
-        let mut out = Vec::new();
-        let lit = self.scene.lights().iter().any(|l| l.intensity > 0.0 && l.color.iter().any(|c| *c > 0.0));
-        if !lit {
-            out.push(
-                "the scene has no light (no light with a positive intensity): every mode renders it black".to_owned(),
-            );
+        let punctual = self.scene.lights().iter().any(|l| l.intensity > 0.0 && l.color.iter().any(|c| *c > 0.0));
+        let emissive = self.scene.materials().iter().any(crate::scene::Material::emits);
+        if punctual || emissive || self.scene.has_sky() {
+            return Vec::new();
         }
-        let emissive: Vec<&str> = self.imported.iter().flat_map(|a| a.emissive.iter().map(String::as_str)).collect();
-        if !emissive.is_empty() {
-            out.push(format!(
-                "{} material{} emit light ({}), which no mode renders yet: those surfaces give no light",
-                emissive.len(),
-                if emissive.len() == 1 { "" } else { "s" },
-                emissive.iter().take(5).copied().collect::<Vec<_>>().join(", ")
-            ));
-        }
-        out
+        vec!["the scene has no light (no light with a positive intensity, no sky, no emissive surface): every mode renders it black".to_owned()]
     }
 
     /// The RON text this project saves as, with asset paths relative to `project_path`'s folder.
     pub fn to_ron(&self, project_path: &Path) -> Result<String, ProjectError> {
         let dir = project_path.parent().unwrap_or_else(|| Path::new("."));
+        let mut scene = self.scene.desc().clone();
+        if let Sky::Image(name) = &mut scene.environment.sky {
+            *name = paths::relative_to(Path::new(name.as_str()), dir);
+        }
         let file = ProjectFileV1 {
             format_version: FORMAT_VERSION,
             assets: self.assets.iter().map(|a| paths::relative_to(a, dir)).collect(),
-            scene: self.scene.desc().clone(),
+            scene,
             render: self.render.clone(),
         };
         let config = ron::ser::PrettyConfig::new().indentor("  ").struct_names(false).separate_tuple_members(false);
@@ -319,6 +327,16 @@ pub fn is_default_project(path: &Path) -> bool {
         (Ok(a), Ok(b)) => a == b,
         _ => false,
     }
+}
+
+/// Loads (or drops) the sky image `scene`'s environment names (its path as the project holds it:
+/// joined to the project's folder on load).
+pub fn attach_sky(scene: &mut Scene) -> Result<(), ResolveError> {
+    let sky = import::sky::load_sky(scene.environment(), Path::new(""))?;
+    if sky != scene.resources().sky {
+        scene.resources_mut().sky = sky;
+    }
+    Ok(())
 }
 
 /// Validates `desc` against `scene`'s loaded resources without replacing anything.

@@ -10,6 +10,7 @@
 
 pub mod basis;
 mod camera;
+mod environment;
 mod light;
 pub mod limits;
 mod material;
@@ -18,6 +19,7 @@ mod object;
 mod units;
 
 pub use camera::{Camera, rotation_looking};
+pub use environment::{Environment, Sky, SkyImage, equirect_direction, equirect_uv};
 pub use light::{Light, LightKind, spot_attenuation};
 pub use material::{Material, TextureRef};
 pub use mesh::{Aabb, Mesh, MeshError};
@@ -45,6 +47,8 @@ pub struct Resources {
     pub meshes: Vec<Mesh>,
     /// Images, indexed by [`TextureRef::image`].
     pub images: Vec<Image>,
+    /// The decoded [`Sky::Image`] of the environment, if it has one.
+    pub sky: Option<std::sync::Arc<SkyImage>>,
 }
 
 /// The authored description of a scene: what the project file stores.
@@ -62,6 +66,9 @@ pub struct SceneDesc {
     pub light_units: LightUnits,
     /// Punctual lights (radiometric: W/sr, or W/m^2 for directional ones).
     pub lights: Vec<Light>,
+    /// The sky (radiometric radiance, W/(sr m²)); a file without the field has none.
+    #[serde(default)]
+    pub environment: Environment,
     /// The view camera.
     pub camera: Camera,
 }
@@ -159,6 +166,21 @@ impl Scene {
         &self.desc.materials
     }
 
+    /// The environment.
+    pub fn environment(&self) -> &Environment {
+        &self.desc.environment
+    }
+
+    /// The decoded sky image, if the environment is an image and it is loaded.
+    pub fn sky_image(&self) -> Option<&SkyImage> {
+        self.resources.sky.as_deref()
+    }
+
+    /// Whether any light comes from the sky.
+    pub fn has_sky(&self) -> bool {
+        self.desc.environment.emits(self.sky_image())
+    }
+
     /// The view camera.
     pub fn camera(&self) -> &Camera {
         &self.desc.camera
@@ -205,7 +227,8 @@ impl Scene {
             object.validate()?;
         }
         for material in &self.desc.materials {
-            for tex in [&material.base_color_texture, &material.normal_texture].into_iter().flatten() {
+            let textures = [&material.base_color_texture, &material.normal_texture, &material.emissive_texture];
+            for tex in textures.into_iter().flatten() {
                 if tex.image >= images {
                     return Err(SceneError::MissingImage {
                         material: material.name.clone(),
@@ -218,6 +241,10 @@ impl Scene {
         }
         for light in &self.desc.lights {
             light.validate()?;
+        }
+        self.desc.environment.validate()?;
+        if let Some(sky) = &self.resources.sky {
+            sky.validate()?;
         }
         self.desc.camera.validate()?;
         Ok(())

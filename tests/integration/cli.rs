@@ -367,7 +367,7 @@ fn a_render_that_is_not_what_was_asked_for_is_refused_unless_allowed() {
     let glowing = dir.join("glowing.gltf");
     cornell_variant(&glowing, |doc| doc["materials"][0]["emissiveFactor"] = serde_json::json!([1.0, 0.9, 0.8]));
     let size = ["--width", "16", "--height", "9", "--ssaa", "1", "--mode", "direct"];
-    for (scene, why) in [(&dark, "no light"), (&glowing, "emit light")] {
+    for (scene, why) in [(&dark, "no light"), (&glowing, "emissive material")] {
         let out = dir.join("out.png");
         let o = bouncelab(&[&["render", &s(scene), "--out", &s(&out)][..], &size[..]].concat());
         assert!(!o.status.success(), "{}: exit 0", scene.display());

@@ -133,7 +133,7 @@ pub struct ProbeMrtArgs {
     #[arg(long)]
     pub faces: bool,
     #[command(flatten)]
-    pub units: crate::cli::LightUnitsArg,
+    pub units: crate::cli::SceneArgs,
 }
 
 fn parse_dictionary(text: &str) -> Result<DictionaryParams, String> {
@@ -219,6 +219,7 @@ fn load_level(args: &ProbeMrtArgs, out: &mut String) -> anyhow::Result<Project> 
     } else {
         suite::scene(name)?.load(Path::new("."))?
     };
+    args.units.apply_sky(&mut project)?;
     if !project.scene.objects().iter().any(|o| o.role == ObjectRole::ProxyBlock) {
         let fitted = proxy::fitted_objects(&project.scene)?;
         writeln!(out, "{name}: fitted {} proxy blocks", fitted.len())?;

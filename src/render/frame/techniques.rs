@@ -30,8 +30,12 @@ impl Renderer {
 
     /// Why the technique for `settings.mode` could not do its work (see
     /// [`GiTechnique::shortfalls`]); empty before it was first used.
+    /// A scene with a sky or emissive surfaces adds one for every mode but `reference`: the
+    /// camera sees them, but only the path tracer lights other surfaces with them yet.
     pub fn shortfalls(&self, scene: &Scene, settings: &RenderSettings) -> Vec<String> {
-        self.techniques.get(settings.mode).map_or_else(Vec::new, |t| t.shortfalls(scene, settings))
+        let mut out = self.techniques.get(settings.mode).map_or_else(Vec::new, |t| t.shortfalls(scene, settings));
+        out.extend(area_light_shortfall(scene, settings.mode));
+        out
     }
 
     /// The active technique's viewport overlays (reads back from the GPU: call sparingly).
@@ -59,4 +63,23 @@ impl Renderer {
     pub fn queue(&self) -> &wgpu::Queue {
         &self.queue
     }
+}
+
+/// The sentence saying that `mode` shows the sky and emissive surfaces to the camera but lights
+/// nothing with them (every mode but `reference`, so far), or `None`.
+pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
+    if mode == GiMode::Reference {
+        return None;
+    }
+    let emissive = scene.materials().iter().filter(|m| m.emits()).count();
+    let what = match (scene.has_sky(), emissive) {
+        (false, 0) => return None,
+        (true, 0) => "the sky".to_owned(),
+        (false, n) => format!("{n} emissive material{}", if n == 1 { "" } else { "s" }),
+        (true, n) => format!("the sky and {n} emissive material{}", if n == 1 { "" } else { "s" }),
+    };
+    Some(format!(
+        "{}: the camera sees {what}, but their light on other surfaces (direct or indirect) is rendered by `reference` only so far",
+        mode.name()
+    ))
 }
