@@ -66,15 +66,17 @@ mod tests {
 
     #[test]
     fn an_ldr_sky_is_refused_by_name_and_an_exr_sky_loads_linear() {
-        let dir = tempfile::tempdir().expect("dir");
-        let png = dir.path().join("sky.png");
+        let dir = std::env::temp_dir().join(format!("bouncelab-sky-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let png = dir.join("sky.png");
         let err = load_sky_file(&png).unwrap_err().to_string();
         assert!(err.contains("sky.png") && err.contains("HDR"), "{err}");
-        let exr = dir.path().join("sky.exr");
+        let exr = dir.join("sky.exr");
         let pixels = vec![[0.25, 0.5, 4.0, 1.0]; 8 * 4];
         image_io::write_exr(&exr, &image_io::HdrImage { width: 8, height: 4, pixels }).expect("write");
         let img = load_sky_file(&exr).expect("load");
         assert_eq!((img.width, img.height), (8, 4));
         assert_eq!(img.texels[5], [0.25, 0.5, 4.0]);
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -2,9 +2,12 @@
 //! reference path tracer, the ISM sample points and which faces see anything, and MRT's
 //! dictionary operators. Uses rayon; never imports wgpu/egui.
 
+#[cfg(test)]
+mod area_light_tests;
 pub mod brdf;
 pub mod bvh;
 pub mod drt;
+pub mod emitters;
 pub mod facing;
 pub mod ism;
 pub mod mrt;
@@ -12,6 +15,7 @@ pub mod open_edges;
 pub mod pathtracer;
 pub mod rng;
 pub mod sample_points;
+pub mod sky_sampler;
 #[cfg(test)]
 pub(crate) mod test_scenes;
 pub mod unseen;

@@ -3,8 +3,13 @@
 //! Same scene, materials and light conventions as the rasteriser: punctual lights by next-event
 //! estimation with the KHR spot falloff and inverse-square distance, the Lambertian + Blinn-Phong
 //! BRDF of `brdf.rs`, one-sided surfaces (a back-face hit ends the path black but occludes),
-//! base-colour textures and normal maps. Paths continue by BRDF importance sampling, with
-//! Russian roulette from `rr_start`; `max_bounces = 1` is direct light only. One call of
+//! base-colour textures and normal maps. Emissive surfaces (front faces only) and the sky are
+//! lights too: next-event estimation samples an emissive triangle by power (`emitters.rs`) and
+//! an image sky by luminance (`sky_sampler.rs`), BRDF sampling finds them as well, and the two
+//! are combined by multiple importance sampling with the power heuristic (Veach 1997, ch. 9); a
+//! constant sky is left to BRDF sampling alone. Paths continue by BRDF importance sampling, with
+//! Russian roulette from `rr_start`; `max_bounces = 1` is direct light only (the BRDF-sampled
+//! ray is still traced, to find emitters and the sky for MIS, but the path ends). One call of
 //! [`PathTracer::add_sample`] adds one jittered (box-filtered) sample to every pixel, in parallel
 //! over rows with rayon, and can be cancelled.
 
@@ -16,9 +21,11 @@ use rayon::prelude::*;
 
 use super::brdf::{Surface, phong_exponent};
 use super::bvh::{Hit, SceneBvh};
+use super::emitters::{Emitters, power_heuristic};
 use super::rng::Pcg32;
+use super::sky_sampler::{SkyDistribution, sky_distribution};
 use crate::image_io::srgb_to_linear;
-use crate::scene::{Camera, Image, Light, LightKind, Material, Scene};
+use crate::scene::{Camera, Environment, Image, Light, LightKind, Material, Scene, SkyImage};
 use crate::settings::ReferenceSettings;
 
 /// Bump when the tracer's estimator changes: cached suite references keyed on it go stale.
@@ -40,6 +47,10 @@ pub struct PathTracer {
     materials: Vec<Material>,
     images: Vec<Image>,
     lights: Vec<Light>,
+    emitters: Emitters,
+    environment: Environment,
+    sky: Option<std::sync::Arc<SkyImage>>,
+    sky_distribution: Option<SkyDistribution>,
     camera: Camera,
     size: (u32, u32),
     settings: ReferenceSettings,
@@ -77,11 +88,17 @@ impl PathTracer {
     /// Prepares a render of `scene` from its camera at `size`.
     pub fn new(scene: &Scene, size: (u32, u32), settings: ReferenceSettings) -> Self {
         let n = size.0 as usize * size.1 as usize;
+        let bvh = SceneBvh::build(scene);
+        let emitters = Emitters::new(&bvh, scene.materials());
         Self {
-            bvh: SceneBvh::build(scene),
+            bvh,
             materials: scene.materials().to_vec(),
             images: scene.resources().images.clone(),
             lights: scene.lights().to_vec(),
+            emitters,
+            environment: scene.environment().clone(),
+            sky: scene.resources().sky.clone(),
+            sky_distribution: sky_distribution(scene.environment(), scene.sky_image()),
             camera: *scene.camera(),
             size,
             settings,
@@ -226,35 +243,51 @@ impl PathTracer {
     }
 
     /// Follows one path from `origin` along `dir`, handing each surface it meets to `visit`
-    /// with the light that surface sends along the path to `origin` (its next-event estimate
-    /// times the path's throughput); returns the rays traced.
+    /// with the light that surface sends along the path to `origin` (its own emission if it is
+    /// the first, its next-event estimate, and the MIS-weighted emission and sky its sampled
+    /// bounce ray finds, times the path's throughput); a first ray that leaves the scene hands
+    /// over the sky it sees as a vertex at depth 0 far along `dir`. Returns the rays traced.
     pub fn walk(&self, mut origin: Vec3, mut dir: Vec3, rng: &mut Pcg32, mut visit: impl FnMut(Vertex)) -> u64 {
         let mut throughput = Vec3::ONE;
-        let mut rays = 0u64;
+        let mut rays = 1u64;
         let eps = 1e-4 * self.bvh.scale;
+        let area_lights = !self.emitters.is_empty() || self.environment.emits(self.sky.as_deref());
+        let mut hit = self.bvh.intersect(origin, dir, f32::INFINITY);
         for depth in 0..self.settings.max_bounces {
-            rays += 1;
-            let Some(hit) = self.bvh.intersect(origin, dir, f32::INFINITY) else { break };
-            let (p, ng, surface) = self.surface(&hit);
+            let Some(h) = hit else {
+                if depth == 0 {
+                    let sky = self.sky_radiance(dir);
+                    visit(Vertex { depth, p: origin + dir * 1e6 * self.bvh.scale.max(1.0), ng: -dir, light: sky });
+                }
+                break;
+            };
+            let (p, ng, surface) = self.surface(&h);
             let v = -dir;
             if ng.dot(v) <= 0.0 {
                 break; // One-sided: the back of a surface is black.
             }
             let lifted = p + ng * eps;
-            let reflected = self.next_event(p, ng, lifted, v, &surface, &mut rays);
-            visit(Vertex { depth, p, ng, light: throughput * reflected });
-            if depth + 1 >= self.settings.max_bounces {
+            let mut light = throughput * self.next_event(p, ng, lifted, v, &surface, rng, &mut rays);
+            if depth == 0 {
+                light += self.emitted(&h);
+            }
+            let last = depth + 1 >= self.settings.max_bounces;
+            if last && !area_lights {
+                visit(Vertex { depth, p, ng, light });
                 break;
             }
-            let Some(l) = surface.sample(v, (rng.next_f32(), rng.next_f32()), rng.next_f32()) else { break };
-            if ng.dot(l) <= 0.0 {
+            let Some((l, pdf)) = sample_bounce(&surface, ng, v, rng) else {
+                visit(Vertex { depth, p, ng, light });
                 break;
-            }
-            let pdf = surface.pdf(v, l);
-            if pdf <= 0.0 {
-                break;
-            }
+            };
             throughput *= surface.eval(v, l) * surface.n.dot(l) / pdf;
+            rays += 1;
+            hit = self.bvh.intersect(lifted, l, f32::INFINITY);
+            light += throughput * self.found_light(l, hit.as_ref(), pdf);
+            visit(Vertex { depth, p, ng, light });
+            if last {
+                break;
+            }
             if depth + 1 >= self.settings.rr_start {
                 let q = throughput.max_element().min(0.95);
                 if q <= 0.0 || rng.next_f32() >= q {
@@ -268,9 +301,119 @@ impl PathTracer {
         rays
     }
 
-    /// The light every punctual light sends off `p` towards `v` (next-event estimation with a
-    /// shadow ray each); counts the shadow rays in `rays`.
-    fn next_event(&self, p: Vec3, ng: Vec3, lifted: Vec3, v: Vec3, surface: &Surface, rays: &mut u64) -> Vec3 {
+    /// The radiance a bounce ray along `l` (sampled with density `pdf`) finds by
+    /// reaching an emitter's front or the sky, weighted against next-event estimation.
+    fn found_light(&self, l: Vec3, hit: Option<&Hit>, pdf: f32) -> Vec3 {
+        match hit {
+            None => {
+                let pdf_light = self.sky_pdf(l);
+                self.sky_radiance(l) * power_heuristic(pdf, pdf_light)
+            }
+            Some(h) => {
+                let tri = &self.bvh.tris[h.tri as usize];
+                let cos_light = tri.ng.dot(-l);
+                let pdf_area = self.emitters.pdf_area(h.tri);
+                if cos_light <= 0.0 || pdf_area <= 0.0 {
+                    return Vec3::ZERO;
+                }
+                let pdf_light = pdf_area * h.t * h.t / cos_light;
+                self.emitted(h) * power_heuristic(pdf, pdf_light)
+            }
+        }
+    }
+
+    /// The sky's radiance along world direction `d` (towards the sky).
+    fn sky_radiance(&self, d: Vec3) -> Vec3 {
+        self.environment.radiance(d, self.sky.as_deref())
+    }
+
+    /// The density per steradian with which next-event estimation picks sky direction `d`.
+    fn sky_pdf(&self, d: Vec3) -> f32 {
+        self.sky_distribution.as_ref().map_or(0.0, |s| s.pdf(self.environment.to_sky(d)))
+    }
+
+    /// The radiance the front of the surface at `hit` emits (emission colour x strength x
+    /// texture); zero for materials that do not emit.
+    fn emitted(&self, hit: &Hit) -> Vec3 {
+        let tri = &self.bvh.tris[hit.tri as usize];
+        let Some(m) = self.materials.get(tri.material as usize).filter(|m| m.emits()) else { return Vec3::ZERO };
+        let mut e = m.emission();
+        if let Some(img) = m.emissive_texture.and_then(|t| self.images.get(t.image)) {
+            let (w0, w1, w2) = (1.0 - hit.u - hit.v, hit.u, hit.v);
+            e *= sample_image(img, tri.uv[0] * w0 + tri.uv[1] * w1 + tri.uv[2] * w2, true);
+        }
+        e
+    }
+
+    /// The light every light sends off `p` towards `v` by next-event estimation: each punctual
+    /// light, one point on an emissive triangle and one sky direction (the last two weighted
+    /// against BRDF sampling); counts the shadow rays in `rays`.
+    #[allow(clippy::too_many_arguments)]
+    fn next_event(
+        &self,
+        p: Vec3,
+        ng: Vec3,
+        lifted: Vec3,
+        v: Vec3,
+        surface: &Surface,
+        rng: &mut Pcg32,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let mut out = self.punctual(p, ng, lifted, v, surface, rays);
+        if !self.emitters.is_empty() {
+            out += self.emitter_sample(ng, lifted, v, surface, rng, rays);
+        }
+        if let Some(dist) = &self.sky_distribution {
+            let (d, pdf) = dist.sample((rng.next_f32(), rng.next_f32()));
+            let l = self.environment.to_world(d);
+            let cos = surface.n.dot(l);
+            if pdf > 0.0 && ng.dot(l) > 0.0 && cos > 0.0 {
+                *rays += 1;
+                if !self.bvh.occluded(lifted, l, f32::INFINITY) {
+                    let w = power_heuristic(pdf, surface.pdf(v, l));
+                    out += surface.eval(v, l) * self.sky_radiance(l) * cos / pdf * w;
+                }
+            }
+        }
+        out
+    }
+
+    /// One point on an emissive triangle, its light weighted against BRDF sampling.
+    fn emitter_sample(
+        &self,
+        ng: Vec3,
+        lifted: Vec3,
+        v: Vec3,
+        surface: &Surface,
+        rng: &mut Pcg32,
+        rays: &mut u64,
+    ) -> Vec3 {
+        let Some(s) = self.emitters.sample(&self.bvh, [rng.next_f32(), rng.next_f32(), rng.next_f32()]) else {
+            return Vec3::ZERO;
+        };
+        let to = s.p - lifted;
+        let dist = to.length();
+        if dist <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let l = to / dist;
+        let tri = &self.bvh.tris[s.tri as usize];
+        let (cos_light, cos) = (tri.ng.dot(-l), surface.n.dot(l));
+        if cos_light <= 0.0 || cos <= 0.0 || ng.dot(l) <= 0.0 {
+            return Vec3::ZERO;
+        }
+        *rays += 1;
+        if self.bvh.occluded(lifted, l, dist * (1.0 - 1e-4)) {
+            return Vec3::ZERO;
+        }
+        let pdf = s.pdf_area * dist * dist / cos_light;
+        let hit = Hit { t: dist, tri: s.tri, u: s.u, v: s.v };
+        let w = power_heuristic(pdf, surface.pdf(v, l));
+        surface.eval(v, l) * self.emitted(&hit) * cos / pdf * w
+    }
+
+    /// The light every punctual light sends off `p` towards `v` (a shadow ray each).
+    fn punctual(&self, p: Vec3, ng: Vec3, lifted: Vec3, v: Vec3, surface: &Surface, rays: &mut u64) -> Vec3 {
         let mut out = Vec3::ZERO;
         for light in &self.lights {
             let (l, e) = light.incident(p);
@@ -292,6 +435,16 @@ impl PathTracer {
         }
         out
     }
+}
+
+/// A bounce direction sampled from the BRDF above the geometric normal, with its density.
+fn sample_bounce(surface: &Surface, ng: Vec3, v: Vec3, rng: &mut Pcg32) -> Option<(Vec3, f32)> {
+    let l = surface.sample(v, (rng.next_f32(), rng.next_f32()), rng.next_f32())?;
+    if ng.dot(l) <= 0.0 {
+        return None;
+    }
+    let pdf = surface.pdf(v, l);
+    (pdf > 0.0).then_some((l, pdf))
 }
 
 /// A surface a path meets ([`PathTracer::walk`]).
