@@ -105,6 +105,7 @@ fn level(count: usize, triangles: u32) -> anyhow::Result<Scene> {
         lights: vec![lamp, Light::point("fill", Vec3::new(h, 4.0, h), 200.0)],
         camera: Camera::look_at(Vec3::new(0.0, 0.6 * extent + 4.0, 0.9 * extent + 4.0), Vec3::ZERO, 0.9),
         light_units: bouncelab::scene::LightUnits::Radiometric,
+        environment: Default::default(),
     };
     Ok(Scene::new(desc, Resources { meshes, images: vec![], sky: None })?)
 }

@@ -8,6 +8,7 @@
 @group(2) @binding(1) var base_texture: texture_2d<f32>;
 @group(2) @binding(2) var normal_texture: texture_2d<f32>;
 @group(2) @binding(3) var material_sampler: sampler;
+@group(2) @binding(4) var emissive_texture: texture_2d<f32>;
 
 // Linear Lambertian albedo at `uv`: the base colour factor times the base colour texture.
 fn material_albedo(uv: vec2<f32>) -> vec3<f32> {
@@ -16,4 +17,14 @@ fn material_albedo(uv: vec2<f32>) -> vec3<f32> {
         albedo = albedo * textureSample(base_texture, material_sampler, uv).rgb;
     }
     return albedo;
+}
+
+// Emitted radiance of the front face at `uv`: emission colour x strength times the emission
+// texture (sRGB, decoded by the view).
+fn material_emission(uv: vec2<f32>) -> vec3<f32> {
+    var e = material.params.yzw;
+    if material.flags.z != 0u {
+        e = e * textureSample(emissive_texture, material_sampler, uv).rgb;
+    }
+    return e;
 }

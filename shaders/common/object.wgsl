@@ -14,9 +14,9 @@ struct MaterialParams {
     base_color: vec4<f32>,
     // rgb specular, a roughness.
     specular: vec4<f32>,
-    // has base texture, has normal texture, unused, unused.
+    // has base texture, has normal texture, has emission texture, unused.
     flags: vec4<u32>,
-    // normal scale, unused...
+    // normal scale, emitted radiance (rgb: emission colour x strength).
     params: vec4<f32>,
 }
 

@@ -11,7 +11,8 @@
 @group(0) @binding(0) var<uniform> frame: Frame;
 
 struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
+    // Invariant: the emission pass (`emission.wgsl`) redraws emissive objects with depth Equal.
+    @builtin(position) @invariant clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,

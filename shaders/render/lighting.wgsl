@@ -1,6 +1,8 @@
 // Deferred direct lighting into its own target: shadowed punctual lights on the Lambertian +
-// glossy BRDF. The GI technique may read it; `composite.wgsl` adds the indirect term. One-sided
-// surfaces: a light behind the geometric normal adds nothing.
+// glossy BRDF, plus what the camera sees of emitters: the front faces of emissive surfaces
+// (`emission.wgsl`'s target) and, where no surface is, the sky (render::sky; the same mapping
+// and nearest texel as the path tracer). The GI technique may read it; `composite.wgsl` adds
+// the indirect term. One-sided surfaces: a light behind the geometric normal adds nothing.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/lights.wgsl
@@ -11,12 +13,48 @@
 @group(0) @binding(2) var<storage, read> shadow_views: array<mat4x4<f32>>;
 @group(0) @binding(3) var shadow_maps: texture_depth_2d_array;
 @group(0) @binding(4) var shadow_sampler: sampler_comparison;
+@group(0) @binding(5) var sky_tex: texture_2d<f32>;
+@group(0) @binding(6) var<uniform> sky: SkyParams;
 
 @group(1) @binding(0) var depth_tex: texture_depth_2d;
 @group(1) @binding(1) var albedo_tex: texture_2d<f32>;
 @group(1) @binding(2) var normal_tex: texture_2d<f32>;
 @group(1) @binding(3) var material_tex: texture_2d<f32>;
 @group(1) @binding(4) var out_radiance: texture_storage_2d<rgba32float, write>;
+@group(1) @binding(5) var emission_tex: texture_2d<f32>;
+
+// Mirrors render::sky::SkyUniforms.
+struct SkyParams {
+    // rgb: a constant sky's radiance; a: the intensity.
+    radiance: vec4<f32>,
+    // 0 none, 1 constant, 2 image; image width, height; unused.
+    kind: vec4<u32>,
+    // cos, sin of the rotation about +Y.
+    rotation: vec4<f32>,
+}
+
+const PI_SKY: f32 = 3.14159265358979;
+
+// The sky's radiance along world direction `d` (crate::scene::Environment::radiance).
+fn sky_radiance(d: vec3<f32>) -> vec3<f32> {
+    if sky.kind.x == 1u {
+        return sky.radiance.rgb;
+    }
+    if sky.kind.x != 2u {
+        return vec3<f32>(0.0);
+    }
+    let c = sky.rotation.x;
+    let s = sky.rotation.y;
+    let q = vec3<f32>(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
+    var u = atan2(q.z, q.x) / (2.0 * PI_SKY);
+    if u < 0.0 {
+        u = u + 1.0;
+    }
+    let v = atan2(length(q.xz), q.y) / PI_SKY;
+    let x = min(u32(u * f32(sky.kind.y)), sky.kind.y - 1u);
+    let y = min(u32(v * f32(sky.kind.z)), sky.kind.z - 1u);
+    return textureLoad(sky_tex, vec2<u32>(x, y), 0).rgb * sky.radiance.a;
+}
 
 #import common/shadow.wgsl
 
@@ -30,7 +68,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let depth = textureLoad(depth_tex, pixel, 0);
     // Reversed depth: 0 is the far plane (nothing drawn).
     if depth <= 0.0 {
-        textureStore(out_radiance, pixel, vec4<f32>(0.0, 0.0, 0.0, 1.0));
+        let dir = normalize(world_from_pixel(frame, pixel, 0.5) - frame.camera_position.xyz);
+        textureStore(out_radiance, pixel, vec4<f32>(sky_radiance(dir), 1.0));
         return;
     }
     let p = world_from_pixel(frame, pixel, depth);
@@ -40,7 +79,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let ng = oct_decode(enc.zw);
     let mat = textureLoad(material_tex, pixel, 0);
     let v = normalize(frame.camera_position.xyz - p);
-    var radiance = vec3<f32>(0.0);
+    var radiance = textureLoad(emission_tex, pixel, 0).rgb;
     for (var i = 0u; i < frame.params.x; i = i + 1u) {
         let light = lights[i];
         let inc = light_incident(light, p);

@@ -69,7 +69,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("bouncelab-sky-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("dir");
         let png = dir.join("sky.png");
-        let err = load_sky_file(&png).unwrap_err().to_string();
+        let err = load_sky_file(&png).expect_err("a PNG sky").to_string();
         assert!(err.contains("sky.png") && err.contains("HDR"), "{err}");
         let exr = dir.join("sky.exr");
         let pixels = vec![[0.25, 0.5, 4.0, 1.0]; 8 * 4];

@@ -4,6 +4,7 @@ use glam::Mat4;
 use wgpu::util::DeviceExt as _;
 
 use super::composite::CompositePass;
+use super::emission::EmissionPass;
 use super::gbuffer::GbufferPass;
 use super::gi::inputs::{GiInputs, GpuLights, PyramidView};
 use super::gi::registry::{self, Registry};
@@ -93,6 +94,9 @@ pub struct Renderer {
     queue: wgpu::Queue,
     layouts: Layouts,
     gbuffer: GbufferPass,
+    emission: EmissionPass,
+    /// The environment's uniforms and image.
+    sky: super::sky::SkyGpu,
     shadows: ShadowPass,
     lighting: LightingPass,
     composite: CompositePass,
@@ -150,6 +154,8 @@ impl Renderer {
         });
         Ok(Self {
             gbuffer: GbufferPass::new(device, &layouts)?,
+            emission: EmissionPass::new(device, &layouts)?,
+            sky: super::sky::SkyGpu::new(device),
             shadows: ShadowPass::new(device, &layouts)?,
             lighting: LightingPass::new(device)?,
             composite: CompositePass::new(device)?,
@@ -261,6 +267,7 @@ impl Renderer {
             Some(gpu) => gpu.sync(device, queue, &self.layouts, scene),
             None => self.scene_gpu = Some(SceneGpu::new(device, queue, &self.layouts, scene)),
         }
+        self.sky.sync(device, queue, scene);
     }
 
     /// Writes this frame's constants (camera, previous camera, size, light and shadow counts)
@@ -330,13 +337,14 @@ impl Renderer {
     /// The direct-lighting pass's inputs (frame, lights, shadow maps), rebuilt when one of them
     /// was replaced.
     fn ensure_lighting_inputs(&mut self) {
-        let generation = self.shadows.generation * 1_000_003 + self.inputs_generation;
+        let generation = (self.shadows.generation * 1_000_003 + self.inputs_generation) * 1_009 + self.sky.generation;
         if self.lighting_inputs.as_ref().is_none_or(|(g, _)| *g != generation) {
             let inputs = LightingInputs {
                 frame: &self.frame_buffer,
                 lights: &self.lights_buffer,
                 shadow_views: &self.shadow_views_buffer,
                 shadow_maps: &self.shadows.array_view,
+                sky: &self.sky,
             };
             self.lighting_inputs = Some((generation, self.lighting.inputs_bind_group(&self.device, &inputs)));
         }
@@ -378,6 +386,14 @@ impl Renderer {
             &self.frame_bind_group,
             gpu,
             self.timer.scope("gbuffer").map(|t| t.render_writes(true, true)),
+        );
+        let emission_ts = if gpu.has_emissive() { self.timer.scope("emission") } else { None };
+        self.emission.record(
+            encoder,
+            &sized.targets,
+            &self.frame_bind_group,
+            gpu,
+            emission_ts.map(|t| t.render_writes(true, true)),
         );
         let shadow_ts = if self.shadows.layer_matrices.is_empty() { None } else { self.timer.scope("shadows") };
         self.shadows.record(device, queue, encoder, gpu, shadow_ts);

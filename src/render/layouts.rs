@@ -151,6 +151,7 @@ impl Layouts {
                         ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                         count: None,
                     },
+                    texture_entry(4, wgpu::ShaderStages::FRAGMENT, float),
                 ],
             }),
         }

@@ -1,5 +1,5 @@
 //! Deferred direct lighting (`shaders/render/lighting.wgsl`), one compute pass over the
-//! G-buffer into the view's `direct` target.
+//! G-buffer into the view's `direct` target, with the emission the camera sees and the sky.
 
 use super::layouts::{
     comparison_sampler_entry, depth_array_entry, shadow_sampler, storage_entry, storage_texture_entry, texture_entry,
@@ -25,6 +25,7 @@ pub struct LightingInputs<'a> {
     pub lights: &'a wgpu::Buffer,
     pub shadow_views: &'a wgpu::Buffer,
     pub shadow_maps: &'a wgpu::TextureView,
+    pub sky: &'a super::sky::SkyGpu,
 }
 
 impl LightingPass {
@@ -39,6 +40,8 @@ impl LightingPass {
                 storage_entry(2, c),
                 depth_array_entry(3, c),
                 comparison_sampler_entry(4, c),
+                texture_entry(5, c, wgpu::TextureSampleType::Float { filterable: false }),
+                uniform_entry(6, c, false),
             ],
         });
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
@@ -50,6 +53,7 @@ impl LightingPass {
                 texture_entry(2, c, unfilterable),
                 texture_entry(3, c, unfilterable),
                 storage_texture_entry(4, formats::HDR),
+                texture_entry(5, c, unfilterable),
             ],
         });
         let module = shaders::module(device, "render/lighting.wgsl")?;
@@ -81,6 +85,8 @@ impl LightingPass {
                 wgpu::BindGroupEntry { binding: 2, resource: inputs.shadow_views.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::TextureView(inputs.shadow_maps) },
                 wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::Sampler(&self.shadow_sampler) },
+                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&inputs.sky.view) },
+                wgpu::BindGroupEntry { binding: 6, resource: inputs.sky.buffer.as_entire_binding() },
             ],
         })
     }
@@ -97,6 +103,7 @@ impl LightingPass {
                 view(2, &t.normal.view),
                 view(3, &t.material.view),
                 view(4, &t.direct.view),
+                view(5, &t.emission.view),
             ],
         })
     }

@@ -7,6 +7,7 @@
 
 mod composite;
 mod context;
+mod emission;
 mod frame;
 mod gbuffer;
 pub mod gi;
@@ -19,6 +20,7 @@ pub mod readback;
 pub(crate) mod scene_gpu;
 pub mod shaders;
 pub(crate) mod shadows;
+pub mod sky;
 pub mod targets;
 pub(crate) mod timing;
 mod tonemap;

@@ -12,7 +12,7 @@ use wgpu::util::DeviceExt as _;
 
 use super::layouts::Layouts;
 use super::uniforms::{MaterialUniforms, ObjectUniforms};
-use crate::scene::{Image, Scene};
+use crate::scene::{Image, Material, Scene};
 
 /// Interleaved vertex: position, normal, uv, tangent (48 bytes).
 #[repr(C)]
@@ -71,6 +71,10 @@ pub struct SceneGpu {
     pub meshes: Vec<GpuMesh>,
     pub materials: Vec<wgpu::BindGroup>,
     material_buffers: Vec<wgpu::Buffer>,
+    /// Per material: whether it emits (the emission pass draws only those).
+    emissive: Vec<bool>,
+    /// Per material: its emission texture (a change rebuilds the bind groups).
+    emissive_textures: Vec<Option<crate::scene::TextureRef>>,
     pub object_buffer: wgpu::Buffer,
     /// Group 1 of every pass that draws objects: the object array.
     pub object_bind_group: wgpu::BindGroup,
@@ -132,6 +136,25 @@ impl SceneGpu {
         }
     }
 
+    /// Draws the objects whose material emits, with their materials (the emission pass).
+    pub fn draw_emissive(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_bind_group(1, &self.object_bind_group, &[]);
+        for batch in self.batches.iter().filter(|b| self.emissive.get(b.material).copied().unwrap_or(false)) {
+            let (Some(mesh), Some(material)) = (self.meshes.get(batch.mesh), self.materials.get(batch.material)) else {
+                continue;
+            };
+            pass.set_bind_group(2, material, &[]);
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.index_count, 0, batch.instances.clone());
+        }
+    }
+
+    /// Whether any material emits.
+    pub fn has_emissive(&self) -> bool {
+        self.emissive.iter().any(|e| *e)
+    }
+
     /// Draws every rendered object's geometry without materials (depth-only passes): adjacent
     /// batches of one mesh become one draw. The object array must be bound by the caller.
     pub fn draw_geometry(&self, pass: &mut wgpu::RenderPass<'_>) {
@@ -170,6 +193,8 @@ impl SceneGpu {
         let mut gpu = Self {
             meshes: Vec::new(),
             materials: Vec::new(),
+            emissive: Vec::new(),
+            emissive_textures: Vec::new(),
             material_buffers: Vec::new(),
             object_buffer,
             object_bind_group,
@@ -317,7 +342,10 @@ impl SceneGpu {
                 .collect();
             self.materials.clear();
         }
-        let rebuild = self.materials.len() != materials.len();
+        let rebuild = self.materials.len() != materials.len()
+            || materials.iter().map(|m| m.emissive_texture).ne(self.emissive_textures.iter().copied());
+        self.emissive = materials.iter().map(Material::emits).collect();
+        self.emissive_textures = materials.iter().map(|m| m.emissive_texture).collect();
         let mut groups = Vec::new();
         for (m, buffer) in materials.iter().zip(&self.material_buffers) {
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(&MaterialUniforms::new(m)));
@@ -335,6 +363,7 @@ impl SceneGpu {
                     }
                     None => &self.flat_normal,
                 };
+                let emissive = m.emissive_texture.and_then(|t| self.textures.get(t.image)).unwrap_or(&self.white);
                 groups.push(device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(&format!("material {} bind group", m.name)),
                     layout: &layouts.material,
@@ -343,6 +372,7 @@ impl SceneGpu {
                         wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(base) },
                         wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(normal) },
                         wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.sampler) },
+                        wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(emissive) },
                     ],
                 }));
             }

@@ -21,6 +21,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("common/vpl.wgsl", include_str!("../../shaders/common/vpl.wgsl")),
     ("render/composite.wgsl", include_str!("../../shaders/render/composite.wgsl")),
     ("render/gbuffer.wgsl", include_str!("../../shaders/render/gbuffer.wgsl")),
+    ("render/emission.wgsl", include_str!("../../shaders/render/emission.wgsl")),
     ("render/gi/ism/importance.wgsl", include_str!("../../shaders/render/gi/ism/importance.wgsl")),
     ("render/gi/ism/ism_bounce.wgsl", include_str!("../../shaders/render/gi/ism/ism_bounce.wgsl")),
     ("render/gi/ism/ism_clips.wgsl", include_str!("../../shaders/render/gi/ism/ism_clips.wgsl")),
@@ -88,10 +89,11 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/tonemap.wgsl", include_str!("../../shaders/render/tonemap.wgsl")),
 ];
 
-/// The frame's own entry files (G-buffer, shadows, lighting, pyramid, obscurance, composite,
+/// The frame's own entry files (G-buffer, emission, shadows, lighting, pyramid, obscurance, composite,
 /// tonemap); each technique lists its own in its registry row. The others are only imported.
 pub const FRAME_SHADERS: &[&str] = &[
     "render/gbuffer.wgsl",
+    "render/emission.wgsl",
     "render/lighting.wgsl",
     "render/composite.wgsl",
     "render/vo/vo.wgsl",

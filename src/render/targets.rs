@@ -8,6 +8,9 @@
 //! - `material` Rgba8Unorm: specular colour and roughness;
 //! - `motion` Rg16Float: screen-uv motion to the previous frame;
 //! - `object_id` R32Uint: object index + 1, 0 for background;
+//! - `emission` Rgba16Float: the radiance the front faces of emissive surfaces send to the
+//!   camera (`shaders/render/emission.wgsl`; a separate pass, since the five G-buffer targets
+//!   already use 28 of the 32 bytes a sample that WebGPU guarantees);
 //! - `depth` Depth32Float: reversed hardware depth (1 near, 0 far); positions are reconstructed
 //!   from it.
 
@@ -18,6 +21,7 @@ pub mod formats {
     pub const MATERIAL: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
     pub const MOTION: wgpu::TextureFormat = wgpu::TextureFormat::Rg16Float;
     pub const OBJECT_ID: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
+    pub const EMISSION: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
     pub const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
     pub const HDR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
     pub const LDR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -61,6 +65,8 @@ pub struct ViewTargets {
     pub material: Target,
     pub motion: Target,
     pub object_id: Target,
+    /// Emitted radiance of the emissive surfaces the camera sees.
+    pub emission: Target,
     pub depth: Target,
     /// Shadowed direct radiance (the lighting pass); GI techniques may read it.
     pub direct: Target,
@@ -81,13 +87,14 @@ pub struct ViewTargets {
 
 impl ViewTargets {
     /// Every target.
-    pub fn all(&self) -> [&Target; 13] {
+    pub fn all(&self) -> [&Target; 14] {
         [
             &self.albedo,
             &self.normal,
             &self.material,
             &self.motion,
             &self.object_id,
+            &self.emission,
             &self.depth,
             &self.direct,
             &self.indirect,
@@ -111,6 +118,7 @@ impl ViewTargets {
             material: Target::new(device, "gbuffer material", size, formats::MATERIAL, rt),
             motion: Target::new(device, "gbuffer motion", size, formats::MOTION, rt),
             object_id: Target::new(device, "gbuffer object id", size, formats::OBJECT_ID, rt),
+            emission: Target::new(device, "emission", size, formats::EMISSION, rt),
             depth: Target::new(device, "gbuffer depth", size, formats::DEPTH, rt),
             direct: Target::new(device, "direct radiance", size, formats::HDR, storage),
             indirect: Target::new(device, "indirect radiance", size, formats::HDR, storage | U::RENDER_ATTACHMENT),

@@ -89,11 +89,17 @@ pub struct MaterialUniforms {
 impl MaterialUniforms {
     /// Packs a material.
     pub fn new(m: &Material) -> Self {
+        let emission = m.emission();
         Self {
             base_color: m.base_color,
             specular: [m.specular[0], m.specular[1], m.specular[2], m.roughness],
-            flags: [u32::from(m.base_color_texture.is_some()), u32::from(m.normal_texture.is_some()), 0, 0],
-            params: [m.normal_scale, 0.0, 0.0, 0.0],
+            flags: [
+                u32::from(m.base_color_texture.is_some()),
+                u32::from(m.normal_texture.is_some()),
+                u32::from(m.emissive_texture.is_some()),
+                0,
+            ],
+            params: [m.normal_scale, emission.x, emission.y, emission.z],
         }
     }
 }

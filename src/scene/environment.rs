@@ -220,6 +220,6 @@ mod tests {
         let env = Environment { sky: Sky::Image(" ".into()), ..Environment::default() };
         assert!(env.validate().is_err());
         let img = SkyImage { width: 2, height: 1, texels: vec![[1.0; 3], [f32::NAN, 0.0, 0.0]] };
-        assert!(img.validate().unwrap_err().to_string().contains("texel (1, 0)"));
+        assert!(img.validate().expect_err("a NaN texel").to_string().contains("texel (1, 0)"));
     }
 }

@@ -6,7 +6,7 @@ use crate::common;
 
 use std::path::{Path, PathBuf};
 
-use bouncelab::cli::LightUnitsArg;
+use bouncelab::cli::SceneArgs;
 use bouncelab::cli::render::{RenderArgs, run};
 use bouncelab::image_io;
 use bouncelab::import::writer::{GltfWriter, NodeDesc};
@@ -155,7 +155,7 @@ fn a_blender_export_renders_as_the_radiometric_file_it_came_from() {
         height: 27,
         ssaa: 1,
         frames: Some(1),
-        units: LightUnitsArg { light_units: Some(LightUnits::Radiometric) },
+        units: SceneArgs { light_units: Some(LightUnits::Radiometric), ..SceneArgs::default() },
         ..RenderArgs::default()
     };
     run(&raw).expect("render radiometric");

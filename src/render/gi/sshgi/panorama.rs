@@ -105,6 +105,9 @@ struct Faces {
 pub struct Panorama {
     gbuffer: GbufferPass,
     lighting: LightingPass,
+    /// No sky (never synced): the faces' background sends nothing, as their emissive surfaces
+    /// do not (no emission pass draws them); only the camera's view holds those.
+    sky: crate::render::sky::SkyGpu,
     pack_layout: wgpu::BindGroupLayout,
     pack: wgpu::ComputePipeline,
     faces: Option<Faces>,
@@ -140,6 +143,7 @@ impl Panorama {
         Ok(Self {
             gbuffer: GbufferPass::new(device, layouts)?,
             lighting: LightingPass::new(device)?,
+            sky: crate::render::sky::SkyGpu::new(device),
             pack: compute_pipeline(device, "sshgi panorama pack", &pack_layout, &module, "pack"),
             pack_layout,
             faces: None,
@@ -149,7 +153,7 @@ impl Panorama {
     /// Renders, lights and packs the faces (`size` texels a side); returns the senders.
     pub fn record(&mut self, inputs: &mut GiInputs<'_>, size: u32) -> Option<Senders<'_>> {
         self.ensure(inputs.device, inputs.layouts, size);
-        let Self { gbuffer, lighting, pack_layout, pack, faces } = self;
+        let Self { gbuffer, lighting, sky, pack_layout, pack, faces } = self;
         let faces = faces.as_mut()?;
         let turn = frame_rotation(inputs.frame_index);
         write_frames(inputs.queue, faces, inputs.frame, inputs.scene.camera(), turn);
@@ -164,7 +168,15 @@ impl Panorama {
                 .faces
                 .iter()
                 .map(|f| {
-                    face_groups(lighting, pack_layout, inputs.device, f, &key, (&faces.senders, &faces.radiance[0]))
+                    face_groups(
+                        lighting,
+                        sky,
+                        pack_layout,
+                        inputs.device,
+                        f,
+                        &key,
+                        (&faces.senders, &faces.radiance[0]),
+                    )
                 })
                 .collect();
             faces.groups = Some((key, groups));
@@ -260,6 +272,7 @@ impl Panorama {
 /// The lighting inputs' and the pack's bind groups of `face`.
 fn face_groups(
     lighting: &LightingPass,
+    sky: &crate::render::sky::SkyGpu,
     pack_layout: &wgpu::BindGroupLayout,
     device: &wgpu::Device,
     face: &Face,
@@ -273,6 +286,7 @@ fn face_groups(
             lights: &key.lights,
             shadow_views: &key.shadow_views,
             shadow_maps: &key.shadow_maps,
+            sky,
         },
     );
     let view = |binding, view| wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(view) };
