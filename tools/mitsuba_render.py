@@ -8,7 +8,8 @@ conventions can be compared against an unrelated path tracer.
 
 Usage:
     python3 tools/mitsuba_render.py SCENE.gltf --out OUT.exr --width W --height H \
-        --spp N --max-bounces K [--seed S]
+        --spp N --max-bounces K [--seed S] [--sky R,G,B | --sky FILE.exr]
+        [--sky-intensity X] [--sky-rotation DEG]
 
 Conventions used:
   * Every triangle primitive -> one-sided Mitsuba `diffuse` BSDF with reflectance =
@@ -20,6 +21,13 @@ Conventions used:
     import read them, unless the root `extras.bouncelab.light_units` says "radiometric";
     spot = Mitsuba `spot` whose angular profile is replaced by a projected bitmap of
     the KHR falloff saturate(cos*scale+offset)^2 (bilinear, 512^2). `range` ignored.
+  * Emission: emissiveFactor x KHR_materials_emissive_strength (x 1/683 when photometric)
+    -> a Mitsuba `area` emitter on the mesh (one-sided, front face; emissive textures ignored).
+  * Sky (--sky, as Bounce Lab's flag): R,G,B -> `constant` emitter of that radiance (x 1/683
+    when photometric); FILE.exr -> `envmap` turned so that Bounce Lab's equirectangular
+    mapping (u = atan2(z, x) / 2pi, v = acos(y) / pi; Mitsuba's is u = atan2(x, -z) / 2pi)
+    and --sky-rotation (degrees about +Y) agree; Mitsuba filters the image bilinearly where
+    Bounce Lab takes the nearest texel, so compare with smooth skies.
   * First camera in depth-first node order; yfov = vertical FOV; aspect = W/H.
   * Film: hdrfilm with a box filter (each sample lands only in its own pixel, i.e. a
     pixel is the average over its area), independent sampler.
@@ -117,7 +125,7 @@ def lookat(origin, direction, M):
     return mi.ScalarTransform4f().look_at(origin=origin.tolist(), target=(origin + direction).tolist(), up=up.tolist())
 
 
-def make_mesh(name, gltf, buffers, prim, W):
+def make_mesh(name, gltf, buffers, prim, W, per_unit=1.0):
     if prim.get("mode", 4) != 4:
         warn(f"{name}: primitive mode {prim.get('mode')} is not triangles; skipped")
         return None
@@ -135,10 +143,18 @@ def make_mesh(name, gltf, buffers, prim, W):
     if np.linalg.det(W[:3, :3]) < 0:
         F = F[:, [0, 2, 1]]
     rgb = [1.0, 1.0, 1.0]
+    emission = None
     if "material" in prim:
-        rgb = gltf["materials"][prim["material"]].get("pbrMetallicRoughness", {}).get("baseColorFactor", [1, 1, 1, 1])[:3]
+        mat = gltf["materials"][prim["material"]]
+        rgb = mat.get("pbrMetallicRoughness", {}).get("baseColorFactor", [1, 1, 1, 1])[:3]
+        strength = mat.get("extensions", {}).get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
+        e = [float(c) * strength * per_unit for c in mat.get("emissiveFactor", [0, 0, 0])]
+        if max(e) > 0:
+            emission = e
     props = mi.Properties()
     props["bsdf"] = mi.load_dict({"type": "diffuse", "reflectance": {"type": "rgb", "value": [float(c) for c in rgb]}})
+    if emission is not None:
+        props["emitter"] = mi.load_dict({"type": "area", "radiance": {"type": "rgb", "value": emission}})
     mesh = mi.Mesh(name, len(P), len(F), props=props, has_vertex_normals=N is not None)
     params = mi.traverse(mesh)
     params["vertex_positions"] = P.ravel()
@@ -185,7 +201,22 @@ def make_light(L, W, i, per_unit):
     return None
 
 
-def build_scene(path, width, height, spp, max_bounces):
+def make_sky(sky, intensity, rotation, per_unit):
+    """The Mitsuba emitter of Bounce Lab's --sky (see the module docs), or None."""
+    if sky is None or sky == "none":
+        return None
+    parts = sky.split(",")
+    if len(parts) == 3:
+        rgb = [float(p) * per_unit * intensity for p in parts]
+        return {"type": "constant", "radiance": {"type": "rgb", "value": rgb}}
+    # Bounce Lab's sky frame -> Mitsuba's local frame: local = (z, y, -x) of the sky frame;
+    # the sky frame is the world turned by -rotation about +Y.
+    to_local = mi.ScalarTransform4f([[0, 0, 1, 0], [0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 0, 1]])
+    to_world = mi.ScalarTransform4f().rotate([0, 1, 0], rotation) @ to_local.inverse()
+    return {"type": "envmap", "filename": sky, "scale": intensity * per_unit, "to_world": to_world}
+
+
+def build_scene(path, width, height, spp, max_bounces, sky=None, sky_intensity=1.0, sky_rotation=0.0):
     with open(path) as f:
         gltf = json.load(f)
     buffers = load_buffers(gltf, os.path.dirname(os.path.abspath(path)))
@@ -198,7 +229,7 @@ def build_scene(path, width, height, spp, max_bounces):
     for k, (node, W) in enumerate(walk(gltf)):
         if "mesh" in node:
             for j, prim in enumerate(gltf["meshes"][node["mesh"]]["primitives"]):
-                m = make_mesh(f"n{k}_p{j}", gltf, buffers, prim, W)
+                m = make_mesh(f"n{k}_p{j}", gltf, buffers, prim, W, per_unit)
                 if m is not None:
                     scene[f"mesh_{k}_{j}"] = m
         li = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
@@ -222,6 +253,9 @@ def build_scene(path, width, height, spp, max_bounces):
     if sensor is None:
         sys.exit("scene has no camera")
     scene["sensor"] = sensor
+    sky_emitter = make_sky(sky, sky_intensity, sky_rotation, per_unit)
+    if sky_emitter is not None:
+        scene["sky"] = sky_emitter
     return mi.load_dict(scene)
 
 
@@ -234,8 +268,11 @@ def main():
     ap.add_argument("--spp", type=int, required=True)
     ap.add_argument("--max-bounces", type=int, required=True, help="1 = direct light only")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--sky", help="R,G,B (a constant sky in the scene's light units) or an equirectangular .exr")
+    ap.add_argument("--sky-intensity", type=float, default=1.0)
+    ap.add_argument("--sky-rotation", type=float, default=0.0, help="degrees about +Y")
     a = ap.parse_args()
-    scene = build_scene(a.scene, a.width, a.height, a.spp, a.max_bounces)
+    scene = build_scene(a.scene, a.width, a.height, a.spp, a.max_bounces, a.sky, a.sky_intensity, a.sky_rotation)
     t0 = time.time()
     img = mi.render(scene, spp=a.spp, seed=a.seed)
     dt = time.time() - t0
