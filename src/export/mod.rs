@@ -73,10 +73,11 @@ pub fn document(project: &Project, path: &Path) -> Result<(GltfWriter, ExportSum
     let units = scene.desc().light_units;
     let mut w = GltfWriter::default();
     w.set_light_units(units);
-    w.set_extras(extras::wrap(&RootExtras { light_units: None, render: Some(project.render.clone()) }));
+    let environment = exported_environment(scene.environment(), path);
+    w.set_extras(extras::wrap(&RootExtras { light_units: None, render: Some(project.render.clone()), environment }));
     let textures = images(&mut w, &scene.resources().images, path)?;
     for m in scene.materials() {
-        w.material_json(material(m, &textures));
+        w.material_json(material(m, &textures, units));
     }
     let mut meshes = HashMap::new();
     let mut proxy_blocks = 0;
@@ -127,9 +128,25 @@ fn images(w: &mut GltfWriter, images: &[Image], path: &Path) -> Result<Vec<usize
         .collect()
 }
 
+/// The environment as the root `extras` carry it (none without a sky; an image's path relative
+/// to the exported file's folder).
+fn exported_environment(env: &crate::scene::Environment, path: &Path) -> Option<crate::scene::Environment> {
+    let mut env = env.clone();
+    match &mut env.sky {
+        crate::scene::Sky::None => return None,
+        crate::scene::Sky::Image(name) => {
+            let dir = path.parent().unwrap_or_else(|| Path::new("."));
+            *name = crate::project_file::relative_path(Path::new(name.as_str()), dir);
+        }
+        crate::scene::Sky::Constant(_) => {}
+    }
+    Some(env)
+}
+
 /// A material as glTF's metallic-roughness (metallic 0: the scene model's materials are
-/// dielectric), its specular lobe in `extras`.
-fn material(m: &Material, textures: &[usize]) -> Value {
+/// dielectric), its specular lobe in `extras`, its emission as `emissiveFactor` and
+/// `KHR_materials_emissive_strength` in the file's light units (`units`).
+fn material(m: &Material, textures: &[usize], units: LightUnits) -> Value {
     let mut pbr = json!({"baseColorFactor": m.base_color, "metallicFactor": 0.0, "roughnessFactor": m.roughness});
     if let Some(t) = m.base_color_texture.as_ref().and_then(|t| textures.get(t.image).map(|i| (i, t.tex_coord))) {
         pbr["baseColorTexture"] = json!({"index": t.0, "texCoord": t.1});
@@ -140,6 +157,18 @@ fn material(m: &Material, textures: &[usize]) -> Value {
     }
     if m.specular != [0.0; 3] {
         out["extras"] = extras::wrap(&MaterialExtras { specular: Some(m.specular) });
+    }
+    if m.emits() {
+        // glTF keeps each factor in [0, 1]: a brighter colour moves into the strength.
+        let peak = m.emissive_color.iter().copied().fold(0.0f32, f32::max).max(1.0);
+        out["emissiveFactor"] = json!(m.emissive_color.map(|c| c / peak));
+        let strength = units.from_radiometric(m.emissive_strength * peak);
+        if strength != 1.0 {
+            out["extensions"] = json!({"KHR_materials_emissive_strength": {"emissiveStrength": strength}});
+        }
+    }
+    if let Some(t) = m.emissive_texture.as_ref().and_then(|t| textures.get(t.image).map(|i| (i, t.tex_coord))) {
+        out["emissiveTexture"] = json!({"index": t.0, "texCoord": t.1});
     }
     out
 }

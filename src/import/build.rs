@@ -33,7 +33,7 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path, options: ImportO
             message: format!("glTF version {version} is not supported (Bounce Lab reads 2.x)"),
         });
     }
-    let (recorded_units, render) = root_extras(doc.as_json(), path)?;
+    let (recorded_units, render, environment) = root_extras(doc.as_json(), path)?;
     let light_units = recorded_units.unwrap_or(options.light_units);
     if recorded_units.is_some_and(|r| r != options.light_units) {
         log::debug!("{}: lights read as {light_units}, as the file records", path.display());
@@ -56,18 +56,26 @@ pub(super) fn build(bytes: &[u8], base_dir: &Path, path: &Path, options: ImportO
         ..Asset::default()
     };
     nodes::build_scene(doc, &mut asset, path)?;
+    if let Some(mut env) = environment {
+        if let crate::scene::Sky::Image(name) = &mut env.sky {
+            *name = base_dir.join(&*name).to_string_lossy().into_owned();
+        }
+        asset.scene.environment = env;
+    }
     Ok(asset)
 }
 
+/// What a file's root `extras` record: its light units, an export's render settings and sky.
+type RootRecord = (Option<LightUnits>, Option<RenderSettings>, Option<crate::scene::Environment>);
+
 /// Bounce Lab's root `extras` (`{"bouncelab": {"light_units": "radiometric", ...}}`, which its
 /// own files carry): the light units the file records (a record naming no known units is an
-/// error rather than a guess) and an export's render settings.
-fn root_extras(
-    root: &gltf::json::Root,
-    path: &Path,
-) -> Result<(Option<LightUnits>, Option<RenderSettings>), ImportError> {
+/// error rather than a guess), an export's render settings and its environment.
+fn root_extras(root: &gltf::json::Root, path: &Path) -> Result<RootRecord, ImportError> {
     let bad = |message: String| ImportError::Parse { path: path.to_owned(), message };
-    let Some(record) = extras::read::<extras::RootExtras>(&root.extras).map_err(bad)? else { return Ok((None, None)) };
+    let Some(record) = extras::read::<extras::RootExtras>(&root.extras).map_err(bad)? else {
+        return Ok((None, None, None));
+    };
     let units = match record.light_units {
         None => None,
         Some(name) => Some(LightUnits::parse(&name).ok_or_else(|| {
@@ -77,7 +85,10 @@ fn root_extras(
     if let Some(render) = &record.render {
         render.validate().map_err(|e| bad(format!("extras.bouncelab.render: {e}")))?;
     }
-    Ok((units, record.render))
+    if let Some(env) = &record.environment {
+        env.validate().map_err(|e| bad(format!("extras.bouncelab.environment: {e}")))?;
+    }
+    Ok((units, record.render, record.environment))
 }
 
 /// The gltf crate subtracts the 12-byte header from a GLB's declared length unchecked (found by

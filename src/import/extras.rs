@@ -2,8 +2,8 @@
 //! writes ([`crate::export`]) and import reads back, so that export → import gives the same
 //! project: per node an object's role, sampling weight, visibility and generated mesh (proxy
 //! blocks with their openings), per light whether it casts shadows, per material the specular
-//! reflectance glTF's core has no field for, and at the root the light units and the render
-//! settings. Other tools keep `extras` as they are and ignore them.
+//! reflectance glTF's core has no field for, and at the root the light units, the render
+//! settings and the environment (glTF has no sky; an image sky's path is relative to the file). Other tools keep `extras` as they are and ignore them.
 
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -57,6 +57,9 @@ pub struct MaterialExtras {
 pub struct RootExtras {
     pub light_units: Option<String>,
     pub render: Option<RenderSettings>,
+    /// The sky, radiometric like the scene model's (the units above are for the lights).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub environment: Option<crate::scene::Environment>,
 }
 
 /// Bounce Lab's part of an `extras` value: `None` without one, an error message when it does

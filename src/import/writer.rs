@@ -277,9 +277,16 @@ impl GltfWriter {
         if !self.cameras.is_empty() {
             doc["cameras"] = json!(self.cameras);
         }
+        let mut used = Vec::new();
         if !self.lights.is_empty() {
-            doc["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+            used.push("KHR_lights_punctual");
             doc["extensions"] = json!({"KHR_lights_punctual": {"lights": self.lights}});
+        }
+        if self.materials.iter().any(|m| m.pointer("/extensions/KHR_materials_emissive_strength").is_some()) {
+            used.push("KHR_materials_emissive_strength");
+        }
+        if !used.is_empty() {
+            doc["extensionsUsed"] = json!(used);
         }
         doc
     }

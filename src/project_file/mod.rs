@@ -7,6 +7,7 @@
 use crate::atomic_file as atomic;
 mod paths;
 mod reload;
+pub use paths::relative_to as relative_path;
 pub use reload::ReloadReport;
 
 use std::path::{Path, PathBuf};
@@ -95,8 +96,9 @@ impl Project {
     /// A project made of a single glTF file read with `options`, with default settings.
     pub fn from_gltf_with(path: &Path, options: ImportOptions) -> Result<Self, ProjectError> {
         let asset = import::import_gltf_with(path, options).map_err(|e| ProjectError::Import(Box::new(e)))?;
-        let scene = import::scene_from_asset(&asset)
+        let mut scene = import::scene_from_asset(&asset)
             .map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
+        attach_sky(&mut scene).map_err(|source| ProjectError::Resolve { path: path.to_owned(), source })?;
         // A Bounce Lab export carries the settings of the project it came from.
         let render = asset.render.clone().unwrap_or_default();
         Ok(Self { assets: vec![path.to_owned()], scene, render, imported: vec![asset] })

@@ -25,6 +25,7 @@ use crate::settings::{RenderSettings, SettingsError};
 
 mod inspect;
 mod techniques;
+pub use techniques::area_light_shortfall;
 
 /// Why a frame could not be rendered.
 #[derive(Debug, thiserror::Error)]

@@ -2,7 +2,7 @@
 //! lighting, tonemapping, GPU timings and readback.
 //!
 //! [`Renderer::render`] is the one readable frame function (docs/ARCHITECTURE.md, "The frame"):
-//! G-buffer -> shadow maps -> direct light -> [depth/normal pyramid] -> the active GI technique
+//! G-buffer -> emission -> shadow maps -> direct light (+ what the camera sees of emitters) -> [depth/normal pyramid] -> the active GI technique
 //! (through the seam in [`gi`]) -> composite -> tonemap.
 
 mod composite;
@@ -27,5 +27,5 @@ mod tonemap;
 pub(crate) mod uniforms;
 
 pub use context::{ContextError, GpuContext, device_descriptor, log_device_errors, wanted_features};
-pub use frame::{RenderError, Renderer};
+pub use frame::{RenderError, Renderer, area_light_shortfall};
 pub use timing::PassTiming;

@@ -11,6 +11,7 @@
 mod common;
 
 mod analytic_direct;
+mod area_lights;
 mod assets;
 mod atomic_kill;
 mod big_scene;

@@ -1,0 +1,166 @@
+//! Emissive surfaces and the sky end to end: glTF emission read in the file's light units and
+//! exported back, a sky image's path kept relative in project files and exports, `--sky` on the
+//! command line, and what the camera sees of emitters in every raster mode against the
+//! reference path tracer.
+
+use crate::common;
+
+use bouncelab::image_io::{self, HdrImage};
+use bouncelab::project_file::Project;
+use bouncelab::render::Renderer;
+use bouncelab::scene::{Camera, Environment, Material, MeshSource, Sky, Transform};
+use bouncelab::settings::{GiMode, ReferenceSettings, RenderSettings};
+use glam::Vec3;
+
+/// The Cornell box as a file from another tool (no recorded light units: photometric), its
+/// first material emitting `factor` x `strength`.
+fn glowing_cornell(path: &std::path::Path, factor: [f32; 3], strength: f32) {
+    let text = std::fs::read_to_string("assets/cornell_box.gltf").expect("cornell");
+    let mut doc: serde_json::Value = serde_json::from_str(&text).expect("json");
+    doc.as_object_mut().expect("root").remove("extras");
+    doc["materials"][0]["emissiveFactor"] = serde_json::json!(factor);
+    doc["materials"][0]["extensions"] =
+        serde_json::json!({"KHR_materials_emissive_strength": {"emissiveStrength": strength}});
+    doc["extensionsUsed"] = serde_json::json!(["KHR_lights_punctual", "KHR_materials_emissive_strength"]);
+    std::fs::write(path, serde_json::to_string(&doc).expect("json")).expect("write");
+}
+
+#[test]
+fn emission_imports_in_the_files_light_units_and_exports_back_the_same() {
+    let dir = common::temp_dir("area", "emission");
+    let gltf = dir.join("glow.gltf");
+    // Photometric (the default): 1366 cd/m² is 2 W/(sr m²).
+    glowing_cornell(&gltf, [1.0, 0.5, 0.25], 1366.0);
+    let project = Project::open(&gltf).expect("open");
+    let m = &project.scene.materials()[0];
+    assert!((m.emission() - Vec3::new(2.0, 1.0, 0.5)).abs().max_element() < 1e-4, "{}", m.emission());
+    assert!(project.shortfalls().is_empty(), "emission is light: {:?}", project.shortfalls());
+    let out = dir.join("out.gltf");
+    bouncelab::export::export(&project, &out).expect("export");
+    let text = std::fs::read_to_string(&out).expect("read");
+    assert!(text.contains("KHR_materials_emissive_strength"), "the extension is declared and used");
+    let again = Project::open(&out).expect("reopen");
+    let m2 = &again.scene.materials()[0];
+    assert!((m2.emission() - m.emission()).abs().max_element() < 1e-4, "{} vs {}", m2.emission(), m.emission());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn an_image_sky_is_saved_relative_to_the_project_and_travels_through_export() {
+    let dir = common::temp_dir("area", "sky");
+    let sky = dir.join("sky.exr");
+    let pixels = vec![[0.5, 0.6, 0.9, 1.0]; 16 * 8];
+    image_io::write_exr(&sky, &HdrImage { width: 16, height: 8, pixels }).expect("sky");
+    let mut project = Project::open(std::path::Path::new("assets/cornell_box.gltf")).expect("open");
+    let mut desc = project.scene.desc().clone();
+    desc.environment =
+        Environment { sky: Sky::Image(sky.to_string_lossy().into_owned()), intensity: 2.0, rotation_degrees: 30.0 };
+    project.set_desc(desc).expect("set sky");
+    assert_eq!(project.scene.sky_image().map(|s| (s.width, s.height)), Some((16, 8)));
+    assert!(project.files().contains(&sky), "an output must never replace the sky image");
+    let saved = dir.join("projects").join("p.ron");
+    std::fs::create_dir_all(saved.parent().expect("parent")).expect("dir");
+    project.save(&saved).expect("save");
+    let text = std::fs::read_to_string(&saved).expect("read");
+    assert!(text.contains("Image(\"../sky.exr\")"), "relative path:\n{text}");
+    let loaded = Project::load(&saved).expect("load");
+    assert_eq!(loaded.scene.environment().intensity, 2.0);
+    assert_eq!(loaded.scene.sky_image().map(|s| s.texels[0]), Some([0.5, 0.6, 0.9]));
+    let exported = dir.join("export").join("level.gltf");
+    std::fs::create_dir_all(exported.parent().expect("parent")).expect("dir");
+    bouncelab::export::export(&loaded, &exported).expect("export");
+    let back = Project::open(&exported).expect("reopen export");
+    assert_eq!(back.scene.environment().rotation_degrees, 30.0);
+    assert!(back.scene.has_sky(), "the exported sky loads again");
+    // A missing sky image names the file.
+    let mut desc = loaded.scene.desc().clone();
+    desc.environment.sky = Sky::Image(dir.join("gone.exr").to_string_lossy().into_owned());
+    let mut broken = loaded.clone();
+    let err = broken.set_desc(desc).expect_err("missing image").to_string();
+    assert!(err.contains("gone.exr"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A floor (no light on it), a glowing box and a constant sky, seen from above at an angle.
+fn floor_box_and_sky() -> bouncelab::scene::Scene {
+    let (floor, floor_material) = common::floor(6.0, 0.5);
+    let lamp =
+        Material { emissive_color: [1.0, 0.6, 0.3], emissive_strength: 3.0, ..Material::diffuse("lamp", [0.0; 3]) };
+    let lamp_box = common::object(
+        "lamp",
+        MeshSource::Cuboid { size: Vec3::splat(0.8), openings: [false; 6] },
+        1,
+        Transform { translation: Vec3::new(0.0, 0.4, 0.0), ..Transform::default() },
+    );
+    let camera = Camera::look_at(Vec3::new(0.0, 2.0, 4.0), Vec3::new(0.0, 0.6, 0.0), 0.9);
+    let mut scene = common::scene(vec![floor, lamp_box], vec![floor_material, lamp], Vec::new(), camera);
+    scene.desc_mut().environment =
+        Environment { sky: Sky::Constant([0.2, 0.3, 0.5]), intensity: 2.0, rotation_degrees: 0.0 };
+    scene
+}
+
+#[test]
+fn the_direct_term_shows_the_emitters_and_the_sky_as_the_reference_sees_them() {
+    let Some(ctx) = common::gpu() else { return };
+    let scene = floor_box_and_sky();
+    let (size, k) = ((32u32, 18u32), 4u32);
+    let reference =
+        common::reference(&scene, size, ReferenceSettings { spp: 64, max_bounces: 1, ..Default::default() });
+    let direct = RenderSettings { mode: GiMode::Direct, ..RenderSettings::default() };
+    let big = common::render(&ctx, &scene, &direct, (size.0 * k, size.1 * k));
+    // Pixels whose every subsample shows an emitter or the sky (the floor gets no light in
+    // `direct`: no punctual light shines on it).
+    let (mut raster_sum, mut reference_sum, mut pixels) = (0.0f64, 0.0f64, 0);
+    for y in 0..size.1 {
+        for x in 0..size.0 {
+            let subs: Vec<[f32; 4]> =
+                (0..k * k).map(|i| big[((y * k + i / k) * size.0 * k + x * k + i % k) as usize]).collect();
+            if subs.iter().all(|p| p[0] + p[1] + p[2] > 0.0) {
+                let mean: f32 = subs.iter().map(|p| p[0] + p[1] + p[2]).sum::<f32>() / (k * k) as f32;
+                let r = reference.pixels[(y * size.0 + x) as usize];
+                raster_sum += f64::from(mean);
+                reference_sum += f64::from(r[0] + r[1] + r[2]);
+                pixels += 1;
+            }
+        }
+    }
+    assert!(pixels > 100, "{pixels} pixels of emitters and sky");
+    let ratio = raster_sum / reference_sum;
+    eprintln!("emitters and sky: raster / reference {ratio:.4} over {pixels} pixels");
+    assert!((ratio - 1.0).abs() < 0.01, "raster / reference {ratio}");
+    // Every raster mode says it does not light the floor with them; the reference does not.
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    r.render(&scene, &direct, size).expect("render");
+    let said = r.shortfalls(&scene, &direct).join(" ");
+    assert!(said.contains("the sky and 1 emissive material"), "{said}");
+    assert!(bouncelab::render::area_light_shortfall(&scene, GiMode::Reference).is_none());
+}
+
+#[test]
+fn render_takes_a_constant_sky_in_the_scenes_light_units() {
+    if !common::has_gpu() {
+        return;
+    }
+    let dir = common::temp_dir("area", "cli");
+    let level = dir.join("level.gltf");
+    glowing_cornell(&level, [0.0; 3], 1.0);
+    let out = dir.join("sky.exr");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_bouncelab"))
+        .args(["render", &level.to_string_lossy(), "--mode", "direct", "--width", "32", "--height", "18"])
+        .args(["--ssaa", "1", "--sky", "683,1366,2049", "--allow-partial", "--out"])
+        .arg(&out)
+        .output()
+        .expect("run");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image_io::read_linear(&out).expect("read");
+    // Photometric by default: 683 cd/m² is 1 W/(sr m²). The top-left corner sees past the box.
+    let corner = img.pixels[0];
+    assert!((corner[0] - 1.0).abs() < 1e-3 && (corner[1] - 2.0).abs() < 1e-3, "{corner:?}");
+    let bad = std::process::Command::new(env!("CARGO_BIN_EXE_bouncelab"))
+        .args(["render", "assets/cornell_box.gltf", "--sky", "sky.png", "--out"])
+        .arg(dir.join("x.exr"))
+        .output()
+        .expect("run");
+    assert!(!bad.status.success() && String::from_utf8_lossy(&bad.stderr).contains("sky.png"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
