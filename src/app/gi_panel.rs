@@ -61,9 +61,11 @@ fn mrt_section(ui: &mut egui::Ui, render: &mut RenderSettings, state: &EditorSta
 }
 
 /// The scene-level choices: the light units the scene's glTF files are read in, an export
-/// writes and the properties panel shows (the lights themselves do not change).
+/// writes and the properties panel shows (the lights themselves do not change), and the sky.
 fn scene_ui(state: &mut EditorState, ui: &mut egui::Ui) {
     egui::CollapsingHeader::new("Scene").default_open(false).show(ui, |ui| {
+        super::sky_panel::sky_ui(state, ui);
+        ui.separator();
         let mut units = state.project.scene.desc().light_units;
         egui::ComboBox::from_label("light units").selected_text(units.name()).show_ui(ui, |ui| {
             for u in crate::scene::LightUnits::ALL {

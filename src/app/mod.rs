@@ -30,6 +30,7 @@ mod properties;
 pub mod recovery;
 mod recovery_actions;
 mod reload;
+mod sky_panel;
 mod startup;
 pub mod state;
 mod timings;

@@ -137,9 +137,34 @@ fn object_ui(ui: &mut egui::Ui, object: &mut Object, materials: &[String]) {
     }
 }
 
+/// The emission colour (glTF's `emissiveFactor`) and strength in the scene's light units
+/// (cd/m² or W/(sr m²); the model keeps it radiometric).
+fn emission_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, units: LightUnits) {
+    ui.horizontal(|ui| {
+        ui.label("Emission");
+        ui.color_edit_button_rgb(&mut m.emissive_color)
+            .on_hover_text("Colour the front face emits (black: none); x the strength below.");
+    });
+    let symbol = match units {
+        LightUnits::Photometric => "cd/m²",
+        LightUnits::Radiometric => "W/(sr m²)",
+    };
+    let mut shown = units.from_radiometric(m.emissive_strength);
+    let slider = egui::Slider::new(&mut shown, 0.0..=units.from_radiometric(1.0e4))
+        .logarithmic(true)
+        .clamping(egui::SliderClamping::Never)
+        .text(format!("emission strength ({symbol})"));
+    let tip =
+        "Radiance of the front face per unit colour (KHR_materials_emissive_strength), in the scene's light units.";
+    if ui.add(slider).on_hover_text(tip).changed() && shown.is_finite() {
+        m.emissive_strength = units.to_radiometric(shown.max(0.0));
+    }
+}
+
 /// Edits the object's material (shared by every object that uses it).
 fn material_ui(ui: &mut egui::Ui, state: &mut EditorState, index: usize) {
     let Some(original) = state.project.scene.materials().get(index).cloned() else { return };
+    let units = state.project.scene.desc().light_units;
     let users = state.project.scene.objects().iter().filter(|o| o.material == index).count();
     let mut m = original.clone();
     egui::CollapsingHeader::new(format!("Material \"{}\" ({users} objects)", m.name)).default_open(false).show(
@@ -158,8 +183,9 @@ fn material_ui(ui: &mut egui::Ui, state: &mut EditorState, index: usize) {
                     .on_hover_text("Colour of the Blinn-Phong lobe; black = purely diffuse.");
             });
             ui.add(egui::Slider::new(&mut m.roughness, 0.02..=1.0).text("roughness"));
-            if m.base_color_texture.is_some() || m.normal_texture.is_some() {
-                ui.label("Textured (base colour and/or normal map from the glTF).");
+            emission_ui(ui, &mut m, units);
+            if m.base_color_texture.is_some() || m.normal_texture.is_some() || m.emissive_texture.is_some() {
+                ui.label("Textured (base colour, normal map and/or emission from the glTF).");
             }
         },
     );

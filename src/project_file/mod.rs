@@ -174,11 +174,16 @@ impl Project {
             for (new, old) in desc.objects.iter_mut().zip(self.scene.objects()) {
                 new.mesh = old.mesh;
             }
-            let new_sky = desc.environment.sky != self.scene.environment().sky;
+            // A new sky image loads before anything changes: a failure leaves the scene as it was.
+            let sky = if desc.environment.sky != self.scene.environment().sky {
+                Some(import::sky::load_sky(&desc.environment, Path::new(""))?)
+            } else {
+                None
+            };
             desc_validate(&desc, &self.scene)?;
             *self.scene.desc_mut() = desc;
-            if new_sky {
-                attach_sky(&mut self.scene)?;
+            if let Some(sky) = sky {
+                self.scene.resources_mut().sky = sky;
             }
         } else {
             let mut scene = import::resolve(desc, &self.imported)?;

@@ -78,6 +78,7 @@ fn an_image_sky_is_saved_relative_to_the_project_and_travels_through_export() {
     let mut broken = loaded.clone();
     let err = broken.set_desc(desc).expect_err("missing image").to_string();
     assert!(err.contains("gone.exr"), "{err}");
+    assert_eq!(broken.scene.environment(), loaded.scene.environment(), "a failed load changes nothing");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -545,3 +545,32 @@ fn the_gi_panel_measures_the_light_sshgi_cannot_see_and_again_when_the_view_move
     settle(&mut h);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_sky_chosen_in_the_scene_panel_is_one_undo_step_shown_in_the_scenes_units() {
+    if !common::has_gpu() {
+        eprintln!("skipping: no GPU adapter");
+        return;
+    }
+    let mut h = harness();
+    // The Scene section sits below the fold of the GI panel: click through accessibility.
+    h.get_by_label("Scene").click_accesskit();
+    h.run_steps(2);
+    h.get_by_label("sky").click_accesskit();
+    h.run_steps(2);
+    h.get_by_label("constant colour").click_accesskit();
+    h.run_steps(2);
+    settle(&mut h);
+    let state = h.state().state();
+    assert!(
+        matches!(state.project.scene.environment().sky, bouncelab::scene::Sky::Constant(_)),
+        "{:?}",
+        state.project.scene.environment()
+    );
+    assert!(state.history.is_dirty(), "an undo step");
+    // The intensity shows in the scene's light units.
+    assert!(h.query_all_by_label("intensity (W/(sr m²))").count() > 0, "the intensity in W/(sr m²)");
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().state().project.scene.environment().sky, bouncelab::scene::Sky::None, "undone");
+}
