@@ -7,6 +7,7 @@
 #import common/octahedral.wgsl
 #import common/lights.wgsl
 #import common/brdf.wgsl
+#import common/sky_params.wgsl
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> lights: array<GpuLight>;
@@ -15,6 +16,7 @@
 @group(0) @binding(4) var shadow_sampler: sampler_comparison;
 @group(0) @binding(5) var sky_tex: texture_2d<f32>;
 @group(0) @binding(6) var<uniform> sky: SkyParams;
+#import common/sky.wgsl
 
 @group(1) @binding(0) var depth_tex: texture_depth_2d;
 @group(1) @binding(1) var albedo_tex: texture_2d<f32>;
@@ -22,39 +24,6 @@
 @group(1) @binding(3) var material_tex: texture_2d<f32>;
 @group(1) @binding(4) var out_radiance: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(5) var emission_tex: texture_2d<f32>;
-
-// Mirrors render::sky::SkyUniforms.
-struct SkyParams {
-    // rgb: a constant sky's radiance; a: the intensity.
-    radiance: vec4<f32>,
-    // 0 none, 1 constant, 2 image; image width, height; unused.
-    kind: vec4<u32>,
-    // cos, sin of the rotation about +Y.
-    rotation: vec4<f32>,
-}
-
-const PI_SKY: f32 = 3.14159265358979;
-
-// The sky's radiance along world direction `d` (crate::scene::Environment::radiance).
-fn sky_radiance(d: vec3<f32>) -> vec3<f32> {
-    if sky.kind.x == 1u {
-        return sky.radiance.rgb;
-    }
-    if sky.kind.x != 2u {
-        return vec3<f32>(0.0);
-    }
-    let c = sky.rotation.x;
-    let s = sky.rotation.y;
-    let q = vec3<f32>(d.x * c - d.z * s, d.y, d.x * s + d.z * c);
-    var u = atan2(q.z, q.x) / (2.0 * PI_SKY);
-    if u < 0.0 {
-        u = u + 1.0;
-    }
-    let v = atan2(length(q.xz), q.y) / PI_SKY;
-    let x = min(u32(u * f32(sky.kind.y)), sky.kind.y - 1u);
-    let y = min(u32(v * f32(sky.kind.z)), sky.kind.z - 1u);
-    return textureLoad(sky_tex, vec2<u32>(x, y), 0).rgb * sky.radiance.a;
-}
 
 #import common/shadow.wgsl
 

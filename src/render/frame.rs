@@ -444,6 +444,7 @@ impl Renderer {
             pyramid: self.pyramid.levels().filter(|_| plan.needs.pyramid).map(|levels| PyramidView { levels }),
             frame_index: self.frame_index,
             timer: &mut self.timer,
+            sky: &self.sky,
         };
         technique.render(&mut inputs)
     }

@@ -18,6 +18,8 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("common/onb.wgsl", include_str!("../../shaders/common/onb.wgsl")),
     ("common/sh9.wgsl", include_str!("../../shaders/common/sh9.wgsl")),
     ("common/shadow.wgsl", include_str!("../../shaders/common/shadow.wgsl")),
+    ("common/sky.wgsl", include_str!("../../shaders/common/sky.wgsl")),
+    ("common/sky_params.wgsl", include_str!("../../shaders/common/sky_params.wgsl")),
     ("common/vpl.wgsl", include_str!("../../shaders/common/vpl.wgsl")),
     ("render/composite.wgsl", include_str!("../../shaders/render/composite.wgsl")),
     ("render/gbuffer.wgsl", include_str!("../../shaders/render/gbuffer.wgsl")),

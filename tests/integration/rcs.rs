@@ -316,3 +316,57 @@ fn a_cache_larger_than_the_adapter_allows_is_refused_with_the_setting_to_change(
     .expect_err("no float blending");
     assert!(e.contains("FLOAT32_BLENDABLE"), "{e}");
 }
+
+/// The Cornell box lit by its short box glowing (3 W/(sr m²)) and a constant sky through its
+/// open front, with its lamp off.
+fn glowing_cornell_under_a_sky(sky: f32) -> Project {
+    let (mut project, _) = cornell();
+    let mut desc = project.scene.desc().clone();
+    for light in &mut desc.lights {
+        light.intensity = 0.0;
+    }
+    let mut glow = bouncelab::scene::Material::diffuse("glow", [0.2; 3]);
+    glow.emissive_color = [1.0, 0.8, 0.5];
+    glow.emissive_strength = 3.0;
+    desc.materials.push(glow);
+    let m = desc.materials.len() - 1;
+    if let Some(o) = desc.objects.iter_mut().find(|o| o.name == "short_box") {
+        o.material = m;
+    }
+    desc.environment.sky = bouncelab::scene::Sky::Constant([0.4, 0.6, 1.0]);
+    desc.environment.intensity = sky;
+    project.set_desc(desc).expect("scene");
+    project
+}
+
+#[test]
+fn rcs_records_see_emissive_surfaces_and_the_sky_and_renew_when_the_sky_changes() {
+    let Some(ctx) = common::gpu() else { return };
+    let size = (64, 36);
+    let big = (size.0 * 2, size.1 * 2);
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    for sky in [1.0f32, 3.0] {
+        let project = glowing_cornell_under_a_sky(sky);
+        let reference = common::reference(
+            &project.scene,
+            size,
+            bouncelab::settings::ReferenceSettings { spp: 128, ..Default::default() },
+        );
+        r.render(&project.scene, &with(&project, GiMode::Direct, RcsSettings::default()), big).expect("render");
+        let shrink = |r: &Renderer| HdrImage {
+            width: size.0,
+            height: size.1,
+            pixels: bouncelab::image_io::box_downsample(&r.read_hdr().expect("hdr"), big, 2),
+        };
+        let direct = shrink(&r);
+        converge(&mut r, &project, &with(&project, GiMode::Rcs, RcsSettings::default()), big, 16);
+        let rcs = shrink(&r);
+        let ev = bouncelab::metrics::judging_exposure(&reference);
+        let fd = metrics::flip(&direct, &reference, ev).expect("flip").0;
+        let fr = metrics::flip(&rcs, &reference, ev).expect("flip").0;
+        let energy = metrics::luminance_ratio(&rcs, &reference).expect("ratio");
+        eprintln!("sky x{sky}: rcs energy {energy:.3}, FLIP {fr:.4} vs direct {fd:.4}");
+        assert!((0.9..=1.1).contains(&energy), "sky x{sky}: rcs energy {energy:.3} of the reference");
+        assert!(fr < 0.5 * fd, "sky x{sky}: rcs FLIP {fr:.4} is not below half of direct's {fd:.4}");
+    }
+}

@@ -30,8 +30,8 @@ impl Renderer {
 
     /// Why the technique for `settings.mode` could not do its work (see
     /// [`GiTechnique::shortfalls`]); empty before it was first used.
-    /// A scene with a sky or emissive surfaces adds one for every mode but `reference`: the
-    /// camera sees them, but only the path tracer lights other surfaces with them yet.
+    /// A scene with a sky or emissive surfaces adds one for the modes that do not light with
+    /// them yet ([`area_light_shortfall`]).
     pub fn shortfalls(&self, scene: &Scene, settings: &RenderSettings) -> Vec<String> {
         let mut out = self.techniques.get(settings.mode).map_or_else(Vec::new, |t| t.shortfalls(scene, settings));
         out.extend(area_light_shortfall(scene, settings.mode));
@@ -66,9 +66,11 @@ impl Renderer {
 }
 
 /// The sentence saying that `mode` shows the sky and emissive surfaces to the camera but lights
-/// nothing with them (every mode but `reference`, so far), or `None`.
+/// nothing with them, or `None` where it does: `reference` (next-event estimation and MIS) and
+/// `rcs` (the records' hemisphere renders see emissive surfaces and the sky, as they see every
+/// other surface).
 pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
-    if mode == GiMode::Reference {
+    if matches!(mode, GiMode::Reference | GiMode::Rcs) {
         return None;
     }
     let emissive = scene.materials().iter().filter(|m| m.emits()).count();
@@ -79,7 +81,7 @@ pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
         (true, n) => format!("the sky and {n} emissive material{}", if n == 1 { "" } else { "s" }),
     };
     Some(format!(
-        "{}: the camera sees {what}, but their light on other surfaces (direct or indirect) is rendered by `reference` only so far",
+        "{}: the camera sees {what}, but their light on other surfaces (direct or indirect) is rendered by `reference` and `rcs` only so far",
         mode.name()
     ))
 }

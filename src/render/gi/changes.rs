@@ -18,6 +18,8 @@ pub struct ChangeDetector {
     revision: u64,
     resources_revision: u64,
     lights: Vec<Light>,
+    /// The area lights: every material's emission and the environment.
+    emitters_key: Vec<u32>,
     objects_key: Vec<u32>,
     camera: Option<Camera>,
     settings: Option<RenderSettings>,
@@ -50,6 +52,23 @@ fn objects_key(scene: &Scene) -> Vec<u32> {
 
 /// Settings with the fields that never invalidate a technique's history (the mode itself is
 /// handled by mode changes, the view only changes the display) normalised away.
+/// What the emissive materials and the sky are (an edit of either is a light edit).
+pub fn emitters_key(scene: &Scene) -> Vec<u32> {
+    let mut key = Vec::new();
+    for m in scene.materials() {
+        key.extend(m.emissive_color.iter().chain([&m.emissive_strength]).map(|v| v.to_bits()));
+        key.push(m.emissive_texture.map_or(u32::MAX, |t| t.image as u32));
+    }
+    let env = scene.environment();
+    key.extend([env.intensity, env.rotation_degrees].map(f32::to_bits));
+    match &env.sky {
+        crate::scene::Sky::None => key.push(0),
+        crate::scene::Sky::Constant(c) => key.extend([1].into_iter().chain(c.map(f32::to_bits))),
+        crate::scene::Sky::Image(path) => key.extend([2].into_iter().chain(path.bytes().map(u32::from))),
+    }
+    key
+}
+
 fn history_settings(settings: &RenderSettings) -> RenderSettings {
     RenderSettings { mode: Default::default(), view: Default::default(), ..settings.clone() }
 }
@@ -67,7 +86,8 @@ impl ChangeDetector {
         let first = self.camera.is_none();
         let mut out = Vec::new();
         if self.revision != scene.revision() || first {
-            let lights_changed = self.lights.as_slice() != scene.lights();
+            let emitters = emitters_key(scene);
+            let lights_changed = self.lights.as_slice() != scene.lights() || emitters != self.emitters_key;
             let key = objects_key(scene);
             let scene_changed = key != self.objects_key || self.resources_revision != scene.resources_revision();
             let radius = scene.bounds().map_or(1.0, |b| b.radius());
@@ -85,6 +105,7 @@ impl ChangeDetector {
             }
             if lights_changed {
                 self.lights = scene.lights().to_vec();
+                self.emitters_key = emitters;
             }
             self.objects_key = key;
             self.revision = scene.revision();
@@ -123,6 +144,10 @@ mod tests {
         assert_eq!(d.detect(&p.scene, &settings, (8, 8)), [ResetReason::SceneEdited]);
         p.scene.desc_mut().materials[0].base_color[1] *= 0.5;
         assert_eq!(d.detect(&p.scene, &settings, (8, 8)), [ResetReason::SceneEdited]);
+        p.scene.desc_mut().materials[0].emissive_color = [1.0, 0.5, 0.0];
+        assert_eq!(d.detect(&p.scene, &settings, (8, 8)), [ResetReason::LightEdited], "emission is light");
+        p.scene.desc_mut().environment.sky = crate::scene::Sky::Constant([0.1; 3]);
+        assert_eq!(d.detect(&p.scene, &settings, (8, 8)), [ResetReason::LightEdited], "the sky is light");
         // A small camera step is reprojected, not a cut.
         let mut cam = *p.scene.camera();
         cam.position += Vec3::X * 0.01;

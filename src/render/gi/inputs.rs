@@ -59,6 +59,8 @@ pub struct GiInputs<'a> {
     /// Frames rendered so far (seeds per-frame sample sets).
     pub frame_index: u32,
     pub timer: &'a mut GpuTimer,
+    /// The environment's uniforms and image (`render::sky`), for techniques that see the sky.
+    pub sky: &'a crate::render::sky::SkyGpu,
 }
 
 impl GiInputs<'_> {

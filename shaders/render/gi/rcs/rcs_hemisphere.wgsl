@@ -3,7 +3,8 @@
 // degrees), into the record's tile of the atlas. Outputs per texel:
 //   0 rgba32float  rgb = outgoing radiance of the surface seen (diffuse: albedo / pi x the
 //                  shadowed direct irradiance of every light, plus the cache's irradiance for
-//                  later bounces), a = its distance from the record (0: nothing, the background)
+//                  later bounces, plus the emission of an emissive front face), a = its distance
+//                  from the record (0: nothing, the background, where the reduce takes the sky)
 //   1 rgba16float  xy = octahedral normal of the surface seen, z = its albedo's luminance (0 on
 //                  back faces), for the light check's strata; a = 0 nothing or a back face, 1 a
 //                  front face, 2 one where the cache answered the bounce lookup, 3 where it
@@ -103,7 +104,7 @@ fn fs_main(in: VertexOut) -> HemisphereOut {
         }
     }
     let albedo = material_albedo(in.uv);
-    out.radiance = vec4<f32>(albedo * e / PI, distance);
+    out.radiance = vec4<f32>(albedo * e / PI + material_emission(in.uv), distance);
     out.surface = vec4<f32>(oct_encode(n), luminance(albedo), found);
     return out;
 }

@@ -10,6 +10,10 @@
 //   (also after Ward and Heckbert 1992, over the strata).
 // - 64 check strata (4 x 16, one centre tap each) keep the surface each one sees (distance,
 //   normal, albedo) for the light check (`rcs_check.wgsl`).
+// - Texels where the plane saw nothing (a = 0) see the sky (`common/sky.wgsl`), so a record's
+//   irradiance holds the sky light that reaches it (the hemisphere render as the radiance
+//   cache's authors render the environment), except in the white furnace, whose background
+//   already emits 1.
 // - Secondary records (classical irradiance caching's recursion): where the bounce lookup found
 //   no record facing the surface's way (the camera never saw it), the texel of each plane
 //   quadrant with the largest weight is proposed as a new record's site.
@@ -17,6 +21,7 @@
 #import common/color.wgsl
 #import render/gi/rcs/rcs_job.wgsl
 #import render/gi/rcs/rcs_common.wgsl
+#import common/sky_params.wgsl
 
 struct ReduceParams {
     // x = plane texels per side h, y = tiles per atlas row, z = jobs, w = unused.
@@ -48,6 +53,9 @@ struct Secondaries {
 }
 
 @group(0) @binding(8) var<storage, read_write> secondaries: Secondaries;
+@group(0) @binding(9) var sky_tex: texture_2d<f32>;
+@group(0) @binding(10) var<uniform> sky: SkyParams;
+#import common/sky.wgsl
 
 const PI: f32 = 3.14159265358979;
 const ROWS: u32 = 8u;
@@ -78,6 +86,18 @@ fn plane_texel(local: vec3<f32>, h: u32) -> vec2<u32> {
     return vec2<u32>(clamp(vec2<i32>(floor(xy)), vec2<i32>(0), vec2<i32>(i32(h) - 1)));
 }
 
+// The radiance and distance of plane texel `local` (in the tile) of `job`: what the hemisphere
+// render stored, or the sky along the texel's direction where it saw nothing.
+fn plane_radiance(job: Job, origin: vec2<u32>, local: vec2<u32>, h: u32) -> vec4<f32> {
+    let stored = textureLoad(atlas, origin + local, 0);
+    if stored.a > 0.0 || job.params.x > 0.5 || sky.kind.x == 0u {
+        return stored;
+    }
+    let uv = vec2<f32>(((f32(local.x) + 0.5) / f32(h) - 0.5) * 4.0, (0.5 - (f32(local.y) + 0.5) / f32(h)) * 4.0);
+    let d = normalize(job.tangent.xyz * uv.x + job.bitangent.xyz * uv.y + job.normal.xyz);
+    return vec4<f32>(sky_radiance(d), 0.0);
+}
+
 // Direction of projected-solid-angle coordinates (sin^2 theta, phi) in the record's frame.
 fn stratum_direction(s2: f32, phi: f32) -> vec3<f32> {
     let s = sqrt(s2);
@@ -101,7 +121,7 @@ fn cs_main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_in
     let propose = job.extra.y > 0.5;
     for (var i = t; i < h * h; i = i + 64u) {
         let texel = origin + vec2<u32>(i % h, i / h);
-        e = e + textureLoad(atlas, texel, 0).rgb * weights[i];
+        e = e + plane_radiance(job, origin, vec2<u32>(i % h, i / h), h).rgb * weights[i];
         if propose && abs(textureLoad(surfaces, texel, 0).a - 0.5) < 0.1 {
             let q = u32((i % h) >= h / 2u) + 2u * u32((i / h) >= h / 2u);
             // Positive floats order like their bits.
@@ -124,7 +144,7 @@ fn cs_main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_in
         for (var q = 0u; q < 4u; q = q + 1u) {
             let s2 = (f32(j) + (f32(q & 1u) + 0.5) * 0.5) / f32(ROWS);
             let phi = 2.0 * PI * (f32(k) + (f32(q >> 1u) + 0.5) * 0.5) / f32(COLUMNS);
-            let texel = textureLoad(atlas, origin + plane_texel(stratum_direction(s2, phi), h), 0);
+            let texel = plane_radiance(job, origin, plane_texel(stratum_direction(s2, phi), h), h);
             l = l + texel.rgb * 0.25;
             if texel.a > 0.0 {
                 r = min(r, texel.a);

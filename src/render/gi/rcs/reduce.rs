@@ -45,6 +45,8 @@ impl ReducePass {
                 storage_rw_entry(6),
                 storage_rw_entry(7),
                 storage_rw_entry(8),
+                texture_entry(9, c, unfilterable),
+                uniform_entry(10, c, false),
             ],
         });
         let module = shaders::module(device, "render/gi/rcs/rcs_reduce.wgsl")?;
@@ -72,6 +74,8 @@ impl ReducePass {
                 entry(6, &store.check_strata),
                 entry(7, &store.results),
                 entry(8, &store.secondaries),
+                wgpu::BindGroupEntry { binding: 9, resource: wgpu::BindingResource::TextureView(&inputs.sky.view) },
+                entry(10, &inputs.sky.buffer),
             ],
         });
         inputs.encoder.clear_buffer(&store.secondaries, 0, Some(16));
