@@ -9,12 +9,12 @@ use crate::import::writer::{GltfWriter, NodeDesc};
 use crate::scene::{Mesh, rotation_looking};
 
 /// Wall, floor and ceiling reflectances.
-const WALL: [f32; 4] = [0.7, 0.7, 0.68, 1.0];
-const FLOOR: [f32; 4] = [0.45, 0.4, 0.35, 1.0];
-const CEILING: [f32; 4] = [0.8, 0.8, 0.8, 1.0];
+pub(super) const WALL: [f32; 4] = [0.7, 0.7, 0.68, 1.0];
+pub(super) const FLOOR: [f32; 4] = [0.45, 0.4, 0.35, 1.0];
+pub(super) const CEILING: [f32; 4] = [0.8, 0.8, 0.8, 1.0];
 
 /// An axis-aligned slab from `min` to `max`.
-fn slab(w: &mut GltfWriter, name: &str, min: Vec3, max: Vec3, material: usize) {
+pub(super) fn slab(w: &mut GltfWriter, name: &str, min: Vec3, max: Vec3, material: usize) {
     let m = Mesh::cuboid(name, max - min);
     let mesh = w.mesh(name, &m.positions, Some(&m.normals), &m.indices, Some(material));
     let desc = NodeDesc {
@@ -72,7 +72,7 @@ fn cylinder(w: &mut GltfWriter, name: &str, base: Vec3, radius: f32, height: f32
 }
 
 /// A light node at `position` shining along `direction` (glTF lights shine along -Z).
-fn light(
+pub(super) fn light(
     w: &mut GltfWriter,
     name: &str,
     kind: &str,
@@ -92,7 +92,7 @@ fn light(
     w.node(desc, true);
 }
 
-fn camera(w: &mut GltfWriter, eye: Vec3, target: Vec3, yfov: f32, znear: f32) {
+pub(super) fn camera(w: &mut GltfWriter, eye: Vec3, target: Vec3, yfov: f32, znear: f32) {
     let cam = w.camera(yfov, znear, None);
     let rotation: Quat = rotation_looking(target - eye);
     let desc = NodeDesc {

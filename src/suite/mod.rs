@@ -8,6 +8,7 @@
 //! Pure CPU code (no wgpu): the GPU renders happen in the CLI and the tests.
 
 pub mod levels;
+pub mod lit_levels;
 pub mod shapes;
 
 use std::path::{Path, PathBuf};
@@ -110,6 +111,26 @@ pub const SCENES: &[SuiteScene] = &[
         description: "Cornell box with a normal-mapped floor (grooves at +-35 degrees)",
         source: Source::Cornell(bumpy_floor),
     },
+    SuiteScene {
+        name: "skylight",
+        description: "the 6x3x5 m window room lit only by a constant blue sky through its window",
+        source: Source::Level(lit_levels::skylight),
+    },
+    SuiteScene {
+        name: "sunsky",
+        description: "the window room under the sun and an image sky (128x64 EXR)",
+        source: Source::Level(lit_levels::sunsky),
+    },
+    SuiteScene {
+        name: "panels",
+        description: "closed 5x3x4 m room lit only by two emissive ceiling panels and a wall screen",
+        source: Source::Level(lit_levels::panels),
+    },
+    SuiteScene {
+        name: "courtyard",
+        description: "12x12 m courtyard open to the sky, 4 m walls, low sun and a constant sky",
+        source: Source::Level(lit_levels::courtyard),
+    },
 ];
 
 fn glossy_floor(project: &mut Project) {
@@ -201,9 +222,14 @@ impl SuiteScene {
     }
 
     /// Samples per pixel of this scene's reference: the rooms are seen from the unlit room,
-    /// where every path needs several bounces, so they get 16x more.
+    /// where every path needs several bounces, so they get 16x more; the room lit by a
+    /// constant sky through its window (which only BRDF sampling finds) 4x more.
     pub fn spp(&self) -> u32 {
-        if self.name == "rooms" { 16 * REFERENCE_SPP } else { REFERENCE_SPP }
+        match self.name {
+            "rooms" => 16 * REFERENCE_SPP,
+            "skylight" => 4 * REFERENCE_SPP,
+            _ => REFERENCE_SPP,
+        }
     }
 
     /// Where the cached reference lives.
@@ -233,10 +259,27 @@ impl SuiteScene {
             REFERENCE_SIZE,
             self.spp()
         );
-        for b in bytes.iter().chain(extra.as_bytes()) {
+        // The sky travels in the root extras the unit record's cut removes, and an image sky in
+        // its own file: both enter by their bytes.
+        let sky = self.sky_bytes(root)?;
+        for b in bytes.iter().chain(extra.as_bytes()).chain(&sky) {
             h = (h ^ u64::from(*b)).wrapping_mul(0x0100_0000_01b3);
         }
         Ok(format!("{h:016x}"))
+    }
+
+    /// The environment of a generated level as JSON text, and its sky image's bytes (empty for
+    /// the levels without a sky, whose keys stay as they were).
+    fn sky_bytes(&self, root: &Path) -> Result<Vec<u8>, SuiteError> {
+        let Source::Level(build) = self.source else { return Ok(Vec::new()) };
+        let doc = build().to_json();
+        let Some(env) = doc.pointer("/extras/bouncelab/environment") else { return Ok(Vec::new()) };
+        let mut out = env.to_string().into_bytes();
+        if let Some(name) = env.pointer("/sky/Image").and_then(|n| n.as_str()) {
+            let path = root.join("assets/suite").join(name);
+            out.extend(std::fs::read(&path).map_err(|source| SuiteError::Io { path, source })?);
+        }
+        Ok(out)
     }
 
     /// The cached reference, if it is current.
@@ -271,11 +314,15 @@ impl SuiteScene {
     }
 }
 
-/// Writes every generated level's glTF under `root` (`assets/suite/`).
+/// Writes every generated level's glTF under `root` (`assets/suite/`), and the image sky.
 pub fn write_levels(root: &Path) -> Result<Vec<PathBuf>, SuiteError> {
     let dir = root.join("assets/suite");
     std::fs::create_dir_all(&dir).map_err(|source| SuiteError::Io { path: dir.clone(), source })?;
-    let mut written = Vec::new();
+    let sky = lit_levels::sky_image();
+    let pixels = sky.texels.iter().map(|t| [t[0], t[1], t[2], 1.0]).collect();
+    let sky_path = dir.join(lit_levels::SKY_IMAGE);
+    crate::image_io::write_exr(&sky_path, &HdrImage { width: sky.width, height: sky.height, pixels })?;
+    let mut written = vec![sky_path];
     for s in SCENES {
         if let Some(text) = s.gltf_text() {
             let path = s.gltf_path(root);

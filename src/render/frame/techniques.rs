@@ -68,12 +68,14 @@ impl Renderer {
 /// The sentence saying that `mode` shows the sky and emissive surfaces to the camera but lights
 /// nothing with them, or `None` where it does: `reference` (next-event estimation and MIS) and
 /// `rcs` (the records' hemisphere renders see emissive surfaces and the sky, as they see every
-/// other surface).
+/// other surface) light with both; `sshgi` sends emission from the emitters on screen (its
+/// senders take the direct term, which holds it) but not the sky.
 pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
-    if matches!(mode, GiMode::Reference | GiMode::Rcs) {
-        return None;
-    }
-    let emissive = scene.materials().iter().filter(|m| m.emits()).count();
+    let emissive = match mode {
+        GiMode::Reference | GiMode::Rcs => return None,
+        GiMode::Sshgi => 0,
+        _ => scene.materials().iter().filter(|m| m.emits()).count(),
+    };
     let what = match (scene.has_sky(), emissive) {
         (false, 0) => return None,
         (true, 0) => "the sky".to_owned(),
@@ -81,7 +83,33 @@ pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
         (true, n) => format!("the sky and {n} emissive material{}", if n == 1 { "" } else { "s" }),
     };
     Some(format!(
-        "{}: the camera sees {what}, but their light on other surfaces (direct or indirect) is rendered by `reference` and `rcs` only so far",
-        mode.name()
+        "{}: the camera sees {what}, but this mode lights no surface with {} (`reference` and `rcs` do)",
+        mode.name(),
+        if what.contains(" and ") || emissive > 1 { "them" } else { "it" }
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every mode that does not light with the sky or emission says so, naming what it leaves
+    /// out; `reference` and `rcs` say nothing, `sshgi` only of the sky.
+    #[test]
+    fn each_mode_names_the_area_lights_it_leaves_out() {
+        let mut scene = crate::precompute::test_scenes::scene_of_slabs(&[], Vec::new());
+        assert!(GiMode::ALL.iter().all(|m| area_light_shortfall(&scene, *m).is_none()), "no area lights");
+        scene.desc_mut().materials[0].emissive_color = [1.0; 3];
+        scene.desc_mut().environment.sky = crate::scene::Sky::Constant([0.5; 3]);
+        for mode in GiMode::ALL {
+            let said = area_light_shortfall(&scene, mode);
+            match mode {
+                GiMode::Reference | GiMode::Rcs => assert_eq!(said, None),
+                GiMode::Sshgi => assert!(said.as_deref().is_some_and(|s| s.contains("the sky,")), "{said:?}"),
+                _ => {
+                    assert!(said.as_deref().is_some_and(|s| s.contains("the sky and 1 emissive material")), "{said:?}")
+                }
+            }
+        }
+    }
 }

@@ -300,17 +300,24 @@ impl GiTechnique for SshgiTechnique {
         self.passes.gpu_bytes() + self.panorama.gpu_bytes() + self.voxels.gpu_bytes() + self.temporal.gpu_bytes()
     }
 
-    fn limitations(&self, _scene: &Scene, settings: &RenderSettings) -> Vec<String> {
+    fn limitations(&self, scene: &Scene, settings: &RenderSettings) -> Vec<String> {
+        let emissive = scene.materials().iter().any(crate::scene::Material::emits);
         let senders = if settings.sshgi.panorama > 0 {
             "surfaces hidden from the camera's position send no indirect light; those off screen send it through the panorama, without indirect shadows"
         } else {
             "only surfaces on screen send indirect light: off-screen and hidden senders are missing (the panorama setting adds those off screen)"
         };
-        vec![
+        let mut out = vec![
             senders.to_owned(),
             "indirect shadows come from a voxelisation of the view: occluders hidden behind others or off screen cast none, and meshes must be closed".to_owned(),
             "senders are diffuse: they send the direct term's outgoing radiance".to_owned(),
-        ]
+        ];
+        if emissive {
+            out.push(
+                "emissive surfaces are senders like any other (their emission is in the direct term): they light the scene only from where the camera sees them".to_owned(),
+            );
+        }
+        out
     }
 
     fn status(&self) -> TechniqueStatus {
