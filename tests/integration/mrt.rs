@@ -386,3 +386,42 @@ fn a_level_the_fitter_covers_only_in_part_says_where_and_draws_the_gap() {
     let blocks = overlays.iter().find(|o| o.name.starts_with("MRT blocks")).expect("the blocks' overlay");
     assert!(blocks.lines.iter().any(|l| l.tone == 1.0), "the gap is drawn: {:?}", blocks.lines);
 }
+
+/// The window room lit only by the sky through its window (the texels of the hole let the sky
+/// in) and the room lit only by emissive panels (the panels' texels emit, clutter's too), with
+/// the small dictionary: energy within 15% of the path tracer and FLIP under half of `direct`'s,
+/// where `direct` lights nothing; a sky edit rebuilds the level with the new sky.
+#[test]
+fn mrt_carries_the_sky_through_a_window_and_the_light_of_emissive_panels() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    for name in ["skylight", "panels"] {
+        let scene = suite::scene(name).expect("suite scene");
+        let project = scene.load(Path::new(".")).expect("loads");
+        let reference = scene.reference(Path::new(".")).expect("reference");
+        let ev = bouncelab::metrics::judging_exposure(&reference);
+        let s = settings(&project, small());
+        let mrt = render(&mut r, &project, &s, 12);
+        let direct = render(&mut r, &project, &RenderSettings { mode: GiMode::Direct, ..s.clone() }, 1);
+        let (m, d) = (
+            metrics::compare(&mrt, &reference, ev).expect("same size"),
+            metrics::compare(&direct, &reference, ev).expect("same size"),
+        );
+        eprintln!(
+            "{name}: mrt energy {:.3} FLIP {:.4}; direct energy {:.3} FLIP {:.4}",
+            m.luminance_ratio, m.flip, d.luminance_ratio, d.flip
+        );
+        assert!((0.85..=1.15).contains(&m.luminance_ratio), "{name}: mrt energy {:.3}", m.luminance_ratio);
+        assert!(m.flip < 0.5 * d.flip, "{name}: mrt FLIP {:.4} against direct's {:.4}", m.flip, d.flip);
+        if name == "skylight" {
+            let mut brighter = project.clone();
+            let mut desc = brighter.scene.desc().clone();
+            desc.environment.intensity *= 2.0;
+            brighter.set_desc(desc).expect("sky");
+            let again = render(&mut r, &brighter, &s, 12);
+            let ratio = metrics::luminance_ratio(&again, &mrt).expect("ratio");
+            eprintln!("skylight, sky x2: mrt image x{ratio:.3}");
+            assert!((1.8..=2.2).contains(&ratio), "twice the sky gives x{ratio:.3}");
+        }
+    }
+}

@@ -34,6 +34,8 @@ pub struct ClutterTexel {
     pub normal: Vec3,
     /// Diffuse albedo.
     pub albedo: Vec3,
+    /// The emission of the surface's front face (zero for a back face or none).
+    pub emission: Vec3,
     /// Whether the object's own surface was found.
     pub found: bool,
 }
@@ -151,15 +153,28 @@ pub fn texels(scene: &Scene, bvh: &SceneBvh, clutter: &[Clutter], res: usize) ->
                     out.push(match hit {
                         Some(h) => {
                             let tri = &bvh.tris[h.tri as usize];
-                            let normal = if tri.ng.dot(n) >= 0.0 { tri.ng } else { -tri.ng };
+                            let front = tri.ng.dot(n) >= 0.0;
+                            let normal = if front { tri.ng } else { -tri.ng };
+                            let emission = scene
+                                .materials()
+                                .get(tri.material as usize)
+                                .filter(|_| front)
+                                .map_or(Vec3::ZERO, crate::scene::Material::emission);
                             ClutterTexel {
                                 position: start - n * h.t,
                                 normal,
                                 albedo: albedo(scene, tri.material),
+                                emission,
                                 found: true,
                             }
                         }
-                        None => ClutterTexel { position: q, normal: n, albedo: albedo(scene, material), found: false },
+                        None => ClutterTexel {
+                            position: q,
+                            normal: n,
+                            albedo: albedo(scene, material),
+                            emission: Vec3::ZERO,
+                            found: false,
+                        },
                     });
                 }
             }

@@ -5,7 +5,11 @@
 //! block back through the face to as far behind it (the wall just behind a face fitted to a
 //! wall's mid-plane, or a surface standing in front of it). Its albedo is stored with it so that
 //! l_d is outgoing radiance. A texel with no surface near (an opening's glass, open sky) stores
-//! none and receives no direct light.
+//! none and receives no direct light; instead it lets in the sky: its radiance is the sky's
+//! cosine-weighted mean over the directions out of the block that no geometry blocks (a window
+//! is a portal that emits the sky it sees). An emissive front face adds its emission, so the
+//! block's transfer carries emitters' light like any other l_d (the brief's "sky and emissive
+//! light enter l_d").
 
 use glam::Vec3;
 
@@ -29,6 +33,9 @@ pub struct TexelSurface {
     pub normal: Vec3,
     /// Diffuse albedo (zero where none was found).
     pub albedo: Vec3,
+    /// Radiance the texel sends into the block on its own: the emission of the surface's front
+    /// face, or where no surface was found, the sky seen through it.
+    pub emission: Vec3,
     /// Whether a real surface was found.
     pub found: bool,
 }
@@ -43,11 +50,40 @@ pub fn albedo(scene: &Scene, material: u32) -> Vec3 {
 pub fn surface(scene: &Scene, bvh: &SceneBvh, p: Vec3, n: Vec3, reach: f32) -> TexelSurface {
     let start = p + n * reach;
     let Some(hit) = bvh.intersect(start, -n, 2.0 * reach) else {
-        return TexelSurface { position: p, normal: n, albedo: Vec3::ZERO, found: false };
+        return TexelSurface { position: p, normal: n, albedo: Vec3::ZERO, emission: Vec3::ZERO, found: false };
     };
     let tri = &bvh.tris[hit.tri as usize];
-    let normal = if tri.ng.dot(n) > 0.0 { tri.ng } else { -tri.ng };
-    TexelSurface { position: start - n * hit.t, normal, albedo: albedo(scene, tri.material), found: true }
+    let front = tri.ng.dot(n) > 0.0;
+    let normal = if front { tri.ng } else { -tri.ng };
+    let emission = match scene.materials().get(tri.material as usize) {
+        Some(m) if front => m.emission(),
+        _ => Vec3::ZERO,
+    };
+    TexelSurface { position: start - n * hit.t, normal, albedo: albedo(scene, tri.material), emission, found: true }
+}
+
+/// Directions for [`sky_through`]: a Hammersley set, cosine-distributed about +Z.
+const SKY_RAYS: u32 = 64;
+
+/// The sky's cosine-weighted mean radiance over the directions out of a block (about `out`)
+/// from `p` that no geometry blocks: what a hole in a closed face lets in.
+pub fn sky_through(scene: &Scene, bvh: &SceneBvh, p: Vec3, out: Vec3) -> Vec3 {
+    if !scene.has_sky() {
+        return Vec3::ZERO;
+    }
+    let (t, b) = crate::scene::basis::basis(out);
+    let mut sum = Vec3::ZERO;
+    for i in 0..SKY_RAYS {
+        let u = (i as f32 + 0.5) / SKY_RAYS as f32;
+        let v = (i.reverse_bits() as f64 / 4_294_967_296.0) as f32;
+        let (r, phi) = (u.sqrt(), 2.0 * std::f32::consts::PI * v);
+        let d = (t * (r * phi.cos()) + b * (r * phi.sin()) + out * (1.0 - u).max(0.0).sqrt()).normalize();
+        if bvh.occluded(p, d, f32::INFINITY) {
+            continue;
+        }
+        sum += scene.environment().radiance(d, scene.sky_image());
+    }
+    sum / SKY_RAYS as f32
 }
 
 /// The geometry image of `block`: one surface per sample of its layout at `res` texels per side.
@@ -59,7 +95,11 @@ pub fn geometry_image(scene: &Scene, bvh: &SceneBvh, block: &Block, res: usize) 
             let w = block.world_point(p);
             let nw = block.world_dir(n).normalize_or_zero();
             let across = block.size[block.world_face(face).axis()];
-            surface(scene, bvh, w, nw, SEARCH.min(0.45 * across))
+            let mut s = surface(scene, bvh, w, nw, SEARCH.min(0.45 * across));
+            if !s.found {
+                s.emission = sky_through(scene, bvh, w, -nw);
+            }
+            s
         })
         .collect()
 }

@@ -68,11 +68,12 @@ impl Renderer {
 /// The sentence saying that `mode` shows the sky and emissive surfaces to the camera but lights
 /// nothing with them, or `None` where it does: `reference` (next-event estimation and MIS) and
 /// `rcs` (the records' hemisphere renders see emissive surfaces and the sky, as they see every
-/// other surface) light with both; `sshgi` sends emission from the emitters on screen (its
+/// other surface) and `mrt` (emission and the sky through holes in the blocks' faces enter the
+/// texels' l_d) light with both; `sshgi` sends emission from the emitters on screen (its
 /// senders take the direct term, which holds it) but not the sky.
 pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
     let emissive = match mode {
-        GiMode::Reference | GiMode::Rcs => return None,
+        GiMode::Reference | GiMode::Rcs | GiMode::Mrt => return None,
         GiMode::Sshgi => 0,
         _ => scene.materials().iter().filter(|m| m.emits()).count(),
     };
@@ -83,7 +84,7 @@ pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
         (true, n) => format!("the sky and {n} emissive material{}", if n == 1 { "" } else { "s" }),
     };
     Some(format!(
-        "{}: the camera sees {what}, but this mode lights no surface with {} (`reference` and `rcs` do)",
+        "{}: the camera sees {what}, but this mode lights no surface with {} (`reference`, `rcs` and `mrt` do)",
         mode.name(),
         if what.contains(" and ") || emissive > 1 { "them" } else { "it" }
     ))
@@ -104,7 +105,7 @@ mod tests {
         for mode in GiMode::ALL {
             let said = area_light_shortfall(&scene, mode);
             match mode {
-                GiMode::Reference | GiMode::Rcs => assert_eq!(said, None),
+                GiMode::Reference | GiMode::Rcs | GiMode::Mrt => assert_eq!(said, None),
                 GiMode::Sshgi => assert!(said.as_deref().is_some_and(|s| s.contains("the sky,")), "{said:?}"),
                 _ => {
                     assert!(said.as_deref().is_some_and(|s| s.contains("the sky and 1 emissive material")), "{said:?}")

@@ -11,6 +11,9 @@ struct Texel {
     normal: vec4<f32>,
     // Albedo, w unused.
     albedo: vec4<f32>,
+    // Radiance the texel sends on its own: an emissive front face's, or the sky through a hole
+    // in the face; w unused.
+    emission: vec4<f32>,
 }
 
 struct Block {

@@ -1,7 +1,9 @@
 // MRT pass A (Loos 2015 §3.6.3 step 1, §4.4.1): the direct light l_d at every block
 // texel, evaluated on the real surface of its geometry image with the frame's shadowed lights,
-// as outgoing radiance (albedo x E / pi). Multi-bounce feedback adds albedo x the previous
-// frame's indirect light, clamped at zero (the reduced reconstructions can ring negative).
+// as outgoing radiance (albedo x E / pi), plus what the texel sends on its own (an emissive
+// surface, or the sky through a window: `geometry_image.rs`). Multi-bounce feedback adds albedo x
+// the previous frame's indirect light, clamped at zero (the reduced reconstructions can ring
+// negative).
 #import common/frame.wgsl
 #import common/lights.wgsl
 #import render/gi/mrt/mrt_common.wgsl
@@ -27,7 +29,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let t = texels[i];
     if t.position.w < 0.5 {
-        l_d[i] = vec4<f32>(0.0);
+        l_d[i] = vec4<f32>(t.emission.rgb, 1.0);
         return;
     }
     let p = t.position.xyz;
@@ -43,5 +45,5 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         e = e + inc.irradiance * c * shadow_factor(frame, light, p, n, inc.distance);
     }
     let bounce = max(previous[i].rgb, vec3<f32>(0.0)) * mp.gains.x;
-    l_d[i] = vec4<f32>(t.albedo.rgb * (e / MRT_PI + bounce), 1.0);
+    l_d[i] = vec4<f32>(t.albedo.rgb * (e / MRT_PI + bounce) + t.emission.rgb, 1.0);
 }

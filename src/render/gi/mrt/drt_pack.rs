@@ -76,6 +76,7 @@ impl DrtPacked {
                 position: t.position.extend(if t.found { 1.0 } else { 0.0 }).to_array(),
                 normal: t.normal.extend((i / per.max(1)) as f32).to_array(),
                 albedo: t.albedo.extend(0.0).to_array(),
+                emission: t.emission.extend(0.0).to_array(),
             })
             .collect();
         let mut object_clutter: Vec<u32> = drt.clutter_of.iter().map(|c| c.map_or(NONE, |k| k as u32)).collect();

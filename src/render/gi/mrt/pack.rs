@@ -28,9 +28,12 @@ pub struct GpuTexel {
     pub normal: [f32; 4],
     /// Albedo, w unused.
     pub albedo: [f32; 4],
+    /// Radiance the texel sends on its own (an emissive front face, or the sky through a hole
+    /// in the face), w unused.
+    pub emission: [f32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<GpuTexel>() == 48);
+const _: () = assert!(std::mem::size_of::<GpuTexel>() == 64);
 
 /// One block (`Block` in `mrt_common.wgsl`).
 #[repr(C)]
@@ -283,6 +286,7 @@ fn pack_texels(p: &mut Packed, scene: &Scene, bvh: &SceneBvh, level: &Level, bi:
             position: s.position.extend(if s.found { 1.0 } else { 0.0 }).to_array(),
             normal: s.normal.extend(bi as f32).to_array(),
             albedo: s.albedo.extend(0.0).to_array(),
+            emission: s.emission.extend(0.0).to_array(),
         });
     }
     first
