@@ -1,5 +1,7 @@
-//! The sky section of the scene panel: none, a constant colour or an equirectangular HDR image,
-//! with intensity (in the scene's light units: cd/m² or W/(sr m²)) and rotation. glTF has no
+//! The sky section of the scene panel: none, a constant colour, an equirectangular HDR image or
+//! Preetham's analytic clear sky (turbidity; it follows the scene's sun), with intensity (in the
+//! scene's light units: cd/m² or W/(sr m²); a plain scale for the analytic sky, which is
+//! physical) and rotation. glTF has no
 //! sky, so this is where a level gets one; every change is an undo step, and an image that does
 //! not load is reported and leaves the sky as it was.
 
@@ -11,6 +13,7 @@ enum Kind {
     None,
     Constant,
     Image,
+    Clear,
 }
 
 fn kind_of(sky: &Sky) -> Kind {
@@ -18,6 +21,7 @@ fn kind_of(sky: &Sky) -> Kind {
         Sky::None => Kind::None,
         Sky::Constant(_) => Kind::Constant,
         Sky::Image(_) => Kind::Image,
+        Sky::Preetham { .. } => Kind::Clear,
     }
 }
 
@@ -54,9 +58,20 @@ pub fn sky_ui(state: &mut EditorState, ui: &mut egui::Ui) {
                 }
             });
         }
+        Sky::Preetham { turbidity } => {
+            let (lo, hi) = crate::scene::preetham::TURBIDITY_RANGE;
+            ui.add(egui::Slider::new(turbidity, lo..=hi).text("turbidity")).on_hover_text(
+                "Preetham et al. 1999: 2 very clear, 3 clear, 6 hazy, 10 thin overcast. The sky follows the \
+                 scene's sun (its first directional light); its brightness is physical (a clear zenith is about \
+                 5 kcd/m²), the intensity a scale on it.",
+            );
+        }
         Sky::None => {}
     }
-    if env.sky != Sky::None {
+    if matches!(env.sky, Sky::Preetham { .. }) {
+        ui.add(egui::Slider::new(&mut env.intensity, 0.0..=10.0).logarithmic(true).text("intensity (scale)"));
+        ui.add(egui::Slider::new(&mut env.rotation_degrees, -180.0..=180.0).text("rotation (°)"));
+    } else if env.sky != Sky::None {
         intensity_ui(ui, &mut env, units);
         ui.add(egui::Slider::new(&mut env.rotation_degrees, -180.0..=180.0).text("rotation (°)"))
             .on_hover_text("Turns the sky about +Y (an image's sun to where the level needs it).");
@@ -68,7 +83,12 @@ pub fn sky_ui(state: &mut EditorState, ui: &mut egui::Ui) {
 
 fn kind_ui(ui: &mut egui::Ui, env: &mut Environment) {
     let mut kind = kind_of(&env.sky);
-    let names = [(Kind::None, "none"), (Kind::Constant, "constant colour"), (Kind::Image, "HDR image")];
+    let names = [
+        (Kind::None, "none"),
+        (Kind::Constant, "constant colour"),
+        (Kind::Image, "HDR image"),
+        (Kind::Clear, "clear sky (Preetham)"),
+    ];
     let shown = names.iter().find(|(k, _)| *k == kind).map_or("none", |(_, n)| *n);
     egui::ComboBox::from_label("sky").selected_text(shown).show_ui(ui, |ui| {
         for (k, name) in names {
@@ -85,6 +105,10 @@ fn kind_ui(ui: &mut egui::Ui, env: &mut Environment) {
             Some(p) => Sky::Image(p.to_string_lossy().into_owned()),
             None => env.sky.clone(),
         },
+        Kind::Clear => {
+            env.intensity = 1.0;
+            Sky::Preetham { turbidity: 3.0 }
+        }
     };
 }
 

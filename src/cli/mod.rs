@@ -42,7 +42,9 @@ pub struct SceneArgs {
     pub light_units: Option<LightUnits>,
     /// The sky: `R,G,B` (a constant sky of that radiance in the scene's light units: W/(sr m²)
     /// when radiometric, cd/m² when photometric), `FILE.hdr` or `FILE.exr` (an equirectangular
-    /// image, its texels radiance in the same units), or `none`.
+    /// image, its texels radiance in the same units), `preetham` or `preetham:T` (Preetham et
+    /// al.'s clear sky of turbidity T, default 3, in physical units, driven by the scene's sun),
+    /// or `none`.
     #[arg(long, value_parser = parse_sky)]
     pub sky: Option<Sky>,
     /// A scale on the sky's radiance (default 1).
@@ -85,6 +87,8 @@ impl SceneArgs {
         let scale = self.sky_intensity.or(self.sky.as_ref().map(|_| 1.0));
         if let Some(i) = scale {
             env.intensity = if matches!(env.sky, Sky::Image(_)) { units.to_radiometric(i) } else { i };
+            // (A constant sky's colour and an image's texels are in the scene's units; the
+            // analytic sky is physical, its intensity a plain scale.)
         }
         if let Some(r) = self.sky_rotation {
             env.rotation_degrees = r;
@@ -98,6 +102,18 @@ fn parse_sky(text: &str) -> Result<Sky, String> {
     if text == "none" {
         return Ok(Sky::None);
     }
+    if let Some(rest) = text.strip_prefix("preetham") {
+        let turbidity = match rest.strip_prefix(':') {
+            Some(t) => t.parse::<f32>().map_err(|_| format!("--sky {text:?}: the turbidity is a number"))?,
+            None if rest.is_empty() => 3.0,
+            None => return Err(format!("--sky {text:?}: expected preetham or preetham:T")),
+        };
+        let (lo, hi) = crate::scene::preetham::TURBIDITY_RANGE;
+        if !(lo..=hi).contains(&turbidity) {
+            return Err(format!("--sky {text:?}: turbidity {turbidity} is outside {lo}..={hi}"));
+        }
+        return Ok(Sky::Preetham { turbidity });
+    }
     let parts: Vec<&str> = text.split(',').collect();
     if parts.len() == 3 {
         let rgb: Result<Vec<f32>, _> = parts.iter().map(|p| p.trim().parse::<f32>()).collect();
@@ -110,7 +126,7 @@ fn parse_sky(text: &str) -> Result<Sky, String> {
     if lower.ends_with(".hdr") || lower.ends_with(".exr") {
         return Ok(Sky::Image(text.to_owned()));
     }
-    Err(format!("--sky {text:?}: expected R,G,B, an .hdr or .exr file, or none"))
+    Err(format!("--sky {text:?}: expected R,G,B, an .hdr or .exr file, preetham[:T], or none"))
 }
 
 fn parse_light_units(text: &str) -> Result<LightUnits, String> {

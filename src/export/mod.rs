@@ -138,7 +138,7 @@ fn exported_environment(env: &crate::scene::Environment, path: &Path) -> Option<
             let dir = path.parent().unwrap_or_else(|| Path::new("."));
             *name = crate::project_file::relative_path(Path::new(name.as_str()), dir);
         }
-        crate::scene::Sky::Constant(_) => {}
+        crate::scene::Sky::Constant(_) | crate::scene::Sky::Preetham { .. } => {}
     }
     Some(env)
 }

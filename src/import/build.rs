@@ -192,7 +192,12 @@ fn material(m: &gltf::Material<'_>, units: LightUnits, path: &Path) -> Result<Ma
         specular,
         roughness: pbr.roughness_factor().clamp(0.02, 1.0),
         emissive_color: m.emissive_factor(),
-        emissive_strength: units.to_radiometric(m.emissive_strength().unwrap_or(1.0)),
+        // A material that emits nothing keeps the model's unit strength (whatever the units), so
+        // an export of it imports as the same material.
+        emissive_strength: match (m.emissive_strength(), m.emissive_factor() == [0.0; 3]) {
+            (None, true) => 1.0,
+            (strength, _) => units.to_radiometric(strength.unwrap_or(1.0)),
+        },
         emissive_texture: m.emissive_texture().map(|i| tex(i.texture(), i.tex_coord())),
     })
 }

@@ -90,6 +90,7 @@ impl PathTracer {
         let n = size.0 as usize * size.1 as usize;
         let bvh = SceneBvh::build(scene);
         let emitters = Emitters::new(&bvh, scene.materials());
+        let sky = scene.sky_texels();
         Self {
             bvh,
             materials: scene.materials().to_vec(),
@@ -97,8 +98,8 @@ impl PathTracer {
             lights: scene.lights().to_vec(),
             emitters,
             environment: scene.environment().clone(),
-            sky: scene.resources().sky.clone(),
-            sky_distribution: sky_distribution(scene.environment(), scene.sky_image()),
+            sky_distribution: sky_distribution(scene.environment(), sky.as_deref()),
+            sky,
             camera: *scene.camera(),
             size,
             settings,

@@ -94,12 +94,15 @@ impl SkyDistribution {
     }
 }
 
-/// What next-event estimation samples of an environment: an image's texels by luminance, or
+/// What next-event estimation samples of an environment: an image's (or the baked analytic
+/// sky's) texels by luminance, or
 /// nothing for a constant sky (the BRDF's own sampling is already proportional to what a
 /// constant sky gives, and MIS then gives it the whole weight).
 pub fn sky_distribution(env: &Environment, image: Option<&SkyImage>) -> Option<SkyDistribution> {
     match (&env.sky, image) {
-        (crate::scene::Sky::Image(_), Some(img)) if env.intensity > 0.0 => SkyDistribution::new(img),
+        (crate::scene::Sky::Image(_) | crate::scene::Sky::Preetham { .. }, Some(img)) if env.intensity > 0.0 => {
+            SkyDistribution::new(img)
+        }
         _ => None,
     }
 }

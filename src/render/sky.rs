@@ -31,6 +31,8 @@ pub struct SkyGpu {
     pub view: wgpu::TextureView,
     /// The image uploaded, by address (the scene shares it through an `Arc`).
     uploaded: Option<std::sync::Arc<SkyImage>>,
+    /// The analytic sky's turbidity and sun (bits) it was baked for.
+    baked_for: Option<[u32; 4]>,
     /// Bumped whenever `view` is replaced (bind groups holding it are stale).
     pub generation: u64,
 }
@@ -60,24 +62,39 @@ impl SkyGpu {
         let texture = texture(device, 1, 1);
         let view =
             texture.create_view(&wgpu::TextureViewDescriptor { label: Some("sky image view"), ..Default::default() });
-        Self { buffer, texture, view, uploaded: None, generation: 0 }
+        Self { buffer, texture, view, uploaded: None, baked_for: None, generation: 0 }
     }
 
     /// Writes the uniforms and uploads the image if it changed.
     pub fn sync(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) {
         let env = scene.environment();
-        let image = scene.resources().sky.as_ref().filter(|_| matches!(env.sky, Sky::Image(_)));
-        let same = match (image, &self.uploaded) {
-            (Some(a), Some(b)) => std::sync::Arc::ptr_eq(a, b),
-            (None, None) => true,
-            _ => false,
-        };
-        if !same {
-            self.upload(device, queue, image.cloned());
+        match &env.sky {
+            Sky::Preetham { turbidity } => {
+                // Baked again only when the sun or the turbidity moved.
+                let sun = env.to_sky(scene.sun_direction()).to_array().map(f32::to_bits);
+                let key = [turbidity.to_bits(), sun[0], sun[1], sun[2]];
+                if self.baked_for != Some(key) {
+                    self.upload(device, queue, scene.sky_texels());
+                    self.baked_for = Some(key);
+                }
+            }
+            _ => {
+                self.baked_for = None;
+                let image = scene.resources().sky.as_ref().filter(|_| matches!(env.sky, Sky::Image(_)));
+                let same = match (image, &self.uploaded) {
+                    (Some(a), Some(b)) => std::sync::Arc::ptr_eq(a, b),
+                    (None, None) => true,
+                    _ => false,
+                };
+                if !same {
+                    self.upload(device, queue, image.cloned());
+                }
+            }
         }
+        let image = self.uploaded.as_deref();
         let (kind, rgb) = match (&env.sky, image) {
             (Sky::Constant(c), _) => (1, c.map(|v| v * env.intensity)),
-            (Sky::Image(_), Some(_)) => (2, [0.0; 3]),
+            (Sky::Image(_) | Sky::Preetham { .. }, Some(_)) => (2, [0.0; 3]),
             _ => (0, [0.0; 3]),
         };
         let (w, h) = image.map_or((1, 1), |i| (i.width, i.height));

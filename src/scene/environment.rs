@@ -31,6 +31,13 @@ pub enum Sky {
     /// forward slashes (or as given on the command line); its texels times
     /// [`Environment::intensity`] are radiance.
     Image(String),
+    /// Preetham et al.'s analytic clear sky ([`super::preetham`]) of this turbidity, driven by
+    /// the scene's sun (its first directional light; [`super::Scene::sun_direction`]), in
+    /// physical units (a clear zenith is about 7 W/(sr m²)) times [`Environment::intensity`].
+    Preetham {
+        /// Atmospheric turbidity, 1.7 (very clear) to 10 (thin overcast).
+        turbidity: f32,
+    },
 }
 
 /// The environment of a scene.
@@ -121,13 +128,18 @@ pub fn equirect_direction(u: f32, v: f32) -> Vec3 {
 }
 
 impl Environment {
+    /// Whether this is the default (no sky, intensity 1, no rotation): what files leave out.
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+
     /// Whether any light comes from the environment.
     pub fn emits(&self, image: Option<&SkyImage>) -> bool {
         self.intensity > 0.0
             && match &self.sky {
                 Sky::None => false,
                 Sky::Constant(c) => c.iter().any(|v| *v > 0.0),
-                Sky::Image(_) => image.is_some(),
+                Sky::Image(_) | Sky::Preetham { .. } => image.is_some(),
             }
     }
 
@@ -142,11 +154,12 @@ impl Environment {
     }
 
     /// The radiance arriving from world direction `-d` along a ray travelling along `d` that
-    /// leaves the scene (`image`: the decoded [`Sky::Image`], if any).
+    /// leaves the scene (`image`: the decoded [`Sky::Image`] or the baked [`Sky::Preetham`],
+    /// [`super::Scene::sky_texels`]).
     pub fn radiance(&self, d: Vec3, image: Option<&SkyImage>) -> Vec3 {
         match (&self.sky, image) {
             (Sky::Constant(c), _) => Vec3::from_array(*c) * self.intensity,
-            (Sky::Image(_), Some(img)) => {
+            (Sky::Image(_) | Sky::Preetham { .. }, Some(img)) => {
                 let (x, y) = img.texel_of(self.to_sky(d));
                 img.texel(x, y) * self.intensity
             }
@@ -174,6 +187,13 @@ impl Environment {
             && path.trim().is_empty()
         {
             return Err(SceneError::BadValue { what: what.into(), why: "sky image path is empty".into() });
+        }
+        if let Sky::Preetham { turbidity } = self.sky {
+            let (lo, hi) = super::preetham::TURBIDITY_RANGE;
+            if !(lo..=hi).contains(&turbidity) {
+                let why = format!("turbidity {turbidity} is outside {lo}..={hi}, where the model was fitted");
+                return Err(SceneError::BadValue { what: what.into(), why });
+            }
         }
         Ok(())
     }

@@ -40,19 +40,29 @@ pub struct Material {
     /// Perceptual roughness of the glossy lobe in [0.02, 1].
     pub roughness: f32,
     /// Linear RGB emission colour (glTF `emissiveFactor`, each in [0, 1]); black emits nothing.
-    #[serde(default)]
+    /// Project files leave the emission fields out while they hold their defaults, so a file
+    /// without emission reads and saves as it did before emission existed.
+    #[serde(default, skip_serializing_if = "is_black")]
     pub emissive_color: [f32; 3],
     /// Emitted radiance per unit colour, W/(sr m²) (radiometric; glTF's
     /// `KHR_materials_emissive_strength`, converted by the scene's light units on import).
-    #[serde(default = "unit_strength")]
+    #[serde(default = "unit_strength", skip_serializing_if = "is_unit")]
     pub emissive_strength: f32,
     /// Optional sRGB emission texture multiplied with `emissive_color`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub emissive_texture: Option<TextureRef>,
 }
 
 fn unit_strength() -> f32 {
     1.0
+}
+
+fn is_unit(v: &f32) -> bool {
+    *v == 1.0
+}
+
+fn is_black(c: &[f32; 3]) -> bool {
+    *c == [0.0; 3]
 }
 
 impl Default for Material {

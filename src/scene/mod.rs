@@ -16,6 +16,7 @@ pub mod limits;
 mod material;
 mod mesh;
 mod object;
+pub mod preetham;
 mod units;
 
 pub use camera::{Camera, rotation_looking};
@@ -27,6 +28,9 @@ pub use object::{MeshSource, Object, ObjectRole, Transform};
 pub use units::{LUMENS_PER_WATT, LightUnits};
 
 use serde::{Deserialize, Serialize};
+
+/// The size the analytic sky is baked at for every consumer (texels; 0.7 degrees each).
+pub const PREETHAM_SIZE: (u32, u32) = (512, 256);
 
 /// An RGBA8 image decoded from an asset (base colour or normal map).
 #[derive(Clone, Debug, PartialEq)]
@@ -66,8 +70,9 @@ pub struct SceneDesc {
     pub light_units: LightUnits,
     /// Punctual lights (radiometric: W/sr, or W/m^2 for directional ones).
     pub lights: Vec<Light>,
-    /// The sky (radiometric radiance, W/(sr m²)); a file without the field has none.
-    #[serde(default)]
+    /// The sky (radiometric radiance, W/(sr m²)); a file without the field has none, and one
+    /// without a sky is saved without it.
+    #[serde(default, skip_serializing_if = "Environment::is_default")]
     pub environment: Environment,
     /// The view camera.
     pub camera: Camera,
@@ -176,9 +181,37 @@ impl Scene {
         self.resources.sky.as_deref()
     }
 
+    /// The texels every consumer reads the sky from (in the sky's own frame): the decoded
+    /// image, or the analytic sky baked at [`PREETHAM_SIZE`] for the current sun (computed on
+    /// each call: call once per build); `None` for a constant sky or none.
+    pub fn sky_texels(&self) -> Option<std::sync::Arc<SkyImage>> {
+        match &self.desc.environment.sky {
+            Sky::Image(_) => self.resources.sky.clone(),
+            Sky::Preetham { turbidity } => {
+                let sun = self.desc.environment.to_sky(self.sun_direction());
+                let baked = preetham::Preetham::new(sun, *turbidity).image(PREETHAM_SIZE.0, PREETHAM_SIZE.1);
+                Some(std::sync::Arc::new(baked))
+            }
+            _ => None,
+        }
+    }
+
+    /// The unit direction towards the sun: against the first directional light with light,
+    /// else 45 degrees up from +Z.
+    pub fn sun_direction(&self) -> glam::Vec3 {
+        self.desc
+            .lights
+            .iter()
+            .find(|l| l.kind == LightKind::Directional && l.intensity > 0.0)
+            .map_or(glam::Vec3::new(0.0, 1.0, 1.0).normalize(), |l| -l.direction)
+    }
+
     /// Whether any light comes from the sky.
     pub fn has_sky(&self) -> bool {
-        self.desc.environment.emits(self.sky_image())
+        match self.desc.environment.sky {
+            Sky::Preetham { .. } => self.desc.environment.intensity > 0.0,
+            _ => self.desc.environment.emits(self.sky_image()),
+        }
     }
 
     /// The view camera.

@@ -66,8 +66,9 @@ pub fn surface(scene: &Scene, bvh: &SceneBvh, p: Vec3, n: Vec3, reach: f32) -> T
 const SKY_RAYS: u32 = 64;
 
 /// The sky's cosine-weighted mean radiance over the directions out of a block (about `out`)
-/// from `p` that no geometry blocks: what a hole in a closed face lets in.
-pub fn sky_through(scene: &Scene, bvh: &SceneBvh, p: Vec3, out: Vec3) -> Vec3 {
+/// from `p` that no geometry blocks: what a hole in a closed face lets in (`sky`: the scene's
+/// [`Scene::sky_texels`]).
+pub fn sky_through(scene: &Scene, sky: Option<&crate::scene::SkyImage>, bvh: &SceneBvh, p: Vec3, out: Vec3) -> Vec3 {
     if !scene.has_sky() {
         return Vec3::ZERO;
     }
@@ -81,7 +82,7 @@ pub fn sky_through(scene: &Scene, bvh: &SceneBvh, p: Vec3, out: Vec3) -> Vec3 {
         if bvh.occluded(p, d, f32::INFINITY) {
             continue;
         }
-        sum += scene.environment().radiance(d, scene.sky_image());
+        sum += scene.environment().radiance(d, sky);
     }
     sum / SKY_RAYS as f32
 }
@@ -89,6 +90,7 @@ pub fn sky_through(scene: &Scene, bvh: &SceneBvh, p: Vec3, out: Vec3) -> Vec3 {
 /// The geometry image of `block`: one surface per sample of its layout at `res` texels per side.
 pub fn geometry_image(scene: &Scene, bvh: &SceneBvh, block: &Block, res: usize) -> Vec<TexelSurface> {
     let layout = Layout::new(block.shape, res);
+    let sky = scene.sky_texels();
     (0..layout.len())
         .map(|i| {
             let (face, _, p, n) = layout.sample(i);
@@ -97,7 +99,7 @@ pub fn geometry_image(scene: &Scene, bvh: &SceneBvh, block: &Block, res: usize) 
             let across = block.size[block.world_face(face).axis()];
             let mut s = surface(scene, bvh, w, nw, SEARCH.min(0.45 * across));
             if !s.found {
-                s.emission = sky_through(scene, bvh, w, -nw);
+                s.emission = sky_through(scene, sky.as_deref(), bvh, w, -nw);
             }
             s
         })

@@ -65,6 +65,10 @@ pub fn emitters_key(scene: &Scene) -> Vec<u32> {
         crate::scene::Sky::None => key.push(0),
         crate::scene::Sky::Constant(c) => key.extend([1].into_iter().chain(c.map(f32::to_bits))),
         crate::scene::Sky::Image(path) => key.extend([2].into_iter().chain(path.bytes().map(u32::from))),
+        // The analytic sky follows the sun.
+        crate::scene::Sky::Preetham { turbidity } => {
+            key.extend([3, turbidity.to_bits()].into_iter().chain(scene.sun_direction().to_array().map(f32::to_bits)))
+        }
     }
     key
 }
