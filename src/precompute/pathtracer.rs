@@ -268,7 +268,8 @@ impl PathTracer {
                 break; // One-sided: the back of a surface is black.
             }
             let lifted = p + ng * eps;
-            let mut light = throughput * self.next_event(p, ng, lifted, v, &surface, rng, &mut rays);
+            let at = ShadingPoint { p, ng, lifted, v, surface: &surface };
+            let mut light = throughput * self.next_event(&at, rng, &mut rays);
             if depth == 0 {
                 light += self.emitted(&h);
             }
@@ -346,33 +347,22 @@ impl PathTracer {
         e
     }
 
-    /// The light every light sends off `p` towards `v` by next-event estimation: each punctual
-    /// light, one point on an emissive triangle and one sky direction (the last two weighted
-    /// against BRDF sampling); counts the shadow rays in `rays`.
-    #[allow(clippy::too_many_arguments)]
-    fn next_event(
-        &self,
-        p: Vec3,
-        ng: Vec3,
-        lifted: Vec3,
-        v: Vec3,
-        surface: &Surface,
-        rng: &mut Pcg32,
-        rays: &mut u64,
-    ) -> Vec3 {
-        let mut out = self.punctual(p, ng, lifted, v, surface, rays);
+    /// The light every light sends off the shading point towards its viewer by next-event
+    /// estimation: each punctual light, one point on an emissive triangle and one sky direction
+    /// (the last two weighted against BRDF sampling); counts the shadow rays in `rays`.
+    fn next_event(&self, at: &ShadingPoint<'_>, rng: &mut Pcg32, rays: &mut u64) -> Vec3 {
+        let mut out = self.punctual(at, rays);
         if !self.emitters.is_empty() {
-            out += self.emitter_sample(ng, lifted, v, surface, rng, rays);
+            out += self.emitter_sample(at, rng, rays);
         }
         if let Some(dist) = &self.sky_distribution {
             let (d, pdf) = dist.sample((rng.next_f32(), rng.next_f32()));
             let l = self.environment.to_world(d);
-            let cos = surface.n.dot(l);
-            if pdf > 0.0 && ng.dot(l) > 0.0 && cos > 0.0 {
+            if let Some(cos) = at.facing(l).filter(|_| pdf > 0.0) {
                 *rays += 1;
-                if !self.bvh.occluded(lifted, l, f32::INFINITY) {
-                    let w = power_heuristic(pdf, surface.pdf(v, l));
-                    out += surface.eval(v, l) * self.sky_radiance(l) * cos / pdf * w;
+                if !self.bvh.occluded(at.lifted, l, f32::INFINITY) {
+                    let w = power_heuristic(pdf, at.surface.pdf(at.v, l));
+                    out += at.surface.eval(at.v, l) * self.sky_radiance(l) * cos / pdf * w;
                 }
             }
         }
@@ -380,61 +370,63 @@ impl PathTracer {
     }
 
     /// One point on an emissive triangle, its light weighted against BRDF sampling.
-    fn emitter_sample(
-        &self,
-        ng: Vec3,
-        lifted: Vec3,
-        v: Vec3,
-        surface: &Surface,
-        rng: &mut Pcg32,
-        rays: &mut u64,
-    ) -> Vec3 {
+    fn emitter_sample(&self, at: &ShadingPoint<'_>, rng: &mut Pcg32, rays: &mut u64) -> Vec3 {
         let Some(s) = self.emitters.sample(&self.bvh, [rng.next_f32(), rng.next_f32(), rng.next_f32()]) else {
             return Vec3::ZERO;
         };
-        let to = s.p - lifted;
+        let to = s.p - at.lifted;
         let dist = to.length();
         if dist <= 0.0 {
             return Vec3::ZERO;
         }
         let l = to / dist;
-        let tri = &self.bvh.tris[s.tri as usize];
-        let (cos_light, cos) = (tri.ng.dot(-l), surface.n.dot(l));
-        if cos_light <= 0.0 || cos <= 0.0 || ng.dot(l) <= 0.0 {
-            return Vec3::ZERO;
-        }
+        let cos_light = self.bvh.tris[s.tri as usize].ng.dot(-l);
+        let Some(cos) = at.facing(l).filter(|_| cos_light > 0.0) else { return Vec3::ZERO };
         *rays += 1;
-        if self.bvh.occluded(lifted, l, dist * (1.0 - 1e-4)) {
+        if self.bvh.occluded(at.lifted, l, dist * (1.0 - 1e-4)) {
             return Vec3::ZERO;
         }
         let pdf = s.pdf_area * dist * dist / cos_light;
         let hit = Hit { t: dist, tri: s.tri, u: s.u, v: s.v };
-        let w = power_heuristic(pdf, surface.pdf(v, l));
-        surface.eval(v, l) * self.emitted(&hit) * cos / pdf * w
+        let w = power_heuristic(pdf, at.surface.pdf(at.v, l));
+        at.surface.eval(at.v, l) * self.emitted(&hit) * cos / pdf * w
     }
 
-    /// The light every punctual light sends off `p` towards `v` (a shadow ray each).
-    fn punctual(&self, p: Vec3, ng: Vec3, lifted: Vec3, v: Vec3, surface: &Surface, rays: &mut u64) -> Vec3 {
+    /// The light every punctual light sends off the shading point (a shadow ray each).
+    fn punctual(&self, at: &ShadingPoint<'_>, rays: &mut u64) -> Vec3 {
         let mut out = Vec3::ZERO;
         for light in &self.lights {
-            let (l, e) = light.incident(p);
-            if ng.dot(l) <= 0.0 || e.max_element() <= 0.0 {
-                continue;
-            }
-            let cos = surface.n.dot(l);
-            if cos <= 0.0 {
-                continue;
-            }
+            let (l, e) = light.incident(at.p);
+            let Some(cos) = at.facing(l).filter(|_| e.max_element() > 0.0) else { continue };
             let dist = match light.kind {
                 LightKind::Directional => f32::INFINITY,
-                _ => (light.position - lifted).length(),
+                _ => (light.position - at.lifted).length(),
             };
             *rays += 1;
-            if !self.bvh.occluded(lifted, l, dist) {
-                out += surface.eval(v, l) * e * cos;
+            if !self.bvh.occluded(at.lifted, l, dist) {
+                out += at.surface.eval(at.v, l) * e * cos;
             }
         }
         out
+    }
+}
+
+/// A surface point being shaded: the point, its geometric normal, the point lifted off the
+/// surface for shadow rays, the direction to its viewer and its BRDF.
+struct ShadingPoint<'a> {
+    p: Vec3,
+    ng: Vec3,
+    lifted: Vec3,
+    v: Vec3,
+    surface: &'a Surface,
+}
+
+impl ShadingPoint<'_> {
+    /// The shading cosine towards light direction `l`, if `l` is above both the geometric and
+    /// the shading normal (one-sided surfaces).
+    fn facing(&self, l: Vec3) -> Option<f32> {
+        let cos = self.surface.n.dot(l);
+        (self.ng.dot(l) > 0.0 && cos > 0.0).then_some(cos)
     }
 }
 

@@ -4,8 +4,9 @@
 //! targets already take 28 of the 32 bytes a sample WebGPU guarantees, and a scene without
 //! emissive materials pays only the target's clear.
 
+use super::gbuffer::view_pipeline;
 use super::layouts::Layouts;
-use super::scene_gpu::{SceneGpu, Vertex};
+use super::scene_gpu::SceneGpu;
 use super::shaders::{self, ShaderError};
 use super::targets::{ViewTargets, formats};
 
@@ -18,42 +19,11 @@ impl EmissionPass {
     /// Creates the pipeline.
     pub fn new(device: &wgpu::Device, layouts: &Layouts) -> Result<Self, ShaderError> {
         let module = shaders::module(device, "render/emission.wgsl")?;
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("emission pipeline layout"),
-            bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.object), Some(&layouts.material)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("emission pipeline"),
-            layout: Some(&layout),
-            vertex: Vertex::state(&module),
-            primitive: wgpu::PrimitiveState {
-                topology: wgpu::PrimitiveTopology::TriangleList,
-                front_face: wgpu::FrontFace::Ccw,
-                cull_mode: Some(wgpu::Face::Back),
-                ..Default::default()
-            },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: formats::DEPTH,
-                depth_write_enabled: Some(false),
-                depth_compare: Some(wgpu::CompareFunction::Equal),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: formats::EMISSION,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let target =
+            Some(wgpu::ColorTargetState { format: formats::EMISSION, blend: None, write_mask: wgpu::ColorWrites::ALL });
+        // Over the G-buffer's depth, not writing it: only the surfaces it kept.
+        let depth = (false, wgpu::CompareFunction::Equal);
+        let pipeline = view_pipeline(device, layouts, "emission", &module, depth, &[target]);
         Ok(Self { pipeline })
     }
 
