@@ -145,20 +145,9 @@ fn emission_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, units: LightUn
         ui.color_edit_button_rgb(&mut m.emissive_color)
             .on_hover_text("Colour the front face emits (black: none); x the strength below.");
     });
-    let symbol = match units {
-        LightUnits::Photometric => "cd/m²",
-        LightUnits::Radiometric => "W/(sr m²)",
-    };
-    let mut shown = units.from_radiometric(m.emissive_strength);
-    let slider = egui::Slider::new(&mut shown, 0.0..=units.from_radiometric(1.0e4))
-        .logarithmic(true)
-        .clamping(egui::SliderClamping::Never)
-        .text(format!("emission strength ({symbol})"));
     let tip =
         "Radiance of the front face per unit colour (KHR_materials_emissive_strength), in the scene's light units.";
-    if ui.add(slider).on_hover_text(tip).changed() && shown.is_finite() {
-        m.emissive_strength = units.to_radiometric(shown.max(0.0));
-    }
+    super::sky_panel::radiance_slider(ui, &mut m.emissive_strength, units, "emission strength", tip);
 }
 
 /// Edits the object's material (shared by every object that uses it).

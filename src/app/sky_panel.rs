@@ -114,17 +114,19 @@ fn kind_ui(ui: &mut egui::Ui, env: &mut Environment) {
 
 /// The intensity in the scene's light units (the model keeps it radiometric).
 fn intensity_ui(ui: &mut egui::Ui, env: &mut Environment, units: LightUnits) {
-    let symbol = match units {
-        LightUnits::Photometric => "cd/m²",
-        LightUnits::Radiometric => "W/(sr m²)",
-    };
-    let mut shown = units.from_radiometric(env.intensity);
+    radiance_slider(ui, &mut env.intensity, units, "intensity", "The sky's radiance per unit colour.");
+}
+
+/// A logarithmic slider of a radiometric radiance `value` shown and typed in `units` (cd/m² or
+/// W/(sr m²)), labelled `label (symbol)`; the emission strength's and the sky's.
+pub(super) fn radiance_slider(ui: &mut egui::Ui, value: &mut f32, units: LightUnits, label: &str, tip: &str) {
+    let mut shown = units.from_radiometric(*value);
     let slider = egui::Slider::new(&mut shown, 0.0..=units.from_radiometric(1.0e4))
         .logarithmic(true)
         .clamping(egui::SliderClamping::Never)
-        .text(format!("intensity ({symbol})"));
-    if ui.add(slider).on_hover_text("The sky's radiance per unit colour.").changed() && shown.is_finite() {
-        env.intensity = units.to_radiometric(shown.max(0.0));
+        .text(format!("{label} ({})", units.radiance_symbol()));
+    if ui.add(slider).on_hover_text(tip).changed() && shown.is_finite() {
+        *value = units.to_radiometric(shown.max(0.0));
     }
 }
 

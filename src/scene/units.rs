@@ -73,6 +73,14 @@ impl LightUnits {
         }
     }
 
+    /// The unit symbol of radiance (emission, the sky) in these units.
+    pub fn radiance_symbol(self) -> &'static str {
+        match self {
+            Self::Photometric => "cd/m²",
+            Self::Radiometric => "W/(sr m²)",
+        }
+    }
+
     /// The other of the two.
     pub fn other(self) -> Self {
         match self {
