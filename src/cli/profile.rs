@@ -22,7 +22,7 @@ use crate::settings::GiMode;
 use crate::suite::SCENES;
 
 /// The passes of the shared direct path; every other pass is the technique's own.
-pub const DIRECT_PASSES: &[&str] = &["gbuffer", "shadows", "lighting", "composite", "tonemap"];
+pub const DIRECT_PASSES: &[&str] = &["gbuffer", "emission", "shadows", "lighting", "composite", "tonemap"];
 
 /// Arguments of `bouncelab profile`.
 #[derive(clap::Args, Debug)]
