@@ -62,8 +62,8 @@ pub fn sky_ui(state: &mut EditorState, ui: &mut egui::Ui) {
             let (lo, hi) = crate::scene::preetham::TURBIDITY_RANGE;
             ui.add(egui::Slider::new(turbidity, lo..=hi).text("turbidity")).on_hover_text(
                 "Preetham et al. 1999: 2 very clear, 3 clear, 6 hazy, 10 thin overcast. The sky follows the \
-                 scene's sun (its first directional light); its brightness is physical (a clear zenith is about \
-                 5 kcd/m²), the intensity a scale on it.",
+                 scene's sun (its first directional light); its brightness is physical (at turbidity 3 with the sun \
+                 45° up the zenith is 7.3 kcd/m²), the intensity a scale on it.",
             );
         }
         Sky::None => {}

@@ -83,12 +83,12 @@ impl SceneArgs {
                 other => other.clone(),
             };
         }
-        // The image's texels are in the scene's light units, the intensity a plain scale.
+        // The flag's intensity is a plain scale. An image's texels are read in the scene's light
+        // units, so its conversion rides on the intensity; a constant colour was converted above,
+        // and the analytic sky is physical.
         let scale = self.sky_intensity.or(self.sky.as_ref().map(|_| 1.0));
         if let Some(i) = scale {
             env.intensity = if matches!(env.sky, Sky::Image(_)) { units.to_radiometric(i) } else { i };
-            // (A constant sky's colour and an image's texels are in the scene's units; the
-            // analytic sky is physical, its intensity a plain scale.)
         }
         if let Some(r) = self.sky_rotation {
             env.rotation_degrees = r;

@@ -77,6 +77,13 @@ mod tests {
         let img = load_sky_file(&exr).expect("load");
         assert_eq!((img.width, img.height), (8, 4));
         assert_eq!(img.texels[5], [0.25, 0.5, 4.0]);
+        // A panorama wider than MAX_SKY_WIDTH is box-filtered by a power of two.
+        let wide = dir.join("wide.exr");
+        let pixels = (0..4096 * 4).map(|i| if i % 2 == 0 { [1.0, 1.0, 1.0, 1.0] } else { [3.0; 4] }).collect();
+        image_io::write_exr(&wide, &image_io::HdrImage { width: 4096, height: 4, pixels }).expect("write");
+        let img = load_sky_file(&wide).expect("load");
+        assert_eq!((img.width, img.height), (MAX_SKY_WIDTH, 2));
+        assert_eq!(img.texels[0], [2.0; 3], "each texel the mean of the 2 x 2 it stands for");
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

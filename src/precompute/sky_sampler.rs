@@ -19,9 +19,9 @@ pub struct SkyDistribution {
     rows: Vec<f32>,
 }
 
-/// Rec. 709 luminance.
+/// Rec. 709 luminance ([`crate::metrics::luminance`]) of an RGB radiance.
 pub fn luminance(c: Vec3) -> f32 {
-    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+    crate::metrics::luminance(&c.extend(1.0).to_array())
 }
 
 /// The index of the first entry of the ascending `cdf` above `x` (clamped to the last).

@@ -344,8 +344,11 @@ impl SceneGpu {
         }
         let rebuild = self.materials.len() != materials.len()
             || materials.iter().map(|m| m.emissive_texture).ne(self.emissive_textures.iter().copied());
-        self.emissive = materials.iter().map(Material::emits).collect();
-        self.emissive_textures = materials.iter().map(|m| m.emissive_texture).collect();
+        // In place: called every frame, these keep their allocation.
+        self.emissive.clear();
+        self.emissive.extend(materials.iter().map(Material::emits));
+        self.emissive_textures.clear();
+        self.emissive_textures.extend(materials.iter().map(|m| m.emissive_texture));
         let mut groups = Vec::new();
         for (m, buffer) in materials.iter().zip(&self.material_buffers) {
             queue.write_buffer(buffer, 0, bytemuck::bytes_of(&MaterialUniforms::new(m)));

@@ -22,6 +22,13 @@ pub struct SkyUniforms {
 
 const _: () = assert!(std::mem::size_of::<SkyUniforms>() == 48);
 
+/// The sky's parameter block in the shaders that read it (file, struct, bytes), checked against
+/// naga's layout by the shader tests.
+pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
+    ("render/lighting.wgsl", "SkyParams", std::mem::size_of::<SkyUniforms>()),
+    ("render/gi/rcs/rcs_reduce.wgsl", "SkyParams", std::mem::size_of::<SkyUniforms>()),
+];
+
 /// The sky's GPU resources.
 pub struct SkyGpu {
     /// The uniform block.

@@ -33,7 +33,7 @@ pub enum Sky {
     Image(String),
     /// Preetham et al.'s analytic clear sky ([`super::preetham`]) of this turbidity, driven by
     /// the scene's sun (its first directional light; [`super::Scene::sun_direction`]), in
-    /// physical units (a clear zenith is about 7 W/(sr m²)) times [`Environment::intensity`].
+    /// physical units (turbidity 3, the sun 45 degrees up: a zenith of 7.3 kcd/m², 10.7 W/(sr m²)) times [`Environment::intensity`].
     Preetham {
         /// Atmospheric turbidity, 1.7 (very clear) to 10 (thin overcast).
         turbidity: f32,

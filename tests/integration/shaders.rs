@@ -43,7 +43,8 @@ fn every_entry_shader_validates_with_naga() {
 #[test]
 fn every_parameter_block_matches_its_wgsl_struct() {
     let techniques = registry::TECHNIQUES.iter().flat_map(|t| t.param_blocks.iter());
-    for (path, name, size) in techniques.chain(bouncelab::render::obscurance::PARAM_BLOCKS) {
+    let frame = bouncelab::render::obscurance::PARAM_BLOCKS.iter().chain(bouncelab::render::sky::PARAM_BLOCKS);
+    for (path, name, size) in techniques.chain(frame) {
         let text = assemble(path).expect("assembles");
         let module =
             naga::front::wgsl::parse_str(&text).unwrap_or_else(|e| panic!("{path}: {}", e.emit_to_string(&text)));

@@ -477,12 +477,13 @@ struct Lit {
 impl Lit {
     fn new(probe: &Probe) -> Self {
         let (scene, bvh) = (probe.scene, probe.bvh);
+        let sky = scene.sky_texels();
         let texels: Vec<Vec<Texel>> = probe
             .lvl
             .blocks
             .iter()
             .map(|b| {
-                geometry_image::geometry_image(scene, bvh, b, probe.params.res)
+                geometry_image::geometry_image(scene, sky.as_deref(), bvh, b, probe.params.res)
                     .into_iter()
                     .map(|s| s.found.then_some((s.position, s.normal, s.albedo)))
                     .collect()

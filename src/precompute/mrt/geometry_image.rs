@@ -87,10 +87,17 @@ pub fn sky_through(scene: &Scene, sky: Option<&crate::scene::SkyImage>, bvh: &Sc
     sum / SKY_RAYS as f32
 }
 
-/// The geometry image of `block`: one surface per sample of its layout at `res` texels per side.
-pub fn geometry_image(scene: &Scene, bvh: &SceneBvh, block: &Block, res: usize) -> Vec<TexelSurface> {
+/// The geometry image of `block`: one surface per sample of its layout at `res` texels per side
+/// (`sky`: the scene's [`Scene::sky_texels`], computed once per level by the caller: the analytic
+/// sky is baked on each call).
+pub fn geometry_image(
+    scene: &Scene,
+    sky: Option<&crate::scene::SkyImage>,
+    bvh: &SceneBvh,
+    block: &Block,
+    res: usize,
+) -> Vec<TexelSurface> {
     let layout = Layout::new(block.shape, res);
-    let sky = scene.sky_texels();
     (0..layout.len())
         .map(|i| {
             let (face, _, p, n) = layout.sample(i);
@@ -99,7 +106,7 @@ pub fn geometry_image(scene: &Scene, bvh: &SceneBvh, block: &Block, res: usize) 
             let across = block.size[block.world_face(face).axis()];
             let mut s = surface(scene, bvh, w, nw, SEARCH.min(0.45 * across));
             if !s.found {
-                s.emission = sky_through(scene, sky.as_deref(), bvh, w, -nw);
+                s.emission = sky_through(scene, sky, bvh, w, -nw);
             }
             s
         })

@@ -53,7 +53,7 @@ fn objects_key(scene: &Scene) -> Vec<u32> {
 /// Settings with the fields that never invalidate a technique's history (the mode itself is
 /// handled by mode changes, the view only changes the display) normalised away.
 /// What the emissive materials and the sky are (an edit of either is a light edit).
-pub fn emitters_key(scene: &Scene) -> Vec<u32> {
+fn emitters_key(scene: &Scene) -> Vec<u32> {
     let mut key = Vec::new();
     for m in scene.materials() {
         key.extend(m.emissive_color.iter().chain([&m.emissive_strength]).map(|v| v.to_bits()));
@@ -71,6 +71,29 @@ pub fn emitters_key(scene: &Scene) -> Vec<u32> {
         }
     }
     key
+}
+
+/// Watches a scene's area lights ([`emitters_key`]) for a technique that bakes them (`rcs`'s
+/// records, `mrt`'s texels): the key is rebuilt only when the scene's revision moved, so an
+/// unedited frame costs one comparison.
+#[derive(Default)]
+pub struct EmittersWatch {
+    revision: u64,
+    key: Option<Vec<u32>>,
+}
+
+impl EmittersWatch {
+    /// Whether the sky or an emission changed since the last call (false on the first).
+    pub fn changed(&mut self, scene: &Scene) -> bool {
+        if self.key.is_some() && self.revision == scene.revision() {
+            return false;
+        }
+        self.revision = scene.revision();
+        let key = emitters_key(scene);
+        let changed = self.key.as_ref().is_some_and(|k| *k != key);
+        self.key = Some(key);
+        changed
+    }
 }
 
 fn history_settings(settings: &RenderSettings) -> RenderSettings {

@@ -158,9 +158,10 @@ pub fn pack(scene: &Scene, bvh: &SceneBvh, level: &Level, dictionary: &Dictionar
     let slot_of = pack_slots(&mut p, level, &transfer, res, k_b);
     let side_first = pack_sides(&mut p, level, &transfer, dictionary, res, k_b);
     let offsets = Offsets { elements, slot_of, side_first };
+    let sky = scene.sky_texels();
     for (bi, b) in level.blocks.iter().enumerate() {
         let layout = Layout::new(b.shape, res);
-        let first = pack_texels(&mut p, scene, bvh, level, bi, res);
+        let first = pack_texels(&mut p, scene, sky.as_deref(), bvh, level, bi, res);
         p.blocks.push(block_record(level, bi, &layout, first, &offsets));
     }
     end_tables(&mut p);
@@ -273,12 +274,21 @@ fn pack_sides(
     side_first
 }
 
-/// Appends block `bi`'s texels (their real surfaces, traced in the geometry image) and its own
-/// light's stretch corrections; returns its first texel, which its record points at.
-fn pack_texels(p: &mut Packed, scene: &Scene, bvh: &SceneBvh, level: &Level, bi: usize, res: usize) -> u32 {
+/// Appends block `bi`'s texels (their real surfaces, traced in the geometry image, `sky` letting
+/// in through holes) and its own light's stretch corrections; returns its first texel, which its
+/// record points at.
+fn pack_texels(
+    p: &mut Packed,
+    scene: &Scene,
+    sky: Option<&crate::scene::SkyImage>,
+    bvh: &SceneBvh,
+    level: &Level,
+    bi: usize,
+    res: usize,
+) -> u32 {
     let b = &level.blocks[bi];
     let first = p.texels.len() as u32;
-    let surfaces: Vec<TexelSurface> = geometry_image(scene, bvh, b, res);
+    let surfaces: Vec<TexelSurface> = geometry_image(scene, sky, bvh, b, res);
     p.own_scales.extend(level::own_scales(level, bi).iter().flatten().map(|v| *v as f32));
     for s in &surfaces {
         p.surfaces_found += u32::from(s.found);

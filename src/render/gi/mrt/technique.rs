@@ -169,9 +169,9 @@ pub struct MrtTechnique {
     level_job: Option<LevelJob>,
     /// The level must be rebuilt (scene edited, depth or dictionary changed).
     level_dirty: bool,
-    /// The sky and emission the texels were packed with (`changes::emitters_key`): they are
-    /// baked into the texels, so an edit of either rebuilds the level.
-    emitters: Option<Vec<u32>>,
+    /// The sky and emission the texels were packed with: they are baked into the texels, so
+    /// an edit of either rebuilds the level.
+    emitters: crate::render::gi::changes::EmittersWatch,
     depth: usize,
     overrides: Vec<crate::settings::BlockOverride>,
     drt: crate::settings::DrtSettings,
@@ -195,7 +195,7 @@ impl MrtTechnique {
             dictionary_source: String::new(),
             level_job: None,
             level_dirty: true,
-            emitters: None,
+            emitters: Default::default(),
             depth: 0,
             overrides: Vec::new(),
             drt: crate::settings::DrtSettings::default(),
@@ -339,11 +339,9 @@ impl GiTechnique for MrtTechnique {
             self.drt = s.drt.clone();
             self.level_dirty = true;
         }
-        let emitters = crate::render::gi::changes::emitters_key(scene);
-        if self.emitters.as_ref().is_some_and(|e| *e != emitters) {
+        if self.emitters.changed(scene) {
             self.level_dirty = true;
         }
-        self.emitters = Some(emitters);
         if let Some(job) = &self.level_job
             && let Some(result) = job.finished()
         {

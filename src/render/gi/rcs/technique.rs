@@ -55,8 +55,8 @@ pub struct RcsTechnique {
     changed: Vec<Aabb>,
     light_check: bool,
     drop_all: bool,
-    /// The sky and emission the records were computed with (`changes::emitters_key`).
-    emitters: Option<Vec<u32>>,
+    /// The sky and emission the records were computed with.
+    emitters: crate::render::gi::changes::EmittersWatch,
     /// Secondary record sites proposed by hemispheres and not made yet, with their depth.
     secondary: Vec<(Site, u32)>,
     /// The running bounce pass: summed relative luminance change of its renewals, and their
@@ -103,7 +103,7 @@ impl RcsTechnique {
             changed: Vec::new(),
             light_check: false,
             drop_all: true,
-            emitters: None,
+            emitters: Default::default(),
             secondary: Vec::new(),
             pass: (0.0, 0.0),
             passes: 0,
@@ -417,11 +417,9 @@ impl GiTechnique for RcsTechnique {
         self.boxes = Some(boxes);
         // The light check relights with the punctual lights only: an edit of the sky or of an
         // emission renews every record.
-        let emitters = crate::render::gi::changes::emitters_key(scene);
-        if self.emitters.as_ref().is_some_and(|e| *e != emitters) {
+        if self.emitters.changed(scene) {
             self.drop_all = true;
         }
-        self.emitters = Some(emitters);
         let key = cache_key(&settings.rcs);
         if self.made_with.as_ref() != Some(&key) {
             self.drop_all = true;
