@@ -69,7 +69,7 @@ fn texel(img: &Image, x: i64, y: i64) -> [f32; 4] {
 }
 
 /// Bilinear, repeating lookup; `srgb` decodes each texel before filtering (as the GPU does).
-fn sample_image(img: &Image, uv: Vec2, srgb: bool) -> Vec3 {
+pub(crate) fn sample_image(img: &Image, uv: Vec2, srgb: bool) -> Vec3 {
     let x = uv.x * img.width as f32 - 0.5;
     let y = uv.y * img.height as f32 - 0.5;
     let (x0, y0) = (x.floor(), y.floor());

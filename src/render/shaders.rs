@@ -33,6 +33,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/gi/ism/ism_sh_filter.wgsl", include_str!("../../shaders/render/gi/ism/ism_sh_filter.wgsl")),
     ("render/gi/ism/ism_splat.wgsl", include_str!("../../shaders/render/gi/ism/ism_splat.wgsl")),
     ("render/gi/ism/ism_clear.wgsl", include_str!("../../shaders/render/gi/ism/ism_clear.wgsl")),
+    ("render/gi/ism/ism_emitter_tiles.wgsl", include_str!("../../shaders/render/gi/ism/ism_emitter_tiles.wgsl")),
     ("render/gi/ism/ism_footprint.wgsl", include_str!("../../shaders/render/gi/ism/ism_footprint.wgsl")),
     ("render/gi/ism/ism_select.wgsl", include_str!("../../shaders/render/gi/ism/ism_select.wgsl")),
     ("render/gi/ism/ism_split.wgsl", include_str!("../../shaders/render/gi/ism/ism_split.wgsl")),

@@ -70,11 +70,12 @@ impl Renderer {
 /// `rcs` (the records' hemisphere renders see emissive surfaces and the sky, as they see every
 /// other surface) and `mrt` (emission and the sky through holes in the blocks' faces enter the
 /// texels' l_d) light with both; `sshgi` sends emission from the emitters on screen (its
-/// senders take the direct term, which holds it) but not the sky.
+/// senders take the direct term, which holds it) and `ism` and `ism-ritschel` from VPLs on the
+/// emitters (`render::gi::ism::emitter_points`), but neither the sky.
 pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
     let emissive = match mode {
         GiMode::Reference | GiMode::Rcs | GiMode::Mrt => return None,
-        GiMode::Sshgi => 0,
+        GiMode::Sshgi | GiMode::Ism | GiMode::IsmRitschel => 0,
         _ => scene.materials().iter().filter(|m| m.emits()).count(),
     };
     let what = match (scene.has_sky(), emissive) {
@@ -95,7 +96,7 @@ mod tests {
     use super::*;
 
     /// Every mode that does not light with the sky or emission says so, naming what it leaves
-    /// out; `reference` and `rcs` say nothing, `sshgi` only of the sky.
+    /// out; `reference`, `rcs` and `mrt` say nothing, `sshgi` and the ISM modes only of the sky.
     #[test]
     fn each_mode_names_the_area_lights_it_leaves_out() {
         let mut scene = crate::precompute::test_scenes::scene_of_slabs(&[], Vec::new());
@@ -106,7 +107,7 @@ mod tests {
             let said = area_light_shortfall(&scene, mode);
             match mode {
                 GiMode::Reference | GiMode::Rcs | GiMode::Mrt => assert_eq!(said, None),
-                GiMode::Sshgi => assert!(said.as_deref().is_some_and(|s| s.contains("the sky,")), "{said:?}"),
+                GiMode::Sshgi | GiMode::Ism | GiMode::IsmRitschel => assert!(said.as_deref().is_some_and(|s| s.contains("the sky,")), "{said:?}"),
                 _ => {
                     assert!(said.as_deref().is_some_and(|s| s.contains("the sky and 1 emissive material")), "{said:?}")
                 }

@@ -16,11 +16,23 @@ struct GenParams {
     tiles: vec4<u32>,
 }
 
-// One light-G-buffer tile (a spot light's frustum, a cube face, a sun's orthographic view).
+// One light-G-buffer tile (a spot light's frustum, a cube face, a sun's orthographic view, or
+// candidates on the emissive surfaces).
 struct TileRecord {
     world_from_clip: mat4x4<f32>,
-    // xyz light position (w = 0), or the unit direction towards a directional light (w = 1).
+    // xyz light position (w = 0), the unit direction towards a directional light (w = 1), or
+    // x = the first emitter candidate of an emitter tile (w = 2).
     light: vec4<f32>,
+}
+
+// A candidate VPL on an emissive surface (`ism_emitter_tiles.wgsl`).
+struct EmitterPoint {
+    // xyz world position, w = the area it stands for (m^2).
+    position: vec4<f32>,
+    // xyz unit front normal, w unused.
+    normal: vec4<f32>,
+    // rgb power pi L A (W), a = importance.
+    power: vec4<f32>,
 }
 
 
@@ -33,6 +45,7 @@ struct TileRecord {
 @group(0) @binding(6) var<storage, read_write> vpls: array<Vpl>;
 @group(0) @binding(7) var specular_tex: texture_2d<f32>;
 @group(0) @binding(8) var<storage, read> tile_records: array<TileRecord>;
+@group(0) @binding(9) var<storage, read> emitter_points: array<EmitterPoint>;
 
 const PI: f32 = 3.14159265358979;
 
@@ -127,19 +140,32 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let ts = params.tiles.y;
     let tile = (cell.y / ts) * params.tiles.x + cell.x / ts;
     let uv = (vec2<f32>(cell % vec2<u32>(ts)) + 0.5) / f32(ts);
+    let record = tile_records[min(tile, params.tiles.z - 1u)];
+    let interleave = f32(params.counts.z);
+    let scale = interleave * interleave / (f32(n_vpl) * pdf);
+    if record.light.w > 1.5 {
+        // An emitter candidate: a Lambertian VPL of power pi L A on the emitter's front face.
+        let local = cell % vec2<u32>(ts);
+        let last = max(arrayLength(&emitter_points), 1u) - 1u;
+        let e = emitter_points[min(u32(record.light.x) + local.y * ts + local.x, last)];
+        out.position = vec4<f32>(e.position.xyz, max(e.position.w / (f32(n_vpl) * pdf) / PI, 1.0e-20));
+        out.normal = vec4<f32>(e.normal.xyz, 0.0);
+        out.power = vec4<f32>(e.power.rgb * scale, pdf);
+        out.gloss = vec4<f32>(0.0);
+        out.incident = vec4<f32>(e.normal.xyz, f32(cell.y * size + cell.x));
+        vpls[k] = out;
+        return;
+    }
     let depth = textureLoad(depth_tex, cell, 0);
     let ndc = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-    let record = tile_records[min(tile, params.tiles.z - 1u)];
     let h = record.world_from_clip * ndc;
     let p = h.xyz / h.w;
-    let interleave = f32(params.counts.z);
     let reflected = textureLoad(power_tex, cell, 0).rgb;
     let nt = textureLoad(normal_tex, cell, 0);
     // The VPL stands for a disk of the area its texel's patch covers among N draws: A / (N p).
     let disk_area = nt.w / (f32(n_vpl) * pdf);
     out.position = vec4<f32>(p, max(disk_area / PI, 1.0e-20));
     out.normal = vec4<f32>(normalize(nt.xyz), textureLoad(albedo_tex, cell, 0).a);
-    let scale = interleave * interleave / (f32(n_vpl) * pdf);
     out.power = vec4<f32>(reflected * scale, pdf);
     let spec = textureLoad(specular_tex, cell, 0);
     out.gloss = vec4<f32>(spec.rgb * scale, spec.a);

@@ -1,6 +1,8 @@
 //! Where every light's view lives in ISM's light G-buffer: one square atlas of equal tiles, one
 //! tile per spot light (its cone's frustum), six per point light (cube faces) and one per
-//! directional light (an orthographic view fitted to the scene bounds, like its shadow map).
+//! directional light (an orthographic view fitted to the scene bounds, like its shadow map),
+//! then, where objects emit, the emitter tiles: their texels hold candidate VPLs on the emissive
+//! surfaces ([`super::emitter_points`]), at least [`EMITTER_CANDIDATES`] of them.
 //! Each texel stores the power its surface patch reflects in absolute watts, so one importance
 //! pyramid over the whole atlas spreads the VPLs over all lights in proportion to the power they
 //! put into the scene (Knecht 2009 section 3.3 generalised from one spot light to any set).
@@ -18,6 +20,11 @@ pub const BASE_SIDE: u32 = 256;
 pub const MIN_TILE: u32 = 64;
 /// Largest atlas side (1024 tiles of 64^2: 170 point lights).
 pub const MAX_SIDE: u32 = 2048;
+/// Fewest candidate VPLs on the emissive surfaces: one tile of 128^2, four of 64^2 (each frame's
+/// VPLs are drawn among them by power, so more candidates only refine the sampling).
+pub const EMITTER_CANDIDATES: u32 = 16384;
+/// Most tiles the emitters take (four of 64^2 hold [`EMITTER_CANDIDATES`]).
+const MAX_EMITTER_TILES: usize = 4;
 
 /// One light's view in the atlas.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,6 +54,9 @@ pub struct LightTiles {
     pub tile_size: u32,
     /// Lights left out because the atlas was full (the GI panel names them).
     pub skipped: Vec<usize>,
+    /// Emitter tiles after the light tiles (0: nothing emits); texel `i` of them, counted
+    /// row-major within each tile and tile after tile, holds emitter candidate `i`.
+    pub emitters: u32,
 }
 
 fn up_for(dir: Vec3) -> Vec3 {
@@ -105,10 +115,11 @@ fn tiles_of(scene: &Scene, index: usize, bounds: &Aabb) -> Vec<LightTile> {
     }
 }
 
-/// Lays out every emitting light of `scene`.
+/// Lays out every emitting light of `scene`, and its emissive surfaces.
 pub fn layout(scene: &Scene) -> LightTiles {
     let bounds = scene.bounds().unwrap_or(Aabb { min: Vec3::splat(-1.0), max: Vec3::splat(1.0) });
-    let max_tiles = (MAX_SIDE / MIN_TILE).pow(2) as usize;
+    let emissive = super::emitter_points::has_emitters(scene);
+    let max_tiles = (MAX_SIDE / MIN_TILE).pow(2) as usize - if emissive { MAX_EMITTER_TILES } else { 0 };
     let mut tiles = Vec::new();
     let mut skipped = Vec::new();
     for i in 0..scene.lights().len() {
@@ -119,15 +130,26 @@ pub fn layout(scene: &Scene) -> LightTiles {
             tiles.extend(t);
         }
     }
-    let count = tiles.len().max(1) as u32;
-    let per_row = ((f64::from(count).sqrt().ceil()) as u32).next_power_of_two();
-    let side = (per_row * MIN_TILE).clamp(BASE_SIDE, MAX_SIDE);
-    let tile_size = side / per_row;
+    let grid = |count: usize| {
+        let per_row = ((count.max(1) as f64).sqrt().ceil() as u32).next_power_of_two();
+        let side = (per_row * MIN_TILE).clamp(BASE_SIDE, MAX_SIDE);
+        (per_row, side, side / per_row)
+    };
+    let mut emitters = 0;
+    if emissive {
+        emitters = 1;
+        while (emitters as usize) < MAX_EMITTER_TILES
+            && emitters * grid(tiles.len() + emitters as usize).2.pow(2) < EMITTER_CANDIDATES
+        {
+            emitters += 1;
+        }
+    }
+    let (per_row, side, tile_size) = grid(tiles.len() + emitters as usize);
     for t in &mut tiles {
         // World extent squared / texels squared.
         t.ortho_texel_area /= (tile_size * tile_size) as f32;
     }
-    LightTiles { tiles, side, per_row, tile_size, skipped }
+    LightTiles { tiles, side, per_row, tile_size, skipped, emitters }
 }
 
 impl LightTiles {
@@ -137,11 +159,22 @@ impl LightTiles {
         ((t % self.per_row) * self.tile_size, (t / self.per_row) * self.tile_size)
     }
 
-    /// The tile that atlas texel `texel` (row-major index) belongs to, if any.
+    /// The tile that atlas texel `texel` (row-major index) belongs to, if any (light tiles
+    /// first, then the emitter tiles).
     pub fn tile_of_texel(&self, texel: usize) -> Option<usize> {
         let (x, y) = ((texel as u32) % self.side, (texel as u32) / self.side);
         let t = (y / self.tile_size) * self.per_row + x / self.tile_size;
-        ((t as usize) < self.tiles.len()).then_some(t as usize)
+        ((t as usize) < self.count()).then_some(t as usize)
+    }
+
+    /// Light and emitter tiles together.
+    pub fn count(&self) -> usize {
+        self.tiles.len() + self.emitters as usize
+    }
+
+    /// How many emitter candidates the emitter tiles hold.
+    pub fn emitter_candidates(&self) -> usize {
+        self.emitters as usize * (self.tile_size * self.tile_size) as usize
     }
 }
 
@@ -183,5 +216,29 @@ mod tests {
         let dark = layout(&scene_with(vec![Light::point("off", Vec3::Y, 0.0)]));
         assert_eq!(dark.tiles.len(), 6, "a light switched off keeps its tiles (its history fades)");
         assert!(layout(&scene_with(Vec::new())).tiles.is_empty());
+    }
+
+    /// Emissive objects take the tiles after the lights', enough for [`EMITTER_CANDIDATES`].
+    #[test]
+    fn emitters_take_enough_tiles_after_the_lights() {
+        let glowing = |lights: Vec<Light>| {
+            let mut scene = scene_with(lights);
+            let m = scene.objects()[0].material;
+            scene.desc_mut().materials[m].emissive_strength = 2.0;
+            scene.desc_mut().materials[m].emissive_color = [1.0; 3];
+            scene
+        };
+        assert_eq!(layout(&scene_with(Vec::new())).emitters, 0, "nothing emits");
+        let alone = layout(&glowing(Vec::new()));
+        assert_eq!((alone.emitters, alone.tile_size, alone.count()), (1, 256, 1));
+        assert_eq!(alone.tile_of_texel(0), Some(0));
+        let spot = Light::spot("s", Vec3::Y, Vec3::NEG_Y, 5.0, 0.3, 0.6);
+        let with_spot = layout(&glowing(vec![spot]));
+        assert_eq!((with_spot.tiles.len(), with_spot.emitters, with_spot.tile_size), (1, 1, 128));
+        let points = layout(&glowing((0..3).map(|i| Light::point("p", Vec3::splat(i as f32), 1.0)).collect()));
+        assert_eq!((points.tiles.len(), points.emitters, points.tile_size), (18, 4, 64));
+        assert!(points.emitter_candidates() >= EMITTER_CANDIDATES as usize);
+        let (x, y) = points.origin(points.count() - 1);
+        assert_eq!(points.tile_of_texel((y * points.side + x) as usize), Some(21), "the last emitter tile");
     }
 }

@@ -1,6 +1,7 @@
 //! ISM temporal GI (Knecht 2009) on the GPU; its CPU-side math, the test oracles of these
 //! passes, is in `precompute::ism` (the P-labels name passes: docs/ARCHITECTURE.md, "ISM pass
-//! labels"). [`light_tiles`] says where every light's view lives in the light G-buffer atlas.
+//! labels"). [`light_tiles`] says where every light's view lives in the light G-buffer atlas,
+//! [`emitter_points`] what its emitter tiles hold.
 //!
 //! The GPU passes: [`vpl_pass`] (light G-buffer of every light, importance, VPLs), [`gather`]
 //! (ISM atlas and further bounces), [`screen`] (split G-buffer, shading, temporal merge,
@@ -10,6 +11,7 @@
 //! through the scene (`bouncelab probe-ism`).
 
 pub mod clusters;
+pub mod emitter_points;
 pub mod gather;
 pub mod light_tiles;
 pub mod oracle;
@@ -26,6 +28,7 @@ pub const SHADERS: &[&str] = &[
     "render/gi/ism/importance.wgsl",
     "render/gi/ism/ism_bounce.wgsl",
     "render/gi/ism/ism_clear.wgsl",
+    "render/gi/ism/ism_emitter_tiles.wgsl",
     "render/gi/ism/ism_filter.wgsl",
     "render/gi/ism/ism_shade.wgsl",
     "render/gi/ism/ism_sh_filter.wgsl",

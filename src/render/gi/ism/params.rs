@@ -4,6 +4,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
+use super::emitter_points::GpuEmitterPoint;
 use crate::render::uniforms::GpuLight;
 
 /// `SelectParams` in `ism_select.wgsl`.
@@ -141,8 +142,18 @@ pub struct GenParams {
 pub struct TileRecord {
     /// World-from-clip of the tile's view.
     pub world_from_clip: [[f32; 4]; 4],
-    /// xyz light position (w = 0), or the unit direction towards a directional light (w = 1).
+    /// xyz light position (w = 0), the unit direction towards a directional light (w = 1), or
+    /// x = the first emitter candidate of an emitter tile (w = 2).
     pub light: [f32; 4],
+}
+
+/// `EmitterTile` in `ism_emitter_tiles.wgsl`: where an emitter tile lies and which candidates
+/// it holds.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct EmitterTileUniforms {
+    /// x, y of the tile's top-left atlas texel, tile side in texels, first candidate.
+    pub origin: [u32; 4],
 }
 
 /// `LightView` in `light_gbuffer.wgsl`.
@@ -193,4 +204,7 @@ pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/gi/ism/vpl_generate.wgsl", "GenParams", std::mem::size_of::<GenParams>()),
     ("render/gi/ism/vpl_generate.wgsl", "TileRecord", std::mem::size_of::<TileRecord>()),
     ("render/gi/ism/light_gbuffer.wgsl", "LightView", std::mem::size_of::<LightViewUniforms>()),
+    ("render/gi/ism/ism_emitter_tiles.wgsl", "EmitterTile", std::mem::size_of::<EmitterTileUniforms>()),
+    ("render/gi/ism/ism_emitter_tiles.wgsl", "EmitterPoint", std::mem::size_of::<GpuEmitterPoint>()),
+    ("render/gi/ism/vpl_generate.wgsl", "EmitterPoint", std::mem::size_of::<GpuEmitterPoint>()),
 ];

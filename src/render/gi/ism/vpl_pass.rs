@@ -1,13 +1,15 @@
 //! ISM passes P2, P3 and P5 on the GPU (docs/ARCHITECTURE.md, "ISM pass labels"): the light
 //! G-buffer of every light (tiles laid out by [`super::light_tiles`]), its importance sum pyramid,
 //! and first-bounce VPL generation by hierarchical warping over the whole atlas, so VPLs spread
-//! over all lights in proportion to the power they reflect. The CPU oracles in [`crate::precompute::ism::warp`] and
+//! over all lights in proportion to the power they reflect, and over the emissive surfaces (the
+//! emitter tiles, [`super::emitter_points`]) in proportion to the power they emit. The CPU oracles in [`crate::precompute::ism::warp`] and
 //! [`crate::precompute::ism::power`] define what these passes must produce.
 
 use glam::Vec3;
 
+use super::emitter_points::{self, GpuEmitterPoint};
 use super::light_tiles::{LightTiles, layout};
-use super::params::{GenParams, LightViewUniforms, TileRecord};
+use super::params::{EmitterTileUniforms, GenParams, LightViewUniforms, TileRecord};
 use crate::render::gi::technique::texture_bytes;
 use crate::render::layouts::{Layouts, compute_pipeline, storage_texture_entry, texture_entry, uniform_entry};
 use crate::render::scene_gpu::{SceneGpu, Vertex};
@@ -71,6 +73,10 @@ struct Sized {
     pyramid_groups: Vec<wgpu::BindGroup>,
     vpls: wgpu::Buffer,
     gen_bind_group: wgpu::BindGroup,
+    emitter_capacity: u32,
+    /// The emitter candidates ([`emitter_points`]) the emitter tiles and the warp read.
+    emitter_points: wgpu::Buffer,
+    emitter_bind_group: wgpu::BindGroup,
 }
 
 /// The light G-buffer, importance pyramid and VPL buffer with their pipelines.
@@ -83,9 +89,60 @@ pub struct VplPass {
     gen_pipeline: wgpu::ComputePipeline,
     gen_layout: wgpu::BindGroupLayout,
     gen_params: wgpu::Buffer,
+    emitter_pipeline: wgpu::RenderPipeline,
+    emitter_layout: wgpu::BindGroupLayout,
     sized: Option<Sized>,
     /// The layout of the last recorded frame.
     tiles: Option<LightTiles>,
+    /// (scene revision, [`emitter_points::key`]) of the uploaded candidates.
+    emitters_uploaded: Option<(u64, Vec<u32>)>,
+}
+
+/// The emitter tiles' pipeline (`ism_emitter_tiles.wgsl`: one triangle over each tile, into
+/// the light G-buffer's targets, leaving its depth alone) and the layout of its candidates.
+fn emitter_pipeline(
+    device: &wgpu::Device,
+    view_layout: &wgpu::BindGroupLayout,
+) -> Result<(wgpu::RenderPipeline, wgpu::BindGroupLayout), ShaderError> {
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("ism emitter points layout"),
+        entries: &[crate::render::layouts::storage_entry(0, wgpu::ShaderStages::FRAGMENT)],
+    });
+    let module = shaders::module(device, "render/gi/ism/ism_emitter_tiles.wgsl")?;
+    let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("ism emitter tiles layout"),
+        bind_group_layouts: &[Some(view_layout), Some(&layout)],
+        immediate_size: 0,
+    });
+    let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
+    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("ism emitter tiles pipeline"),
+        layout: Some(&pl),
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(false),
+            depth_compare: Some(wgpu::CompareFunction::Always),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &LIGHT_GBUFFER_FORMATS.map(target),
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    Ok((pipeline, layout))
 }
 
 impl VplPass {
@@ -145,9 +202,11 @@ impl VplPass {
                 super::gather::storage_rw(6),
                 texture_entry(7, c, unfilterable),
                 crate::render::layouts::storage_entry(8, c),
+                crate::render::layouts::storage_entry(9, c),
             ],
         });
         let gen_module = shaders::module(device, "render/gi/ism/vpl_generate.wgsl")?;
+        let (emitter_pipeline, emitter_layout) = emitter_pipeline(device, &view_layout)?;
         Ok(Self {
             gbuffer_pipeline,
             seed_pipeline: compute_pipeline(device, "ism importance seed", &pyramid_layout, &imp_module, "seed"),
@@ -157,16 +216,23 @@ impl VplPass {
             view_layout,
             pyramid_layout,
             gen_layout,
+            emitter_pipeline,
+            emitter_layout,
             sized: None,
             tiles: None,
+            emitters_uploaded: None,
         })
     }
 
-    /// (Re)creates the targets for an atlas of `side` texels, `tiles` tiles and `vpls` VPLs.
-    fn ensure(&mut self, device: &wgpu::Device, side: u32, tiles: u32, vpls: u32) {
-        if self.sized.as_ref().is_some_and(|s| s.side == side && s.tile_capacity >= tiles && s.vpl_capacity >= vpls) {
+    /// (Re)creates the targets for an atlas of `side` texels, `tiles` tiles, `vpls` VPLs and
+    /// `emitters` emitter candidates.
+    fn ensure(&mut self, device: &wgpu::Device, side: u32, tiles: u32, vpls: u32, emitters: u32) {
+        if self.sized.as_ref().is_some_and(|s| {
+            s.side == side && s.tile_capacity >= tiles && s.vpl_capacity >= vpls && s.emitter_capacity >= emitters
+        }) {
             return;
         }
+        self.emitters_uploaded = None;
         use wgpu::TextureUsages as U;
         let tile_capacity = tiles.max(1).next_power_of_two();
         let vpl_capacity = vpls.max(1).next_power_of_two();
@@ -242,6 +308,18 @@ impl VplPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
+        let emitter_capacity = emitters.max(1).next_power_of_two();
+        let emitter_points = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ism emitter points"),
+            size: u64::from(emitter_capacity) * std::mem::size_of::<GpuEmitterPoint>() as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let emitter_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism emitter points bind group"),
+            layout: &self.emitter_layout,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: emitter_points.as_entire_binding() }],
+        });
         use crate::render::layouts::view_entry as view;
         let gen_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism vpl generation bind group"),
@@ -256,6 +334,7 @@ impl VplPass {
                 wgpu::BindGroupEntry { binding: 6, resource: vpls.as_entire_binding() },
                 view(7, &specular.view),
                 wgpu::BindGroupEntry { binding: 8, resource: tile_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 9, resource: emitter_points.as_entire_binding() },
             ],
         });
         self.sized = Some(Sized {
@@ -274,6 +353,9 @@ impl VplPass {
             pyramid_groups,
             vpls,
             gen_bind_group,
+            emitter_capacity,
+            emitter_points,
+            emitter_bind_group,
         });
     }
 
@@ -281,6 +363,7 @@ impl VplPass {
     pub fn release(&mut self) {
         self.sized = None;
         self.tiles = None;
+        self.emitters_uploaded = None;
     }
 
     /// Bytes of GPU memory held by the targets and buffers.
@@ -292,6 +375,7 @@ impl VplPass {
                 + s.vpls.size()
                 + s.view_buffer.size()
                 + s.tile_buffer.size()
+                + s.emitter_points.size()
         })
     }
 
@@ -310,8 +394,8 @@ impl VplPass {
         self.sized.as_ref().map(|s| (&s.albedo, &s.normal, &s.power, &s.importance))
     }
 
-    /// Records P2, P3 and P5 for every light of `scene`; returns false (nothing recorded) when
-    /// the scene has no light.
+    /// Records P2, P3 and P5 for every light and emitter of `scene`; returns false (nothing
+    /// recorded) when the scene has neither.
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -325,76 +409,22 @@ impl VplPass {
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) -> bool {
         let tiles = layout(scene);
-        if tiles.tiles.is_empty() {
+        if tiles.count() == 0 {
             self.tiles = Some(tiles);
             return false;
         }
-        self.ensure(device, tiles.side, tiles.tiles.len() as u32, settings.vpl_count);
+        let candidates = tiles.emitter_candidates() as u32;
+        self.ensure(device, tiles.side, tiles.count() as u32, settings.vpl_count, candidates);
+        self.upload_emitters(queue, scene, candidates as usize);
         let Some(s) = &self.sized else { return false };
-        let mut records = Vec::with_capacity(tiles.tiles.len());
-        for (t, tile) in tiles.tiles.iter().enumerate() {
-            let Some(l) = scene.lights().get(tile.light) else { continue };
-            let view = LightViewUniforms {
-                clip_from_world: tile.clip_from_world.to_cols_array_2d(),
-                light: GpuLight::new(l, None, 0.0),
-                params: [tile.tan_half, tiles.tile_size as f32, tile.ortho_texel_area, 0.0],
-                axis: tile.axis.extend(0.0).to_array(),
-            };
-            queue.write_buffer(&s.view_buffer, t as u64 * VIEW_SLOT, bytemuck::bytes_of(&view));
-            let towards = match l.kind {
-                LightKind::Directional => (-l.direction.normalize_or(Vec3::NEG_Y)).extend(1.0),
-                _ => l.position.extend(0.0),
-            };
-            records.push(TileRecord {
-                world_from_clip: tile.clip_from_world.inverse().to_cols_array_2d(),
-                light: towards.to_array(),
-            });
-        }
-        queue.write_buffer(&s.tile_buffer, 0, bytemuck::cast_slice(&records));
+        write_views(queue, s, scene, &tiles);
         let levels = tiles.side.trailing_zeros();
         let params = GenParams {
             counts: [settings.vpl_count, frame, settings.interleave, levels],
-            tiles: [tiles.per_row, tiles.tile_size, tiles.tiles.len() as u32, 0],
+            tiles: [tiles.per_row, tiles.tile_size, tiles.count() as u32, 0],
         };
         queue.write_buffer(&self.gen_params, 0, bytemuck::bytes_of(&params));
-        {
-            fn color(v: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-                Some(wgpu::RenderPassColorAttachment {
-                    view: v,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })
-            }
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("ism light gbuffer pass"),
-                color_attachments: &[
-                    color(&s.albedo.view),
-                    color(&s.normal.view),
-                    color(&s.power.view),
-                    color(&s.specular.view),
-                ],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &s.depth.view,
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: timestamps.as_ref().map(|t| t.render_writes(true, false)),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(&self.gbuffer_pipeline);
-            for t in 0..tiles.tiles.len() {
-                let (x, y) = tiles.origin(t);
-                let size = tiles.tile_size as f32;
-                pass.set_viewport(x as f32, y as f32, size, size, 0.0, 1.0);
-                pass.set_bind_group(0, &s.view_bind_group, &[(t as u64 * VIEW_SLOT) as u32]);
-                gpu.draw_objects(&mut pass);
-            }
-        }
+        self.draw_tiles(encoder, s, &tiles, gpu, timestamps.as_ref());
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("ism importance pyramid"),
             timestamp_writes: timestamps.as_ref().map(|t| t.compute_end_writes()),
@@ -412,4 +442,103 @@ impl VplPass {
         self.tiles = Some(tiles);
         true
     }
+
+    /// Uploads `count` emitter candidates when the emitters changed since the last upload (a
+    /// scene whose revision stands still costs one comparison).
+    fn upload_emitters(&mut self, queue: &wgpu::Queue, scene: &Scene, count: usize) {
+        let Some(s) = &self.sized else { return };
+        if count == 0 || self.emitters_uploaded.as_ref().is_some_and(|(r, _)| *r == scene.revision()) {
+            return;
+        }
+        let key = emitter_points::key(scene, count);
+        if self.emitters_uploaded.as_ref().is_some_and(|(_, k)| *k == key) {
+            self.emitters_uploaded = Some((scene.revision(), key));
+            return;
+        }
+        let points = emitter_points::emitter_points(scene, count);
+        queue.write_buffer(&s.emitter_points, 0, bytemuck::cast_slice(&points));
+        self.emitters_uploaded = Some((scene.revision(), key));
+    }
+
+    /// P2: every light's tiles, then the emitter tiles.
+    fn draw_tiles(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        s: &Sized,
+        tiles: &LightTiles,
+        gpu: &SceneGpu,
+        timestamps: Option<&crate::render::timing::TimestampPair<'_>>,
+    ) {
+        fn color(v: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+            Some(wgpu::RenderPassColorAttachment {
+                view: v,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+            })
+        }
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("ism light gbuffer pass"),
+            color_attachments: &[color(&s.albedo.view), color(&s.normal.view), color(&s.power.view), color(&s.specular.view)],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &s.depth.view,
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: timestamps.map(|t| t.render_writes(true, false)),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        let size = tiles.tile_size as f32;
+        pass.set_pipeline(&self.gbuffer_pipeline);
+        for t in 0..tiles.tiles.len() {
+            let (x, y) = tiles.origin(t);
+            pass.set_viewport(x as f32, y as f32, size, size, 0.0, 1.0);
+            pass.set_bind_group(0, &s.view_bind_group, &[(t as u64 * VIEW_SLOT) as u32]);
+            gpu.draw_objects(&mut pass);
+        }
+        if tiles.emitters > 0 {
+            pass.set_pipeline(&self.emitter_pipeline);
+            pass.set_bind_group(1, &s.emitter_bind_group, &[]);
+            for t in tiles.tiles.len()..tiles.count() {
+                let (x, y) = tiles.origin(t);
+                pass.set_viewport(x as f32, y as f32, size, size, 0.0, 1.0);
+                pass.set_bind_group(0, &s.view_bind_group, &[(t as u64 * VIEW_SLOT) as u32]);
+                pass.draw(0..3, 0..1);
+            }
+        }
+    }
+}
+
+/// Writes every tile's view (a light's `LightView` or an emitter tile's `EmitterTile`, each in
+/// its dynamic-offset slot) and the warp's tile records.
+fn write_views(queue: &wgpu::Queue, s: &Sized, scene: &Scene, tiles: &LightTiles) {
+    let mut records = Vec::with_capacity(tiles.count());
+    for (t, tile) in tiles.tiles.iter().enumerate() {
+        let Some(l) = scene.lights().get(tile.light) else { continue };
+        let view = LightViewUniforms {
+            clip_from_world: tile.clip_from_world.to_cols_array_2d(),
+            light: GpuLight::new(l, None, 0.0),
+            params: [tile.tan_half, tiles.tile_size as f32, tile.ortho_texel_area, 0.0],
+            axis: tile.axis.extend(0.0).to_array(),
+        };
+        queue.write_buffer(&s.view_buffer, t as u64 * VIEW_SLOT, bytemuck::bytes_of(&view));
+        let towards = match l.kind {
+            LightKind::Directional => (-l.direction.normalize_or(Vec3::NEG_Y)).extend(1.0),
+            _ => l.position.extend(0.0),
+        };
+        records.push(TileRecord {
+            world_from_clip: tile.clip_from_world.inverse().to_cols_array_2d(),
+            light: towards.to_array(),
+        });
+    }
+    let per_tile = tiles.tile_size * tiles.tile_size;
+    for e in 0..tiles.emitters {
+        let t = tiles.tiles.len() + e as usize;
+        let (x, y) = tiles.origin(t);
+        let view = EmitterTileUniforms { origin: [x, y, tiles.tile_size, e * per_tile] };
+        queue.write_buffer(&s.view_buffer, t as u64 * VIEW_SLOT, bytemuck::bytes_of(&view));
+        records.push(TileRecord { world_from_clip: [[0.0; 4]; 4], light: [(e * per_tile) as f32, 0.0, 0.0, 2.0] });
+    }
+    queue.write_buffer(&s.tile_buffer, 0, bytemuck::cast_slice(&records));
 }
