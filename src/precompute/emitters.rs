@@ -62,6 +62,12 @@ impl Emitters {
         out
     }
 
+    /// The sum over the emitters of area x luminance of their untextured emission (their
+    /// luminous power over pi).
+    pub fn total(&self) -> f32 {
+        self.cdf.last().copied().unwrap_or(0.0)
+    }
+
     /// Whether the scene has any emissive triangle.
     pub fn is_empty(&self) -> bool {
         self.tris.is_empty()

@@ -70,12 +70,12 @@ impl Renderer {
 /// `rcs` (the records' hemisphere renders see emissive surfaces and the sky, as they see every
 /// other surface) and `mrt` (emission and the sky through holes in the blocks' faces enter the
 /// texels' l_d) light with both; `sshgi` sends emission from the emitters on screen (its
-/// senders take the direct term, which holds it) and `ism` and `ism-ritschel` from VPLs on the
-/// emitters (`render::gi::ism::emitter_points`), but neither the sky.
+/// senders take the direct term, which holds it) but not the sky; `ism` and `ism-ritschel`
+/// light with VPLs on the emitters and the sky (`render::gi::ism::emitter_points`).
 pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
     let emissive = match mode {
-        GiMode::Reference | GiMode::Rcs | GiMode::Mrt => return None,
-        GiMode::Sshgi | GiMode::Ism | GiMode::IsmRitschel => 0,
+        GiMode::Reference | GiMode::Rcs | GiMode::Mrt | GiMode::Ism | GiMode::IsmRitschel => return None,
+        GiMode::Sshgi => 0,
         _ => scene.materials().iter().filter(|m| m.emits()).count(),
     };
     let what = match (scene.has_sky(), emissive) {
@@ -85,7 +85,7 @@ pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
         (true, n) => format!("the sky and {n} emissive material{}", if n == 1 { "" } else { "s" }),
     };
     Some(format!(
-        "{}: the camera sees {what}, but this mode lights no surface with {} (`reference`, `rcs` and `mrt` do)",
+        "{}: the camera sees {what}, but this mode lights no surface with {} (`reference`, `rcs`, `mrt` and `ism` do)",
         mode.name(),
         if what.contains(" and ") || emissive > 1 { "them" } else { "it" }
     ))
@@ -96,7 +96,7 @@ mod tests {
     use super::*;
 
     /// Every mode that does not light with the sky or emission says so, naming what it leaves
-    /// out; `reference`, `rcs` and `mrt` say nothing, `sshgi` and the ISM modes only of the sky.
+    /// out; `reference`, `rcs`, `mrt` and the ISM modes say nothing, `sshgi` only of the sky.
     #[test]
     fn each_mode_names_the_area_lights_it_leaves_out() {
         let mut scene = crate::precompute::test_scenes::scene_of_slabs(&[], Vec::new());
@@ -106,8 +106,10 @@ mod tests {
         for mode in GiMode::ALL {
             let said = area_light_shortfall(&scene, mode);
             match mode {
-                GiMode::Reference | GiMode::Rcs | GiMode::Mrt => assert_eq!(said, None),
-                GiMode::Sshgi | GiMode::Ism | GiMode::IsmRitschel => assert!(said.as_deref().is_some_and(|s| s.contains("the sky,")), "{said:?}"),
+                GiMode::Reference | GiMode::Rcs | GiMode::Mrt | GiMode::Ism | GiMode::IsmRitschel => {
+                    assert_eq!(said, None)
+                }
+                GiMode::Sshgi => assert!(said.as_deref().is_some_and(|s| s.contains("the sky,")), "{said:?}"),
                 _ => {
                     assert!(said.as_deref().is_some_and(|s| s.contains("the sky and 1 emissive material")), "{said:?}")
                 }

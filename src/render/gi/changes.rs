@@ -53,7 +53,7 @@ fn objects_key(scene: &Scene) -> Vec<u32> {
 /// Settings with the fields that never invalidate a technique's history (the mode itself is
 /// handled by mode changes, the view only changes the display) normalised away.
 /// What the emissive materials and the sky are (an edit of either is a light edit).
-fn emitters_key(scene: &Scene) -> Vec<u32> {
+pub(crate) fn emitters_key(scene: &Scene) -> Vec<u32> {
     let mut key = Vec::new();
     for m in scene.materials() {
         key.extend(m.emissive_color.iter().chain([&m.emissive_strength]).map(|v| v.to_bits()));

@@ -1,22 +1,33 @@
-//! The emissive surfaces of a scene as candidate VPLs for ISM: Ritschel et al. (2008) made
-//! imperfect shadow maps for exactly this, many VPLs standing for area and environment light.
-//! Here the candidates fill the emitter tiles of the light G-buffer atlas ([`super::light_tiles`]),
-//! so the same importance pyramid and warp that spread the VPLs over the punctual lights share
-//! the VPL budget with the emitters by power.
+//! The emissive surfaces and the sky of a scene as candidate VPLs for ISM: Ritschel et al.
+//! (2008) made imperfect shadow maps for exactly this, many VPLs standing for area and
+//! environment light. The candidates fill the emitter tiles of the light G-buffer atlas
+//! ([`super::light_tiles`]), so the same importance pyramid and warp that spread the VPLs over
+//! the punctual lights share the VPL budget with the emitters and the sky by power.
 //!
-//! Candidates are stratified by power (area x luminance of the emission), a Halton point on the
-//! chosen triangle, the emission texture read at that point. Candidate `j` stands for the area
-//! `1 / (M pdf_area)` around it, and as a VPL for a Lambertian emitter of that patch: its power
-//! is `pi L A` (what a patch of radiance `L` sends into its hemisphere), its intensity
-//! `L A cos` - the diffuse VPL of the shading passes with the emitter's front normal. Only the
-//! front face emits, as in the path tracer.
+//! **Emissive surfaces:** candidates stratified by power (area x luminance of the emission), a
+//! Halton point on the chosen triangle, the emission texture read at that point. Candidate `j`
+//! stands for the area `A = 1 / (M pdf_area)` around it, and as a VPL for a Lambertian emitter
+//! of that patch: its power is `pi L A` (what a patch of radiance `L` sends into its
+//! hemisphere), its intensity `L A cos` - the diffuse VPL of the shading passes with the
+//! emitter's front normal. Only the front face emits, as in the path tracer.
+//!
+//! **The sky:** candidates on the scene's bounding sphere, facing inwards, each a Lambertian
+//! patch of the radiance the sky has in its direction from the centre (image and analytic
+//! skies importance-sampled by luminance x solid angle, a constant sky uniformly). A sphere of
+//! uniform radiance `L` gives every point inside it the irradiance `pi L` of a constant sky at
+//! infinity, so a constant sky is exact anywhere; an image sky is exact at the centre and seen
+//! with parallax elsewhere. The bounding sphere keeps every VPL within the scene's diameter of
+//! every surface, the range the imperfect shadow maps' depths are normalised to. This stands in
+//! for Ritschel's directional environment VPLs, whose orthographic maps the paraboloid atlas
+//! does not have.
 
 use glam::{Vec2, Vec3};
 
 use crate::precompute::bvh::SceneBvh;
 use crate::precompute::emitters::Emitters;
 use crate::precompute::ism::halton::radical_inverse;
-use crate::scene::Scene;
+use crate::precompute::sky_sampler::{luminance, sky_distribution};
+use crate::scene::{Scene, Sky, SkyImage};
 
 /// `EmitterPoint` in `ism_emitter_tiles.wgsl` and `vpl_generate.wgsl`: one candidate VPL on an
 /// emissive surface.
@@ -42,42 +53,76 @@ fn emits(scene: &Scene, object: usize) -> bool {
     })
 }
 
-/// Whether any drawn object of `scene` emits light.
-pub fn has_emitters(scene: &Scene) -> bool {
-    (0..scene.objects().len()).any(|i| emits(scene, i))
+/// Whether the sky or any drawn object of `scene` emits light.
+pub fn has_area_lights(scene: &Scene) -> bool {
+    scene.has_sky() || (0..scene.objects().len()).any(|i| emits(scene, i))
 }
 
 /// What the candidates depend on: every emitting object's mesh, transform and emission, the
-/// resources (meshes, images) and the candidate count. Equal keys give equal candidates.
+/// sky, the scene's bounds, the resources (meshes, images) and the candidate count. Equal keys
+/// give equal candidates.
 pub fn key(scene: &Scene, count: usize) -> Vec<u32> {
     let mut key = vec![count as u32, scene.resources_revision() as u32, (scene.resources_revision() >> 32) as u32];
+    key.extend(crate::render::gi::changes::emitters_key(scene));
+    if let Some(b) = scene.bounds() {
+        key.extend(b.min.to_array().into_iter().chain(b.max.to_array()).map(f32::to_bits));
+    }
     for (i, o) in scene.objects().iter().enumerate().filter(|(i, _)| emits(scene, *i)) {
         key.extend([i as u32, o.mesh as u32]);
         key.extend(o.transform.matrix().to_cols_array().map(f32::to_bits));
-        if let Some(m) = scene.materials().get(o.material) {
-            key.extend(m.emission().to_array().map(f32::to_bits));
-            key.push(m.emissive_texture.map_or(u32::MAX, |t| t.image as u32));
-        }
+        key.push(o.material as u32);
     }
     key
 }
 
-/// `count` candidates on the emissive surfaces of `scene` (empty without emitters).
+/// A candidate of luminous-or-radiant power `pi radiance area` at `p` facing `normal`.
+fn candidate(p: Vec3, normal: Vec3, radiance: Vec3, area: f32) -> GpuEmitterPoint {
+    let power = std::f32::consts::PI * radiance * area;
+    GpuEmitterPoint {
+        position: p.extend(area).to_array(),
+        normal: normal.extend(0.0).to_array(),
+        power: power.extend(0.5 * luminance(power)).to_array(),
+    }
+}
+
+/// The `j`th of `count` stratified points of the unit square (a Halton pair).
+fn halton2(j: usize) -> [f32; 2] {
+    [radical_inverse(j as u64 + 1, 2) as f32, radical_inverse(j as u64 + 1, 3) as f32]
+}
+
+/// `count` candidates on the emissive surfaces and the sky of `scene` (empty without either),
+/// shared between the two by power.
 pub fn emitter_points(scene: &Scene, count: usize) -> Vec<GpuEmitterPoint> {
     let bvh = SceneBvh::build_where(scene, |i| emits(scene, i));
     let emitters = Emitters::new(&bvh, scene.materials());
+    let sky = scene.has_sky().then(|| SkySphere::new(scene)).flatten();
+    let surface_power = std::f32::consts::PI * emitters.total();
+    let sky_power = sky.as_ref().map_or(0.0, SkySphere::power);
+    let total = surface_power + sky_power;
+    if count == 0 || total <= 0.0 || !total.is_finite() {
+        return Vec::new();
+    }
+    let mut on_sky = (count as f64 * f64::from(sky_power / total)).round() as usize;
+    if sky.is_some() && !emitters.is_empty() {
+        on_sky = on_sky.clamp(1, count - 1);
+    }
+    let mut out = surface_points(scene, &bvh, &emitters, count - on_sky);
+    if let Some(sky) = sky {
+        out.extend((0..on_sky).map(|j| sky.candidate(halton2(j), on_sky)));
+    }
+    out
+}
+
+/// `count` candidates on the emissive triangles of `bvh`.
+fn surface_points(scene: &Scene, bvh: &SceneBvh, emitters: &Emitters, count: usize) -> Vec<GpuEmitterPoint> {
     if emitters.is_empty() || count == 0 {
         return Vec::new();
     }
     let images = &scene.resources().images;
     (0..count)
         .filter_map(|j| {
-            let u = [
-                ((j as f64 + 0.5) / count as f64) as f32,
-                radical_inverse(j as u64 + 1, 2) as f32,
-                radical_inverse(j as u64 + 1, 3) as f32,
-            ];
-            let s = emitters.sample(&bvh, u)?;
+            let [u1, u2] = halton2(j);
+            let s = emitters.sample(bvh, [((j as f64 + 0.5) / count as f64) as f32, u1, u2])?;
             let tri = &bvh.tris[s.tri as usize];
             let material = scene.materials().get(tri.material as usize)?;
             let mut radiance = material.emission();
@@ -85,16 +130,70 @@ pub fn emitter_points(scene: &Scene, count: usize) -> Vec<GpuEmitterPoint> {
                 let uv: Vec2 = tri.uv[0] * (1.0 - s.u - s.v) + tri.uv[1] * s.u + tri.uv[2] * s.v;
                 radiance *= crate::precompute::pathtracer::sample_image(img, uv, true);
             }
-            let area = 1.0 / (count as f32 * s.pdf_area);
-            let power = std::f32::consts::PI * radiance * area;
-            let importance = 0.5 * crate::precompute::sky_sampler::luminance(power);
-            Some(GpuEmitterPoint {
-                position: s.p.extend(area).to_array(),
-                normal: tri.ng.extend(0.0).to_array(),
-                power: power.extend(importance).to_array(),
-            })
+            Some(candidate(s.p, tri.ng, radiance, 1.0 / (count as f32 * s.pdf_area)))
         })
         .collect()
+}
+
+/// The sky as a sphere of Lambertian patches around the scene.
+struct SkySphere<'a> {
+    scene: &'a Scene,
+    image: Option<std::sync::Arc<SkyImage>>,
+    distribution: Option<crate::precompute::sky_sampler::SkyDistribution>,
+    centre: Vec3,
+    radius: f32,
+}
+
+impl<'a> SkySphere<'a> {
+    /// The bounding sphere of `scene` and its sky (`None` without bounds).
+    fn new(scene: &'a Scene) -> Option<Self> {
+        let bounds = scene.bounds()?;
+        let image = scene.sky_texels();
+        let distribution = sky_distribution(scene.environment(), image.as_deref());
+        Some(Self { scene, distribution, image, centre: bounds.center(), radius: bounds.radius().max(1e-3) })
+    }
+
+    /// The luminance of the sky integrated over the sphere of directions (∫ L dω).
+    fn flux(&self) -> f32 {
+        let env = self.scene.environment();
+        match (&env.sky, self.image.as_deref()) {
+            (Sky::Constant(c), _) => 4.0 * std::f32::consts::PI * luminance(Vec3::from_array(*c)) * env.intensity,
+            (Sky::Image(_) | Sky::Preetham { .. }, Some(img)) => {
+                let rows = (0..img.height).map(|y| {
+                    let row: f32 = (0..img.width).map(|x| luminance(img.texel(x, y))).sum();
+                    row * img.texel_solid_angle(y)
+                });
+                rows.sum::<f32>() * env.intensity
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// The power the sphere's inner face sends into it: pi r^2 ∫ L dω.
+    fn power(&self) -> f32 {
+        std::f32::consts::PI * self.radius * self.radius * self.flux()
+    }
+
+    /// Candidate `u` of `count`: a direction by the sky's distribution (uniform for a constant
+    /// sky), the sphere's patch there of area r^2 / (count pdf).
+    fn candidate(&self, u: [f32; 2], count: usize) -> GpuEmitterPoint {
+        let env = self.scene.environment();
+        let (d, pdf) = match &self.distribution {
+            Some(dist) => {
+                let (d, pdf) = dist.sample((u[0], u[1]));
+                (env.to_world(d), pdf)
+            }
+            None => {
+                let z = 1.0 - 2.0 * u[0];
+                let r = (1.0 - z * z).max(0.0).sqrt();
+                let phi = std::f32::consts::TAU * u[1];
+                (Vec3::new(r * phi.cos(), z, r * phi.sin()), 0.25 / std::f32::consts::PI)
+            }
+        };
+        let radiance = env.radiance(d, self.image.as_deref());
+        let area = self.radius * self.radius / (count as f32 * pdf.max(1e-12));
+        candidate(self.centre + d * self.radius, -d, radiance, area)
+    }
 }
 
 /// The total power of `points` (W per channel).
@@ -126,7 +225,7 @@ mod tests {
     #[test]
     fn the_candidates_carry_pi_l_a_of_every_emitting_face_and_follow_the_panel() {
         let mut scene = panel_scene();
-        assert!(has_emitters(&scene));
+        assert!(has_area_lights(&scene));
         let points = emitter_points(&scene, 4096);
         assert_eq!(points.len(), 4096);
         // A closed cuboid of 1 x 0.5 x 0.001 m: 2 x 0.5 m^2 of large faces plus 0.003 m^2 of sides.
@@ -151,6 +250,48 @@ mod tests {
         scene.desc_mut().objects[1].transform.translation.x += 0.5;
         assert_ne!(before, key(&scene, 4096), "a moved emitter makes new candidates");
         scene.desc_mut().objects[1].visible = false;
-        assert!(!has_emitters(&scene) && emitter_points(&scene, 64).is_empty(), "a hidden emitter sends nothing");
+        assert!(!has_area_lights(&scene) && emitter_points(&scene, 64).is_empty(), "a hidden emitter sends nothing");
+    }
+
+    /// A constant sky alone: every candidate lies on the bounding sphere facing its centre, and
+    /// the irradiance they give an upward patch at the centre is pi L (within sampling noise);
+    /// with a panel as well, the candidates split between the two by power.
+    #[test]
+    fn the_sky_candidates_give_the_centre_the_irradiance_of_the_sky() {
+        let mut scene = crate::precompute::test_scenes::scene_of_slabs(
+            &[("floor", Vec3::ZERO, Vec3::new(4.0, 0.1, 4.0)), ("post", Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.1, 2.0, 0.1))],
+            Vec::new(),
+        );
+        scene.desc_mut().environment.sky = Sky::Constant([0.2, 0.4, 0.8]);
+        assert!(has_area_lights(&scene));
+        let bounds = scene.bounds().expect("bounds");
+        let (c, r) = (bounds.center(), bounds.radius());
+        let points = emitter_points(&scene, 8192);
+        assert_eq!(points.len(), 8192);
+        let mut e = 0.0f32;
+        for p in &points {
+            let at = Vec3::new(p.position[0], p.position[1], p.position[2]);
+            assert!(((at - c).length() - r).abs() < 1e-3 * r, "on the sphere");
+            let n = Vec3::new(p.normal[0], p.normal[1], p.normal[2]);
+            assert!(n.dot((c - at).normalize()) > 0.999, "facing the centre");
+            let to = (at - c) / r;
+            // Diffuse VPL intensity Phi / pi cos_s (cos_s = 1 towards the centre), cos_r / d^2.
+            e += luminance(Vec3::new(p.power[0], p.power[1], p.power[2])) / std::f32::consts::PI * to.y.max(0.0) / (r * r);
+        }
+        let expected = std::f32::consts::PI * luminance(Vec3::new(0.2, 0.4, 0.8));
+        assert!((e / expected - 1.0).abs() < 0.02, "irradiance {e} against pi L = {expected}");
+        // A panel: its power over the sky's decides the split.
+        scene.desc_mut().materials.push(crate::scene::Material {
+            emissive_color: [1.0; 3],
+            emissive_strength: 50.0,
+            ..crate::scene::Material::diffuse("panel", [0.0; 3])
+        });
+        scene.desc_mut().objects[1].material = 1;
+        let both = emitter_points(&scene, 8192);
+        let on_sky = both.iter().filter(|p| ((Vec3::from_slice(&p.position[..3]) - c).length() - r).abs() < 1e-3 * r).count();
+        let post_area = 4.0 * 0.1 * 2.0 + 2.0 * 0.01;
+        let (surface, sky) = (std::f32::consts::PI * post_area * 50.0, std::f32::consts::PI * r * r * 4.0 * expected);
+        let share = sky / (surface + sky);
+        assert!((on_sky as f32 / 8192.0 - share).abs() < 0.01, "{on_sky} on the sky, expected share {share}");
     }
 }

@@ -1,8 +1,9 @@
 //! Where every light's view lives in ISM's light G-buffer: one square atlas of equal tiles, one
 //! tile per spot light (its cone's frustum), six per point light (cube faces) and one per
 //! directional light (an orthographic view fitted to the scene bounds, like its shadow map),
-//! then, where objects emit, the emitter tiles: their texels hold candidate VPLs on the emissive
-//! surfaces ([`super::emitter_points`]), at least [`EMITTER_CANDIDATES`] of them.
+//! then, where objects or the sky emit, the emitter tiles: their texels hold candidate VPLs on
+//! the emissive surfaces and the sky ([`super::emitter_points`]), at least
+//! [`EMITTER_CANDIDATES`] of them.
 //! Each texel stores the power its surface patch reflects in absolute watts, so one importance
 //! pyramid over the whole atlas spreads the VPLs over all lights in proportion to the power they
 //! put into the scene (Knecht 2009 section 3.3 generalised from one spot light to any set).
@@ -118,7 +119,7 @@ fn tiles_of(scene: &Scene, index: usize, bounds: &Aabb) -> Vec<LightTile> {
 /// Lays out every emitting light of `scene`, and its emissive surfaces.
 pub fn layout(scene: &Scene) -> LightTiles {
     let bounds = scene.bounds().unwrap_or(Aabb { min: Vec3::splat(-1.0), max: Vec3::splat(1.0) });
-    let emissive = super::emitter_points::has_emitters(scene);
+    let emissive = super::emitter_points::has_area_lights(scene);
     let max_tiles = (MAX_SIDE / MIN_TILE).pow(2) as usize - if emissive { MAX_EMITTER_TILES } else { 0 };
     let mut tiles = Vec::new();
     let mut skipped = Vec::new();
