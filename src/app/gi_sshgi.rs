@@ -48,6 +48,8 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
             egui::Slider::new(&mut m.panorama_samples, 1..=1024).logarithmic(true).text("panorama samples"),
         )
         .on_hover_text("Panorama senders per start-level texel and frame (and screen and panorama senders per panorama texel): linear cost, less noise.");
+        ui.add_enabled(m.visibility, egui::Slider::new(&mut m.sky_rays, 0..=64).text("sky rays"))
+            .on_hover_text("Rays per start-level texel and frame that look for the sky through the voxels (0: the sky lights nothing; needs visibility). Open where a ray leaves the voxels' far end or crosses a column where the camera sees the sky; blocked where it leaves the screen elsewhere. Linear cost.");
         ui.add(egui::Slider::new(&mut m.temporal_weight, 0.0..=0.99).text("temporal weight a"))
             .on_hover_text("History share of the blend (0: none). Higher: less noise, more lag; history is dropped at disocclusions.");
         ui.checkbox(&mut m.temporal_two_tap, "2-tap blend (paper)")

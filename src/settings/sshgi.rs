@@ -75,6 +75,13 @@ pub struct SshgiSettings {
     /// Panorama senders gathered per start-level texel and frame (1..=1024; the temporal filter
     /// averages them over frames). Cost: linear, as a screen level's samples.
     pub panorama_samples: u32,
+    /// Rays per start-level texel and frame that look for the sky through the voxel columns
+    /// (0: the sky lights nothing; 1..=64; the temporal filter averages them over frames). Not
+    /// in the paper. A ray is open where it leaves the voxels' depth range or crosses a column
+    /// in which the camera sees the sky, without meeting a solid voxel; leaving the screen
+    /// elsewhere counts as blocked (what lies there is unknown). Cost: linear, one voxel march
+    /// per ray; nothing without a sky.
+    pub sky_rays: u32,
 }
 
 impl Default for SshgiSettings {
@@ -93,6 +100,7 @@ impl Default for SshgiSettings {
             temporal_two_tap: false,
             panorama: 32,
             panorama_samples: 64,
+            sky_rays: 16,
         }
     }
 }
@@ -100,7 +108,7 @@ impl Default for SshgiSettings {
 impl SshgiSettings {
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
-        let checks: [(&'static str, bool, String, &'static str); 10] = [
+        let checks: [(&'static str, bool, String, &'static str); 11] = [
             ("sshgi.start_level", self.start_level <= 2, self.start_level.to_string(), "0..=2"),
             ("sshgi.levels", (1..=6).contains(&self.levels), self.levels.to_string(), "1..=6"),
             ("sshgi.samples", (1..=1024).contains(&self.samples), self.samples.to_string(), "1..=1024"),
@@ -131,6 +139,7 @@ impl SshgiSettings {
                 self.panorama_samples.to_string(),
                 "1..=1024",
             ),
+            ("sshgi.sky_rays", self.sky_rays <= 64, self.sky_rays.to_string(), "0..=64"),
             (
                 "sshgi.temporal_weight",
                 (0.0..=0.99).contains(&self.temporal_weight),

@@ -115,7 +115,8 @@ fn the_direct_term_shows_the_emitters_and_the_sky_as_the_reference_sees_them() {
     r.render(&scene, &direct, (32, 18)).expect("render");
     let said = r.shortfalls(&scene, &direct).join(" ");
     assert!(said.contains("the sky and 1 emissive material"), "{said}");
-    assert!(bouncelab::render::area_light_shortfall(&scene, GiMode::Reference).is_none());
+    let reference = RenderSettings { mode: GiMode::Reference, ..RenderSettings::default() };
+    assert!(bouncelab::render::area_light_shortfall(&scene, &reference).is_none());
 }
 
 /// The raster `direct` image's pixels whose every subsample shows an emitter or the sky (the
@@ -171,4 +172,48 @@ fn render_takes_a_constant_sky_in_the_scenes_light_units() {
         .expect("run");
     assert!(!bad.status.success() && String::from_utf8_lossy(&bad.stderr).contains("sky.png"));
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `ism` lights with VPLs on the emissive panels and on the sky's sphere (Ritschel's VPLs for
+/// area and environment light): on the window room lit only by the sky and the room lit only by
+/// emissive panels its energy is within 10% of the path tracer's and its FLIP under half of
+/// `direct`'s (which lights nothing there); twice the sky gives twice the light.
+#[test]
+fn ism_lights_with_vpls_on_the_emitters_and_the_sky() {
+    let Some(ctx) = common::gpu() else { return };
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let render = |r: &mut Renderer, project: &Project, mode: GiMode, frames: usize, size: (u32, u32)| {
+        let settings = RenderSettings { mode, ..project.render.clone() };
+        for _ in 0..frames {
+            r.render(&project.scene, &settings, size).expect("render");
+        }
+        HdrImage { width: size.0, height: size.1, pixels: r.read_hdr().expect("hdr") }
+    };
+    for name in ["skylight", "panels"] {
+        let scene = bouncelab::suite::scene(name).expect("suite scene");
+        let project = scene.load(std::path::Path::new(".")).expect("loads");
+        let reference = scene.reference(std::path::Path::new(".")).expect("reference");
+        let size = (reference.width, reference.height);
+        let ev = bouncelab::metrics::judging_exposure(&reference);
+        let ism = render(&mut r, &project, GiMode::Ism, 16, size);
+        let direct = render(&mut r, &project, GiMode::Direct, 1, size);
+        let (i, d) = (
+            bouncelab::metrics::compare(&ism, &reference, ev).expect("same size"),
+            bouncelab::metrics::compare(&direct, &reference, ev).expect("same size"),
+        );
+        eprintln!("{name}: ism energy {:.3} FLIP {:.4}; direct FLIP {:.4}", i.luminance_ratio, i.flip, d.flip);
+        assert!((0.9..=1.1).contains(&i.luminance_ratio), "{name}: ism energy {:.3}", i.luminance_ratio);
+        assert!(i.flip < 0.5 * d.flip, "{name}: ism FLIP {:.4} against direct's {:.4}", i.flip, d.flip);
+        assert!(r.shortfalls(&project.scene, &RenderSettings { mode: GiMode::Ism, ..project.render.clone() }).is_empty());
+        if name == "skylight" {
+            let mut brighter = project.clone();
+            let mut desc = brighter.scene.desc().clone();
+            desc.environment.intensity *= 2.0;
+            brighter.set_desc(desc).expect("sky");
+            let again = render(&mut r, &brighter, GiMode::Ism, 16, size);
+            let ratio = bouncelab::metrics::luminance_ratio(&again, &ism).expect("ratio");
+            eprintln!("skylight, sky x2: ism image x{ratio:.3}");
+            assert!((1.8..=2.2).contains(&ratio), "twice the sky gives x{ratio:.3}");
+        }
+    }
 }

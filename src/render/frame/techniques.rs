@@ -34,7 +34,7 @@ impl Renderer {
     /// them yet ([`area_light_shortfall`]).
     pub fn shortfalls(&self, scene: &Scene, settings: &RenderSettings) -> Vec<String> {
         let mut out = self.techniques.get(settings.mode).map_or_else(Vec::new, |t| t.shortfalls(scene, settings));
-        out.extend(area_light_shortfall(scene, settings.mode));
+        out.extend(area_light_shortfall(scene, settings));
         out
     }
 
@@ -70,11 +70,14 @@ impl Renderer {
 /// `rcs` (the records' hemisphere renders see emissive surfaces and the sky, as they see every
 /// other surface) and `mrt` (emission and the sky through holes in the blocks' faces enter the
 /// texels' l_d) light with both; `sshgi` sends emission from the emitters on screen (its
-/// senders take the direct term, which holds it) but not the sky; `ism` and `ism-ritschel`
-/// light with VPLs on the emitters and the sky (`render::gi::ism::emitter_points`).
-pub fn area_light_shortfall(scene: &Scene, mode: GiMode) -> Option<String> {
+/// senders take the direct term, which holds it) and the sky through the voxel columns, unless
+/// its sky rays or its visibility are off; `ism` and `ism-ritschel` light with VPLs on the
+/// emitters and the sky (`render::gi::ism::emitter_points`).
+pub fn area_light_shortfall(scene: &Scene, settings: &RenderSettings) -> Option<String> {
+    let mode = settings.mode;
     let emissive = match mode {
         GiMode::Reference | GiMode::Rcs | GiMode::Mrt | GiMode::Ism | GiMode::IsmRitschel => return None,
+        GiMode::Sshgi if settings.sshgi.sky_rays > 0 && settings.sshgi.visibility => return None,
         GiMode::Sshgi => 0,
         _ => scene.materials().iter().filter(|m| m.emits()).count(),
     };
@@ -96,24 +99,29 @@ mod tests {
     use super::*;
 
     /// Every mode that does not light with the sky or emission says so, naming what it leaves
-    /// out; `reference`, `rcs`, `mrt` and the ISM modes say nothing, `sshgi` only of the sky.
+    /// out: only `direct` does by default, and `sshgi` of the sky when its sky rays are off.
     #[test]
     fn each_mode_names_the_area_lights_it_leaves_out() {
         let mut scene = crate::precompute::test_scenes::scene_of_slabs(&[], Vec::new());
-        assert!(GiMode::ALL.iter().all(|m| area_light_shortfall(&scene, *m).is_none()), "no area lights");
+        let with = |mode| RenderSettings { mode, ..RenderSettings::default() };
+        assert!(GiMode::ALL.iter().all(|m| area_light_shortfall(&scene, &with(*m)).is_none()), "no area lights");
         scene.desc_mut().materials[0].emissive_color = [1.0; 3];
         scene.desc_mut().environment.sky = crate::scene::Sky::Constant([0.5; 3]);
         for mode in GiMode::ALL {
-            let said = area_light_shortfall(&scene, mode);
+            let said = area_light_shortfall(&scene, &with(mode));
             match mode {
-                GiMode::Reference | GiMode::Rcs | GiMode::Mrt | GiMode::Ism | GiMode::IsmRitschel => {
+                GiMode::Reference | GiMode::Rcs | GiMode::Mrt | GiMode::Ism | GiMode::IsmRitschel | GiMode::Sshgi => {
                     assert_eq!(said, None)
                 }
-                GiMode::Sshgi => assert!(said.as_deref().is_some_and(|s| s.contains("the sky,")), "{said:?}"),
                 _ => {
                     assert!(said.as_deref().is_some_and(|s| s.contains("the sky and 1 emissive material")), "{said:?}")
                 }
             }
         }
+        // `sshgi` without its sky rays (or its voxels) leaves the sky out, and says so.
+        let mut off = with(GiMode::Sshgi);
+        off.sshgi.sky_rays = 0;
+        let said = area_light_shortfall(&scene, &off);
+        assert!(said.as_deref().is_some_and(|s| s.contains("sees the sky,")), "{said:?}");
     }
 }

@@ -78,3 +78,15 @@ fn add(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     textureStore(dest, id.xy, vec4<f32>(textureLoad(a_tex, id.xy, 0).rgb + textureLoad(b_tex, id.xy, 0).rgb, 1.0));
 }
+
+// dest = a + b, alpha = a's coverage (the start level's direct term plus the sky-lit surfaces'
+// light, `sshgi_sky.wgsl`: the first bounce's senders).
+@compute @workgroup_size(8, 8, 1)
+fn add_lit(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(dest);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let a = textureLoad(a_tex, id.xy, 0);
+    textureStore(dest, id.xy, vec4<f32>(a.rgb + textureLoad(b_tex, id.xy, 0).rgb, a.a));
+}

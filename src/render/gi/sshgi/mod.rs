@@ -17,6 +17,7 @@ pub const SHADERS: &[&str] = &[
     "render/gi/sshgi/sshgi_panorama_gather.wgsl",
     "render/gi/sshgi/sshgi_panorama_pack.wgsl",
     "render/gi/sshgi/sshgi_panorama_receive.wgsl",
+    "render/gi/sshgi/sshgi_sky.wgsl",
     "render/gi/sshgi/sshgi_upsample.wgsl",
     "render/gi/sshgi/sshgi_voxel_mip.wgsl",
     "render/gi/sshgi/sshgi_voxelize.wgsl",
@@ -37,4 +38,5 @@ pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/gi/sshgi/sshgi_panorama_pack.wgsl", "PackParams", size_of::<panorama::PackParams>()),
     ("render/gi/sshgi/sshgi_panorama_gather.wgsl", "PanoramaParams", size_of::<panorama::PanoramaParams>()),
     ("render/gi/sshgi/sshgi_panorama_receive.wgsl", "PanoramaParams", size_of::<panorama::PanoramaParams>()),
+    ("render/gi/sshgi/sshgi_sky.wgsl", "SkyRayParams", size_of::<passes::SkyRayParams>()),
 ];

@@ -42,7 +42,8 @@ pub const BUFFERS: &[BufferInfo] = &[
     level("sshgi_bounce_2", "second bounce's E / pi (albedo x the first, gathered again)"),
     level("sshgi_bounce_3", "third bounce's E / pi"),
     level("sshgi_bounce_4", "fourth bounce's E / pi"),
-    level("sshgi_bounce_sum", "the bounces' E / pi summed at the start level (before the view up-sampling)"),
+    level("sshgi_sky", "the sky's E / pi at the start level through the directions the voxels leave open (not in the paper; with a sky)"),
+    level("sshgi_bounce_sum", "the bounces' and the sky's E / pi summed at the start level (before the view up-sampling)"),
     level("sshgi_raw", "this frame's E / pi before the temporal blend (view resolution)"),
     level(
         "sshgi_visibility_difference",
@@ -197,7 +198,10 @@ impl GiTechnique for SshgiTechnique {
             None
         };
         let targets = inputs.targets;
-        let sources = Sources { axis: &axis, visibility: visibility.as_ref(), panorama };
+        // The sky pass marches the voxels: without visibility the sky lights nothing (the
+        // limitation says so).
+        plan.sky = settings.sky_rays > 0 && visibility.is_some() && inputs.scene.has_sky();
+        let sources = Sources { axis: &axis, visibility: visibility.as_ref(), panorama, sky: Some(inputs.sky) };
         if settings.temporal_weight > 0.0 {
             self.temporal.ensure(inputs.device, targets.size);
             let Some(current) = self.temporal.current() else { return Ok(GiOutput::Nothing) };
@@ -315,6 +319,11 @@ impl GiTechnique for SshgiTechnique {
         if emissive {
             out.push(
                 "emissive surfaces are senders like any other (their emission is in the direct term): they light the scene only from where the camera sees them".to_owned(),
+            );
+        }
+        if scene.has_sky() && settings.sshgi.sky_rays > 0 && settings.sshgi.visibility {
+            out.push(
+                "the sky lights through directions the view's voxels show open (out past the scene or into a column where the camera sees the sky): a window or opening off screen lets none in".to_owned(),
             );
         }
         out

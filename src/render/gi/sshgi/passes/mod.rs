@@ -2,7 +2,9 @@
 //! levels (`sshgi_mip.wgsl`), one gather per level (`sshgi_gather.wgsl`) and the coarse-to-fine
 //! joint bilateral up-sampling that sums them (`sshgi_upsample.wgsl`); then the bounces' sum,
 //! up-sampled from the start level to the view. Depth and normal levels come from the frame's
-//! shared voted pyramid (`render::pyramid`), shared by every bounce.
+//! shared voted pyramid (`render::pyramid`), shared by every bounce. Where the scene has a sky,
+//! a sky pass (`sshgi_sky.wgsl`, not in the paper) first finds the sky's light through the voxel
+//! columns: it joins the first bounce's senders and the output.
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3, Vec4};
@@ -16,13 +18,14 @@ use crate::settings::SshgiSettings;
 mod steps;
 
 use super::panorama::{PanoramaParams, Senders};
-use steps::{StepBuilder, gather_slot, panorama_slot};
+use steps::{StepBuilder, gather_slot, panorama_slot, sky_slot};
 
 /// Bytes between two parameter slots (WebGPU's minimum uniform offset alignment).
 const SLOT: u64 = 256;
 
-/// Parameter slots: 2 + levels + (bounces + 1) x levels + bounces <= 2 + 6 + 5 x 6 + 4 (the
-/// settings' ranges, with the inspector's unshadowed first bounce and the panorama's per bounce).
+/// Parameter slots: 2 + levels + (bounces + 1) x levels + bounces + 1 <= 2 + 6 + 5 x 6 + 4 + 1
+/// (the settings' ranges, with the inspector's unshadowed first bounce, the panorama's per bounce
+/// and the sky's).
 const PARAM_SLOTS: u64 = 48;
 
 /// `MipParams` and `UpParams` in the shaders.
@@ -64,6 +67,22 @@ pub struct GatherParams {
 }
 
 const _: () = assert!(std::mem::size_of::<GatherParams>() == 80);
+
+/// `SkyRayParams` in `sshgi_sky.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct SkyRayParams {
+    /// Rays per texel, frame seed, unused x2.
+    pub counts: [u32; 4],
+    /// Camera forward axis.
+    pub forward: [f32; 4],
+    /// Voxel slices: near, far, slices per metre, on.
+    pub vox: [f32; 4],
+    /// Voxel columns: width, view pixels per column, height, unused.
+    pub grid: [u32; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<SkyRayParams>() == 64);
 
 /// The voxel columns the gathers march, with the slices' depth range.
 pub struct Visibility<'a> {
@@ -113,6 +132,8 @@ pub struct Sources<'a> {
     pub axis: &'a ViewAxis,
     pub visibility: Option<&'a Visibility<'a>>,
     pub panorama: Option<Senders<'a>>,
+    /// The sky's uniforms and image, when the sky pass runs (`Plan::sky`).
+    pub sky: Option<&'a crate::render::sky::SkyGpu>,
 }
 
 /// The levels a frame gathers: which pyramid level starts, how many, how many bounces.
@@ -131,6 +152,8 @@ pub struct Plan {
     pub unshadowed: bool,
     /// The panorama's senders join the first bounce ([`super::panorama`]).
     pub panorama: bool,
+    /// The sky pass runs (a sky, `sky_rays` > 0 and the voxels to march).
+    pub sky: bool,
 }
 
 impl Plan {
@@ -140,7 +163,7 @@ impl Plan {
         let start = settings.start_level.min(pyramid_levels.saturating_sub(1));
         let levels = settings.levels.clamp(1, (pyramid_levels - start).max(1));
         let panorama = settings.panorama > 0;
-        Self { view, start, levels, bounces: settings.bounces.max(1), unshadowed: false, panorama }
+        Self { view, start, levels, bounces: settings.bounces.max(1), unshadowed: false, panorama, sky: false }
     }
 
     /// Size of gather level k (pyramid level start + k).
@@ -170,7 +193,10 @@ struct Sized {
     /// Start level, per bounce: the screen's own gather, before the panorama's senders join it
     /// (empty without the panorama).
     screen_bounce: Vec<Target>,
-    /// Which of `bounce[0]` and `sums` holds the bounces' sum.
+    /// Start level, with the sky pass: the sky's E / pi, albedo x it, and the direct term's
+    /// box average before the sky-lit light joins it.
+    sky: Option<[Target; 3]>,
+    /// Which of `bounce[0]` and `sums` holds the bounces' sum (and the sky's).
     total: Total,
 }
 
@@ -192,6 +218,9 @@ pub struct SshgiPasses {
     add: wgpu::ComputePipeline,
     gather: wgpu::ComputePipeline,
     upsample: wgpu::ComputePipeline,
+    add_lit: wgpu::ComputePipeline,
+    sky_layout: wgpu::BindGroupLayout,
+    sky: wgpu::ComputePipeline,
     panorama_layout: wgpu::BindGroupLayout,
     panorama: wgpu::ComputePipeline,
     receive_layout: wgpu::BindGroupLayout,
@@ -218,6 +247,8 @@ struct Inputs {
     frame: wgpu::Buffer,
     /// The panorama's sender list, radiance buffers and face size.
     senders: Option<([wgpu::Buffer; 3], u32)>,
+    /// The sky's image and uniforms (the sky pass).
+    sky: Option<(wgpu::TextureView, wgpu::Buffer)>,
 }
 
 /// Which pipeline a [`Step`] runs.
@@ -231,6 +262,8 @@ enum Pipe {
     Upsample,
     Panorama,
     Receive,
+    AddLit,
+    Sky,
 }
 
 /// One dispatch: the (timed) pass it belongs to, its pipeline, bind group, parameter slot and
@@ -241,6 +274,27 @@ struct Step {
     group: wgpu::BindGroup,
     slot: u32,
     size: (u32, u32),
+}
+
+/// The sky pass's layout and pipeline (`sshgi_sky.wgsl`).
+fn sky_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
+    let c = wgpu::ShaderStages::COMPUTE;
+    let float = wgpu::TextureSampleType::Float { filterable: false };
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("sshgi sky layout"),
+        entries: &[
+            uniform_entry(0, c, false),
+            uniform_entry(1, c, true),
+            texture_entry(2, c, float),
+            storage_texture_entry(3, formats::HDR),
+            storage_entry(4, c),
+            texture_entry(5, c, float),
+            uniform_entry(6, c, false),
+        ],
+    });
+    let module = shaders::module(device, "render/gi/sshgi/sshgi_sky.wgsl")?;
+    let pipeline = compute_pipeline(device, "sshgi sky", &layout, &module, "sky_light");
+    Ok((layout, pipeline))
 }
 
 impl SshgiPasses {
@@ -285,6 +339,7 @@ impl SshgiPasses {
         let up = shaders::module(device, "render/gi/sshgi/sshgi_upsample.wgsl")?;
         let (panorama_layout, panorama) = super::panorama::gather_pipeline(device)?;
         let (receive_layout, receive) = super::panorama::receive_pipeline(device)?;
+        let (sky_layout, sky) = sky_pipeline(device)?;
         Ok(Self {
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
             reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
@@ -292,6 +347,9 @@ impl SshgiPasses {
             add: compute_pipeline(device, "sshgi add", &mip_layout, &mip, "add"),
             gather: compute_pipeline(device, "sshgi gather", &gather_layout, &gather, "gather"),
             upsample: compute_pipeline(device, "sshgi upsample", &up_layout, &up, "upsample"),
+            add_lit: compute_pipeline(device, "sshgi add lit", &mip_layout, &mip, "add_lit"),
+            sky_layout,
+            sky,
             panorama_layout,
             panorama,
             receive_layout,
@@ -337,7 +395,14 @@ impl SshgiPasses {
             screen_bounce: (0..if plan.panorama { plan.bounces } else { 0 })
                 .map(|_| target("sshgi screen bounce", 0))
                 .collect(),
-            total: if plan.bounces > 1 { Total::Sum((plan.bounces as usize - 1) % 2) } else { Total::Bounce },
+            sky: plan.sky.then(|| {
+                [target("sshgi sky", 0), target("sshgi sky-lit senders", 0), target("sshgi direct start", 0)]
+            }),
+            total: match (plan.bounces, plan.sky) {
+                (b, true) => Total::Sum(b as usize % 2),
+                (1, false) => Total::Bounce,
+                (b, false) => Total::Sum((b as usize - 1) % 2),
+            },
         });
     }
 
@@ -352,8 +417,9 @@ impl SshgiPasses {
         sources: &Sources<'_>,
         out: &Target,
     ) {
-        let Sources { axis, visibility, panorama } = *sources;
-        let plan = Plan { panorama: plan.panorama && panorama.is_some(), ..plan };
+        let Sources { axis, visibility, panorama, sky } = *sources;
+        let sky = sky.filter(|_| plan.sky && visibility.is_some());
+        let plan = Plan { panorama: plan.panorama && panorama.is_some(), sky: sky.is_some(), ..plan };
         self.ensure(inputs.device, plan);
         let key = Inputs {
             pyramid: pyramid.iter().map(|t| t.view.clone()).collect(),
@@ -363,6 +429,7 @@ impl SshgiPasses {
             voxels: visibility.map_or(&self.no_voxels, |v| v.columns).clone(),
             frame: inputs.frame_buffer.clone(),
             senders: panorama.map(|p| ([p.list.clone(), p.radiance[0].clone(), p.radiance[1].clone()], p.face)),
+            sky: sky.map(|s| (s.view.clone(), s.buffer.clone())),
         };
         if self.steps.as_ref().is_none_or(|(k, _)| *k != key) {
             let steps = self.build_steps(inputs.device, &key);
@@ -389,6 +456,8 @@ impl SshgiPasses {
                 Pipe::Upsample => &self.upsample,
                 Pipe::Panorama => &self.panorama,
                 Pipe::Receive => &self.receive,
+                Pipe::AddLit => &self.add_lit,
+                Pipe::Sky => &self.sky,
             });
             pass.set_bind_group(0, &step.group, &[step.slot * SLOT as u32]);
             pass.dispatch_workgroups(step.size.0.div_ceil(8), step.size.1.div_ceil(8), 1);
@@ -410,7 +479,7 @@ impl SshgiPasses {
         let bytes = &mut self.staging;
         bytes.clear();
         let chains = plan.bounces as usize + usize::from(plan.unshadowed);
-        bytes.resize((panorama_slot(plan, plan.bounces as usize) as usize) * SLOT as usize, 0);
+        bytes.resize((sky_slot(plan) as usize + 1) * SLOT as usize, 0);
         let mut put = |slot: u32, data: &[u8]| {
             let at = slot as usize * SLOT as usize;
             bytes[at..at + data.len()].copy_from_slice(data);
@@ -465,6 +534,13 @@ impl SshgiPasses {
             };
             put(panorama_slot(plan, b as usize), bytemuck::bytes_of(&p));
         }
+        let sky = SkyRayParams {
+            counts: [settings.sky_rays, inputs.frame_index.wrapping_mul(0x2545_f491), 0, 0],
+            forward: [forward.x, forward.y, forward.z, 0.0],
+            vox,
+            grid,
+        };
+        put(sky_slot(plan), bytemuck::bytes_of(&sky));
         inputs.queue.write_buffer(&self.params, 0, bytes);
     }
 
@@ -473,6 +549,7 @@ impl SshgiPasses {
         let Some(s) = &self.sized else { return Vec::new() };
         let plan = s.plan;
         let mut steps = StepBuilder { passes: self, device, key, s, steps: Vec::new() };
+        steps.sky();
         // Chain `b` (a bounce, or `plan.bounces`: the unshadowed first bounce, recorded first so
         // the last bounce's level buffers stay the inspector's).
         let chains = (plan.unshadowed.then_some(plan.bounces as usize)).into_iter().chain(0..plan.bounces as usize);
@@ -499,6 +576,7 @@ impl SshgiPasses {
             }
             "sshgi_unshadowed" => return s.unshadowed.as_ref().map(|t| &t.texture),
             "sshgi_screen_bounce" => return s.screen_bounce.first().map(|t| &t.texture),
+            "sshgi_sky" => return s.sky.as_ref().map(|[sky, _, _]| &sky.texture),
             _ => {}
         }
         let (kind, index) = name.rsplit_once('_')?;
@@ -523,7 +601,7 @@ impl SshgiPasses {
     pub fn gpu_bytes(&self) -> u64 {
         let Some(s) = &self.sized else { return 0 };
         let all = s.illumination.iter().chain(&s.gathered).chain(&s.summed).chain(&s.bounce).chain(&s.sums);
-        let all = all.chain(&s.unshadowed).chain(&s.screen_bounce);
+        let all = all.chain(&s.unshadowed).chain(&s.screen_bounce).chain(s.sky.iter().flatten());
         all.chain(std::iter::once(&s.albedo)).map(|t| crate::render::gi::technique::texture_bytes(&t.texture)).sum()
     }
 }

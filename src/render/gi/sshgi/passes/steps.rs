@@ -1,6 +1,6 @@
 //! The dispatches of one `sshgi` frame, built once per plan and set of inputs: per bounce the
 //! illumination levels, a gather per level and the up-sampling that sums them, the panorama's
-//! gather into the first bounce, the bounces' sum and the output to the view.
+//! gather into the first bounce, the sky's light, the bounces' sum and the output to the view.
 
 use super::{Inputs, Pipe, Plan, Sized, SshgiPasses, Step};
 use crate::render::targets::Target;
@@ -15,6 +15,11 @@ pub(super) fn gather_slot(plan: Plan, b: usize, k: usize) -> u32 {
 /// gathers.
 pub(super) fn panorama_slot(plan: Plan, b: usize) -> u32 {
     gather_slot(plan, plan.bounces as usize + usize::from(plan.unshadowed), 0) + b as u32
+}
+
+/// The parameter slot of the sky pass: after the panorama's.
+pub(super) fn sky_slot(plan: Plan) -> u32 {
+    panorama_slot(plan, plan.bounces as usize)
 }
 
 /// What the stages of [`SshgiPasses::build_steps`] share: the layouts and parameter buffer, the
@@ -134,22 +139,56 @@ impl<'a> StepBuilder<'a> {
         self.up_sampling(b, out);
     }
 
-    /// Illumination levels: the direct term (first bounce) or albedo x the previous bounce's
-    /// E / pi, then 2x2 box averages.
+    /// The sky's E / pi through the voxel columns (`sshgi_sky.wgsl`).
+    pub(super) fn sky(&mut self) {
+        let (s, key) = (self.s, self.key);
+        let (Some([sky, _, _]), Some((sky_view, sky_buffer))) = (&s.sky, &key.sky) else { return };
+        let texture =
+            |binding, view| wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(view) };
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi sky bind group"),
+            layout: &self.passes.sky_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(64) },
+                texture(2, self.geo(0)),
+                texture(3, &sky.view),
+                wgpu::BindGroupEntry { binding: 4, resource: key.voxels.as_entire_binding() },
+                texture(5, sky_view),
+                wgpu::BindGroupEntry { binding: 6, resource: sky_buffer.as_entire_binding() },
+            ],
+        });
+        self.step("sshgi sky".to_owned(), Pipe::Sky, group, sky_slot(s.plan), sky);
+    }
+
+    /// Illumination levels: the direct term (first bounce; plus albedo x the sky's E / pi when
+    /// the sky pass runs) or albedo x the previous bounce's E / pi, then 2x2 box averages.
     fn illumination(&mut self, b: usize, first: bool) {
         let (s, key) = (self.s, self.key);
         let illumination = &s.illumination[0];
+        let pass = self.pass(b, "sshgi illumination");
         if first {
-            let g = self.mip_group(&key.direct, &key.albedo, &illumination.view);
-            self.step(self.pass(b, "sshgi illumination"), Pipe::BoxSeed, g, 0, illumination);
-        } else {
-            let g = self.mip_group(&s.albedo.view, &s.bounce[b - 1].view, &illumination.view);
-            self.step(self.pass(b, "sshgi illumination"), Pipe::Product, g, 1, illumination);
-        }
-        if b == 0 {
-            // The start level's albedo, for the later bounces (once, whatever the chains).
+            // The start level's albedo, for the sky-lit senders and the later bounces.
             let g = self.mip_group(&key.albedo, &key.albedo, &s.albedo.view);
-            self.step(self.pass(b, "sshgi illumination"), Pipe::BoxSeed, g, 0, &s.albedo);
+            self.step(pass.clone(), Pipe::BoxSeed, g, 0, &s.albedo);
+        }
+        match (&s.sky, first) {
+            (Some([sky, lit, direct]), true) => {
+                let g = self.mip_group(&key.direct, &key.albedo, &direct.view);
+                self.step(pass.clone(), Pipe::BoxSeed, g, 0, direct);
+                let g = self.mip_group(&s.albedo.view, &sky.view, &lit.view);
+                self.step(pass.clone(), Pipe::Product, g, 1, lit);
+                let g = self.mip_group(&direct.view, &lit.view, &illumination.view);
+                self.step(pass.clone(), Pipe::AddLit, g, 1, illumination);
+            }
+            (None, true) => {
+                let g = self.mip_group(&key.direct, &key.albedo, &illumination.view);
+                self.step(pass.clone(), Pipe::BoxSeed, g, 0, illumination);
+            }
+            (_, false) => {
+                let g = self.mip_group(&s.albedo.view, &s.bounce[b - 1].view, &illumination.view);
+                self.step(pass.clone(), Pipe::Product, g, 1, illumination);
+            }
         }
         for k in 1..s.plan.levels as usize {
             let (fine, coarse) = (&s.illumination[k - 1], &s.illumination[k]);
@@ -192,13 +231,16 @@ impl<'a> StepBuilder<'a> {
         }
     }
 
-    /// The bounces' running sum (ping-pong); returns the target that holds it.
+    /// The bounces' running sum (ping-pong), then the sky's light; returns the target that
+    /// holds it.
     pub(super) fn bounce_sum(&mut self) -> &'a Target {
         let s = self.s;
         let mut total = &s.bounce[0];
-        for b in 1..s.plan.bounces as usize {
+        let bounces = s.plan.bounces as usize;
+        let sky = s.sky.as_ref().map(|[sky, _, _]| sky);
+        for (b, addend) in (1..bounces).map(|b| &s.bounce[b]).chain(sky).enumerate().map(|(i, t)| (i + 1, t)) {
             let dest = &s.sums[b % 2];
-            let g = self.mip_group(&total.view, &s.bounce[b].view, &dest.view);
+            let g = self.mip_group(&total.view, &addend.view, &dest.view);
             self.step("sshgi output".to_owned(), Pipe::Add, g, 1, dest);
             total = dest;
         }
