@@ -204,7 +204,9 @@ fn ism_lights_with_vpls_on_the_emitters_and_the_sky() {
         eprintln!("{name}: ism energy {:.3} FLIP {:.4}; direct FLIP {:.4}", i.luminance_ratio, i.flip, d.flip);
         assert!((0.9..=1.1).contains(&i.luminance_ratio), "{name}: ism energy {:.3}", i.luminance_ratio);
         assert!(i.flip < 0.5 * d.flip, "{name}: ism FLIP {:.4} against direct's {:.4}", i.flip, d.flip);
-        assert!(r.shortfalls(&project.scene, &RenderSettings { mode: GiMode::Ism, ..project.render.clone() }).is_empty());
+        assert!(
+            r.shortfalls(&project.scene, &RenderSettings { mode: GiMode::Ism, ..project.render.clone() }).is_empty()
+        );
         if name == "skylight" {
             let mut brighter = project.clone();
             let mut desc = brighter.scene.desc().clone();

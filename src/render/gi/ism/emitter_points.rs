@@ -209,7 +209,10 @@ mod tests {
     /// A floor and a 1 m x 0.5 m x 1 mm panel of radiance (2, 1, 0.5) 2 m above it.
     fn panel_scene() -> Scene {
         let mut scene = crate::precompute::test_scenes::scene_of_slabs(
-            &[("floor", Vec3::ZERO, Vec3::new(4.0, 0.1, 4.0)), ("panel", Vec3::new(0.0, 2.0, 0.0), Vec3::new(1.0, 0.001, 0.5))],
+            &[
+                ("floor", Vec3::ZERO, Vec3::new(4.0, 0.1, 4.0)),
+                ("panel", Vec3::new(0.0, 2.0, 0.0), Vec3::new(1.0, 0.001, 0.5)),
+            ],
             Vec::new(),
         );
         let desc = scene.desc_mut();
@@ -259,7 +262,10 @@ mod tests {
     #[test]
     fn the_sky_candidates_give_the_centre_the_irradiance_of_the_sky() {
         let mut scene = crate::precompute::test_scenes::scene_of_slabs(
-            &[("floor", Vec3::ZERO, Vec3::new(4.0, 0.1, 4.0)), ("post", Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.1, 2.0, 0.1))],
+            &[
+                ("floor", Vec3::ZERO, Vec3::new(4.0, 0.1, 4.0)),
+                ("post", Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.1, 2.0, 0.1)),
+            ],
             Vec::new(),
         );
         scene.desc_mut().environment.sky = Sky::Constant([0.2, 0.4, 0.8]);
@@ -276,7 +282,8 @@ mod tests {
             assert!(n.dot((c - at).normalize()) > 0.999, "facing the centre");
             let to = (at - c) / r;
             // Diffuse VPL intensity Phi / pi cos_s (cos_s = 1 towards the centre), cos_r / d^2.
-            e += luminance(Vec3::new(p.power[0], p.power[1], p.power[2])) / std::f32::consts::PI * to.y.max(0.0) / (r * r);
+            e += luminance(Vec3::new(p.power[0], p.power[1], p.power[2])) / std::f32::consts::PI * to.y.max(0.0)
+                / (r * r);
         }
         let expected = std::f32::consts::PI * luminance(Vec3::new(0.2, 0.4, 0.8));
         assert!((e / expected - 1.0).abs() < 0.02, "irradiance {e} against pi L = {expected}");
@@ -288,7 +295,8 @@ mod tests {
         });
         scene.desc_mut().objects[1].material = 1;
         let both = emitter_points(&scene, 8192);
-        let on_sky = both.iter().filter(|p| ((Vec3::from_slice(&p.position[..3]) - c).length() - r).abs() < 1e-3 * r).count();
+        let on_sky =
+            both.iter().filter(|p| ((Vec3::from_slice(&p.position[..3]) - c).length() - r).abs() < 1e-3 * r).count();
         let post_area = 4.0 * 0.1 * 2.0 + 2.0 * 0.01;
         let (surface, sky) = (std::f32::consts::PI * post_area * 50.0, std::f32::consts::PI * r * r * 4.0 * expected);
         let share = sky / (surface + sky);

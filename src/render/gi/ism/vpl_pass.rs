@@ -474,12 +474,20 @@ impl VplPass {
                 view: v,
                 depth_slice: None,
                 resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
             })
         }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("ism light gbuffer pass"),
-            color_attachments: &[color(&s.albedo.view), color(&s.normal.view), color(&s.power.view), color(&s.specular.view)],
+            color_attachments: &[
+                color(&s.albedo.view),
+                color(&s.normal.view),
+                color(&s.power.view),
+                color(&s.specular.view),
+            ],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &s.depth.view,
                 depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),

@@ -1,7 +1,8 @@
 //! `sshgi`'s panorama: what the screen cannot send, from a low-resolution cube G-buffer around
 //! the camera (an extension of Soler et al. 2010, whose gathers read the view alone). Each
 //! frame the six faces (F x F texels, 90 degrees each) are rasterised with the view's G-buffer
-//! pass, lit by its direct-light pass (the same lights and shadow maps), and packed
+//! and emission passes, lit by its direct-light pass (the same lights and shadow maps, and the
+//! emission: an emissive panel behind the camera sends its light), and packed
 //! (`sshgi_panorama_pack.wgsl`) into a list of senders: the surfaces around the camera that the
 //! view does not show, each with its point, area, normal, albedo and outgoing radiance. In every
 //! bounce the start level gathers N of them per texel (`sshgi_panorama_gather.wgsl`) beside
@@ -104,9 +105,10 @@ struct Faces {
 /// The panorama's passes and targets.
 pub struct Panorama {
     gbuffer: GbufferPass,
+    emission: crate::render::emission::EmissionPass,
     lighting: LightingPass,
-    /// No sky (never synced): the faces' background sends nothing, as their emissive surfaces
-    /// do not (no emission pass draws them); only the camera's view holds those.
+    /// No sky (never synced): the faces' background is no sender (the sky pass,
+    /// `sshgi_sky.wgsl`, brings the sky's light).
     sky: crate::render::sky::SkyGpu,
     pack_layout: wgpu::BindGroupLayout,
     pack: wgpu::ComputePipeline,
@@ -142,6 +144,7 @@ impl Panorama {
         let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_pack.wgsl")?;
         Ok(Self {
             gbuffer: GbufferPass::new(device, layouts)?,
+            emission: crate::render::emission::EmissionPass::new(device, layouts)?,
             lighting: LightingPass::new(device)?,
             sky: crate::render::sky::SkyGpu::new(device),
             pack: compute_pipeline(device, "sshgi panorama pack", &pack_layout, &module, "pack"),
@@ -153,7 +156,7 @@ impl Panorama {
     /// Renders, lights and packs the faces (`size` texels a side); returns the senders.
     pub fn record(&mut self, inputs: &mut GiInputs<'_>, size: u32) -> Option<Senders<'_>> {
         self.ensure(inputs.device, inputs.layouts, size);
-        let Self { gbuffer, lighting, sky, pack_layout, pack, faces } = self;
+        let Self { gbuffer, emission, lighting, sky, pack_layout, pack, faces } = self;
         let faces = faces.as_mut()?;
         let turn = frame_rotation(inputs.frame_index);
         write_frames(inputs.queue, faces, inputs.frame, inputs.scene.camera(), turn);
@@ -184,11 +187,18 @@ impl Panorama {
         let Some((_, groups)) = &faces.groups else { return None };
         let GiInputs { encoder, timer, scene_gpu, .. } = inputs;
         let last = faces.faces.len() - 1;
+        let emissive = scene_gpu.has_emissive();
         {
+            // The scope ends with the last face's emission pass where something emits.
             let scope = timer.scope("sshgi panorama raster");
             for (i, face) in faces.faces.iter().enumerate() {
-                let writes = scope.as_ref().filter(|_| i == 0 || i == last).map(|t| t.render_writes(i == 0, i == last));
+                let (first, ends) = (i == 0, i == last && !emissive);
+                let writes = scope.as_ref().filter(|_| first || ends).map(|t| t.render_writes(first, ends));
                 gbuffer.record(encoder, &face.targets, &face.frame_group, scene_gpu, writes);
+                if emissive {
+                    let writes = scope.as_ref().filter(|_| i == last).map(|t| t.render_writes(false, true));
+                    emission.record(encoder, &face.targets, &face.frame_group, scene_gpu, writes);
+                }
             }
         }
         let scope = timer.scope("sshgi panorama lighting");

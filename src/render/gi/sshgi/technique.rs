@@ -42,8 +42,14 @@ pub const BUFFERS: &[BufferInfo] = &[
     level("sshgi_bounce_2", "second bounce's E / pi (albedo x the first, gathered again)"),
     level("sshgi_bounce_3", "third bounce's E / pi"),
     level("sshgi_bounce_4", "fourth bounce's E / pi"),
-    level("sshgi_sky", "the sky's E / pi at the start level through the directions the voxels leave open (not in the paper; with a sky)"),
-    level("sshgi_bounce_sum", "the bounces' and the sky's E / pi summed at the start level (before the view up-sampling)"),
+    level(
+        "sshgi_sky",
+        "the sky's E / pi at the start level through the directions the voxels leave open (not in the paper; with a sky)",
+    ),
+    level(
+        "sshgi_bounce_sum",
+        "the bounces' and the sky's E / pi summed at the start level (before the view up-sampling)",
+    ),
     level("sshgi_raw", "this frame's E / pi before the temporal blend (view resolution)"),
     level(
         "sshgi_visibility_difference",

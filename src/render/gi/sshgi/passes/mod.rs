@@ -395,9 +395,9 @@ impl SshgiPasses {
             screen_bounce: (0..if plan.panorama { plan.bounces } else { 0 })
                 .map(|_| target("sshgi screen bounce", 0))
                 .collect(),
-            sky: plan.sky.then(|| {
-                [target("sshgi sky", 0), target("sshgi sky-lit senders", 0), target("sshgi direct start", 0)]
-            }),
+            sky: plan
+                .sky
+                .then(|| [target("sshgi sky", 0), target("sshgi sky-lit senders", 0), target("sshgi direct start", 0)]),
             total: match (plan.bounces, plan.sky) {
                 (b, true) => Total::Sum(b as usize % 2),
                 (1, false) => Total::Bounce,
