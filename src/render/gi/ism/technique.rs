@@ -530,12 +530,20 @@ impl GiTechnique for IsmTechnique {
 
     fn limitations(&self, scene: &Scene, _settings: &RenderSettings) -> Vec<String> {
         let tiles = super::light_tiles::layout(scene);
-        tiles
+        let mut out: Vec<String> = tiles
             .skipped
             .iter()
             .filter_map(|i| scene.lights().get(*i))
             .map(|l| format!("light {:?} adds no bounce light: the light G-buffer atlas is full", l.name))
-            .collect()
+            .collect();
+        if matches!(scene.environment().sky, crate::scene::Sky::Image(_) | crate::scene::Sky::Preetham { .. })
+            && scene.has_sky()
+        {
+            out.push(
+                "the sky lights through VPLs on the scene's bounding sphere, each with the sky's radiance in its direction from the centre: away from the centre an image sky is seen with parallax (a constant sky is exact)".to_owned(),
+            );
+        }
+        out
     }
 
     fn set_inspected(&mut self, name: Option<&str>) {
