@@ -131,3 +131,31 @@ fn a_floor_under_an_image_sky_with_a_sun_gets_the_texel_sum_irradiance_after_rot
     let got = floor_radiance(&scene, Vec3::ZERO, 4000, 1);
     assert!(close(got, want, 0.03), "{got} vs {want}");
 }
+
+/// An emission texture scales the emission where the point lies, for every consumer that reads
+/// emission at a surface point: MRT's block texels (`geometry_image::surface`) and ISM's emitter
+/// candidates. The panel's texture is white on one half and black on the other.
+#[test]
+fn the_emission_texture_is_read_at_the_surface_point() {
+    let base = scene(2.0, 3.0, Environment::default(), None);
+    let mut desc = base.desc().clone();
+    desc.materials[1].emissive_texture = Some(crate::scene::TextureRef { image: 0, tex_coord: 0 });
+    let half = crate::scene::Image { width: 2, height: 1, rgba8: vec![255, 255, 255, 255, 0, 0, 0, 255] };
+    let scene = Scene::new(desc, Resources { images: vec![half], ..base.resources().clone() }).expect("scene");
+    let bvh = super::bvh::SceneBvh::build(&scene);
+    let full = Vec3::new(1.0, 0.8, 0.6) * 3.0;
+    // The panel faces down from 1 m: texels of a block face below it look up at it.
+    // At the texels' centres (the 2 m panel spans u = 0..1 along one axis): -0.5 and 0.5 m.
+    let samples: Vec<Vec3> = (0..4)
+        .map(|i| {
+            let (x, z) = (if i % 2 == 0 { -0.5 } else { 0.5 }, if i / 2 == 0 { -0.5 } else { 0.5 });
+            super::mrt::geometry_image::surface(&scene, &bvh, Vec3::new(x, 0.9, z), Vec3::NEG_Y, 0.5).emission
+        })
+        .collect();
+    assert!(samples.iter().any(|e| close(*e, full, 0.02)), "the white half emits fully: {samples:?}");
+    assert!(samples.iter().any(|e| e.max_element() < 0.02), "the black half emits nothing: {samples:?}");
+    let points = crate::render::gi::ism::emitter_points::emitter_points(&scene, 4096);
+    let total = crate::render::gi::ism::emitter_points::total_power(&points);
+    let untextured = PI * 4.0 * full;
+    assert!(close(total, 0.5 * untextured, 0.03), "half the panel's power: {total} of {untextured}");
+}

@@ -9,7 +9,7 @@ use glam::Vec3;
 
 use super::bvh::{SceneBvh, Tri};
 use super::sky_sampler::luminance;
-use crate::scene::Material;
+use crate::scene::{Image, Material};
 
 /// A point chosen on an emissive triangle.
 #[derive(Clone, Copy, Debug)]
@@ -99,6 +99,17 @@ impl Emitters {
         let p = tri.p[0] * (1.0 - b1 - b2) + tri.p[1] * b1 + tri.p[2] * b2;
         Some(EmitterSample { tri: tri_index, p, u: b1, v: b2, pdf_area: self.choice(e) / self.areas[e] })
     }
+}
+
+/// The radiance the front of `tri` (material `m`) emits at barycentrics (`u`, `v`): emission
+/// colour x strength x the emission texture (sRGB, bilinear) of `images` there.
+pub fn emission_at(m: &Material, images: &[Image], tri: &Tri, u: f32, v: f32) -> Vec3 {
+    let mut e = m.emission();
+    if let Some(img) = m.emissive_texture.and_then(|t| images.get(t.image)) {
+        let uv = tri.uv[0] * (1.0 - u - v) + tri.uv[1] * u + tri.uv[2] * v;
+        e *= super::pathtracer::sample_image(img, uv, true);
+    }
+    e
 }
 
 /// The power heuristic (β = 2) weight of a strategy with density `a` against one with `b`.

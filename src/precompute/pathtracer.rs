@@ -339,12 +339,7 @@ impl PathTracer {
     fn emitted(&self, hit: &Hit) -> Vec3 {
         let tri = &self.bvh.tris[hit.tri as usize];
         let Some(m) = self.materials.get(tri.material as usize).filter(|m| m.emits()) else { return Vec3::ZERO };
-        let mut e = m.emission();
-        if let Some(img) = m.emissive_texture.and_then(|t| self.images.get(t.image)) {
-            let (w0, w1, w2) = (1.0 - hit.u - hit.v, hit.u, hit.v);
-            e *= sample_image(img, tri.uv[0] * w0 + tri.uv[1] * w1 + tri.uv[2] * w2, true);
-        }
-        e
+        super::emitters::emission_at(m, &self.images, tri, hit.u, hit.v)
     }
 
     /// The light every light sends off the shading point towards its viewer by next-event

@@ -34,7 +34,8 @@ pub struct ClutterTexel {
     pub normal: Vec3,
     /// Diffuse albedo.
     pub albedo: Vec3,
-    /// The emission of the surface's front face (zero for a back face or none).
+    /// The emission of the surface's front face at the texel's point, its emission texture
+    /// included (zero for a back face or none).
     pub emission: Vec3,
     /// Whether the object's own surface was found.
     pub found: bool,
@@ -155,11 +156,14 @@ pub fn texels(scene: &Scene, bvh: &SceneBvh, clutter: &[Clutter], res: usize) ->
                             let tri = &bvh.tris[h.tri as usize];
                             let front = tri.ng.dot(n) >= 0.0;
                             let normal = if front { tri.ng } else { -tri.ng };
+                            let images = &scene.resources().images;
                             let emission = scene
                                 .materials()
                                 .get(tri.material as usize)
                                 .filter(|_| front)
-                                .map_or(Vec3::ZERO, crate::scene::Material::emission);
+                                .map_or(Vec3::ZERO, |m| {
+                                    crate::precompute::emitters::emission_at(m, images, tri, h.u, h.v)
+                                });
                             ClutterTexel {
                                 position: start - n * h.t,
                                 normal,

@@ -34,7 +34,8 @@ pub struct TexelSurface {
     /// Diffuse albedo (zero where none was found).
     pub albedo: Vec3,
     /// Radiance the texel sends into the block on its own: the emission of the surface's front
-    /// face, or where no surface was found, the sky seen through it.
+    /// face (its emission texture read at the texel's point), or where no surface was found, the
+    /// sky seen through it.
     pub emission: Vec3,
     /// Whether a real surface was found.
     pub found: bool,
@@ -56,7 +57,9 @@ pub fn surface(scene: &Scene, bvh: &SceneBvh, p: Vec3, n: Vec3, reach: f32) -> T
     let front = tri.ng.dot(n) > 0.0;
     let normal = if front { tri.ng } else { -tri.ng };
     let emission = match scene.materials().get(tri.material as usize) {
-        Some(m) if front => m.emission(),
+        Some(m) if front && m.emits() => {
+            crate::precompute::emitters::emission_at(m, &scene.resources().images, tri, hit.u, hit.v)
+        }
         _ => Vec3::ZERO,
     };
     TexelSurface { position: start - n * hit.t, normal, albedo: albedo(scene, tri.material), emission, found: true }

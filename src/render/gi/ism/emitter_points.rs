@@ -21,7 +21,7 @@
 //! for Ritschel's directional environment VPLs, whose orthographic maps the paraboloid atlas
 //! does not have.
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 use crate::precompute::bvh::SceneBvh;
 use crate::precompute::emitters::Emitters;
@@ -125,11 +125,7 @@ fn surface_points(scene: &Scene, bvh: &SceneBvh, emitters: &Emitters, count: usi
             let s = emitters.sample(bvh, [((j as f64 + 0.5) / count as f64) as f32, u1, u2])?;
             let tri = &bvh.tris[s.tri as usize];
             let material = scene.materials().get(tri.material as usize)?;
-            let mut radiance = material.emission();
-            if let Some(img) = material.emissive_texture.and_then(|t| images.get(t.image)) {
-                let uv: Vec2 = tri.uv[0] * (1.0 - s.u - s.v) + tri.uv[1] * s.u + tri.uv[2] * s.v;
-                radiance *= crate::precompute::pathtracer::sample_image(img, uv, true);
-            }
+            let radiance = crate::precompute::emitters::emission_at(material, images, tri, s.u, s.v);
             Some(candidate(s.p, tri.ng, radiance, 1.0 / (count as f32 * s.pdf_area)))
         })
         .collect()
