@@ -1,5 +1,6 @@
 // ISM pass P2 for the emitter tiles of the light G-buffer atlas: texel i of a tile holds
-// candidate VPL `first + i` on an emissive surface (`render::gi::ism::emitter_points`), written
+// candidate VPL `first + i` on an emissive surface or on the sky's bounding sphere
+// (`render::gi::ism::emitter_points`), written
 // in the light G-buffer's own terms so the importance pyramid and the warp treat it like any
 // lit texel: normal (front normal, w = the area it stands for) and power (pi L A in watts,
 // a = importance); albedo and the glossy lobe stay zero (an emitter's VPL is Lambertian).

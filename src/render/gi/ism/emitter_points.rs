@@ -75,7 +75,8 @@ pub fn key(scene: &Scene, count: usize) -> Vec<u32> {
     key
 }
 
-/// A candidate of luminous-or-radiant power `pi radiance area` at `p` facing `normal`.
+/// A candidate of power `pi radiance area` (W; the scene's radiance is radiometric) at `p`
+/// facing `normal`, a Lambertian patch.
 fn candidate(p: Vec3, normal: Vec3, radiance: Vec3, area: f32) -> GpuEmitterPoint {
     let power = std::f32::consts::PI * radiance * area;
     GpuEmitterPoint {
@@ -103,7 +104,7 @@ pub fn emitter_points(scene: &Scene, count: usize) -> Vec<GpuEmitterPoint> {
         return Vec::new();
     }
     let mut on_sky = (count as f64 * f64::from(sky_power / total)).round() as usize;
-    if sky.is_some() && !emitters.is_empty() {
+    if sky.is_some() && !emitters.is_empty() && count >= 2 {
         on_sky = on_sky.clamp(1, count - 1);
     }
     let mut out = surface_points(scene, &bvh, &emitters, count - on_sky);

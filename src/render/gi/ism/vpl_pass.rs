@@ -1,9 +1,10 @@
 //! ISM passes P2, P3 and P5 on the GPU (docs/ARCHITECTURE.md, "ISM pass labels"): the light
 //! G-buffer of every light (tiles laid out by [`super::light_tiles`]), its importance sum pyramid,
 //! and first-bounce VPL generation by hierarchical warping over the whole atlas, so VPLs spread
-//! over all lights in proportion to the power they reflect, and over the emissive surfaces (the
-//! emitter tiles, [`super::emitter_points`]) in proportion to the power they emit. The CPU oracles in [`crate::precompute::ism::warp`] and
-//! [`crate::precompute::ism::power`] define what these passes must produce.
+//! over all lights in proportion to the power they reflect, and over the emissive surfaces and
+//! the sky (the emitter tiles, [`super::emitter_points`]) in proportion to the power they emit.
+//! The CPU oracles in [`crate::precompute::ism::warp`] and [`crate::precompute::ism::power`]
+//! define what these passes must produce.
 
 use glam::Vec3;
 
@@ -455,7 +456,9 @@ impl VplPass {
             self.emitters_uploaded = Some((scene.revision(), key));
             return;
         }
-        let points = emitter_points::emitter_points(scene, count);
+        let mut points = emitter_points::emitter_points(scene, count);
+        // Candidates the emitters could not fill (no power) send nothing, not last upload's light.
+        points.resize(count, GpuEmitterPoint::default());
         queue.write_buffer(&s.emitter_points, 0, bytemuck::cast_slice(&points));
         self.emitters_uploaded = Some((scene.revision(), key));
     }
