@@ -10,8 +10,11 @@
 // outside the view is unknown, and indoors it is most often a wall or the ceiling. (Open where it
 // merely crossed a column showing the sky, the window room read 1.53 of the path tracer's
 // energy: rays inside the room cross the window's columns in front of it.)
-// With cosine sampling E / pi = the mean of L over the rays. Writes E / pi (the first bounce's
-// illumination adds albedo x it to the direct term: the sky-lit surfaces send light too).
+// With cosine sampling E / pi = the mean of L over the rays. `sky_light` writes E / pi of the
+// start level (the first bounce's illumination adds albedo x it to the direct term: the sky-lit
+// surfaces send light too); `sender_sky` adds albedo x E / pi to the panorama's senders' first
+// radiance (a wall behind the camera lit by the sky through a window in view): their rays are
+// marched from where they enter the view, the way there taken as free.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/onb.wgsl
@@ -19,7 +22,7 @@
 #import render/gi/sshgi/sshgi_hash.wgsl
 
 struct SkyRayParams {
-    // rays per texel, frame seed, unused x2.
+    // rays per texel (and sender), frame seed, panorama face size F (0: no senders), unused.
     counts: vec4<u32>,
     // xyz the camera's forward axis, w unused.
     forward: vec4<f32>,
@@ -38,6 +41,18 @@ struct SkyRayParams {
 @group(0) @binding(5) var sky_tex: texture_2d<f32>;
 @group(0) @binding(6) var<uniform> sky: SkyParams;
 
+// The panorama's senders (`sshgi_panorama_pack.wgsl`) and their first radiance (`sender_sky`).
+struct Sender {
+    // xyz the point, w the area ds it stands for (m^2; 0: no sender).
+    point: vec4<f32>,
+    // xyz geometric normal, w unused.
+    normal: vec4<f32>,
+    // rgb albedo, a unused.
+    albedo: vec4<f32>,
+}
+@group(0) @binding(7) var<storage, read> senders: array<Sender>;
+@group(0) @binding(8) var<storage, read_write> sender_radiance: array<vec4<f32>>;
+
 #import common/sky.wgsl
 #import render/gi/sshgi/sshgi_visibility.wgsl
 
@@ -54,10 +69,11 @@ fn deepest_slice(column: vec4<u32>) -> i32 {
 }
 
 // Whether the ray from view pixel pt (view depth zt) to py (depth zy) reaches the sky: no solid
-// voxel on the way (the two columns of the surface it leaves are skipped, as in
-// `voxel_occluded`), and an end at the far end of the depth range (`exit` 1) or at the screen's
-// side (`exit` 2) behind every solid of the last column; `exit` 0 (the near end) is blocked.
-fn reaches_sky(pt: vec2<f32>, py: vec2<f32>, zt: f32, zy: f32, exit: u32) -> bool {
+// voxel on the way (the first `skip` columns are skipped: 2 where the ray leaves a surface on
+// screen, as in `voxel_occluded`), and an end at the far end of the depth range (`exit` 1) or at
+// the screen's side (`exit` 2) behind every solid of the last column; `exit` 0 (the near end) is
+// blocked.
+fn reaches_sky(pt: vec2<f32>, py: vec2<f32>, zt: f32, zy: f32, exit: u32, skip: i32) -> bool {
     let px = f32(gp.grid.y);
     let a = pt / px - 0.5;
     let d = py / px - 0.5 - a;
@@ -68,7 +84,7 @@ fn reaches_sky(pt: vec2<f32>, py: vec2<f32>, zt: f32, zy: f32, exit: u32) -> boo
     let inv_y = 1.0 / zy;
     let slice = 1.0 / gp.vox.z;
     var last = vec4<u32>(0u);
-    for (var j = 2; j <= steps; j = j + 1) {
+    for (var j = skip; j <= steps; j = j + 1) {
         let m0 = (f32(j) - 0.5) / f32(steps);
         let m1 = min(f32(j) + 0.5, f32(steps)) / f32(steps);
         let za = 1.0 / mix(inv_t, inv_y, m0) - slice;
@@ -93,47 +109,78 @@ fn clip_pixel(c: vec4<f32>) -> vec2<f32> {
     return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.size.xy;
 }
 
-// The sky's radiance along `w` from `x` (view depth zx, view pixel pixel_x) where the ray
-// reaches it, else 0.
-fn sky_along(x: vec3<f32>, pixel_x: vec2<f32>, zx: f32, w: vec3<f32>) -> vec3<f32> {
-    // The ray clipped to the frustum's sides (clip space is linear along it) and the depth range.
+// The sky's radiance along `w` from `x` where the ray reaches it, else 0. The ray is clipped to
+// the view's frustum (clip space is linear along it) and the voxels' depth range; a ray that never
+// enters them is blocked (unknown), and the way from an off-screen `x` to where it enters is taken
+// as free. `skip`: columns skipped at the start (2 for a point on screen, 0 off it).
+fn sky_along(x: vec3<f32>, w: vec3<f32>, skip: i32) -> vec3<f32> {
     let c0 = frame.clip_from_world * vec4<f32>(x, 1.0);
     let c1 = frame.clip_from_world * vec4<f32>(w, 0.0);
-    var t_end = 1.0e30;
+    var t_in = 0.0;
+    var t_out = 1.0e30;
     for (var i = 0; i < 4; i = i + 1) {
         let s = select(-1.0, 1.0, (i & 1) == 0);
         let axis = i >> 1;
         let a = c0.w + s * c0[axis];
         let b = c1.w + s * c1[axis];
-        if b < 0.0 {
-            t_end = min(t_end, max(-a / b, 0.0));
+        if b > 0.0 {
+            t_in = max(t_in, -a / b);
+        } else if b < 0.0 {
+            t_out = min(t_out, -a / b);
+        } else if a < 0.0 {
+            return vec3<f32>(0.0);
         }
     }
+    let zx = dot(x - frame.camera_position.xyz, gp.forward.xyz);
     let wf = dot(w, gp.forward.xyz);
+    let near = max(gp.vox.x, 0.01 * gp.vox.y);
     // 2: the screen's side, 1: the far end, 0: the near end.
     var exit = 2u;
     if wf > 0.0 {
         let t_far = (gp.vox.y - zx) / wf;
-        if t_far <= t_end {
-            t_end = max(t_far, 0.0);
+        if t_far <= t_out {
+            t_out = t_far;
             exit = 1u;
         }
+        t_in = max(t_in, (near - zx) / wf);
     } else if wf < 0.0 {
-        let t_near = (max(gp.vox.x, 0.05 * zx) - zx) / wf;
-        if t_near <= t_end {
-            t_end = t_near;
+        let t_near = (near - zx) / wf;
+        if t_near <= t_out {
+            t_out = t_near;
             exit = 0u;
         }
-    }
-    t_end = 0.999 * t_end;
-    let z_end = zx + t_end * wf;
-    if t_end <= 0.0 || z_end <= 0.0 {
+        t_in = max(t_in, (gp.vox.y - zx) / wf);
+    } else if zx < near || zx > gp.vox.y {
         return vec3<f32>(0.0);
     }
-    if !reaches_sky(pixel_x, clip_pixel(c0 + t_end * c1), zx, z_end, exit) {
+    if t_out <= t_in {
+        return vec3<f32>(0.0);
+    }
+    let span = t_out - t_in;
+    let ta = t_in + 0.0005 * span;
+    let tb = t_out - 0.0005 * span;
+    let za = zx + ta * wf;
+    let zb = zx + tb * wf;
+    if za <= 0.0 || zb <= 0.0 || !reaches_sky(clip_pixel(c0 + ta * c1), clip_pixel(c0 + tb * c1), za, zb, exit, skip) {
         return vec3<f32>(0.0);
     }
     return sky_radiance(w);
+}
+
+// E / pi from `count` cosine-distributed rays about `n` from `x` (stratified, rotated by
+// `rotation`, jittered by `jitter`).
+fn sky_irradiance(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitter: f32, skip: i32) -> vec3<f32> {
+    let tangent = onb_tangent(n);
+    let bitangent = onb_bitangent(n);
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < count; i = i + 1u) {
+        let u = (f32(i) + jitter) / f32(count);
+        let phi = rotation + f32(i) * GOLDEN;
+        let r = sqrt(u);
+        let w = normalize(tangent * (r * cos(phi)) + bitangent * (r * sin(phi)) + n * sqrt(max(1.0 - u, 0.0)));
+        sum = sum + sky_along(x, w, skip);
+    }
+    return sum / f32(max(count, 1u));
 }
 
 @compute @workgroup_size(8, 8, 1)
@@ -148,22 +195,27 @@ fn sky_light(@builtin(global_invocation_id) id: vec3<u32>) {
         textureStore(dest, t, vec4<f32>(0.0, 0.0, 0.0, 1.0));
         return;
     }
-    let pixel_x = pyramid_pixel(frame, g);
-    let x = point_on_pixel_ray(frame, pixel_x, g.r);
-    let zx = dot(x - frame.camera_position.xyz, gp.forward.xyz);
-    let n = oct_decode(g.gb);
-    let tangent = onb_tangent(n);
-    let bitangent = onb_bitangent(n);
-    let count = max(gp.counts.x, 1u);
+    let x = pyramid_point(frame, g);
     let rotation = 2.0 * SKY_PI * hash01(id.x & 3u, id.y & 3u, gp.counts.y);
     let jitter = hash01(id.x, id.y, gp.counts.y ^ 0x85ebca6bu);
-    var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < count; i = i + 1u) {
-        let u = (f32(i) + jitter) / f32(count);
-        let phi = rotation + f32(i) * GOLDEN;
-        let r = sqrt(u);
-        let w = normalize(tangent * (r * cos(phi)) + bitangent * (r * sin(phi)) + n * sqrt(max(1.0 - u, 0.0)));
-        sum = sum + sky_along(x, pixel_x, zx, w);
+    let e = sky_irradiance(x, oct_decode(g.gb), max(gp.counts.x, 1u), rotation, jitter, 2);
+    textureStore(dest, t, vec4<f32>(e, 1.0));
+}
+
+// The panorama's senders (F x 6F, one per thread): their first radiance gains albedo x E / pi.
+@compute @workgroup_size(8, 8, 1)
+fn sender_sky(@builtin(global_invocation_id) id: vec3<u32>) {
+    let f = gp.counts.z;
+    if id.x >= f || id.y >= 6u * f {
+        return;
     }
-    textureStore(dest, t, vec4<f32>(sum / f32(count), 1.0));
+    let index = id.y * f + id.x;
+    let s = senders[index];
+    if s.point.w <= 0.0 {
+        return;
+    }
+    let rotation = 2.0 * SKY_PI * hash01(id.x, id.y, gp.counts.y ^ 0x27d4eb2fu);
+    let jitter = hash01(id.y, id.x, gp.counts.y ^ 0x165667b1u);
+    let e = sky_irradiance(s.point.xyz, s.normal.xyz, max(gp.counts.x, 1u), rotation, jitter, 0);
+    sender_radiance[index] = sender_radiance[index] + vec4<f32>(s.albedo.rgb * e, 0.0);
 }

@@ -221,6 +221,8 @@ pub struct SshgiPasses {
     add_lit: wgpu::ComputePipeline,
     sky_layout: wgpu::BindGroupLayout,
     sky: wgpu::ComputePipeline,
+    sender_sky_layout: wgpu::BindGroupLayout,
+    sender_sky: wgpu::ComputePipeline,
     panorama_layout: wgpu::BindGroupLayout,
     panorama: wgpu::ComputePipeline,
     receive_layout: wgpu::BindGroupLayout,
@@ -264,6 +266,7 @@ enum Pipe {
     Receive,
     AddLit,
     Sky,
+    SenderSky,
 }
 
 /// One dispatch: the (timed) pass it belongs to, its pipeline, bind group, parameter slot and
@@ -276,8 +279,11 @@ struct Step {
     size: (u32, u32),
 }
 
-/// The sky pass's layout and pipeline (`sshgi_sky.wgsl`).
-fn sky_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
+/// The sky pass's layouts and pipelines (`sshgi_sky.wgsl`): the start level's (`sky_light`) and
+/// the panorama senders' (`sender_sky`).
+type SkyPipelines = [(wgpu::BindGroupLayout, wgpu::ComputePipeline); 2];
+
+fn sky_pipelines(device: &wgpu::Device) -> Result<SkyPipelines, ShaderError> {
     let c = wgpu::ShaderStages::COMPUTE;
     let float = wgpu::TextureSampleType::Float { filterable: false };
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -294,7 +300,20 @@ fn sky_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::C
     });
     let module = shaders::module(device, "render/gi/sshgi/sshgi_sky.wgsl")?;
     let pipeline = compute_pipeline(device, "sshgi sky", &layout, &module, "sky_light");
-    Ok((layout, pipeline))
+    let sender_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("sshgi sender sky layout"),
+        entries: &[
+            uniform_entry(0, c, false),
+            uniform_entry(1, c, true),
+            storage_entry(4, c),
+            texture_entry(5, c, float),
+            uniform_entry(6, c, false),
+            storage_entry(7, c),
+            crate::render::layouts::storage_rw_entry(8),
+        ],
+    });
+    let sender = compute_pipeline(device, "sshgi sender sky", &sender_layout, &module, "sender_sky");
+    Ok([(layout, pipeline), (sender_layout, sender)])
 }
 
 impl SshgiPasses {
@@ -339,7 +358,7 @@ impl SshgiPasses {
         let up = shaders::module(device, "render/gi/sshgi/sshgi_upsample.wgsl")?;
         let (panorama_layout, panorama) = super::panorama::gather_pipeline(device)?;
         let (receive_layout, receive) = super::panorama::receive_pipeline(device)?;
-        let (sky_layout, sky) = sky_pipeline(device)?;
+        let [(sky_layout, sky), (sender_sky_layout, sender_sky)] = sky_pipelines(device)?;
         Ok(Self {
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
             reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
@@ -350,6 +369,8 @@ impl SshgiPasses {
             add_lit: compute_pipeline(device, "sshgi add lit", &mip_layout, &mip, "add_lit"),
             sky_layout,
             sky,
+            sender_sky_layout,
+            sender_sky,
             panorama_layout,
             panorama,
             receive_layout,
@@ -458,6 +479,7 @@ impl SshgiPasses {
                 Pipe::Receive => &self.receive,
                 Pipe::AddLit => &self.add_lit,
                 Pipe::Sky => &self.sky,
+                Pipe::SenderSky => &self.sender_sky,
             });
             pass.set_bind_group(0, &step.group, &[step.slot * SLOT as u32]);
             pass.dispatch_workgroups(step.size.0.div_ceil(8), step.size.1.div_ceil(8), 1);
@@ -535,7 +557,12 @@ impl SshgiPasses {
             put(panorama_slot(plan, b as usize), bytemuck::bytes_of(&p));
         }
         let sky = SkyRayParams {
-            counts: [settings.sky_rays, inputs.frame_index.wrapping_mul(0x2545_f491), 0, 0],
+            counts: [
+                settings.sky_rays,
+                inputs.frame_index.wrapping_mul(0x2545_f491),
+                if plan.panorama { face } else { 0 },
+                0,
+            ],
             forward: [forward.x, forward.y, forward.z, 0.0],
             vox,
             grid,

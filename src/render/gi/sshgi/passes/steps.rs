@@ -139,7 +139,8 @@ impl<'a> StepBuilder<'a> {
         self.up_sampling(b, out);
     }
 
-    /// The sky's E / pi through the voxel columns (`sshgi_sky.wgsl`).
+    /// The sky's E / pi through the voxel columns (`sshgi_sky.wgsl`), at the start level and,
+    /// with the panorama, added to its senders' first radiance.
     pub(super) fn sky(&mut self) {
         let (s, key) = (self.s, self.key);
         let (Some([sky, _, _]), Some((sky_view, sky_buffer))) = (&s.sky, &key.sky) else { return };
@@ -159,6 +160,29 @@ impl<'a> StepBuilder<'a> {
             ],
         });
         self.step("sshgi sky".to_owned(), Pipe::Sky, group, sky_slot(s.plan), sky);
+        // The panorama's senders off screen: their first radiance gains the sky's light.
+        let Some(([list, first, _], side)) = &key.senders else { return };
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi sender sky bind group"),
+            layout: &self.passes.sender_sky_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(64) },
+                wgpu::BindGroupEntry { binding: 4, resource: key.voxels.as_entire_binding() },
+                texture(5, sky_view),
+                wgpu::BindGroupEntry { binding: 6, resource: sky_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 7, resource: list.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 8, resource: first.as_entire_binding() },
+            ],
+        });
+        let slot = sky_slot(s.plan);
+        self.steps.push(Step {
+            pass: "sshgi sky".to_owned(),
+            pipeline: Pipe::SenderSky,
+            group,
+            slot,
+            size: (*side, 6 * side),
+        });
     }
 
     /// Illumination levels: the direct term (first bounce; plus albedo x the sky's E / pi when
