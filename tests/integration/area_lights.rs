@@ -177,7 +177,8 @@ fn render_takes_a_constant_sky_in_the_scenes_light_units() {
 /// `ism` lights with VPLs on the emissive panels and on the sky's sphere (Ritschel's VPLs for
 /// area and environment light): on the window room lit only by the sky and the room lit only by
 /// emissive panels its energy is within 10% of the path tracer's and its FLIP under half of
-/// `direct`'s (which lights nothing there); twice the sky gives twice the light.
+/// `direct`'s (which lights nothing there). (A sky edit makes new candidates:
+/// `emitter_points::tests`.)
 #[test]
 fn ism_lights_with_vpls_on_the_emitters_and_the_sky() {
     let Some(ctx) = common::gpu() else { return };
@@ -207,23 +208,13 @@ fn ism_lights_with_vpls_on_the_emitters_and_the_sky() {
         assert!(
             r.shortfalls(&project.scene, &RenderSettings { mode: GiMode::Ism, ..project.render.clone() }).is_empty()
         );
-        if name == "skylight" {
-            let mut brighter = project.clone();
-            let mut desc = brighter.scene.desc().clone();
-            desc.environment.intensity *= 2.0;
-            brighter.set_desc(desc).expect("sky");
-            let again = render(&mut r, &brighter, GiMode::Ism, 16, size);
-            let ratio = bouncelab::metrics::luminance_ratio(&again, &ism).expect("ratio");
-            eprintln!("skylight, sky x2: ism image x{ratio:.3}");
-            assert!((1.8..=2.2).contains(&ratio), "twice the sky gives x{ratio:.3}");
-        }
     }
 }
 
-/// `sshgi` finds the sky through its voxel columns: in the courtyard open to the sky its energy is
-/// within 10% of the path tracer's and its FLIP under half of `direct`'s; in the window room lit
-/// only by the sky it gains more than half again over the same settings without sky rays (which
-/// then say the sky is left out). The sky buffer is inspectable.
+/// `sshgi` finds the sky through its voxel columns (from the screen's texels and the panorama's
+/// senders): in the courtyard open to the sky and in the window room lit only by the sky its
+/// energy is within 10% of the path tracer's and its FLIP under half of `direct`'s; without sky
+/// rays the window room gets none of it, and the GI panel says the sky is left out.
 #[test]
 fn sshgi_lights_with_the_sky_through_its_voxels() {
     let Some(ctx) = common::gpu() else { return };
@@ -259,14 +250,12 @@ fn sshgi_lights_with_the_sky_through_its_voxels() {
             "{name}: sshgi energy {:.3} FLIP {:.4}; without sky rays {:.3}; direct FLIP {:.4}",
             s.luminance_ratio, s.flip, w.luminance_ratio, d.flip
         );
-        if name == "courtyard" {
-            assert!((0.9..=1.1).contains(&s.luminance_ratio), "{name}: sshgi energy {:.3}", s.luminance_ratio);
-            assert!(s.flip < 0.5 * d.flip, "{name}: sshgi FLIP {:.4} against direct's {:.4}", s.flip, d.flip);
-        } else {
+        assert!((0.9..=1.1).contains(&s.luminance_ratio), "{name}: sshgi energy {:.3}", s.luminance_ratio);
+        assert!(s.flip < 0.5 * d.flip, "{name}: sshgi FLIP {:.4} against direct's {:.4}", s.flip, d.flip);
+        if name == "skylight" {
             assert!(
-                s.luminance_ratio > 1.5 * w.luminance_ratio,
-                "{name}: the sky adds too little: {:.3} against {:.3} without",
-                s.luminance_ratio,
+                w.luminance_ratio < 0.5,
+                "the sky alone lights the room: {:.3} without sky rays",
                 w.luminance_ratio
             );
         }

@@ -284,6 +284,14 @@ mod tests {
         }
         let expected = std::f32::consts::PI * luminance(Vec3::new(0.2, 0.4, 0.8));
         assert!((e / expected - 1.0).abs() < 0.02, "irradiance {e} against pi L = {expected}");
+        // A sky edit makes new candidates, of twice the power for twice the sky.
+        let before = key(&scene, 8192);
+        scene.desc_mut().environment.intensity = 2.0;
+        assert_ne!(before, key(&scene, 8192), "a sky edit changes the key");
+        let brighter = total_power(&emitter_points(&scene, 8192));
+        let ratio = brighter.y / total_power(&points).y;
+        assert!((ratio - 2.0).abs() < 1e-3, "twice the sky: x{ratio}");
+        scene.desc_mut().environment.intensity = 1.0;
         // A panel: its power over the sky's decides the split.
         scene.desc_mut().materials.push(crate::scene::Material {
             emissive_color: [1.0; 3],
