@@ -82,17 +82,7 @@ impl GbufferPass {
         gpu: &SceneGpu,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
-        fn color(view: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        }
+        use crate::render::targets::cleared as color;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("gbuffer pass"),
             color_attachments: &[

@@ -99,6 +99,42 @@ pub struct VplPass {
     emitters_uploaded: Option<(u64, Vec<u32>)>,
 }
 
+/// A render pipeline into the light G-buffer's four targets and its depth (`depth`: write,
+/// compare).
+fn into_light_gbuffer(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    vertex: wgpu::VertexState<'_>,
+    primitive: wgpu::PrimitiveState,
+    (depth_write, compare): (bool, wgpu::CompareFunction),
+) -> wgpu::RenderPipeline {
+    let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(layout),
+        vertex,
+        primitive,
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: wgpu::TextureFormat::Depth32Float,
+            depth_write_enabled: Some(depth_write),
+            depth_compare: Some(compare),
+            stencil: Default::default(),
+            bias: Default::default(),
+        }),
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &LIGHT_GBUFFER_FORMATS.map(target),
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
 /// The emitter tiles' pipeline (`ism_emitter_tiles.wgsl`: one triangle over each tile, into
 /// the light G-buffer's targets, leaving its depth alone) and the layout of its candidates.
 fn emitter_pipeline(
@@ -115,34 +151,15 @@ fn emitter_pipeline(
         bind_group_layouts: &[Some(view_layout), Some(&layout)],
         immediate_size: 0,
     });
-    let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
-    let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some("ism emitter tiles pipeline"),
-        layout: Some(&pl),
-        vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &[],
-        },
-        primitive: Default::default(),
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: wgpu::TextureFormat::Depth32Float,
-            depth_write_enabled: Some(false),
-            depth_compare: Some(wgpu::CompareFunction::Always),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: Default::default(),
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets: &LIGHT_GBUFFER_FORMATS.map(target),
-        }),
-        multiview_mask: None,
-        cache: None,
-    });
+    let vertex = wgpu::VertexState {
+        module: &module,
+        entry_point: Some("vs_main"),
+        compilation_options: Default::default(),
+        buffers: &[],
+    };
+    let depth = (false, wgpu::CompareFunction::Always);
+    let pipeline =
+        into_light_gbuffer(device, "ism emitter tiles pipeline", &pl, &module, vertex, Default::default(), depth);
     Ok((pipeline, layout))
 }
 
@@ -160,30 +177,12 @@ impl VplPass {
             bind_group_layouts: &[Some(&view_layout), Some(&layouts.object), Some(&layouts.material)],
             immediate_size: 0,
         });
-        let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
-        let gbuffer_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("ism light gbuffer pipeline"),
-            layout: Some(&pl),
-            vertex: Vertex::state(&module),
-            // No culling: the nearest surface wins even when the light sees its back (it then reflects nothing).
-            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: wgpu::TextureFormat::Depth32Float,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &LIGHT_GBUFFER_FORMATS.map(target),
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        // No culling: the nearest surface wins even when the light sees its back (it then reflects nothing).
+        let primitive = wgpu::PrimitiveState { cull_mode: None, ..Default::default() };
+        let depth = (true, wgpu::CompareFunction::Less);
+        let vertex = Vertex::state(&module);
+        let gbuffer_pipeline =
+            into_light_gbuffer(device, "ism light gbuffer pipeline", &pl, &module, vertex, primitive, depth);
         let c = wgpu::ShaderStages::COMPUTE;
         let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
         let pyramid_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -472,17 +471,7 @@ impl VplPass {
         gpu: &SceneGpu,
         timestamps: Option<&crate::render::timing::TimestampPair<'_>>,
     ) {
-        fn color(v: &wgpu::TextureView) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-            Some(wgpu::RenderPassColorAttachment {
-                view: v,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        }
+        use crate::render::targets::cleared as color;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("ism light gbuffer pass"),
             color_attachments: &[
