@@ -268,58 +268,14 @@ impl VplPass {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let levels = side.trailing_zeros();
-        let importance = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("ism importance pyramid"),
-            size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: 1 },
-            mip_level_count: levels + 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::R32Float,
-            usage: U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
-            view_formats: &[],
-        });
-        let mip = |m: u32| {
-            importance.create_view(&wgpu::TextureViewDescriptor {
-                label: Some("ism importance mip"),
-                base_mip_level: m,
-                mip_level_count: Some(1),
-                ..Default::default()
-            })
-        };
-        let pyramid_groups = (0..=levels)
-            .map(|m| {
-                let source = if m == 0 { power.view.clone() } else { mip(m - 1) };
-                device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("ism importance bind group"),
-                    layout: &self.pyramid_layout,
-                    entries: &[
-                        wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&source) },
-                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&mip(m)) },
-                    ],
-                })
-            })
-            .collect();
-        let importance_full = importance
-            .create_view(&wgpu::TextureViewDescriptor { label: Some("ism importance all mips"), ..Default::default() });
+        let (importance, pyramid_groups, importance_full) = self.importance_pyramid(device, side, &power);
         let vpls = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("ism vpls"),
             size: u64::from(vpl_capacity) * std::mem::size_of::<GpuVpl>() as u64,
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        let emitter_capacity = emitters.max(1).next_power_of_two();
-        let emitter_points = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ism emitter points"),
-            size: u64::from(emitter_capacity) * std::mem::size_of::<GpuEmitterPoint>() as u64,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let emitter_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ism emitter points bind group"),
-            layout: &self.emitter_layout,
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: emitter_points.as_entire_binding() }],
-        });
+        let (emitter_capacity, emitter_points, emitter_bind_group) = self.emitter_buffer(device, emitters);
         use crate::render::layouts::view_entry as view;
         let gen_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism vpl generation bind group"),
@@ -357,6 +313,70 @@ impl VplPass {
             emitter_points,
             emitter_bind_group,
         });
+    }
+
+    /// P3's importance pyramid over an atlas of `side` texels: the texture, each level's bind
+    /// group (level 0 seeded from `power`'s importance) and a view of all levels for the warp.
+    fn importance_pyramid(
+        &self,
+        device: &wgpu::Device,
+        side: u32,
+        power: &Target,
+    ) -> (wgpu::Texture, Vec<wgpu::BindGroup>, wgpu::TextureView) {
+        use wgpu::TextureUsages as U;
+        let levels = side.trailing_zeros();
+        let importance = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("ism importance pyramid"),
+            size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: 1 },
+            mip_level_count: levels + 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::R32Float,
+            usage: U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC,
+            view_formats: &[],
+        });
+        let mip = |m: u32| {
+            importance.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("ism importance mip"),
+                base_mip_level: m,
+                mip_level_count: Some(1),
+                ..Default::default()
+            })
+        };
+        let pyramid_groups = (0..=levels)
+            .map(|m| {
+                let source = if m == 0 { power.view.clone() } else { mip(m - 1) };
+                device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("ism importance bind group"),
+                    layout: &self.pyramid_layout,
+                    entries: &[
+                        wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&source) },
+                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&mip(m)) },
+                    ],
+                })
+            })
+            .collect();
+        let importance_full = importance
+            .create_view(&wgpu::TextureViewDescriptor { label: Some("ism importance all mips"), ..Default::default() });
+        (importance, pyramid_groups, importance_full)
+    }
+
+    /// The emitter candidates' buffer for `emitters` candidates (a power of two, at least one)
+    /// and the emitter tiles' bind group of it.
+    fn emitter_buffer(&self, device: &wgpu::Device, emitters: u32) -> (u32, wgpu::Buffer, wgpu::BindGroup) {
+        let emitter_capacity = emitters.max(1).next_power_of_two();
+        let emitter_points = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ism emitter points"),
+            size: u64::from(emitter_capacity) * std::mem::size_of::<GpuEmitterPoint>() as u64,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let emitter_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ism emitter points bind group"),
+            layout: &self.emitter_layout,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: emitter_points.as_entire_binding() }],
+        });
+        (emitter_capacity, emitter_points, emitter_bind_group)
     }
 
     /// Frees the targets (another mode is active); pipelines stay.
