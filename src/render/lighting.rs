@@ -74,6 +74,12 @@ impl LightingPass {
         Ok(Self { pipeline, inputs_layout, targets_layout, shadow_sampler })
     }
 
+    /// The layout of [`Self::inputs_bind_group`] (for passes that light points of their own with
+    /// the same lights and shadow maps).
+    pub fn inputs_layout(&self) -> &wgpu::BindGroupLayout {
+        &self.inputs_layout
+    }
+
     /// The bind group of lights, shadows and frame constants.
     pub fn inputs_bind_group(&self, device: &wgpu::Device, inputs: &LightingInputs<'_>) -> wgpu::BindGroup {
         device.create_bind_group(&wgpu::BindGroupDescriptor {

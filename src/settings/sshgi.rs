@@ -82,6 +82,14 @@ pub struct SshgiSettings {
     /// elsewhere counts as blocked (what lies there is unknown). Cost: linear, one voxel march
     /// per ray; nothing without a sky.
     pub sky_rays: u32,
+    /// Points of the scene's surfaces per frame that may send light where the camera's position
+    /// does not see them (0: off; 64..=16384; needs the panorama, whose list they join): the back
+    /// of a pillar, a box's far side, the floor behind it. Not in the paper. The points are drawn
+    /// by area over every surface in eight stratified sets, one a frame; the hidden ones are lit
+    /// by the view's lights and shadow maps and sent like the panorama's senders, their segments
+    /// marched through the view's voxels where they run inside the view. Cost: a pack of this
+    /// many points, and the panorama's gathers and receives share their samples with them.
+    pub hidden_senders: u32,
 }
 
 impl Default for SshgiSettings {
@@ -101,6 +109,7 @@ impl Default for SshgiSettings {
             panorama: 32,
             panorama_samples: 64,
             sky_rays: 16,
+            hidden_senders: 2048,
         }
     }
 }
@@ -108,7 +117,7 @@ impl Default for SshgiSettings {
 impl SshgiSettings {
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
-        let checks: [(&'static str, bool, String, &'static str); 11] = [
+        let checks: [(&'static str, bool, String, &'static str); 12] = [
             ("sshgi.start_level", self.start_level <= 2, self.start_level.to_string(), "0..=2"),
             ("sshgi.levels", (1..=6).contains(&self.levels), self.levels.to_string(), "1..=6"),
             ("sshgi.samples", (1..=1024).contains(&self.samples), self.samples.to_string(), "1..=1024"),
@@ -140,6 +149,12 @@ impl SshgiSettings {
                 "1..=1024",
             ),
             ("sshgi.sky_rays", self.sky_rays <= 64, self.sky_rays.to_string(), "0..=64"),
+            (
+                "sshgi.hidden_senders",
+                self.hidden_senders == 0 || (64..=16384).contains(&self.hidden_senders),
+                self.hidden_senders.to_string(),
+                "0 (off) or 64..=16384",
+            ),
             (
                 "sshgi.temporal_weight",
                 (0.0..=0.99).contains(&self.temporal_weight),

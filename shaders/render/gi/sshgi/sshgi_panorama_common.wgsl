@@ -1,8 +1,12 @@
 // What the panorama's gather and receive share (`sshgi_panorama_gather.wgsl`,
 // `sshgi_panorama_receive.wgsl`): the parameters, the sender list and the estimate of E / pi at a
-// point from the senders. The including shader binds `pg`, `senders` and `radiance`.
+// point from the senders. The list holds the panorama's 6 F^2 senders, then the hidden senders
+// (`sshgi_hidden_pack.wgsl`); a segment with a hidden sender at either end is marched through the
+// view's voxels over the part of it inside the view (`world_occluded`). The including shader binds
+// `frame`, `gp`, `senders`, `radiance` and `voxels`.
 
 #import render/gi/sshgi/sshgi_hash.wgsl
+#import render/gi/sshgi/sshgi_visibility.wgsl
 
 struct PanoramaParams {
     // senders in the list S, samples N, frame seed, face size F.
@@ -13,6 +17,10 @@ struct PanoramaParams {
     geo: vec4<f32>,
     // xyz the camera's forward axis, w unused.
     forward: vec4<f32>,
+    // Voxel slices: near, far (view depth, m), slices per metre, visibility on (1) or off (0).
+    vox: vec4<f32>,
+    // Voxel columns marched: width, view pixels per column, height, unused.
+    grid: vec4<u32>,
 }
 
 struct Sender {
@@ -44,21 +52,85 @@ fn disc_form_factor(v: vec3<f32>, nx: vec3<f32>, ns: vec3<f32>, ds: f32) -> f32 
     return r2_disc * cos_r / (d2 + r2_disc);
 }
 
+// The list index of the first hidden sender: after the panorama's six faces of F^2.
+fn hidden_from() -> u32 {
+    return 6u * gp.counts.w * gp.counts.w;
+}
+
+// The view pixel (pixels) of a clip-space point.
+fn clip_to_pixel(c: vec4<f32>) -> vec2<f32> {
+    let ndc = c.xy / c.w;
+    return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.size.xy;
+}
+
+// Whether the segment from x to y passes through a solid voxel of the view: the part of it inside
+// the view's frustum (clip space is linear along it) is marched (`voxel_occluded`); what lies
+// outside the view is taken as free. Off without visibility.
+fn world_occluded(x: vec3<f32>, y: vec3<f32>) -> bool {
+    if gp.vox.w < 0.5 {
+        return false;
+    }
+    let c0 = frame.clip_from_world * vec4<f32>(x, 1.0);
+    let dc = frame.clip_from_world * vec4<f32>(y, 1.0) - c0;
+    let near = max(gp.vox.x, 0.01 * gp.vox.y);
+    var t0 = 0.0;
+    var t1 = 1.0;
+    // The four side planes (w +- x >= 0, w +- y >= 0) and the voxels' near end (w >= near).
+    for (var i = 0; i < 5; i = i + 1) {
+        var a = c0.w - near;
+        var b = dc.w;
+        if i < 4 {
+            let s = select(-1.0, 1.0, (i & 1) == 0);
+            a = c0.w + s * c0[i >> 1];
+            b = dc.w + s * dc[i >> 1];
+        }
+        if b > 0.0 {
+            t0 = max(t0, -a / b);
+        } else if b < 0.0 {
+            t1 = min(t1, -a / b);
+        } else if a < 0.0 {
+            return false;
+        }
+    }
+    if t1 <= t0 {
+        return false;
+    }
+    let ca = c0 + dc * t0;
+    let cb = c0 + dc * t1;
+    return voxel_occluded(clip_to_pixel(ca), clip_to_pixel(cb), ca.w, cb.w);
+}
+
+// A hidden point moved off its surface by two voxel slices along its normal, for the march: a
+// point behind its own object (a box's far side) lies in the slice of the object's back, and its
+// segment, moved a slice towards the camera by `voxel_occluded`, would start inside the object.
+fn off_surface(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return p + n * (2.0 / max(gp.vox.z, 1.0e-6));
+}
+
 // E / pi at x (normal nx) from N senders picked one per stratum of the list (jittered by
-// `jitter`), each weighted by the list's size over N: an unbiased estimate over frames.
-fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32) -> vec3<f32> {
-    let count = pg.counts.x;
-    let n = pg.counts.y;
+// `jitter`), each weighted by the list's size over N: an unbiased estimate over frames. With
+// `march`, every sender's segment is marched; otherwise only a hidden sender's.
+fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3<f32> {
+    let count = gp.counts.x;
+    let n = gp.counts.y;
     if count == 0u || n == 0u {
         return vec3<f32>(0.0);
     }
     let stratum = f32(count) / f32(n);
+    // A marching receiver is a hidden sender itself.
+    let xm = select(x, off_surface(x, nx), march);
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < n; i = i + 1u) {
         let pick = min(u32((f32(i) + fract(jitter + f32(i) * 0.618034)) * stratum), count - 1u);
         let s = senders[pick];
-        if s.point.w > 0.0 {
-            sum = sum + radiance[pick].rgb * disc_form_factor(s.point.xyz - x, nx, s.normal.xyz, s.point.w);
+        if s.point.w <= 0.0 {
+            continue;
+        }
+        let ff = disc_form_factor(s.point.xyz - x, nx, s.normal.xyz, s.point.w);
+        let hidden = pick >= hidden_from();
+        let y = select(s.point.xyz, off_surface(s.point.xyz, s.normal.xyz), hidden);
+        if ff > 0.0 && !((march || hidden) && world_occluded(xm, y)) {
+            sum = sum + radiance[pick].rgb * ff;
         }
     }
     return sum * stratum;

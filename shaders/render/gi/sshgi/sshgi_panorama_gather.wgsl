@@ -4,15 +4,17 @@
 // one per stratum of the sender list with a per-pixel and per-frame jitter, each with the same
 // bounded disc form factor as the screen's gathers (Eq. 4, R^2 = cos(theta') ds / pi), weighted
 // by the list's size over N: an unbiased estimate of the panorama's E / pi, averaged over frames
-// by the temporal filter. No visibility: the view's voxels do not reach off screen, so light
-// passes through whatever lies between the receiver and a panorama sender.
+// by the temporal filter. No visibility for the panorama's senders: the view's voxels do not reach
+// off screen, so light passes through whatever lies between the receiver and a panorama sender.
+// The hidden senders after them in the list (`sshgi_hidden_pack.wgsl`) are marched through the
+// voxels over the part of their segment inside the view.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 
 #import render/gi/sshgi/sshgi_panorama_common.wgsl
 
 @group(0) @binding(0) var<uniform> frame: Frame;
-@group(0) @binding(1) var<uniform> pg: PanoramaParams;
+@group(0) @binding(1) var<uniform> gp: PanoramaParams;
 // The depth/normal pyramid's start level.
 @group(0) @binding(2) var geometry: texture_2d<f32>;
 // The screen's first bounce (E / pi) at the start level.
@@ -21,6 +23,8 @@
 @group(0) @binding(5) var<storage, read> senders: array<Sender>;
 // The senders' outgoing radiance of this bounce.
 @group(0) @binding(6) var<storage, read> radiance: array<vec4<f32>>;
+// The voxel columns marched (as the screen's gathers').
+@group(0) @binding(7) var<storage, read> voxels: array<vec4<u32>>;
 
 @compute @workgroup_size(8, 8, 1)
 fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -30,14 +34,14 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let screen = textureLoad(base, id.xy, 0);
     let g = textureLoad(geometry, id.xy, 0);
-    let count = pg.counts.x;
-    let n = pg.counts.y;
+    let count = gp.counts.x;
+    let n = gp.counts.y;
     if g.a < 0.5 || count == 0u || n == 0u {
         textureStore(dest, id.xy, screen);
         return;
     }
     let x = pyramid_point(frame, g);
     let nx = oct_decode(g.gb);
-    let sum = gather_senders(x, nx, hash01(id.x, id.y, pg.counts.z));
+    let sum = gather_senders(x, nx, hash01(id.x, id.y, gp.counts.z), false);
     textureStore(dest, id.xy, vec4<f32>(screen.rgb + sum, screen.a));
 }

@@ -32,6 +32,9 @@ struct Sender {
 // The senders' outgoing radiance of the first bounce (rgb).
 @group(0) @binding(7) var<storage, read_write> radiance: array<vec4<f32>>;
 @group(0) @binding(8) var face_albedo: texture_2d<f32>;
+// Every face texel's distance to its surface (1e30 where it sees none): what the camera sees
+// around it, for the hidden senders' test (`sshgi_hidden_pack.wgsl`).
+@group(0) @binding(9) var<storage, read_write> distances: array<f32>;
 
 // Whether the view shows the point p: whether it lies inside the view's frustum. The faces are
 // rendered from the view's own centre of projection, so what a face sees inside that frustum is
@@ -56,9 +59,11 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
     var sender = Sender(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
     var light = vec4<f32>(0.0);
     let p = position_at(face_frame, face_depth, id.xy);
+    distances[index] = 1.0e30;
     if p.w > 0.5 {
         let cam = face_frame.camera_position.xyz;
         let dist = distance(p.xyz, cam);
+        distances[index] = dist;
         let n = oct_decode(textureLoad(face_normal, id.xy, 0).zw);
         let dir = (p.xyz - cam) / max(dist, 1.0e-20);
         if !on_screen(p.xyz) && dot(n, -dir) > 0.0 {

@@ -3,13 +3,15 @@
 // bounce's senders on screen (N start-level texels, one per stratum, each with the texel area of
 // the screen gathers' Eq. 2) and in the panorama (N senders, `gather_senders`). So light that
 // leaves the screen, lights a surface off screen and comes back reaches the view in the later
-// bounces. No visibility.
+// bounces. No visibility between the panorama's senders and the screen; a hidden sender
+// (`sshgi_hidden_pack.wgsl`) marches each segment through the view's voxels over the part of it
+// inside the view.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import render/gi/sshgi/sshgi_panorama_common.wgsl
 
 @group(0) @binding(0) var<uniform> frame: Frame;
-@group(0) @binding(1) var<uniform> pg: PanoramaParams;
+@group(0) @binding(1) var<uniform> gp: PanoramaParams;
 // The depth/normal pyramid's start level.
 @group(0) @binding(2) var geometry: texture_2d<f32>;
 // The screen senders' outgoing radiance of this bounce, at the start level.
@@ -19,12 +21,15 @@
 @group(0) @binding(5) var<storage, read> radiance: array<vec4<f32>>;
 // Their outgoing radiance of the next bounce.
 @group(0) @binding(6) var<storage, read_write> next: array<vec4<f32>>;
+// The voxel columns marched (as the screen's gathers').
+@group(0) @binding(7) var<storage, read> voxels: array<vec4<u32>>;
 
-// E / pi at x (normal nx) from N start-level texels of the screen, one per stratum.
-fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32) -> vec3<f32> {
-    let w = pg.screen.x;
-    let count = w * pg.screen.y;
-    let n = pg.counts.y;
+// E / pi at x (normal nx) from N start-level texels of the screen, one per stratum (with
+// `march`, each segment marched through the view's voxels).
+fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3<f32> {
+    let w = gp.screen.x;
+    let count = w * gp.screen.y;
+    let n = gp.counts.y;
     let stratum = f32(count) / f32(n);
     let cam = frame.camera_position.xyz;
     var sum = vec3<f32>(0.0);
@@ -38,27 +43,32 @@ fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32) -> vec3<f32> {
         let y = pyramid_point(frame, g);
         let ny = oct_decode(g.gb);
         let dir_y = (y - cam) / max(g.r, 1.0e-20);
-        let cos_a = max(dot(dir_y, pg.forward.xyz), 0.0);
+        let cos_a = max(dot(dir_y, gp.forward.xyz), 0.0);
         let cos_b = max(dot(ny, -dir_y), 0.05);
-        let ds = pg.geo.x * cos_a * cos_a * cos_a * g.r * g.r / cos_b;
-        sum = sum + textureLoad(illumination, t, 0).rgb * disc_form_factor(y - x, nx, ny, ds);
+        let ds = gp.geo.x * cos_a * cos_a * cos_a * g.r * g.r / cos_b;
+        let ff = disc_form_factor(y - x, nx, ny, ds);
+        if ff > 0.0 && !(march && world_occluded(off_surface(x, nx), y)) {
+            sum = sum + textureLoad(illumination, t, 0).rgb * ff;
+        }
     }
     return sum * stratum;
 }
 
 @compute @workgroup_size(8, 8, 1)
 fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
-    let f = pg.counts.w;
-    if id.x >= f || id.y >= 6u * f {
+    let f = gp.counts.w;
+    let index = id.y * f + id.x;
+    if id.x >= f || index >= gp.counts.x {
         return;
     }
-    let index = id.y * f + id.x;
     let s = senders[index];
     if s.point.w <= 0.0 {
         next[index] = vec4<f32>(0.0);
         return;
     }
-    let jitter = hash01(id.x, id.y, pg.counts.z ^ 0x68bc21ebu);
-    let e = gather_screen(s.point.xyz, s.normal.xyz, jitter) + gather_senders(s.point.xyz, s.normal.xyz, fract(jitter + 0.5));
+    let jitter = hash01(id.x, id.y, gp.counts.z ^ 0x68bc21ebu);
+    let hidden = index >= hidden_from();
+    let e = gather_screen(s.point.xyz, s.normal.xyz, jitter, hidden)
+        + gather_senders(s.point.xyz, s.normal.xyz, fract(jitter + 0.5), hidden);
     next[index] = vec4<f32>(s.albedo.rgb * e, 0.0);
 }

@@ -22,7 +22,8 @@
 #import render/gi/sshgi/sshgi_hash.wgsl
 
 struct SkyRayParams {
-    // rays per texel (and sender), frame seed, panorama face size F (0: no senders), unused.
+    // rays per texel (and sender), frame seed, panorama face size F (0: no senders), senders in
+    // the list (the panorama's and the hidden ones).
     counts: vec4<u32>,
     // xyz the camera's forward axis, w unused.
     forward: vec4<f32>,
@@ -202,20 +203,28 @@ fn sky_light(@builtin(global_invocation_id) id: vec3<u32>) {
     textureStore(dest, t, vec4<f32>(e, 1.0));
 }
 
-// The panorama's senders (F x 6F, one per thread): their first radiance gains albedo x E / pi.
+// Whether the view's frustum holds p (a hidden sender behind what the camera sees).
+fn in_view(p: vec3<f32>) -> bool {
+    let c = frame.clip_from_world * vec4<f32>(p, 1.0);
+    return c.w > 0.0 && all(abs(c.xy) <= vec2<f32>(c.w));
+}
+
+// The panorama's and the hidden senders (F per row, one per thread): their first radiance gains
+// albedo x E / pi. A hidden sender inside the view skips its own columns, as a point on screen.
 @compute @workgroup_size(8, 8, 1)
 fn sender_sky(@builtin(global_invocation_id) id: vec3<u32>) {
     let f = gp.counts.z;
-    if id.x >= f || id.y >= 6u * f {
+    let index = id.y * f + id.x;
+    if id.x >= f || index >= gp.counts.w {
         return;
     }
-    let index = id.y * f + id.x;
     let s = senders[index];
     if s.point.w <= 0.0 {
         return;
     }
     let rotation = 2.0 * SKY_PI * hash01(id.x, id.y, gp.counts.y ^ 0x27d4eb2fu);
     let jitter = hash01(id.y, id.x, gp.counts.y ^ 0x165667b1u);
-    let e = sky_irradiance(s.point.xyz, s.normal.xyz, max(gp.counts.x, 1u), rotation, jitter, 0);
+    let skip = select(0, 2, in_view(s.point.xyz));
+    let e = sky_irradiance(s.point.xyz, s.normal.xyz, max(gp.counts.x, 1u), rotation, jitter, skip);
     sender_radiance[index] = sender_radiance[index] + vec4<f32>(s.albedo.rgb * e, 0.0);
 }

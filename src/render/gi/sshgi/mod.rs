@@ -1,8 +1,10 @@
 //! `sshgi`: screen-space hierarchical indirect light (Soler, Hoel, Rochet and Holzschuch 2010). A purely deferred technique: its cost does
 //! not depend on the scene's geometry or lights, every light type feeds it through the direct
 //! term, and it adds several bounces, but in the paper only surfaces on screen send light; the
-//! panorama ([`panorama`], not in the paper) adds the surfaces around the camera off screen.
+//! panorama ([`panorama`], not in the paper) adds the surfaces around the camera off screen, and
+//! the hidden senders ([`hidden`], not in the paper) those the camera's position does not see.
 
+pub mod hidden;
 pub mod oracle;
 pub mod panorama;
 pub mod passes;
@@ -13,6 +15,7 @@ pub mod voxels;
 /// This technique's entry shaders (its registry row lists them).
 pub const SHADERS: &[&str] = &[
     "render/gi/sshgi/sshgi_gather.wgsl",
+    "render/gi/sshgi/sshgi_hidden_pack.wgsl",
     "render/gi/sshgi/sshgi_mip.wgsl",
     "render/gi/sshgi/sshgi_panorama_gather.wgsl",
     "render/gi/sshgi/sshgi_panorama_pack.wgsl",
@@ -39,4 +42,6 @@ pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/gi/sshgi/sshgi_panorama_gather.wgsl", "PanoramaParams", size_of::<panorama::PanoramaParams>()),
     ("render/gi/sshgi/sshgi_panorama_receive.wgsl", "PanoramaParams", size_of::<panorama::PanoramaParams>()),
     ("render/gi/sshgi/sshgi_sky.wgsl", "SkyRayParams", size_of::<passes::SkyRayParams>()),
+    ("render/gi/sshgi/sshgi_hidden_pack.wgsl", "HiddenParams", size_of::<hidden::HiddenParams>()),
+    ("render/gi/sshgi/sshgi_hidden_pack.wgsl", "Surfel", size_of::<hidden::GpuSurfel>()),
 ];

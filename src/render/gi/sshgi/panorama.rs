@@ -11,11 +11,14 @@
 //! leaves the view, lights a wall behind the camera and comes back is carried too.
 //!
 //! It reaches surfaces beside and behind the camera but not those hidden from the camera's
-//! position (the back of a pillar), and has no visibility: light passes through whatever lies
-//! between a receiver and a panorama sender.
+//! position (the back of a pillar: [`super::hidden`] adds those after the panorama's in the same
+//! list), and has no visibility: light passes through whatever lies between a receiver and a
+//! panorama sender.
 
 use bytemuck::{Pod, Zeroable};
-use glam::{Quat, Vec3};
+use glam::{Mat4, Quat, Vec3};
+
+use super::hidden::{HiddenSenders, PanoramaLists};
 
 use crate::render::gbuffer::GbufferPass;
 use crate::render::gi::inputs::GiInputs;
@@ -58,20 +61,27 @@ pub struct PanoramaParams {
     pub geo: [f32; 4],
     /// The camera's forward axis, unused.
     pub forward: [f32; 4],
+    /// Voxel slices: near, far, slices per metre, on (the hidden senders' visibility).
+    pub vox: [f32; 4],
+    /// Voxel columns: width, view pixels per column, height, unused.
+    pub grid: [u32; 4],
 }
 
 /// What the panorama hands `sshgi`'s steps: the sender list, the ping-pong radiance buffers
-/// (the first holds the first bounce's after the pack) and the face size.
+/// (the first holds the first bounce's after the pack), the face size and the hidden senders
+/// after the faces' in the list.
 #[derive(Clone, Copy)]
 pub struct Senders<'a> {
     pub list: &'a wgpu::Buffer,
     pub radiance: [&'a wgpu::Buffer; 2],
     /// The face size F.
     pub face: u32,
+    /// Hidden senders after the faces' 6 F^2 ([`super::hidden`]; 0: none).
+    pub hidden: u32,
 }
 
 const _: () = assert!(std::mem::size_of::<PackParams>() == 16);
-const _: () = assert!(std::mem::size_of::<PanoramaParams>() == 64);
+const _: () = assert!(std::mem::size_of::<PanoramaParams>() == 96);
 
 /// One cube face: its G-buffer and direct light, camera constants and bind groups.
 struct Face {
@@ -95,7 +105,11 @@ struct GroupKey {
 /// The faces of one size and the sender list.
 struct Faces {
     size: u32,
+    /// Hidden senders in the list after the faces'.
+    hidden: u32,
     faces: Vec<Face>,
+    /// Each face texel's distance to its surface (the hidden senders' test).
+    distances: wgpu::Buffer,
     senders: wgpu::Buffer,
     radiance: [wgpu::Buffer; 2],
     /// Per face: the lighting inputs' and the pack's bind groups, for the inputs they name.
@@ -112,13 +126,14 @@ pub struct Panorama {
     sky: crate::render::sky::SkyGpu,
     pack_layout: wgpu::BindGroupLayout,
     pack: wgpu::ComputePipeline,
+    hidden: HiddenSenders,
     faces: Option<Faces>,
 }
 
 impl Senders<'_> {
-    /// Senders in the list: six faces of F^2.
+    /// Senders in the list: six faces of F^2, then the hidden ones.
     pub fn count(&self) -> u32 {
-        FACES.len() as u32 * self.face * self.face
+        FACES.len() as u32 * self.face * self.face + self.hidden
     }
 }
 
@@ -139,13 +154,16 @@ impl Panorama {
                 storage_rw_entry(6),
                 storage_rw_entry(7),
                 texture_entry(8, c, float),
+                storage_rw_entry(9),
             ],
         });
         let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_pack.wgsl")?;
+        let lighting = LightingPass::new(device)?;
         Ok(Self {
             gbuffer: GbufferPass::new(device, layouts)?,
             emission: crate::render::emission::EmissionPass::new(device, layouts)?,
-            lighting: LightingPass::new(device)?,
+            hidden: HiddenSenders::new(device, &lighting)?,
+            lighting,
             sky: crate::render::sky::SkyGpu::new(device),
             pack: compute_pipeline(device, "sshgi panorama pack", &pack_layout, &module, "pack"),
             pack_layout,
@@ -153,13 +171,17 @@ impl Panorama {
         })
     }
 
-    /// Renders, lights and packs the faces (`size` texels a side); returns the senders.
-    pub fn record(&mut self, inputs: &mut GiInputs<'_>, size: u32) -> Option<Senders<'_>> {
-        self.ensure(inputs.device, inputs.layouts, size);
-        let Self { gbuffer, emission, lighting, sky, pack_layout, pack, faces } = self;
+    /// Renders, lights and packs the faces (`size` texels a side) and `hidden` hidden senders
+    /// ([`super::hidden`]); returns the senders.
+    pub fn record(&mut self, inputs: &mut GiInputs<'_>, size: u32, hidden: u32) -> Option<Senders<'_>> {
+        self.ensure(inputs.device, inputs.layouts, size, hidden);
+        if hidden == 0 {
+            self.hidden.release();
+        }
+        let Self { gbuffer, emission, lighting, sky, pack_layout, pack, hidden: hidden_pass, faces } = self;
         let faces = faces.as_mut()?;
         let turn = frame_rotation(inputs.frame_index);
-        write_frames(inputs.queue, faces, inputs.frame, inputs.scene.camera(), turn);
+        let matrices = write_frames(inputs.queue, faces, inputs.frame, inputs.scene.camera(), turn);
         let key = GroupKey {
             lights: inputs.lights.buffer.clone(),
             shadow_views: inputs.lights.shadow_views.clone(),
@@ -178,7 +200,7 @@ impl Panorama {
                         inputs.device,
                         f,
                         &key,
-                        (&faces.senders, &faces.radiance[0]),
+                        [&faces.senders, &faces.radiance[0], &faces.distances],
                     )
                 })
                 .collect();
@@ -216,17 +238,28 @@ impl Panorama {
             pass.dispatch_workgroups(size.div_ceil(TILE), size.div_ceil(TILE), 1);
         }
         drop(pass);
+        if hidden > 0 {
+            let lists = PanoramaLists {
+                distances: &faces.distances,
+                senders: &faces.senders,
+                radiance: &faces.radiance[0],
+                faces: matrices,
+                face: size,
+            };
+            hidden_pass.record(inputs, hidden, lighting, sky, &lists);
+        }
         let [first, second] = &faces.radiance;
-        Some(Senders { list: &faces.senders, radiance: [first, second], face: size })
+        Some(Senders { list: &faces.senders, radiance: [first, second], face: size, hidden })
     }
 
-    /// Creates the faces when their size changes.
-    fn ensure(&mut self, device: &wgpu::Device, layouts: &Layouts, size: u32) {
-        if self.faces.as_ref().is_some_and(|f| f.size == size) {
+    /// Creates the faces and the list when their size or the hidden senders' count changes.
+    fn ensure(&mut self, device: &wgpu::Device, layouts: &Layouts, size: u32, hidden: u32) {
+        if self.faces.as_ref().is_some_and(|f| f.size == size && f.hidden == hidden) {
             return;
         }
         let faces = (0..FACES.len() as u32).map(|i| self.face(device, layouts, i, size)).collect();
-        let count = FACES.len() as u64 * u64::from(size * size);
+        let texels = FACES.len() as u64 * u64::from(size * size);
+        let count = texels + u64::from(hidden);
         let buffer = |label: &str, bytes: u64| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -238,7 +271,13 @@ impl Panorama {
         let senders = buffer("sshgi panorama senders", SENDER_BYTES);
         let radiance =
             [buffer("sshgi panorama radiance", RADIANCE_BYTES), buffer("sshgi panorama radiance", RADIANCE_BYTES)];
-        self.faces = Some(Faces { size, faces, senders, radiance, groups: None });
+        let distances = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sshgi panorama distances"),
+            size: texels * 4,
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
+        self.faces = Some(Faces { size, hidden, faces, distances, senders, radiance, groups: None });
     }
 
     /// Face `index`'s targets, constants and fixed bind groups.
@@ -265,9 +304,10 @@ impl Panorama {
         Face { targets, frame, frame_group, lighting_targets, params }
     }
 
-    /// Frees the faces.
+    /// Frees the faces and the hidden senders.
     pub fn release(&mut self) {
         self.faces = None;
+        self.hidden.release();
     }
 
     /// Bytes of the faces' targets and the sender list.
@@ -275,7 +315,8 @@ impl Panorama {
         let Some(f) = &self.faces else { return 0 };
         let targets: u64 =
             f.faces.iter().flat_map(|face| face.targets.all()).map(|target| texture_bytes(&target.texture)).sum();
-        targets + f.senders.size() + f.radiance.iter().map(wgpu::Buffer::size).sum::<u64>()
+        let lists = f.senders.size() + f.distances.size() + f.radiance.iter().map(wgpu::Buffer::size).sum::<u64>();
+        targets + lists + self.hidden.gpu_bytes()
     }
 }
 
@@ -287,7 +328,7 @@ fn face_groups(
     device: &wgpu::Device,
     face: &Face,
     key: &GroupKey,
-    (senders, radiance): (&wgpu::Buffer, &wgpu::Buffer),
+    [senders, radiance, distances]: [&wgpu::Buffer; 3],
 ) -> (wgpu::BindGroup, wgpu::BindGroup) {
     let lighting = lighting.inputs_bind_group(
         device,
@@ -313,6 +354,7 @@ fn face_groups(
             wgpu::BindGroupEntry { binding: 6, resource: senders.as_entire_binding() },
             wgpu::BindGroupEntry { binding: 7, resource: radiance.as_entire_binding() },
             view(8, &face.targets.albedo.view),
+            wgpu::BindGroupEntry { binding: 9, resource: distances.as_entire_binding() },
         ],
     });
     (lighting, pack)
@@ -333,10 +375,12 @@ fn frame_rotation(index: u32) -> Quat {
 }
 
 /// Each face's frame constants: the view's, from the camera's position along the face's axis
-/// (the cube turned by `turn`) with a 90-degree square frustum.
-fn write_frames(queue: &wgpu::Queue, faces: &Faces, view: &FrameUniforms, camera: &Camera, turn: Quat) {
+/// (the cube turned by `turn`) with a 90-degree square frustum. Returns each face's
+/// clip_from_world.
+fn write_frames(queue: &wgpu::Queue, faces: &Faces, view: &FrameUniforms, camera: &Camera, turn: Quat) -> [Mat4; 6] {
     let size = faces.size as f32;
-    for (face, forward) in faces.faces.iter().zip(FACES) {
+    let mut matrices = [Mat4::IDENTITY; 6];
+    for ((face, forward), out) in faces.faces.iter().zip(FACES).zip(&mut matrices) {
         let rotation = turn * rotation_looking(forward);
         let cube = Camera { rotation, yfov: std::f32::consts::FRAC_PI_2, ..*camera };
         let clip_from_world = cube.clip_from_view(1.0) * cube.view_from_world();
@@ -348,26 +392,29 @@ fn write_frames(queue: &wgpu::Queue, faces: &Faces, view: &FrameUniforms, camera
             ..*view
         };
         queue.write_buffer(&face.frame, 0, bytemuck::bytes_of(&frame));
+        *out = clip_from_world;
     }
+    matrices
 }
 
 /// The gather's bind group layout and pipeline (dispatched among `sshgi`'s steps,
 /// [`super::passes`]): the view's frame constants, its parameters (a dynamic slot of the
 /// steps' parameter buffer), the start level's geometry, the screen's bounce, the output, the
-/// sender list and the senders' radiance of the bounce.
+/// sender list, the senders' radiance of the bounce and the voxel columns (the hidden
+/// senders' visibility).
 pub fn gather_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
     let c = wgpu::ShaderStages::COMPUTE;
-    let rest = [storage_texture_entry(4, formats::HDR), storage_entry(5, c), storage_entry(6, c)];
+    let rest = [storage_texture_entry(4, formats::HDR), storage_entry(5, c), storage_entry(6, c), storage_entry(7, c)];
     step_pipeline(device, "sshgi panorama gather", "render/gi/sshgi/sshgi_panorama_gather.wgsl", "gather", &rest)
 }
 
 /// The receive's bind group layout and pipeline (dispatched among `sshgi`'s steps after each
 /// bounce but the last): the view's frame constants, the parameter slot, the start level's
 /// geometry and this bounce's screen radiance, the sender list, this bounce's and the next
-/// bounce's sender radiance.
+/// bounce's sender radiance, and the voxel columns.
 pub fn receive_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
     let c = wgpu::ShaderStages::COMPUTE;
-    let rest = [storage_entry(4, c), storage_entry(5, c), storage_rw_entry(6)];
+    let rest = [storage_entry(4, c), storage_entry(5, c), storage_rw_entry(6), storage_entry(7, c)];
     step_pipeline(device, "sshgi panorama receive", "render/gi/sshgi/sshgi_panorama_receive.wgsl", "receive", &rest)
 }
 

@@ -198,7 +198,7 @@ impl GiTechnique for SshgiTechnique {
         let visibility =
             range.and_then(|range| Some(Visibility { columns: self.voxels.level(level as usize)?, range, level }));
         let panorama = if settings.panorama > 0 {
-            self.panorama.record(inputs, settings.panorama)
+            self.panorama.record(inputs, settings.panorama, settings.hidden_senders)
         } else {
             self.panorama.release();
             None
@@ -312,8 +312,10 @@ impl GiTechnique for SshgiTechnique {
 
     fn limitations(&self, scene: &Scene, settings: &RenderSettings) -> Vec<String> {
         let emissive = scene.materials().iter().any(crate::scene::Material::emits);
-        let senders = if settings.sshgi.panorama > 0 {
-            "surfaces hidden from the camera's position send no indirect light; those off screen send it through the panorama, without indirect shadows"
+        let senders = if settings.sshgi.panorama > 0 && settings.sshgi.hidden_senders > 0 {
+            "surfaces off screen send indirect light through the panorama, those hidden from the camera's position through a set of points on every surface: neither casts indirect shadows off screen, and a point set is coarser than the screen"
+        } else if settings.sshgi.panorama > 0 {
+            "surfaces hidden from the camera's position send no indirect light (the hidden senders setting adds them); those off screen send it through the panorama, without indirect shadows"
         } else {
             "only surfaces on screen send indirect light: off-screen and hidden senders are missing (the panorama setting adds those off screen)"
         };

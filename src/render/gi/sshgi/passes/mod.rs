@@ -247,8 +247,8 @@ struct Inputs {
     out: wgpu::TextureView,
     voxels: wgpu::Buffer,
     frame: wgpu::Buffer,
-    /// The panorama's sender list, radiance buffers and face size.
-    senders: Option<([wgpu::Buffer; 3], u32)>,
+    /// The panorama's sender list, radiance buffers, face size and senders in the list.
+    senders: Option<([wgpu::Buffer; 3], u32, u32)>,
     /// The sky's image and uniforms (the sky pass).
     sky: Option<(wgpu::TextureView, wgpu::Buffer)>,
 }
@@ -449,7 +449,8 @@ impl SshgiPasses {
             out: out.view.clone(),
             voxels: visibility.map_or(&self.no_voxels, |v| v.columns).clone(),
             frame: inputs.frame_buffer.clone(),
-            senders: panorama.map(|p| ([p.list.clone(), p.radiance[0].clone(), p.radiance[1].clone()], p.face)),
+            senders: panorama
+                .map(|p| ([p.list.clone(), p.radiance[0].clone(), p.radiance[1].clone()], p.face, p.count())),
             sky: sky.map(|s| (s.view.clone(), s.buffer.clone())),
         };
         if self.steps.as_ref().is_none_or(|(k, _)| *k != key) {
@@ -553,6 +554,10 @@ impl SshgiPasses {
                 screen: [start_size.0, start_size.1, 0, 0],
                 geo: [pixel_sr * (1u32 << (2 * plan.start)) as f32, 0.0, 0.0, 0.0],
                 forward: [forward.x, forward.y, forward.z, 0.0],
+                // The hidden senders' segments are marched in every bounce: they lie behind
+                // something by definition, so without it each would light through it.
+                vox,
+                grid,
             };
             put(panorama_slot(plan, b as usize), bytemuck::bytes_of(&p));
         }
@@ -561,7 +566,7 @@ impl SshgiPasses {
                 settings.sky_rays,
                 inputs.frame_index.wrapping_mul(0x2545_f491),
                 if plan.panorama { face } else { 0 },
-                0,
+                if plan.panorama { senders } else { 0 },
             ],
             forward: [forward.x, forward.y, forward.z, 0.0],
             vox,

@@ -161,7 +161,7 @@ impl<'a> StepBuilder<'a> {
         });
         self.step("sshgi sky".to_owned(), Pipe::Sky, group, sky_slot(s.plan), sky);
         // The panorama's senders off screen: their first radiance gains the sky's light.
-        let Some(([list, first, _], side)) = &key.senders else { return };
+        let Some(([list, first, _], side, count)) = &key.senders else { return };
         let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("sshgi sender sky bind group"),
             layout: &self.passes.sender_sky_layout,
@@ -181,7 +181,7 @@ impl<'a> StepBuilder<'a> {
             pipeline: Pipe::SenderSky,
             group,
             slot,
-            size: (*side, 6 * side),
+            size: (*side, count.div_ceil(*side)),
         });
     }
 
@@ -290,7 +290,7 @@ impl<'a> StepBuilder<'a> {
     /// ([`super::super::panorama`]).
     pub(super) fn panorama(&mut self, b: usize) {
         let (s, key) = (self.s, self.key);
-        let (Some(screen), Some(([list, first, second], side))) = (s.screen_bounce.get(b), &key.senders) else {
+        let (Some(screen), Some(([list, first, second], side, count))) = (s.screen_bounce.get(b), &key.senders) else {
             return;
         };
         let (radiance, next) = if b.is_multiple_of(2) { (first, second) } else { (second, first) };
@@ -304,12 +304,13 @@ impl<'a> StepBuilder<'a> {
             layout: &self.passes.panorama_layout,
             entries: &[
                 buffer(0, &key.frame),
-                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(64) },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(96) },
                 texture(2, self.geo(0)),
                 texture(3, &screen.view),
                 texture(4, &dest.view),
                 buffer(5, list),
                 buffer(6, radiance),
+                buffer(7, &key.voxels),
             ],
         });
         self.step(self.pass(b, "sshgi panorama gather"), Pipe::Panorama, group, slot, dest);
@@ -321,15 +322,17 @@ impl<'a> StepBuilder<'a> {
             layout: &self.passes.receive_layout,
             entries: &[
                 buffer(0, &key.frame),
-                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(64) },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(96) },
                 texture(2, self.geo(0)),
                 texture(3, &s.illumination[0].view),
                 buffer(4, list),
                 buffer(5, radiance),
                 buffer(6, next),
+                buffer(7, &key.voxels),
             ],
         });
         let pass = self.pass(b, "sshgi panorama receive");
-        self.steps.push(Step { pass, pipeline: Pipe::Receive, group, slot, size: (*side, 6 * side) });
+        let size = (*side, count.div_ceil(*side));
+        self.steps.push(Step { pass, pipeline: Pipe::Receive, group, slot, size });
     }
 }

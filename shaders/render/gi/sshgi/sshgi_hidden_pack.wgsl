@@ -1,0 +1,115 @@
+// sshgi hidden senders, pack (an extension of Soler et al. 2010, not in the paper): points spread
+// over the scene's surfaces by area (`precompute::sample_points`, one stratified block of them a
+// frame) that the camera's position does not see become senders after the panorama's: the back
+// of a pillar, a box's far side, the floor behind it. A point is hidden when it lies farther from
+// the camera than every one of the 2x2 panorama texels around its direction (by `hp.tolerance.x`
+// of their distance): the panorama and the screen, both seen from the camera, send what it sees,
+// and a point at a silhouette is left to them (no light counted twice). A hidden point's first
+// radiance is its diffuse direct light (the view's lights and shadow maps, the lighting pass's own
+// functions) plus its emission; its area is its share of its object's surface.
+#import common/frame.wgsl
+#import common/lights.wgsl
+
+struct HiddenParams {
+    // Each panorama face's clip_from_world (the cube turned this frame).
+    faces: array<mat4x4<f32>, 6>,
+    // points this frame, the first point of this frame's block, the list index of the first
+    // hidden sender (6 F^2), face size F.
+    counts: vec4<u32>,
+    // x: relative depth tolerance, yzw unused.
+    tolerance: vec4<f32>,
+}
+
+// One point of the scene (`hidden.rs`, `GpuSurfel`).
+struct Surfel {
+    // xyz the point, w the area it stands for (m^2; 0: none).
+    point: vec4<f32>,
+    // xyz geometric normal (front), w unused.
+    normal: vec4<f32>,
+    // rgb albedo, a unused.
+    albedo: vec4<f32>,
+    // rgb emitted radiance (W / (sr m^2)), a unused.
+    emission: vec4<f32>,
+}
+
+struct Sender {
+    point: vec4<f32>,
+    normal: vec4<f32>,
+    albedo: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> hp: HiddenParams;
+@group(0) @binding(1) var<storage, read> surfels: array<Surfel>;
+// The panorama's distance to the surface per face texel (`sshgi_panorama_pack.wgsl`).
+@group(0) @binding(2) var<storage, read> distances: array<f32>;
+@group(0) @binding(3) var<storage, read_write> senders: array<Sender>;
+@group(0) @binding(4) var<storage, read_write> radiance: array<vec4<f32>>;
+
+// The lighting pass's inputs, with the view's frame.
+@group(1) @binding(0) var<uniform> frame: Frame;
+@group(1) @binding(1) var<storage, read> lights: array<GpuLight>;
+@group(1) @binding(2) var<storage, read> shadow_views: array<mat4x4<f32>>;
+@group(1) @binding(3) var shadow_maps: texture_depth_2d_array;
+@group(1) @binding(4) var shadow_sampler: sampler_comparison;
+
+#import common/shadow.wgsl
+
+const PI: f32 = 3.14159265358979;
+
+// Whether the camera sees p: it lies no farther than the farthest of the 2x2 panorama texels
+// around its direction (plus the tolerance). A point no face holds counts as seen.
+fn seen_from_camera(p: vec3<f32>) -> bool {
+    let f = hp.counts.w;
+    let d = distance(p, frame.camera_position.xyz);
+    for (var face = 0u; face < 6u; face = face + 1u) {
+        let c = hp.faces[face] * vec4<f32>(p, 1.0);
+        if c.w <= 0.0 {
+            continue;
+        }
+        let ndc = c.xy / c.w;
+        if any(abs(ndc) > vec2<f32>(1.0)) {
+            continue;
+        }
+        let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * f32(f) - 0.5;
+        let base = vec2<i32>(floor(uv));
+        var far = 0.0;
+        for (var k = 0; k < 4; k = k + 1) {
+            let t = clamp(base + vec2<i32>(k & 1, k >> 1), vec2<i32>(0), vec2<i32>(i32(f) - 1));
+            far = max(far, distances[face * f * f + u32(t.y) * f + u32(t.x)]);
+        }
+        return d <= far * (1.0 + hp.tolerance.x);
+    }
+    return true;
+}
+
+// The diffuse direct light leaving a point: albedo / pi x the shadowed irradiance of every light.
+fn direct_light(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>) -> vec3<f32> {
+    var e = vec3<f32>(0.0);
+    for (var i = 0u; i < frame.params.x; i = i + 1u) {
+        let light = lights[i];
+        let inc = light_incident(light, p);
+        let cos_s = dot(n, inc.dir);
+        if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
+            continue;
+        }
+        e = e + inc.irradiance * cos_s * shadow_factor(frame, light, p, n, inc.distance);
+    }
+    return albedo / PI * e;
+}
+
+@compute @workgroup_size(64, 1, 1)
+fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= hp.counts.x {
+        return;
+    }
+    let s = surfels[hp.counts.y + id.x];
+    let index = hp.counts.z + id.x;
+    if s.point.w <= 0.0 || seen_from_camera(s.point.xyz) {
+        senders[index] = Sender(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+        radiance[index] = vec4<f32>(0.0);
+        return;
+    }
+    senders[index] = Sender(s.point, s.normal, s.albedo);
+    let light = direct_light(s.point.xyz, s.normal.xyz, s.albedo.rgb) + s.emission.rgb;
+    radiance[index] = vec4<f32>(light, 0.0);
+}
