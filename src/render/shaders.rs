@@ -71,10 +71,7 @@ pub const SHADERS: &[(&str, &str)] = &[
         "render/gi/sshgi/sshgi_panorama_pack.wgsl",
         include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_pack.wgsl"),
     ),
-    (
-        "render/gi/sshgi/sshgi_hidden_pack.wgsl",
-        include_str!("../../shaders/render/gi/sshgi/sshgi_hidden_pack.wgsl"),
-    ),
+    ("render/gi/sshgi/sshgi_hidden_pack.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_hidden_pack.wgsl")),
     (
         "render/gi/sshgi/sshgi_panorama_gather.wgsl",
         include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_gather.wgsl"),

@@ -42,6 +42,7 @@ mod rcs;
 mod reference;
 mod shaders;
 mod sshgi;
+mod sshgi_hidden;
 mod sshgi_panorama;
 mod suite;
 mod textures;

@@ -64,9 +64,11 @@ fn clip_to_pixel(c: vec4<f32>) -> vec2<f32> {
 }
 
 // Whether the segment from x to y passes through a solid voxel of the view: the part of it inside
-// the view's frustum (clip space is linear along it) is marched (`voxel_occluded`); what lies
-// outside the view is taken as free. Off without visibility.
-fn world_occluded(x: vec3<f32>, y: vec3<f32>) -> bool {
+// the view's frustum (clip space is linear along it) is marched (`voxel_occluded_skipping`); what
+// lies outside the view is taken as free. `on_surface.x` (y): x (y) lies on a surface the view
+// shows, whose own columns are skipped; a hidden point moved off its surface (`off_surface`) and
+// an end clipped to the view skip none. Off without visibility.
+fn world_occluded(x: vec3<f32>, y: vec3<f32>, on_surface: vec2<bool>) -> bool {
     if gp.vox.w < 0.5 {
         return false;
     }
@@ -97,7 +99,8 @@ fn world_occluded(x: vec3<f32>, y: vec3<f32>) -> bool {
     }
     let ca = c0 + dc * t0;
     let cb = c0 + dc * t1;
-    return voxel_occluded(clip_to_pixel(ca), clip_to_pixel(cb), ca.w, cb.w);
+    let skip = vec2<i32>(select(1, 2, on_surface.x && t0 <= 0.0), select(1, 2, on_surface.y && t1 >= 1.0));
+    return voxel_occluded_skipping(clip_to_pixel(ca), clip_to_pixel(cb), ca.w, cb.w, skip);
 }
 
 // A hidden point moved off its surface by two voxel slices along its normal, for the march: a
@@ -129,7 +132,8 @@ fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3
         let ff = disc_form_factor(s.point.xyz - x, nx, s.normal.xyz, s.point.w);
         let hidden = pick >= hidden_from();
         let y = select(s.point.xyz, off_surface(s.point.xyz, s.normal.xyz), hidden);
-        if ff > 0.0 && !((march || hidden) && world_occluded(xm, y)) {
+        // A receiver on screen skips its columns; a hidden receiver and sender do not.
+        if ff > 0.0 && !((march || hidden) && world_occluded(xm, y, vec2<bool>(!march, !hidden))) {
             sum = sum + radiance[pick].rgb * ff;
         }
     }

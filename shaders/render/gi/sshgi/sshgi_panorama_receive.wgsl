@@ -47,7 +47,7 @@ fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3<
         let cos_b = max(dot(ny, -dir_y), 0.05);
         let ds = gp.geo.x * cos_a * cos_a * cos_a * g.r * g.r / cos_b;
         let ff = disc_form_factor(y - x, nx, ny, ds);
-        if ff > 0.0 && !(march && world_occluded(off_surface(x, nx), y)) {
+        if ff > 0.0 && !(march && world_occluded(off_surface(x, nx), y, vec2<bool>(false, true))) {
             sum = sum + textureLoad(illumination, t, 0).rgb * ff;
         }
     }

@@ -44,13 +44,19 @@ fn slice_bits(a: i32, b: i32) -> vec4<u32> {
 // with level-k columns at three levels). Level k has 4^k fewer texels and 2^k times longer
 // marches, so the marches of all levels cost at most twice the start level's.
 fn voxel_occluded(pt: vec2<f32>, py: vec2<f32>, zt: f32, zy: f32) -> bool {
+    // The columns of the surfaces the segment starts and ends on.
+    return voxel_occluded_skipping(pt, py, zt, zy, vec2<i32>(2));
+}
+
+// `voxel_occluded` with `skip.x` columns skipped at pt's end and `skip.y` at py's (0 at an end
+// that lies off any surface: a hidden sender moved off its own, or where the segment was clipped
+// to the view).
+fn voxel_occluded_skipping(pt: vec2<f32>, py: vec2<f32>, zt: f32, zy: f32, skip: vec2<i32>) -> bool {
     let px = f32(gp.grid.y);
     let a = pt / px - 0.5;
     let d = py / px - 0.5 - a;
     let steps = i32(ceil(max(abs(d.x), abs(d.y))));
-    // The columns of the surfaces the segment starts and ends on.
-    let skip = 2;
-    if steps <= 2 * skip {
+    if steps <= skip.x + skip.y {
         return false;
     }
     let width = i32(gp.grid.x);
@@ -58,7 +64,7 @@ fn voxel_occluded(pt: vec2<f32>, py: vec2<f32>, zt: f32, zy: f32) -> bool {
     let inv_t = 1.0 / zt;
     let inv_y = 1.0 / zy;
     let slice = 1.0 / gp.vox.z;
-    for (var j = skip; j <= steps - skip; j = j + 1) {
+    for (var j = skip.x; j <= steps - skip.y; j = j + 1) {
         let m0 = (f32(j) - 0.5) / f32(steps);
         let m1 = (f32(j) + 0.5) / f32(steps);
         let za = 1.0 / mix(inv_t, inv_y, m0) - slice;

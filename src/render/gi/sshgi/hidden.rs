@@ -311,3 +311,47 @@ fn mesh_uv(mesh: &crate::scene::Mesh, t: usize, bary: Vec2) -> Vec2 {
         _ => Vec2::ZERO,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::precompute::test_scenes;
+
+    #[test]
+    fn each_block_of_points_stands_for_the_whole_surface_with_its_materials_albedo() {
+        // A closed 4 x 3 x 4 m room of 0.2 m slabs (their outer faces see nothing and get no
+        // points).
+        let v = Vec3::new;
+        let scene = test_scenes::scene_of_slabs(
+            &[
+                ("floor", v(0.0, -0.1, 0.0), v(4.4, 0.2, 4.4)),
+                ("ceiling", v(0.0, 3.1, 0.0), v(4.4, 0.2, 4.4)),
+                ("left", v(-2.1, 1.5, 0.0), v(0.2, 3.0, 4.0)),
+                ("right", v(2.1, 1.5, 0.0), v(0.2, 3.0, 4.0)),
+                ("back", v(0.0, 1.5, -2.1), v(4.4, 3.0, 0.2)),
+                ("front", v(0.0, 1.5, 2.1), v(4.4, 3.0, 0.2)),
+            ],
+            vec![],
+        );
+        let per_block = 512;
+        let points = distribute(&scene, per_block * BLOCKS as usize, BLOCKS as usize, 7);
+        let records = surfels(&scene, &points);
+        let sampled: f64 = points
+            .weighted_area
+            .iter()
+            .zip(scene.objects())
+            .map(|(a, o)| a / f64::from(o.sampling_weight.max(1e-9)))
+            .sum();
+        for block in records.chunks(per_block) {
+            let area: f64 = block.iter().map(|r| f64::from(r.point[3])).sum();
+            assert!((area / sampled - 1.0).abs() < 1e-3, "a block stands for {area:.4} m^2 of {sampled:.4}");
+        }
+        for (r, p) in records.iter().zip(&points.points) {
+            let object = &scene.objects()[p.object as usize];
+            let albedo = scene.materials()[object.material].base_color;
+            assert!((0..3).all(|c| (r.albedo[c] - albedo[c]).abs() < 1e-6), "{:?} vs {albedo:?}", r.albedo);
+            let n = Vec3::from_slice(&r.normal[..3]);
+            assert!((n.length() - 1.0).abs() < 1e-4);
+        }
+    }
+}
