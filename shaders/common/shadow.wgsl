@@ -2,7 +2,8 @@
 // layer; point: six, faces +X -X +Y -Y +Z -Z). Filtering is (2r+1)^2 hardware 2x2 comparison taps
 // (PCF); acne is avoided with receiver-plane depth bias plus a small receiver offset along the
 // geometric normal, sized in shadow texels at the receiver's distance.
-// Requires: frame.wgsl, lights.wgsl, and bindings `shadow_maps`, `shadow_sampler`, `shadow_views`.
+// Requires: frame.wgsl, lights.wgsl, and bindings `lights`, `shadow_maps`, `shadow_sampler`,
+// `shadow_views`.
 
 fn point_face(v: vec3<f32>) -> u32 {
     let a = abs(v);
@@ -71,4 +72,20 @@ fn shadow_factor(frame: Frame, light: GpuLight, p: vec3<f32>, n_geo: vec3<f32>, 
     }
     let taps = f32((2 * r + 1) * (2 * r + 1));
     return sum / taps;
+}
+
+// The shadowed irradiance at p on the front of a surface with geometric normal n from every light
+// of the frame (one-sided: a light behind n adds nothing): what a diffuse point there receives.
+fn shadowed_irradiance(frame: Frame, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    var e = vec3<f32>(0.0);
+    for (var i = 0u; i < frame.params.x; i = i + 1u) {
+        let light = lights[i];
+        let inc = light_incident(light, p);
+        let cos_s = dot(n, inc.dir);
+        if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
+            continue;
+        }
+        e = e + inc.irradiance * cos_s * shadow_factor(frame, light, p, n, inc.distance);
+    }
+    return e;
 }

@@ -34,16 +34,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let p = t.position.xyz;
     let n = t.normal.xyz;
-    var e = vec3<f32>(0.0);
-    for (var k = 0u; k < frame.params.x; k = k + 1u) {
-        let light = lights[k];
-        let inc = light_incident(light, p);
-        let c = dot(n, inc.dir);
-        if c <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
-            continue;
-        }
-        e = e + inc.irradiance * c * shadow_factor(frame, light, p, n, inc.distance);
-    }
+    let e = shadowed_irradiance(frame, p, n);
     let bounce = max(previous[i].rgb, vec3<f32>(0.0)) * mp.gains.x;
     l_d[i] = vec4<f32>(t.albedo.rgb * (e / MRT_PI + bounce) + t.emission.rgb, 1.0);
 }

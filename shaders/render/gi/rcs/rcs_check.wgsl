@@ -73,16 +73,7 @@ fn cs_main(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_in
         let dir = tangent * (s * cos(phi)) + bitangent * (s * sin(phi)) + n * sqrt(1.0 - s2);
         let p = r.position.xyz + dir * stratum.x;
         let ns = oct_decode(stratum.yz);
-        var e = vec3<f32>(0.0);
-        for (var i = 0u; i < frame.params.x; i = i + 1u) {
-            let light = lights[i];
-            let inc = light_incident(light, p);
-            let cos_s = dot(ns, inc.dir);
-            if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
-                continue;
-            }
-            e = e + inc.irradiance * cos_s * shadow_factor(frame, light, p, ns, inc.distance);
-        }
+        let e = shadowed_irradiance(frame, p, ns);
         // Each stratum holds pi / 64 of the projected solid angle: E += L pi / 64, L = rho E / pi.
         value = stratum.w * luminance(e) / 64.0;
     }

@@ -82,21 +82,6 @@ fn seen_from_camera(p: vec3<f32>) -> bool {
     return true;
 }
 
-// The diffuse direct light leaving a point: albedo / pi x the shadowed irradiance of every light.
-fn direct_light(p: vec3<f32>, n: vec3<f32>, albedo: vec3<f32>) -> vec3<f32> {
-    var e = vec3<f32>(0.0);
-    for (var i = 0u; i < frame.params.x; i = i + 1u) {
-        let light = lights[i];
-        let inc = light_incident(light, p);
-        let cos_s = dot(n, inc.dir);
-        if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
-            continue;
-        }
-        e = e + inc.irradiance * cos_s * shadow_factor(frame, light, p, n, inc.distance);
-    }
-    return albedo / PI * e;
-}
-
 @compute @workgroup_size(64, 1, 1)
 fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= hp.counts.x {
@@ -110,6 +95,7 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     senders[index] = Sender(s.point, s.normal, s.albedo);
-    let light = direct_light(s.point.xyz, s.normal.xyz, s.albedo.rgb) + s.emission.rgb;
+    // Diffuse: albedo / pi x the shadowed irradiance of every light, plus the emission.
+    let light = s.albedo.rgb / PI * shadowed_irradiance(frame, s.point.xyz, s.normal.xyz) + s.emission.rgb;
     radiance[index] = vec4<f32>(light, 0.0);
 }
