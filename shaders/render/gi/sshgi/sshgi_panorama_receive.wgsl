@@ -29,7 +29,7 @@
 fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3<f32> {
     let w = gp.screen.x;
     let count = w * gp.screen.y;
-    let n = gp.counts.y;
+    let n = samples(march);
     let stratum = f32(count) / f32(n);
     let cam = frame.camera_position.xyz;
     var sum = vec3<f32>(0.0);

@@ -326,7 +326,11 @@ impl GiTechnique for SshgiTechnique {
         ];
         if emissive {
             out.push(
-                "emissive surfaces are senders like any other (their emission is in the direct term): they light the scene only from where the camera sees them".to_owned(),
+                if settings.sshgi.panorama > 0 && settings.sshgi.hidden_senders > 0 {
+                    "emissive surfaces are senders like any other: on screen and in the panorama through the direct term, hidden ones through the hidden senders' points (an emitter smaller than their spacing may be missed in a frame)".to_owned()
+                } else {
+                    "emissive surfaces are senders like any other (their emission is in the direct term): they light the scene only from where the camera sees them".to_owned()
+                },
             );
         }
         if scene.has_sky() && settings.sshgi.sky_rays > 0 && settings.sshgi.visibility {
