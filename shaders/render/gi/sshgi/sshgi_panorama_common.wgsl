@@ -94,8 +94,10 @@ fn world_occluded(x: vec3<f32>, y: vec3<f32>, on_surface: vec2<bool>) -> bool {
             return false;
         }
     }
-    if t1 <= t0 {
-        return false;
+    // What runs outside the view is unknown: a hidden sender's segment that leaves the view is
+    // taken as blocked (a wall behind the camera between a lit hall and the room in view).
+    if t1 <= t0 || t0 > 0.0 || t1 < 1.0 {
+        return true;
     }
     let ca = c0 + dc * t0;
     let cb = c0 + dc * t1;
