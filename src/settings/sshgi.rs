@@ -87,7 +87,7 @@ pub struct SshgiSettings {
     /// of a pillar, a box's far side, the floor behind it. Not in the paper. The points are drawn
     /// by area over every surface in eight stratified sets, one a frame; the hidden ones are lit
     /// by the view's lights and shadow maps and sent like the panorama's senders, their segments
-    /// marched through the view's voxels where they run inside the view. Cost: a pack of this
+    /// marched through the view's voxels (a path that leaves the view counts as blocked). Cost: a pack of this
     /// many points, and the panorama's gathers and receives share their samples with them.
     pub hidden_senders: u32,
 }

@@ -2,7 +2,7 @@
 // `sshgi_panorama_receive.wgsl`): the parameters, the sender list and the estimate of E / pi at a
 // point from the senders. The list holds the panorama's 6 F^2 senders, then the hidden senders
 // (`sshgi_hidden_pack.wgsl`); a segment with a hidden sender at either end is marched through the
-// view's voxels over the part of it inside the view (`world_occluded`). The including shader binds
+// view's voxels, and one that leaves the view counts as blocked (`world_occluded`). The including shader binds
 // `frame`, `gp`, `senders`, `radiance` and `voxels`.
 
 #import render/gi/sshgi/sshgi_hash.wgsl
@@ -63,9 +63,9 @@ fn clip_to_pixel(c: vec4<f32>) -> vec2<f32> {
     return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.size.xy;
 }
 
-// Whether the segment from x to y passes through a solid voxel of the view: the part of it inside
-// the view's frustum (clip space is linear along it) is marched (`voxel_occluded_skipping`); what
-// lies outside the view is taken as free. `on_surface.x` (y): x (y) lies on a surface the view
+// Whether the segment from x to y passes through a solid voxel of the view (`voxel_occluded_skipping`),
+// or leaves the view's frustum or the voxels' near end (clip space is linear along it), where what
+// lies between is unknown. `on_surface.x` (y): x (y) lies on a surface the view
 // shows, whose own columns are skipped; a hidden point moved off its surface (`off_surface`) and
 // an end clipped to the view skip none. Off without visibility.
 fn world_occluded(x: vec3<f32>, y: vec3<f32>, on_surface: vec2<bool>) -> bool {

@@ -7,7 +7,7 @@
 // by the temporal filter. No visibility for the panorama's senders: the view's voxels do not reach
 // off screen, so light passes through whatever lies between the receiver and a panorama sender.
 // The hidden senders after them in the list (`sshgi_hidden_pack.wgsl`) are marched through the
-// voxels over the part of their segment inside the view.
+// voxels (a segment that leaves the view counts as blocked).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 

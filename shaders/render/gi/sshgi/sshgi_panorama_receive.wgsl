@@ -5,7 +5,7 @@
 // leaves the screen, lights a surface off screen and comes back reaches the view in the later
 // bounces. No visibility between the panorama's senders and the screen; a hidden sender
 // (`sshgi_hidden_pack.wgsl`) marches each segment through the view's voxels over the part of it
-// inside the view.
+// (one that leaves the view counts as blocked).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import render/gi/sshgi/sshgi_panorama_common.wgsl
