@@ -50,7 +50,7 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
         .on_hover_text("Panorama senders per start-level texel and frame (and screen and panorama senders per panorama texel): linear cost, less noise.");
         let mut hidden = m.hidden_senders > 0;
         ui.add_enabled(m.panorama > 0, egui::Checkbox::new(&mut hidden, "hidden senders: light from surfaces the camera cannot see"))
-            .on_hover_text("Not in the paper; needs the panorama. Points spread over every surface by area; those the camera's position does not see (the back of a pillar, the floor behind a box) send light too, lit by the view's lights and shadow maps, their light marched through the view's voxels where it runs inside the view (quality matrix: Cornell box 0.91 to 0.93, clutter 0.72 to 0.80, hall 0.82 to 0.88, the three rooms seen from the unlit one 0 to 0.69 of the path tracer's energy). Cost: a pack of the points and a share of the panorama's samples.");
+            .on_hover_text("Not in the paper; needs the panorama. Points spread over every surface by area; those the camera's position does not see (the back of a pillar, the floor behind a box) send light too, lit by the view's lights and shadow maps, their light marched through the view's voxels and lost where it leaves the view (quality matrix: Cornell box 0.91 to 0.94, clutter 0.72 to 0.77, hall 0.82 to 0.85, the three rooms seen from the unlit one 0 to 0.48 of the path tracer's energy). Cost: a pack of the points and a share of the panorama's samples.");
         if hidden != (m.hidden_senders > 0) {
             m.hidden_senders = if hidden { 2048 } else { 0 };
         }
