@@ -32,11 +32,7 @@ struct Surfel {
     emission: vec4<f32>,
 }
 
-struct Sender {
-    point: vec4<f32>,
-    normal: vec4<f32>,
-    albedo: vec4<f32>,
-}
+#import render/gi/sshgi/sshgi_sender.wgsl
 
 @group(0) @binding(0) var<uniform> hp: HiddenParams;
 @group(0) @binding(1) var<storage, read> surfels: array<Surfel>;

@@ -23,14 +23,7 @@ struct PanoramaParams {
     grid: vec4<u32>,
 }
 
-struct Sender {
-    // xyz the point, w the area ds it stands for (m^2; 0: no sender).
-    point: vec4<f32>,
-    // xyz geometric normal, w unused.
-    normal: vec4<f32>,
-    // rgb albedo, a unused.
-    albedo: vec4<f32>,
-}
+#import render/gi/sshgi/sshgi_sender.wgsl
 
 const PI: f32 = 3.14159265358979;
 

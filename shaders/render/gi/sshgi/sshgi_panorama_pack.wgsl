@@ -13,14 +13,7 @@ struct PackParams {
     face: vec4<u32>,
 }
 
-struct Sender {
-    // xyz the point, w the area ds it stands for (m^2; 0: no sender).
-    point: vec4<f32>,
-    // xyz geometric normal, w unused.
-    normal: vec4<f32>,
-    // rgb albedo, a unused.
-    albedo: vec4<f32>,
-}
+#import render/gi/sshgi/sshgi_sender.wgsl
 
 @group(0) @binding(0) var<uniform> face_frame: Frame;
 @group(0) @binding(1) var<uniform> view_frame: Frame;

@@ -43,14 +43,7 @@ struct SkyRayParams {
 @group(0) @binding(6) var<uniform> sky: SkyParams;
 
 // The panorama's senders (`sshgi_panorama_pack.wgsl`) and their first radiance (`sender_sky`).
-struct Sender {
-    // xyz the point, w the area ds it stands for (m^2; 0: no sender).
-    point: vec4<f32>,
-    // xyz geometric normal, w unused.
-    normal: vec4<f32>,
-    // rgb albedo, a unused.
-    albedo: vec4<f32>,
-}
+#import render/gi/sshgi/sshgi_sender.wgsl
 @group(0) @binding(7) var<storage, read> senders: array<Sender>;
 @group(0) @binding(8) var<storage, read_write> sender_radiance: array<vec4<f32>>;
 
