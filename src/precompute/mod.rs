@@ -16,6 +16,7 @@ pub mod pathtracer;
 pub mod rng;
 pub mod sample_points;
 pub mod sky_sampler;
+pub mod surface_voxels;
 #[cfg(test)]
 pub(crate) mod test_scenes;
 pub mod unseen;

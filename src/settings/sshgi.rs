@@ -90,6 +90,13 @@ pub struct SshgiSettings {
     /// marched through the view's voxels (a path that leaves the view counts as blocked). Cost: a pack of this
     /// many points, and the panorama's gathers and receives share their samples with them.
     pub hidden_senders: u32,
+    /// Voxels along the scene's longest side of a world-space grid of the voxels its surfaces
+    /// pass through (0: none; 32..=1024, at least 2 cm each), which answers visibility for the
+    /// part of a hidden sender's segment that leaves the view (without it that segment counts
+    /// as blocked). Not in the paper. Built on the CPU when the geometry changes (one bit a
+    /// voxel: at most 2 MB at 256 for a cubic scene); each such segment walks the voxels it
+    /// crosses.
+    pub world_voxels: u32,
 }
 
 impl Default for SshgiSettings {
@@ -110,6 +117,7 @@ impl Default for SshgiSettings {
             panorama_samples: 64,
             sky_rays: 16,
             hidden_senders: 2048,
+            world_voxels: 256,
         }
     }
 }
@@ -117,7 +125,7 @@ impl Default for SshgiSettings {
 impl SshgiSettings {
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
-        let checks: [(&'static str, bool, String, &'static str); 12] = [
+        let checks: [(&'static str, bool, String, &'static str); 13] = [
             ("sshgi.start_level", self.start_level <= 2, self.start_level.to_string(), "0..=2"),
             ("sshgi.levels", (1..=6).contains(&self.levels), self.levels.to_string(), "1..=6"),
             ("sshgi.samples", (1..=1024).contains(&self.samples), self.samples.to_string(), "1..=1024"),
@@ -154,6 +162,12 @@ impl SshgiSettings {
                 self.hidden_senders == 0 || (64..=16384).contains(&self.hidden_senders),
                 self.hidden_senders.to_string(),
                 "0 (off) or 64..=16384",
+            ),
+            (
+                "sshgi.world_voxels",
+                self.world_voxels == 0 || (32..=1024).contains(&self.world_voxels),
+                self.world_voxels.to_string(),
+                "0 (off) or 32..=1024",
             ),
             (
                 "sshgi.temporal_weight",

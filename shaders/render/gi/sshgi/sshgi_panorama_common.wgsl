@@ -2,11 +2,13 @@
 // `sshgi_panorama_receive.wgsl`): the parameters, the sender list and the estimate of E / pi at a
 // point from the senders. The list holds the panorama's 6 F^2 senders, then the hidden senders
 // (`sshgi_hidden_pack.wgsl`); a segment with a hidden sender at either end is marched through the
-// view's voxels, and one that leaves the view counts as blocked (`world_occluded`). The including shader binds
-// `frame`, `gp`, `senders`, `radiance` and `voxels`.
+// view's voxels, and one that leaves the view through the scene's surface voxels in the world
+// (`world_occluded`; blocked without them). The including shader binds `frame`, `gp`, `senders`,
+// `radiance`, `voxels` and `world`.
 
 #import render/gi/sshgi/sshgi_hash.wgsl
 #import render/gi/sshgi/sshgi_visibility.wgsl
+#import render/gi/sshgi/sshgi_world_grid.wgsl
 
 struct PanoramaParams {
     // senders in the list S, samples N, frame seed, face size F.
@@ -21,6 +23,10 @@ struct PanoramaParams {
     vox: vec4<f32>,
     // Voxel columns marched: width, view pixels per column, height, unused.
     grid: vec4<u32>,
+    // The world's surface voxels (`sshgi_world_grid.wgsl`): origin xyz, voxel side (m).
+    world: vec4<f32>,
+    // Voxels along x, y, z; 1 where the grid is bound (0: a segment leaving the view is blocked).
+    world_dims: vec4<u32>,
 }
 
 #import render/gi/sshgi/sshgi_sender.wgsl
@@ -56,12 +62,13 @@ fn clip_to_pixel(c: vec4<f32>) -> vec2<f32> {
     return vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5) * frame.size.xy;
 }
 
-// Whether the segment from x to y passes through a solid voxel of the view (`voxel_occluded_skipping`),
-// or leaves the view's frustum or the voxels' near end (clip space is linear along it), where what
-// lies between is unknown. `on_surface.x` (y): x (y) lies on a surface the view
-// shows, whose own columns are skipped; a hidden point moved off its surface (`off_surface`) and
-// an end clipped to the view skip none. Off without visibility.
-fn world_occluded(x: vec3<f32>, y: vec3<f32>, on_surface: vec2<bool>) -> bool {
+// Whether the segment from x to y (normals nx, ny) passes through a solid voxel of the view
+// (`voxel_occluded_skipping`), or, where it leaves the view's frustum or the voxels' near end (clip
+// space is linear along it), through a surface voxel of the world (`world_blocked`; without them
+// it counts as blocked: what lies outside the view is unknown). `on_surface.x` (y): x (y) lies on
+// a surface the view shows, whose own columns are skipped; a hidden point moved off its surface
+// (`off_surface`) and an end clipped to the view skip none. Off without visibility.
+fn world_occluded(x: vec3<f32>, nx: vec3<f32>, y: vec3<f32>, ny: vec3<f32>, on_surface: vec2<bool>) -> bool {
     if gp.vox.w < 0.5 {
         return false;
     }
@@ -87,10 +94,10 @@ fn world_occluded(x: vec3<f32>, y: vec3<f32>, on_surface: vec2<bool>) -> bool {
             return false;
         }
     }
-    // What runs outside the view is unknown: a hidden sender's segment that leaves the view is
-    // taken as blocked (a wall behind the camera between a lit hall and the room in view).
+    // What runs outside the view is the world grid's to answer; without it the segment is taken
+    // as blocked (a wall behind the camera between a lit hall and the room in view).
     if t1 <= t0 || t0 > 0.0 || t1 < 1.0 {
-        return true;
+        return !world_grid_on() || world_blocked(x, nx, y, ny);
     }
     let ca = c0 + dc * t0;
     let cb = c0 + dc * t1;
@@ -135,7 +142,7 @@ fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3
         let hidden = pick >= hidden_from();
         let y = select(s.point.xyz, off_surface(s.point.xyz, s.normal.xyz), hidden);
         // A receiver on screen skips its columns; a hidden receiver and sender do not.
-        if ff > 0.0 && !((march || hidden) && world_occluded(xm, y, vec2<bool>(!march, !hidden))) {
+        if ff > 0.0 && !((march || hidden) && world_occluded(xm, nx, y, s.normal.xyz, vec2<bool>(!march, !hidden))) {
             sum = sum + radiance[pick].rgb * ff;
         }
     }

@@ -7,7 +7,7 @@
 // by the temporal filter. No visibility for the panorama's senders: the view's voxels do not reach
 // off screen, so light passes through whatever lies between the receiver and a panorama sender.
 // The hidden senders after them in the list (`sshgi_hidden_pack.wgsl`) are marched through the
-// voxels (a segment that leaves the view counts as blocked).
+// voxels, and where a segment leaves the view through the world's surface voxels.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 
@@ -25,6 +25,8 @@
 @group(0) @binding(6) var<storage, read> radiance: array<vec4<f32>>;
 // The voxel columns marched (as the screen's gathers').
 @group(0) @binding(7) var<storage, read> voxels: array<vec4<u32>>;
+// The world's surface voxels (one word where there are none).
+@group(0) @binding(8) var<storage, read> world: array<u32>;
 
 @compute @workgroup_size(8, 8, 1)
 fn gather(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -4,8 +4,8 @@
 // the screen gathers' Eq. 2) and in the panorama (N senders, `gather_senders`). So light that
 // leaves the screen, lights a surface off screen and comes back reaches the view in the later
 // bounces. No visibility between the panorama's senders and the screen; a hidden sender
-// (`sshgi_hidden_pack.wgsl`) marches each segment through the view's voxels over the part of it
-// (one that leaves the view counts as blocked).
+// (`sshgi_hidden_pack.wgsl`) marches each segment through the view's voxels, and where it leaves
+// the view through the world's surface voxels.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import render/gi/sshgi/sshgi_panorama_common.wgsl
@@ -23,6 +23,8 @@
 @group(0) @binding(6) var<storage, read_write> next: array<vec4<f32>>;
 // The voxel columns marched (as the screen's gathers').
 @group(0) @binding(7) var<storage, read> voxels: array<vec4<u32>>;
+// The world's surface voxels (one word where there are none).
+@group(0) @binding(8) var<storage, read> world: array<u32>;
 
 // E / pi at x (normal nx) from N start-level texels of the screen, one per stratum (with
 // `march`, each segment marched through the view's voxels).
@@ -47,7 +49,7 @@ fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3<
         let cos_b = max(dot(ny, -dir_y), 0.05);
         let ds = gp.geo.x * cos_a * cos_a * cos_a * g.r * g.r / cos_b;
         let ff = disc_form_factor(y - x, nx, ny, ds);
-        if ff > 0.0 && !(march && world_occluded(off_surface(x, nx), y, vec2<bool>(false, true))) {
+        if ff > 0.0 && !(march && world_occluded(off_surface(x, nx), nx, y, ny, vec2<bool>(false, true))) {
             sum = sum + textureLoad(illumination, t, 0).rgb * ff;
         }
     }

@@ -11,6 +11,7 @@ pub mod passes;
 pub mod technique;
 pub mod temporal;
 pub mod voxels;
+pub mod world_grid;
 
 /// This technique's entry shaders (its registry row lists them).
 pub const SHADERS: &[&str] = &[

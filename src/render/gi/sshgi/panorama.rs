@@ -65,6 +65,10 @@ pub struct PanoramaParams {
     pub vox: [f32; 4],
     /// Voxel columns: width, view pixels per column, height, unused.
     pub grid: [u32; 4],
+    /// The world grid's origin and voxel side (m).
+    pub world: [f32; 4],
+    /// The world grid's voxels along x, y, z; 1 where bound.
+    pub world_dims: [u32; 4],
 }
 
 /// What the panorama hands `sshgi`'s steps: the sender list, the ping-pong radiance buffers
@@ -78,10 +82,12 @@ pub struct Senders<'a> {
     pub face: u32,
     /// Hidden senders after the faces' 6 F^2 ([`super::hidden`]; 0: none).
     pub hidden: u32,
+    /// The world's surface voxels, where their segments leave the view ([`super::world_grid`]).
+    pub world: Option<super::world_grid::WorldGridRef<'a>>,
 }
 
 const _: () = assert!(std::mem::size_of::<PackParams>() == 16);
-const _: () = assert!(std::mem::size_of::<PanoramaParams>() == 96);
+const _: () = assert!(std::mem::size_of::<PanoramaParams>() == 128);
 
 /// One cube face: its G-buffer and direct light, camera constants and bind groups.
 struct Face {
@@ -127,6 +133,8 @@ pub struct Panorama {
     pack_layout: wgpu::BindGroupLayout,
     pack: wgpu::ComputePipeline,
     hidden: HiddenSenders,
+    /// The world's surface voxels for the hidden senders' segments that leave the view.
+    world: super::world_grid::WorldGrid,
     faces: Option<Faces>,
 }
 
@@ -167,6 +175,7 @@ impl Panorama {
             sky: crate::render::sky::SkyGpu::new(device),
             pack: compute_pipeline(device, "sshgi panorama pack", &pack_layout, &module, "pack"),
             pack_layout,
+            world: super::world_grid::WorldGrid::default(),
             faces: None,
         })
     }
@@ -178,7 +187,7 @@ impl Panorama {
         if hidden == 0 {
             self.hidden.release();
         }
-        let Self { gbuffer, emission, lighting, sky, pack_layout, pack, hidden: hidden_pass, faces } = self;
+        let Self { gbuffer, emission, lighting, sky, pack_layout, pack, hidden: hidden_pass, world, faces } = self;
         let faces = faces.as_mut()?;
         let turn = frame_rotation(inputs.frame_index);
         let matrices = write_frames(inputs.queue, faces, inputs.frame, inputs.scene.camera(), turn);
@@ -248,8 +257,10 @@ impl Panorama {
             };
             hidden_pass.record(inputs, hidden, lighting, sky, &lists);
         }
+        let along = if hidden > 0 { inputs.settings.sshgi.world_voxels } else { 0 };
+        let world = world.update(inputs.device, inputs.queue, inputs.scene, along);
         let [first, second] = &faces.radiance;
-        Some(Senders { list: &faces.senders, radiance: [first, second], face: size, hidden })
+        Some(Senders { list: &faces.senders, radiance: [first, second], face: size, hidden, world })
     }
 
     /// Creates the faces and the list when their size or the hidden senders' count changes.
@@ -308,6 +319,7 @@ impl Panorama {
     pub fn release(&mut self) {
         self.faces = None;
         self.hidden.release();
+        self.world.release();
     }
 
     /// Bytes of the faces' targets and the sender list.
@@ -316,7 +328,7 @@ impl Panorama {
         let targets: u64 =
             f.faces.iter().flat_map(|face| face.targets.all()).map(|target| texture_bytes(&target.texture)).sum();
         let lists = f.senders.size() + f.distances.size() + f.radiance.iter().map(wgpu::Buffer::size).sum::<u64>();
-        targets + lists + self.hidden.gpu_bytes()
+        targets + lists + self.hidden.gpu_bytes() + self.world.gpu_bytes()
     }
 }
 
@@ -400,21 +412,28 @@ fn write_frames(queue: &wgpu::Queue, faces: &Faces, view: &FrameUniforms, camera
 /// The gather's bind group layout and pipeline (dispatched among `sshgi`'s steps,
 /// [`super::passes`]): the view's frame constants, its parameters (a dynamic slot of the
 /// steps' parameter buffer), the start level's geometry, the screen's bounce, the output, the
-/// sender list, the senders' radiance of the bounce and the voxel columns (the hidden
-/// senders' visibility).
+/// sender list, the senders' radiance of the bounce, the voxel columns and the world grid (the
+/// hidden senders' visibility).
 pub fn gather_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
     let c = wgpu::ShaderStages::COMPUTE;
-    let rest = [storage_texture_entry(4, formats::HDR), storage_entry(5, c), storage_entry(6, c), storage_entry(7, c)];
+    let rest = [
+        storage_texture_entry(4, formats::HDR),
+        storage_entry(5, c),
+        storage_entry(6, c),
+        storage_entry(7, c),
+        storage_entry(8, c),
+    ];
     step_pipeline(device, "sshgi panorama gather", "render/gi/sshgi/sshgi_panorama_gather.wgsl", "gather", &rest)
 }
 
 /// The receive's bind group layout and pipeline (dispatched among `sshgi`'s steps after each
 /// bounce but the last): the view's frame constants, the parameter slot, the start level's
 /// geometry and this bounce's screen radiance, the sender list, this bounce's and the next
-/// bounce's sender radiance, and the voxel columns.
+/// bounce's sender radiance, the voxel columns and the world grid.
 pub fn receive_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
     let c = wgpu::ShaderStages::COMPUTE;
-    let rest = [storage_entry(4, c), storage_entry(5, c), storage_rw_entry(6), storage_entry(7, c)];
+    let rest =
+        [storage_entry(4, c), storage_entry(5, c), storage_rw_entry(6), storage_entry(7, c), storage_entry(8, c)];
     step_pipeline(device, "sshgi panorama receive", "render/gi/sshgi/sshgi_panorama_receive.wgsl", "receive", &rest)
 }
 

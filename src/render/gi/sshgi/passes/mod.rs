@@ -249,6 +249,8 @@ struct Inputs {
     frame: wgpu::Buffer,
     /// The panorama's sender list, radiance buffers, face size and senders in the list.
     senders: Option<([wgpu::Buffer; 3], u32, u32)>,
+    /// The world grid (the hidden senders' segments that leave the view; `no_voxels` for none).
+    world: wgpu::Buffer,
     /// The sky's image and uniforms (the sky pass).
     sky: Option<(wgpu::TextureView, wgpu::Buffer)>,
 }
@@ -452,12 +454,14 @@ impl SshgiPasses {
             senders: panorama
                 .map(|p| ([p.list.clone(), p.radiance[0].clone(), p.radiance[1].clone()], p.face, p.count())),
             sky: sky.map(|s| (s.view.clone(), s.buffer.clone())),
+            world: panorama.and_then(|p| p.world).map_or(&self.no_voxels, |w| w.buffer).clone(),
         };
         if self.steps.as_ref().is_none_or(|(k, _)| *k != key) {
             let steps = self.build_steps(inputs.device, &key);
             self.steps = Some((key, steps));
         }
-        self.write_params(inputs, plan, axis, visibility, panorama.map_or((0, 0), |p| (p.count(), p.face)));
+        let world = panorama.and_then(|p| p.world).map_or(([0.0; 4], [0; 4]), |w| (w.world, w.dims));
+        self.write_params(inputs, plan, axis, visibility, panorama.map_or((0, 0), |p| (p.count(), p.face)), world);
         let Some((_, steps)) = &self.steps else { return };
         // Consecutive steps of one pass share it: bounce 1's phases are timed one by one, a later
         // bounce as a whole.
@@ -497,6 +501,7 @@ impl SshgiPasses {
         axis: &ViewAxis,
         visibility: Option<&Visibility<'_>>,
         (senders, face): (u32, u32),
+        (world, world_dims): ([f32; 4], [u32; 4]),
     ) {
         let settings = &inputs.settings.sshgi;
         let bytes = &mut self.staging;
@@ -558,6 +563,8 @@ impl SshgiPasses {
                 // something by definition, so without it each would light through it.
                 vox,
                 grid,
+                world,
+                world_dims,
             };
             put(panorama_slot(plan, b as usize), bytemuck::bytes_of(&p));
         }

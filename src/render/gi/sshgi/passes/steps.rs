@@ -304,13 +304,14 @@ impl<'a> StepBuilder<'a> {
             layout: &self.passes.panorama_layout,
             entries: &[
                 buffer(0, &key.frame),
-                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(96) },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(128) },
                 texture(2, self.geo(0)),
                 texture(3, &screen.view),
                 texture(4, &dest.view),
                 buffer(5, list),
                 buffer(6, radiance),
                 buffer(7, &key.voxels),
+                buffer(8, &key.world),
             ],
         });
         self.step(self.pass(b, "sshgi panorama gather"), Pipe::Panorama, group, slot, dest);
@@ -322,13 +323,14 @@ impl<'a> StepBuilder<'a> {
             layout: &self.passes.receive_layout,
             entries: &[
                 buffer(0, &key.frame),
-                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(96) },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(128) },
                 texture(2, self.geo(0)),
                 texture(3, &s.illumination[0].view),
                 buffer(4, list),
                 buffer(5, radiance),
                 buffer(6, next),
                 buffer(7, &key.voxels),
+                buffer(8, &key.world),
             ],
         });
         let pass = self.pass(b, "sshgi panorama receive");

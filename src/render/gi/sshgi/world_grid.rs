@@ -1,0 +1,102 @@
+//! `sshgi`'s world grid: the scene's surface voxels ([`SurfaceVoxels`]) on the GPU, for the part
+//! of a hidden sender's segment that leaves the view, where the view's voxel columns say nothing
+//! (`sshgi_world_grid.wgsl`). Built on the CPU when the geometry changes (meshes, transforms,
+//! what is rendered), never for a light or camera edit; up to `world_voxels` voxels along the
+//! scene's longest side.
+
+use crate::precompute::surface_voxels::SurfaceVoxels;
+use crate::scene::Scene;
+
+/// What the grid was built from.
+#[derive(PartialEq)]
+struct GeometryKey {
+    resources: u64,
+    along: u32,
+    objects: Vec<(usize, [f32; 16], bool)>,
+}
+
+impl GeometryKey {
+    fn of(scene: &Scene, along: u32) -> Self {
+        Self {
+            resources: scene.resources_revision(),
+            along,
+            objects: scene
+                .objects()
+                .iter()
+                .map(|o| (o.mesh, o.transform.matrix().to_cols_array(), o.is_rendered()))
+                .collect(),
+        }
+    }
+}
+
+/// The grid's buffer and its parameters (`world` and `world_dims` in `PanoramaParams`).
+#[derive(Clone, Copy)]
+pub struct WorldGridRef<'a> {
+    pub buffer: &'a wgpu::Buffer,
+    /// Origin xyz, voxel side (m).
+    pub world: [f32; 4],
+    /// Voxels along x, y, z; 1 (bound).
+    pub dims: [u32; 4],
+}
+
+/// The uploaded grid.
+struct Uploaded {
+    buffer: wgpu::Buffer,
+    world: [f32; 4],
+    dims: [u32; 4],
+}
+
+/// The world grid of the scene, rebuilt when its geometry changes.
+#[derive(Default)]
+pub struct WorldGrid {
+    built: Option<(GeometryKey, Option<Uploaded>)>,
+}
+
+impl WorldGrid {
+    /// The grid of `scene` at `along` voxels on its longest side (0: none), rebuilt and uploaded
+    /// when the geometry or `along` changed; `None` for none or a scene without triangles.
+    pub fn update(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+        along: u32,
+    ) -> Option<WorldGridRef<'_>> {
+        if along == 0 {
+            self.release();
+            return None;
+        }
+        let key = GeometryKey::of(scene, along);
+        if self.built.as_ref().is_none_or(|(k, _)| *k != key) {
+            let uploaded = SurfaceVoxels::of_scene(scene, along).map(|grid| upload(device, queue, &grid));
+            self.built = Some((key, uploaded));
+        }
+        let (_, Some(u)) = self.built.as_ref()? else { return None };
+        Some(WorldGridRef { buffer: &u.buffer, world: u.world, dims: u.dims })
+    }
+
+    /// Frees the grid.
+    pub fn release(&mut self) {
+        self.built = None;
+    }
+
+    /// Bytes of the grid's buffer.
+    pub fn gpu_bytes(&self) -> u64 {
+        match &self.built {
+            Some((_, Some(u))) => u.buffer.size(),
+            _ => 0,
+        }
+    }
+}
+
+/// The grid's bits in a storage buffer, with its parameters.
+fn upload(device: &wgpu::Device, queue: &wgpu::Queue, grid: &SurfaceVoxels) -> Uploaded {
+    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("sshgi world grid"),
+        size: (grid.bytes() as u64).max(4),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    queue.write_buffer(&buffer, 0, bytemuck::cast_slice(&grid.words));
+    Uploaded { buffer, world: grid.origin.extend(grid.h).to_array(), dims: [grid.dims.x, grid.dims.y, grid.dims.z, 1] }
+}
