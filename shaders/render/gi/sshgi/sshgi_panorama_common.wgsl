@@ -25,7 +25,8 @@ struct PanoramaParams {
     grid: vec4<u32>,
     // The world's surface voxels (`sshgi_world_grid.wgsl`): origin xyz, voxel side (m).
     world: vec4<f32>,
-    // Voxels along x, y, z; 1 where the grid is bound (0: a segment leaving the view is blocked).
+    // Voxels along x, y, z (0: no grid, a segment leaving the view is blocked); the bricks' first
+    // word.
     world_dims: vec4<u32>,
 }
 

@@ -67,7 +67,7 @@ pub struct PanoramaParams {
     pub grid: [u32; 4],
     /// The world grid's origin and voxel side (m).
     pub world: [f32; 4],
-    /// The world grid's voxels along x, y, z; 1 where bound.
+    /// The world grid's voxels along x, y, z (0: none) and its bricks' first word.
     pub world_dims: [u32; 4],
 }
 

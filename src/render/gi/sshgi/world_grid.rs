@@ -35,7 +35,7 @@ pub struct WorldGridRef<'a> {
     pub buffer: &'a wgpu::Buffer,
     /// Origin xyz, voxel side (m).
     pub world: [f32; 4],
-    /// Voxels along x, y, z; 1 (bound).
+    /// Voxels along x, y, z; the bricks' first word.
     pub dims: [u32; 4],
 }
 
@@ -98,5 +98,9 @@ fn upload(device: &wgpu::Device, queue: &wgpu::Queue, grid: &SurfaceVoxels) -> U
         mapped_at_creation: false,
     });
     queue.write_buffer(&buffer, 0, bytemuck::cast_slice(&grid.words));
-    Uploaded { buffer, world: grid.origin.extend(grid.h).to_array(), dims: [grid.dims.x, grid.dims.y, grid.dims.z, 1] }
+    Uploaded {
+        buffer,
+        world: grid.origin.extend(grid.h).to_array(),
+        dims: [grid.dims.x, grid.dims.y, grid.dims.z, grid.bricks_at as u32],
+    }
 }
