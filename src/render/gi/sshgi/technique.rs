@@ -312,8 +312,13 @@ impl GiTechnique for SshgiTechnique {
 
     fn limitations(&self, scene: &Scene, settings: &RenderSettings) -> Vec<String> {
         let emissive = scene.materials().iter().any(crate::scene::Material::emits);
-        let senders = if settings.sshgi.panorama > 0 && settings.sshgi.hidden_senders > 0 {
-            "surfaces off screen send indirect light through the panorama, those hidden from the camera's position through a set of points on every surface: neither casts indirect shadows off screen, and a point set is coarser than the screen"
+        let senders = if settings.sshgi.panorama > 0
+            && settings.sshgi.hidden_senders > 0
+            && settings.sshgi.world_voxels > 0
+        {
+            "surfaces off screen send indirect light through the panorama, without indirect shadows; those hidden from the camera's position through a set of points on every surface, shadowed by the view's voxels and, where their light leaves the view, by a grid of the surfaces' voxels in the world (which also shadows within a voxel of a surface); a point set is coarser than the screen"
+        } else if settings.sshgi.panorama > 0 && settings.sshgi.hidden_senders > 0 {
+            "surfaces off screen send indirect light through the panorama, without indirect shadows; those hidden from the camera's position through a set of points on every surface, whose light is lost where it leaves the view (the world grid setting follows it there); a point set is coarser than the screen"
         } else if settings.sshgi.panorama > 0 {
             "surfaces hidden from the camera's position send no indirect light (the hidden senders setting adds them); those off screen send it through the panorama, without indirect shadows"
         } else {
