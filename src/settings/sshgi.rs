@@ -34,6 +34,11 @@ pub struct SshgiSettings {
     /// tracer's energy at 1 / 2 / 3 / 4 bounces (what is left: off-screen and hidden senders, and
     /// Eq. 4's bound, which loses 3% at 64 samples against 256: 0.933).
     pub bounces: u32,
+    /// Add the bounces after the last as a geometric series of it, at the ratio of the last
+    /// bounce's light on the start level to the previous bounce's (at most 0.75). Not in the
+    /// paper (`ism`'s tail, at its screen ratio). Cost: three small passes over the start level
+    /// (a sum per tile, one workgroup for the ratio, an add).
+    pub bounce_tail: bool,
     /// Indirect visibility by marching a solid voxelisation of the view (128 depth slices per
     /// pixel, AND-reduced per level). Off: light gathered from a surface passes through whatever
     /// lies between. Cost: the paper's frame went from 9.8 to 58 ms (1280x720, ¼ start, 64
@@ -87,7 +92,8 @@ pub struct SshgiSettings {
     /// of a pillar, a box's far side, the floor behind it. Not in the paper. The points are drawn
     /// by area over every surface in eight stratified sets, one a frame; the hidden ones are lit
     /// by the view's lights and shadow maps and sent like the panorama's senders, their segments
-    /// marched through the view's voxels (a path that leaves the view counts as blocked). Cost: a pack of this
+    /// marched through the view's voxels and, where they leave the view, through the world grid
+    /// (`world_voxels`; without it such a path counts as blocked). Cost: a pack of this
     /// many points, and the panorama's gathers and receives share their samples with them.
     pub hidden_senders: u32,
     /// Voxels along the scene's longest side of a world-space grid of the voxels its surfaces
@@ -107,6 +113,7 @@ impl Default for SshgiSettings {
             samples: 64,
             radius: 0.0,
             bounces: 4,
+            bounce_tail: true,
             visibility: true,
             visibility_all_bounces: false,
             visibility_detail: 1,

@@ -11,9 +11,10 @@
 //! the view's lights and shadow maps (diffuse) and their emission, and writes them after the
 //! panorama's senders into its list: the gathers and receives then treat them as senders like
 //! the panorama's, with one difference, visibility: their segments are marched through the view's
-//! voxels, and a segment that leaves the view counts as blocked (the back of a pillar lights the
-//! floor beside it, not the room behind the wall it stands against, nor a room through a wall
-//! behind the camera).
+//! voxels, and where a segment leaves the view through the world grid of surface voxels
+//! ([`super::world_grid`]; without it such a segment counts as blocked): the back of a pillar
+//! lights the floor beside it, not the room behind the wall it stands against, nor a room
+//! through a wall behind the camera.
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec2, Vec3};

@@ -22,6 +22,7 @@ pub const SHADERS: &[&str] = &[
     "render/gi/sshgi/sshgi_panorama_pack.wgsl",
     "render/gi/sshgi/sshgi_panorama_receive.wgsl",
     "render/gi/sshgi/sshgi_sky.wgsl",
+    "render/gi/sshgi/sshgi_tail.wgsl",
     "render/gi/sshgi/sshgi_upsample.wgsl",
     "render/gi/sshgi/sshgi_voxel_mip.wgsl",
     "render/gi/sshgi/sshgi_voxelize.wgsl",

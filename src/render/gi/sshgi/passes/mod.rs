@@ -16,6 +16,7 @@ use crate::render::targets::{Target, formats};
 use crate::settings::SshgiSettings;
 
 mod steps;
+mod tail;
 
 use super::panorama::{PanoramaParams, Senders};
 use steps::{StepBuilder, gather_slot, panorama_slot, sky_slot};
@@ -154,6 +155,9 @@ pub struct Plan {
     pub panorama: bool,
     /// The sky pass runs (a sky, `sky_rays` > 0 and the voxels to march).
     pub sky: bool,
+    /// The bounces after the last are added as a geometric tail ([`tail`]; `bounce_tail` and at
+    /// least two bounces).
+    pub tail: bool,
 }
 
 impl Plan {
@@ -163,7 +167,9 @@ impl Plan {
         let start = settings.start_level.min(pyramid_levels.saturating_sub(1));
         let levels = settings.levels.clamp(1, (pyramid_levels - start).max(1));
         let panorama = settings.panorama > 0;
-        Self { view, start, levels, bounces: settings.bounces.max(1), unshadowed: false, panorama, sky: false }
+        let bounces = settings.bounces.max(1);
+        let tail = settings.bounce_tail && bounces >= 2;
+        Self { view, start, levels, bounces, unshadowed: false, panorama, sky: false, tail }
     }
 
     /// Size of gather level k (pyramid level start + k).
@@ -198,6 +204,8 @@ struct Sized {
     sky: Option<[Target; 3]>,
     /// Which of `bounce[0]` and `sums` holds the bounces' sum (and the sky's).
     total: Total,
+    /// The tail's factor and per-tile sums (with `Plan::tail`).
+    tail: Option<wgpu::Buffer>,
 }
 
 /// Where the bounces' sum lies.
@@ -212,6 +220,9 @@ pub struct SshgiPasses {
     mip_layout: wgpu::BindGroupLayout,
     gather_layout: wgpu::BindGroupLayout,
     up_layout: wgpu::BindGroupLayout,
+    tail_layout: wgpu::BindGroupLayout,
+    /// The tail's sums, ratio and add ([`tail`]).
+    tail: [wgpu::ComputePipeline; 3],
     box_seed: wgpu::ComputePipeline,
     reduce: wgpu::ComputePipeline,
     product: wgpu::ComputePipeline,
@@ -269,6 +280,9 @@ enum Pipe {
     AddLit,
     Sky,
     SenderSky,
+    TailSums,
+    TailRatio,
+    TailAdd,
 }
 
 /// One dispatch: the (timed) pass it belongs to, its pipeline, bind group, parameter slot and
@@ -361,7 +375,10 @@ impl SshgiPasses {
         let (panorama_layout, panorama) = super::panorama::gather_pipeline(device)?;
         let (receive_layout, receive) = super::panorama::receive_pipeline(device)?;
         let [(sky_layout, sky), (sender_sky_layout, sender_sky)] = sky_pipelines(device)?;
+        let (tail_layout, tail) = tail::pipelines(device)?;
         Ok(Self {
+            tail_layout,
+            tail,
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
             reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
             product: compute_pipeline(device, "sshgi product", &mip_layout, &mip, "product"),
@@ -421,11 +438,11 @@ impl SshgiPasses {
             sky: plan
                 .sky
                 .then(|| [target("sshgi sky", 0), target("sshgi sky-lit senders", 0), target("sshgi direct start", 0)]),
-            total: match (plan.bounces, plan.sky) {
-                (b, true) => Total::Sum(b as usize % 2),
-                (1, false) => Total::Bounce,
-                (b, false) => Total::Sum((b as usize - 1) % 2),
+            total: match plan.bounces as usize - 1 + usize::from(plan.sky) + usize::from(plan.tail) {
+                0 => Total::Bounce,
+                adds => Total::Sum(adds % 2),
             },
+            tail: plan.tail.then(|| tail::buffer(device, plan.level_size(0))),
         });
     }
 
@@ -485,6 +502,9 @@ impl SshgiPasses {
                 Pipe::AddLit => &self.add_lit,
                 Pipe::Sky => &self.sky,
                 Pipe::SenderSky => &self.sender_sky,
+                Pipe::TailSums => &self.tail[0],
+                Pipe::TailRatio => &self.tail[1],
+                Pipe::TailAdd => &self.tail[2],
             });
             pass.set_bind_group(0, &step.group, &[step.slot * SLOT as u32]);
             pass.dispatch_workgroups(step.size.0.div_ceil(8), step.size.1.div_ceil(8), 1);

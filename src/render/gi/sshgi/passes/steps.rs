@@ -262,13 +262,49 @@ impl<'a> StepBuilder<'a> {
         let mut total = &s.bounce[0];
         let bounces = s.plan.bounces as usize;
         let sky = s.sky.as_ref().map(|[sky, _, _]| sky);
+        let mut adds = 0;
         for (b, addend) in (1..bounces).map(|b| &s.bounce[b]).chain(sky).enumerate().map(|(i, t)| (i + 1, t)) {
             let dest = &s.sums[b % 2];
             let g = self.mip_group(&total.view, &addend.view, &dest.view);
             self.step("sshgi output".to_owned(), Pipe::Add, g, 1, dest);
             total = dest;
+            adds = b;
+        }
+        if let (Some(buffer), true) = (&s.tail, bounces >= 2) {
+            let dest = &s.sums[(adds + 1) % 2];
+            self.tail([&s.bounce[bounces - 2], &s.bounce[bounces - 1], total, dest], buffer);
+            total = dest;
         }
         total
+    }
+
+    /// The bounces after the last as a geometric tail of it (`sshgi_tail.wgsl`): `previous` and
+    /// `last` bounce, the sum so far and its destination.
+    fn tail(&mut self, [previous, last, total, dest]: [&'a Target; 4], buffer: &wgpu::Buffer) {
+        let texture = |binding, t: &'a Target| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(&t.view),
+        };
+        let group = || {
+            self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("sshgi tail bind group"),
+                layout: &self.passes.tail_layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: self.params_binding(16) },
+                    texture(1, previous),
+                    texture(2, last),
+                    texture(3, total),
+                    texture(4, dest),
+                    wgpu::BindGroupEntry { binding: 5, resource: buffer.as_entire_binding() },
+                ],
+            })
+        };
+        let size = (last.texture.width(), last.texture.height());
+        let groups = [group(), group(), group()];
+        let pipes = [(Pipe::TailSums, size), (Pipe::TailRatio, (1, 1)), (Pipe::TailAdd, size)];
+        for (group, (pipeline, size)) in groups.into_iter().zip(pipes) {
+            self.steps.push(Step { pass: "sshgi output".to_owned(), pipeline, group, slot: 1, size });
+        }
     }
 
     /// The bounces' sum (`total`), up-sampled to the view into the output.
