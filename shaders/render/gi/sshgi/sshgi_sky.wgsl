@@ -31,6 +31,11 @@ struct SkyRayParams {
     vox: vec4<f32>,
     // Voxel columns marched: width, view pixels per column, height, unused.
     grid: vec4<u32>,
+    // The world's surface voxels (`sshgi_world_grid.wgsl`, the senders' rays): origin xyz, voxel
+    // side (m).
+    world: vec4<f32>,
+    // Voxels along x, y, z (0: none); the bricks' first word.
+    world_dims: vec4<u32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -46,6 +51,9 @@ struct SkyRayParams {
 #import render/gi/sshgi/sshgi_sender.wgsl
 @group(0) @binding(7) var<storage, read> senders: array<Sender>;
 @group(0) @binding(8) var<storage, read_write> sender_radiance: array<vec4<f32>>;
+// The world's surface voxels (`sender_sky` only).
+@group(0) @binding(9) var<storage, read> world: array<u32>;
+#import render/gi/sshgi/sshgi_world_grid.wgsl
 
 #import common/sky.wgsl
 #import render/gi/sshgi/sshgi_visibility.wgsl
@@ -202,8 +210,30 @@ fn in_view(p: vec3<f32>) -> bool {
     return c.w > 0.0 && all(abs(c.xy) <= vec2<f32>(c.w));
 }
 
+// E / pi at a sender x (normal n) from `count` cosine-distributed rays walked through the world
+// grid to its border: a ray that meets no surface voxel leaves the scene and sees the sky.
+fn sky_through_world(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitter: f32) -> vec3<f32> {
+    let tangent = onb_tangent(n);
+    let bitangent = onb_bitangent(n);
+    // Past the grid's far corner from anywhere inside it.
+    let reach = length(vec3<f32>(gp.world_dims.xyz)) * gp.world.w + 1.0;
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < count; i = i + 1u) {
+        let u = (f32(i) + jitter) / f32(count);
+        let phi = rotation + f32(i) * GOLDEN;
+        let r = sqrt(u);
+        let w = normalize(tangent * (r * cos(phi)) + bitangent * (r * sin(phi)) + n * sqrt(max(1.0 - u, 0.0)));
+        if !world_blocked(x, n, x + w * reach, vec3<f32>(0.0)) {
+            sum = sum + sky_radiance(w);
+        }
+    }
+    return sum / f32(max(count, 1u));
+}
+
 // The panorama's and the hidden senders (F per row, one per thread): their first radiance gains
-// albedo x E / pi. A hidden sender inside the view skips its own columns, as a point on screen.
+// albedo x E / pi, from rays walked through the world grid where there is one; otherwise through
+// the view's voxels from where they enter the view (a hidden sender inside the view skips its own
+// columns, as a point on screen).
 @compute @workgroup_size(8, 8, 1)
 fn sender_sky(@builtin(global_invocation_id) id: vec3<u32>) {
     let f = gp.counts.z;
@@ -218,6 +248,11 @@ fn sender_sky(@builtin(global_invocation_id) id: vec3<u32>) {
     let rotation = 2.0 * SKY_PI * hash01(id.x, id.y, gp.counts.y ^ 0x27d4eb2fu);
     let jitter = hash01(id.y, id.x, gp.counts.y ^ 0x165667b1u);
     let skip = select(0, 2, in_view(s.point.xyz));
-    let e = sky_irradiance(s.point.xyz, s.normal.xyz, max(gp.counts.x, 1u), rotation, jitter, skip);
+    var e = vec3<f32>(0.0);
+    if world_grid_on() {
+        e = sky_through_world(s.point.xyz, s.normal.xyz, max(gp.counts.x / 4u, 1u), rotation, jitter);
+    } else {
+        e = sky_irradiance(s.point.xyz, s.normal.xyz, max(gp.counts.x, 1u), rotation, jitter, skip);
+    }
     sender_radiance[index] = sender_radiance[index] + vec4<f32>(s.albedo.rgb * e, 0.0);
 }

@@ -81,9 +81,13 @@ pub struct SkyRayParams {
     pub vox: [f32; 4],
     /// Voxel columns: width, view pixels per column, height, unused.
     pub grid: [u32; 4],
+    /// The world grid's origin and voxel side (m) (the senders' rays).
+    pub world: [f32; 4],
+    /// The world grid's voxels along x, y, z (0: none) and its bricks' first word.
+    pub world_dims: [u32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<SkyRayParams>() == 64);
+const _: () = assert!(std::mem::size_of::<SkyRayParams>() == 96);
 
 /// The voxel columns the gathers march, with the slices' depth range.
 pub struct Visibility<'a> {
@@ -326,6 +330,7 @@ fn sky_pipelines(device: &wgpu::Device) -> Result<SkyPipelines, ShaderError> {
             uniform_entry(6, c, false),
             storage_entry(7, c),
             crate::render::layouts::storage_rw_entry(8),
+            storage_entry(9, c),
         ],
     });
     let sender = compute_pipeline(device, "sshgi sender sky", &sender_layout, &module, "sender_sky");
@@ -598,6 +603,8 @@ impl SshgiPasses {
             forward: [forward.x, forward.y, forward.z, 0.0],
             vox,
             grid,
+            world,
+            world_dims,
         };
         put(sky_slot(plan), bytemuck::bytes_of(&sky));
         inputs.queue.write_buffer(&self.params, 0, bytes);

@@ -151,7 +151,7 @@ impl<'a> StepBuilder<'a> {
             layout: &self.passes.sky_layout,
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(64) },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(96) },
                 texture(2, self.geo(0)),
                 texture(3, &sky.view),
                 wgpu::BindGroupEntry { binding: 4, resource: key.voxels.as_entire_binding() },
@@ -167,12 +167,13 @@ impl<'a> StepBuilder<'a> {
             layout: &self.passes.sender_sky_layout,
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: key.frame.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(64) },
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(96) },
                 wgpu::BindGroupEntry { binding: 4, resource: key.voxels.as_entire_binding() },
                 texture(5, sky_view),
                 wgpu::BindGroupEntry { binding: 6, resource: sky_buffer.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 7, resource: list.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 8, resource: first.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 9, resource: key.world.as_entire_binding() },
             ],
         });
         let slot = sky_slot(s.plan);
