@@ -52,8 +52,11 @@ fn sshgi_on_the_cornell_box_has_the_first_bounces_units_and_bounces_add_energy_w
     let mean = metrics::mean_luminance;
     let lum: Vec<f64> = (1..=3)
         .map(|bounces| {
-            let settings =
-                with(&project, GiMode::Sshgi, SshgiSettings { bounces, start_level: START, ..Default::default() });
+            let settings = with(
+                &project,
+                GiMode::Sshgi,
+                SshgiSettings { bounces, start_level: START, bounce_tail: false, ..Default::default() },
+            );
             mean(&render(&ctx, &project, &settings, 4))
         })
         .collect();
@@ -67,6 +70,32 @@ fn sshgi_on_the_cornell_box_has_the_first_bounces_units_and_bounces_add_energy_w
     assert!((0.7..=1.1).contains(&first), "first bounce finds {first:.3} of the one-bounce reference's indirect light");
     assert!(lum[0] < lum[1] && lum[1] < lum[2], "each bounce adds light: {lum:?}");
     assert!(lum[2] <= rf * 1.02, "three bounces {:.4} exceed the all-bounce reference {rf:.4}", lum[2]);
+}
+
+#[test]
+fn the_bounce_tail_stands_for_the_bounces_after_the_last_and_stays_under_the_reference() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = suite::scene("cornell").expect("suite scene").load(Path::new(".")).expect("cornell");
+    let full = suite::scene("cornell").expect("suite scene").reference(Path::new(".")).expect("cached reference");
+    let lum = |bounces, bounce_tail| {
+        let sshgi = SshgiSettings { bounces, bounce_tail, start_level: START, ..Default::default() };
+        metrics::mean_luminance(&render(&ctx, &project, &with(&project, GiMode::Sshgi, sshgi), 4))
+    };
+    let (two, four) = (lum(2, false), lum(4, false));
+    let (two_tail, four_tail) = (lum(2, true), lum(4, true));
+    let rf = metrics::mean_luminance(&full);
+    eprintln!(
+        "two bounces {two:.4}, with the tail {two_tail:.4}; four {four:.4}, with the tail {four_tail:.4}; reference {rf:.4}"
+    );
+    // The tail adds what the bounces after the last would: two bounces with it come near four,
+    // and four with it add less than two did (the series converges).
+    assert!(
+        two_tail > two && four_tail > four,
+        "the tail adds light: {two:.4} -> {two_tail:.4}, {four:.4} -> {four_tail:.4}"
+    );
+    assert!(two_tail >= 0.5 * (two + four), "two bounces and the tail {two_tail:.4} stay far below four {four:.4}");
+    assert!(four_tail - four < two_tail - two, "the tail after four bounces adds more than after two");
+    assert!(four_tail <= rf * 1.05, "four bounces and the tail {four_tail:.4} exceed the reference {rf:.4}");
 }
 
 #[test]

@@ -169,6 +169,15 @@ fn sky_along(x: vec3<f32>, w: vec3<f32>, skip: i32) -> vec3<f32> {
     return sky_radiance(w);
 }
 
+// Ray i of `count` cosine-distributed about n (stratified, rotated by `rotation`, jittered by
+// `jitter`).
+fn cosine_ray(n: vec3<f32>, tangent: vec3<f32>, bitangent: vec3<f32>, i: u32, count: u32, rotation: f32, jitter: f32) -> vec3<f32> {
+    let u = (f32(i) + jitter) / f32(count);
+    let phi = rotation + f32(i) * GOLDEN;
+    let r = sqrt(u);
+    return normalize(tangent * (r * cos(phi)) + bitangent * (r * sin(phi)) + n * sqrt(max(1.0 - u, 0.0)));
+}
+
 // E / pi from `count` cosine-distributed rays about `n` from `x` (stratified, rotated by
 // `rotation`, jittered by `jitter`).
 fn sky_irradiance(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitter: f32, skip: i32) -> vec3<f32> {
@@ -176,10 +185,7 @@ fn sky_irradiance(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitter:
     let bitangent = onb_bitangent(n);
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < count; i = i + 1u) {
-        let u = (f32(i) + jitter) / f32(count);
-        let phi = rotation + f32(i) * GOLDEN;
-        let r = sqrt(u);
-        let w = normalize(tangent * (r * cos(phi)) + bitangent * (r * sin(phi)) + n * sqrt(max(1.0 - u, 0.0)));
+        let w = cosine_ray(n, tangent, bitangent, i, count, rotation, jitter);
         sum = sum + sky_along(x, w, skip);
     }
     return sum / f32(max(count, 1u));
@@ -219,10 +225,7 @@ fn sky_through_world(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitt
     let reach = length(vec3<f32>(gp.world_dims.xyz)) * gp.world.w + 1.0;
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < count; i = i + 1u) {
-        let u = (f32(i) + jitter) / f32(count);
-        let phi = rotation + f32(i) * GOLDEN;
-        let r = sqrt(u);
-        let w = normalize(tangent * (r * cos(phi)) + bitangent * (r * sin(phi)) + n * sqrt(max(1.0 - u, 0.0)));
+        let w = cosine_ray(n, tangent, bitangent, i, count, rotation, jitter);
         if !world_blocked(x, n, x + w * reach, vec3<f32>(0.0)) {
             sum = sum + sky_radiance(w);
         }

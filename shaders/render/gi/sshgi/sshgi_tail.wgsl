@@ -25,6 +25,18 @@ fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
 }
 
+// Sums every invocation's v into partial[0] (64 invocations, uniform control flow).
+fn sum_over_workgroup(lid: u32, v: vec2<f32>) {
+    partial[lid] = v;
+    workgroupBarrier();
+    for (var stride = 32u; stride > 0u; stride = stride >> 1u) {
+        if lid < stride {
+            partial[lid] = partial[lid] + partial[lid + stride];
+        }
+        workgroupBarrier();
+    }
+}
+
 // The tiles across the start level.
 fn tiles() -> vec2<u32> {
     return (textureDimensions(last) + vec2<u32>(7u)) / 8u;
@@ -41,14 +53,7 @@ fn sums(
     if id.x < size.x && id.y < size.y {
         v = vec2<f32>(luminance(textureLoad(previous, id.xy, 0).rgb), luminance(textureLoad(last, id.xy, 0).rgb));
     }
-    partial[lid] = v;
-    workgroupBarrier();
-    for (var stride = 32u; stride > 0u; stride = stride >> 1u) {
-        if lid < stride {
-            partial[lid] = partial[lid] + partial[lid + stride];
-        }
-        workgroupBarrier();
-    }
+    sum_over_workgroup(lid, v);
     if lid == 0u {
         tail[1u + group.y * tiles().x + group.x] = vec4<f32>(partial[0], 0.0, 0.0);
     }
@@ -62,14 +67,7 @@ fn ratio(@builtin(local_invocation_index) lid: u32) {
     for (var i = lid; i < count; i = i + 64u) {
         v = v + tail[1u + i].xy;
     }
-    partial[lid] = v;
-    workgroupBarrier();
-    for (var stride = 32u; stride > 0u; stride = stride >> 1u) {
-        if lid < stride {
-            partial[lid] = partial[lid] + partial[lid + stride];
-        }
-        workgroupBarrier();
-    }
+    sum_over_workgroup(lid, v);
     if lid == 0u {
         let s = partial[0];
         let r = select(0.0, clamp(s.y / s.x, 0.0, TAIL_CAP), s.x > 0.0);

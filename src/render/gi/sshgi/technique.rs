@@ -340,7 +340,11 @@ impl GiTechnique for SshgiTechnique {
         }
         if scene.has_sky() && settings.sshgi.sky_rays > 0 && settings.sshgi.visibility {
             out.push(
-                "the sky lights through directions the view's voxels show open (out past the scene or into a column where the camera sees the sky): a window or opening off screen lets none in".to_owned(),
+                if settings.sshgi.panorama > 0 && settings.sshgi.world_voxels > 0 {
+                    "the sky lights the screen through directions the view's voxels show open (out past the scene or into a column where the camera sees the sky): a window off screen lets none onto it directly; the surfaces off screen and hidden see the sky through the world grid".to_owned()
+                } else {
+                    "the sky lights through directions the view's voxels show open (out past the scene or into a column where the camera sees the sky): a window or opening off screen lets none in".to_owned()
+                },
             );
         }
         out
