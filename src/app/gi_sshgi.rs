@@ -23,7 +23,7 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut m.bounces, 1..=4).text("bounces"))
             .on_hover_text("Each bounce gathers albedo x the previous one again: one more gather chain (linear cost).");
         ui.checkbox(&mut m.bounce_tail, "bounce tail")
-            .on_hover_text("Not in the paper. The bounces after the last as a geometric series of it, at the ratio of the last bounce's light on screen to the previous one's (at most 0.75). Quality matrix: clutter 0.80 to 0.88, hall 0.87 to 0.93 of the path tracer's energy, the three rooms from the unlit one 0.51 to 0.85; the diorama goes over, 1.07 to 1.11 (its later bounces leak without visibility on every bounce). Cost: three small passes over the start level.");
+            .on_hover_text("Not in the paper. The bounces after the last as a geometric series of it, at the ratio of the last bounce's light on screen to the previous one's (at most 0.75). `bouncelab probe`, 32 frames: clutter 0.80 to 0.88, hall 0.87 to 0.93 of the path tracer's energy, the three rooms from the unlit one 0.51 to 0.85 (quality matrix 0.71); the diorama goes over, 1.07 to 1.11 (its later bounces leak without visibility on every bounce). Cost: three small passes over the start level.");
         ui.checkbox(&mut m.visibility, "indirect shadows (voxel visibility)")
             .on_hover_text("March a solid voxelisation of the view between receiver and sender. Off: light passes through walls; on: the paper's frame cost rose 6x.");
         ui.add_enabled(m.visibility, egui::Checkbox::new(&mut m.visibility_all_bounces, "on every bounce"))
@@ -52,7 +52,7 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
         .on_hover_text("Panorama senders per start-level texel and frame (and screen and panorama senders per panorama texel): linear cost, less noise.");
         let mut hidden = m.hidden_senders > 0;
         ui.add_enabled(m.panorama > 0, egui::Checkbox::new(&mut hidden, "hidden senders: light from surfaces the camera cannot see"))
-            .on_hover_text("Not in the paper; needs the panorama. Points spread over every surface by area; those the camera's position does not see (the back of a pillar, the floor behind a box) send light too, lit by the view's lights and shadow maps, their light marched through the view's voxels and lost where it leaves the view (quality matrix: Cornell box 0.91 to 0.94, clutter 0.72 to 0.77, hall 0.82 to 0.85, the three rooms seen from the unlit one 0 to 0.48 of the path tracer's energy). Cost: a pack of the points and a share of the panorama's samples.");
+            .on_hover_text("Not in the paper; needs the panorama. Points spread over every surface by area; those the camera's position does not see (the back of a pillar, the floor behind a box) send light too, lit by the view's lights and shadow maps, their light marched through the view's voxels and, where it leaves the view, through the world grid (quality matrix, before the world grid and the tail: Cornell box 0.91 to 0.94, clutter 0.72 to 0.77, hall 0.82 to 0.85, the three rooms seen from the unlit one 0 to 0.48 of the path tracer's energy). Cost: a pack of the points and a share of the panorama's samples.");
         if hidden != (m.hidden_senders > 0) {
             m.hidden_senders = if hidden { 2048 } else { 0 };
         }
@@ -66,7 +66,7 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
             m.panorama > 0 && m.hidden_senders > 0,
             egui::Checkbox::new(&mut world, "world grid: hidden light that leaves the view"),
         )
-        .on_hover_text("Not in the paper. A grid of the voxels the scene's surfaces pass through, built on the CPU when the geometry changes: where a hidden sender's light leaves the view it is walked there instead of being counted as blocked (quality matrix: hall 0.85 to 0.87, clutter 0.77 to 0.80; a 60 m hall's side room with the hall behind the camera 0.29 to 0.55 of the path tracer's energy). Cost: each such segment walks the grid's bricks (lavapipe: sshgi's passes x1.3 on the clutter room).");
+        .on_hover_text("Not in the paper. A grid of the voxels the scene's surfaces pass through, built on the CPU when the geometry changes: where a hidden sender's light leaves the view it is walked there instead of being counted as blocked; the senders' sky rays walk it too (`bouncelab probe`, 32 frames: hall 0.85 to 0.87, clutter 0.77 to 0.80; a 60 m hall's side room with the hall behind the camera 0.29 to 0.55 of the path tracer's energy). Cost: each such segment walks the grid's bricks (lavapipe: sshgi's passes x1.3 on the clutter room).");
         if world != (m.world_voxels > 0) {
             m.world_voxels = if world { 256 } else { 0 };
         }
