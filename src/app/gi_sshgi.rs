@@ -72,7 +72,7 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
         }
         ui.add_enabled(
             m.panorama > 0 && m.hidden_senders > 0 && m.world_voxels > 0,
-            egui::Slider::new(&mut m.world_voxels, 32..=1024).logarithmic(true).text("world grid voxels"),
+            egui::Slider::new(&mut m.world_voxels, 32..=512).logarithmic(true).text("world grid voxels"),
         )
         .on_hover_text("Voxels along the scene's longest side (at least 2 cm each). Finer: less false shadow near surfaces and in narrow doorways, a longer walk and up to 8x the memory per doubling.");
         ui.add_enabled(m.visibility, egui::Slider::new(&mut m.sky_rays, 0..=64).text("sky rays"))

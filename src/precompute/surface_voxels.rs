@@ -75,7 +75,6 @@ impl SurfaceVoxels {
         for t in tris {
             grid.mark(t);
         }
-        grid.mark_bricks();
         Some(grid)
     }
 
@@ -113,22 +112,7 @@ impl SurfaceVoxels {
         self.cell(c, Level::Voxel)
     }
 
-    /// Sets the bricks that hold a marked voxel.
-    fn mark_bricks(&mut self) {
-        for z in 0..self.dims.z {
-            for y in 0..self.dims.y {
-                for x in 0..self.dims.x {
-                    let c = UVec3::new(x, y, z);
-                    if self.get(c.as_ivec3()) {
-                        let i = self.index(c / BRICK, Level::Brick);
-                        self.words[i / 32] |= 1 << (i % 32);
-                    }
-                }
-            }
-        }
-    }
-
-    /// Marks the voxels triangle `t` overlaps.
+    /// Marks the voxels triangle `t` overlaps, and their bricks.
     fn mark(&mut self, t: &[Vec3; 3]) {
         let lo = ((t[0].min(t[1]).min(t[2]) - self.origin) / self.h).floor().as_ivec3().max(IVec3::ZERO);
         let hi = ((t[0].max(t[1]).max(t[2]) - self.origin) / self.h).floor().as_ivec3().min(self.dims.as_ivec3() - 1);
@@ -141,8 +125,10 @@ impl SurfaceVoxels {
                     let c = IVec3::new(x, y, z);
                     let centre = self.origin + (c.as_vec3() + 0.5) * self.h;
                     if triangle_overlaps_box(t, centre, half) {
-                        let i = self.index(c.as_uvec3(), Level::Voxel);
-                        self.words[i / 32] |= 1 << (i % 32);
+                        for (cell, level) in [(c.as_uvec3(), Level::Voxel), (c.as_uvec3() / BRICK, Level::Brick)] {
+                            let i = self.index(cell, level);
+                            self.words[i / 32] |= 1 << (i % 32);
+                        }
                     }
                 }
             }

@@ -100,7 +100,7 @@ pub struct SshgiSettings {
     /// many points, and the panorama's gathers and receives share their samples with them.
     pub hidden_senders: u32,
     /// Voxels along the scene's longest side of a world-space grid of the voxels its surfaces
-    /// pass through (0: none; 32..=1024, at least 2 cm each), which answers visibility for the
+    /// pass through (0: none; 32..=512, at least 2 cm each; at most 16 MB at 512), which answers visibility for the
     /// part of a hidden sender's segment that leaves the view (without it that segment counts
     /// as blocked), and the panorama's and hidden senders' sky rays. Not in the paper. Built on
     /// the CPU when the geometry changes (one bit a voxel: at most 2 MB at 256 for a cubic
@@ -178,9 +178,9 @@ impl SshgiSettings {
             ),
             (
                 "sshgi.world_voxels",
-                self.world_voxels == 0 || (32..=1024).contains(&self.world_voxels),
+                self.world_voxels == 0 || (32..=512).contains(&self.world_voxels),
                 self.world_voxels.to_string(),
-                "0 (off) or 32..=1024",
+                "0 (off) or 32..=512",
             ),
             (
                 "sshgi.temporal_weight",
