@@ -50,11 +50,26 @@ struct Uploaded {
 #[derive(Default)]
 pub struct WorldGrid {
     built: Option<(GeometryKey, Option<Uploaded>)>,
+    /// The previous frame's geometry.
+    last: Option<GeometryKey>,
+}
+
+/// Whether to rebuild for geometry `key`: there is no grid yet, or another resolution, or the
+/// geometry changed and has stood still for a frame since (`last`). While an object is dragged
+/// the grid keeps its last shape: a build takes tens of milliseconds on a level (the suite's
+/// rooms 125 ms, the cluttered room 343 ms in a debug build), too long to pay every frame.
+fn should_build(built: Option<&GeometryKey>, last: Option<&GeometryKey>, key: &GeometryKey) -> bool {
+    match built {
+        None => true,
+        Some(b) if b.along != key.along => true,
+        Some(b) => b != key && last == Some(key),
+    }
 }
 
 impl WorldGrid {
     /// The grid of `scene` at `along` voxels on its longest side (0: none), rebuilt and uploaded
-    /// when the geometry or `along` changed; `None` for none or a scene without triangles.
+    /// when the geometry or `along` changed ([`should_build`]); `None` for none or a scene without
+    /// triangles.
     pub fn update(
         &mut self,
         device: &wgpu::Device,
@@ -67,10 +82,11 @@ impl WorldGrid {
             return None;
         }
         let key = GeometryKey::of(scene, along);
-        if self.built.as_ref().is_none_or(|(k, _)| *k != key) {
+        if should_build(self.built.as_ref().map(|(k, _)| k), self.last.as_ref(), &key) {
             let uploaded = SurfaceVoxels::of_scene(scene, along).map(|grid| upload(device, queue, &grid));
-            self.built = Some((key, uploaded));
+            self.built = Some((GeometryKey::of(scene, along), uploaded));
         }
+        self.last = Some(key);
         let (_, Some(u)) = self.built.as_ref()? else { return None };
         Some(WorldGridRef { buffer: &u.buffer, world: u.world, dims: u.dims })
     }
@@ -78,6 +94,7 @@ impl WorldGrid {
     /// Frees the grid.
     pub fn release(&mut self) {
         self.built = None;
+        self.last = None;
     }
 
     /// Bytes of the grid's buffer.
@@ -102,5 +119,28 @@ fn upload(device: &wgpu::Device, queue: &wgpu::Queue, grid: &SurfaceVoxels) -> U
         buffer,
         world: grid.origin.extend(grid.h).to_array(),
         dims: [grid.dims.x, grid.dims.y, grid.dims.z, grid.bricks_at as u32],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn key(along: u32, x: f32) -> GeometryKey {
+        let mut m = [0.0; 16];
+        m[12] = x;
+        GeometryKey { resources: 1, along, objects: vec![(0, m, true)] }
+    }
+
+    #[test]
+    fn the_grid_is_built_at_once_and_rebuilt_when_a_moved_object_stands_still() {
+        // No grid yet, or another resolution: at once.
+        assert!(should_build(None, None, &key(256, 0.0)));
+        assert!(should_build(Some(&key(128, 0.0)), Some(&key(256, 0.0)), &key(256, 0.0)));
+        // Unchanged: never.
+        assert!(!should_build(Some(&key(256, 0.0)), Some(&key(256, 0.0)), &key(256, 0.0)));
+        // Dragged (another place each frame): not yet; stood still for a frame: now.
+        assert!(!should_build(Some(&key(256, 0.0)), Some(&key(256, 1.0)), &key(256, 2.0)));
+        assert!(should_build(Some(&key(256, 0.0)), Some(&key(256, 2.0)), &key(256, 2.0)));
     }
 }
