@@ -8,7 +8,7 @@ use crate::precompute::surface_voxels::SurfaceVoxels;
 use crate::scene::Scene;
 
 /// What the grid was built from.
-#[derive(PartialEq)]
+#[derive(Clone, PartialEq)]
 struct GeometryKey {
     resources: u64,
     along: u32,
@@ -84,7 +84,7 @@ impl WorldGrid {
         let key = GeometryKey::of(scene, along);
         if should_build(self.built.as_ref().map(|(k, _)| k), self.last.as_ref(), &key) {
             let uploaded = SurfaceVoxels::of_scene(scene, along).map(|grid| upload(device, queue, &grid));
-            self.built = Some((GeometryKey::of(scene, along), uploaded));
+            self.built = Some((key.clone(), uploaded));
         }
         self.last = Some(key);
         let (_, Some(u)) = self.built.as_ref()? else { return None };

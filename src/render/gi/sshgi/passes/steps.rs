@@ -286,22 +286,20 @@ impl<'a> StepBuilder<'a> {
             binding,
             resource: wgpu::BindingResource::TextureView(&t.view),
         };
-        let group = || {
-            self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("sshgi tail bind group"),
-                layout: &self.passes.tail_layout,
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: self.params_binding(16) },
-                    texture(1, previous),
-                    texture(2, last),
-                    texture(3, total),
-                    texture(4, dest),
-                    wgpu::BindGroupEntry { binding: 5, resource: buffer.as_entire_binding() },
-                ],
-            })
-        };
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi tail bind group"),
+            layout: &self.passes.tail_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: self.params_binding(16) },
+                texture(1, previous),
+                texture(2, last),
+                texture(3, total),
+                texture(4, dest),
+                wgpu::BindGroupEntry { binding: 5, resource: buffer.as_entire_binding() },
+            ],
+        });
         let size = (last.texture.width(), last.texture.height());
-        let groups = [group(), group(), group()];
+        let groups = [group.clone(), group.clone(), group];
         let pipes = [(Pipe::TailSums, size), (Pipe::TailRatio, (1, 1)), (Pipe::TailAdd, size)];
         for (group, (pipeline, size)) in groups.into_iter().zip(pipes) {
             self.steps.push(Step { pass: "sshgi output".to_owned(), pipeline, group, slot: 1, size });
