@@ -261,3 +261,35 @@ fn sshgi_lights_with_the_sky_through_its_voxels() {
         }
     }
 }
+
+/// The mean over `frames` frames of the sum over the start level of sshgi's sky buffer (E / pi)
+/// of `name`, from a renderer of its own (the same frame seeds each time).
+fn sshgi_sky_sum(ctx: &bouncelab::render::GpuContext, name: &str, world_voxels: u32, frames: usize) -> f64 {
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let scene = bouncelab::suite::scene(name).expect("suite scene");
+    let project = scene.load(std::path::Path::new(".")).expect("loads");
+    let mut settings = RenderSettings { mode: GiMode::Sshgi, ..project.render.clone() };
+    settings.sshgi.world_voxels = world_voxels;
+    let mut sum = 0.0;
+    for _ in 0..frames {
+        r.render(&project.scene, &settings, (128, 72)).expect("render");
+        let sky = r.read_buffer("sshgi_sky").expect("the sky buffer");
+        sum += sky.pixels.iter().map(|p| f64::from(p[0] + p[1] + p[2])).sum::<f64>();
+    }
+    sum / frames as f64
+}
+
+/// A sky ray that leaves the view in front of what its last column shows (or through the near
+/// end) is unknown to the view's voxels; with the world grid it walks on through the scene's
+/// surface voxels. Outdoors (the courtyard) that finds more sky than counting it blocked; in
+/// the window room, where such rays meet the walls and the ceiling, the grid adds almost none
+/// (a grid that leaked would light the room through its walls).
+#[test]
+fn sshgi_sky_rays_that_leave_the_view_find_the_sky_outdoors_and_the_walls_indoors() {
+    let Some(ctx) = common::gpu() else { return };
+    let gain = |name: &str| sshgi_sky_sum(&ctx, name, 256, 8) / sshgi_sky_sum(&ctx, name, 0, 8);
+    let (outdoors, indoors) = (gain("courtyard"), gain("skylight"));
+    eprintln!("sky light with the world grid over without: courtyard {outdoors:.4}, window room {indoors:.4}");
+    assert!(outdoors > 1.02, "the courtyard's sky rays past the view found no sky: {outdoors:.4}");
+    assert!((indoors - 1.0).abs() < 0.02, "the window room's sky changed with the grid: {indoors:.4}");
+}

@@ -316,6 +316,7 @@ fn sky_pipelines(device: &wgpu::Device) -> Result<SkyPipelines, ShaderError> {
             storage_entry(4, c),
             texture_entry(5, c, float),
             uniform_entry(6, c, false),
+            storage_entry(9, c),
         ],
     });
     let module = shaders::module(device, "render/gi/sshgi/sshgi_sky.wgsl")?;

@@ -157,6 +157,7 @@ impl<'a> StepBuilder<'a> {
                 wgpu::BindGroupEntry { binding: 4, resource: key.voxels.as_entire_binding() },
                 texture(5, sky_view),
                 wgpu::BindGroupEntry { binding: 6, resource: sky_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 9, resource: key.world.as_entire_binding() },
             ],
         });
         self.step("sshgi sky".to_owned(), Pipe::Sky, group, sky_slot(s.plan), sky);
