@@ -105,7 +105,8 @@ pub struct SshgiSettings {
     /// Voxels along the scene's longest side of a world-space grid of the voxels its surfaces
     /// pass through (0: none; 32..=512, at least 2 cm each; at most 16 MB at 512), which answers visibility for the
     /// part of a hidden sender's segment that leaves the view (without it that segment counts
-    /// as blocked), and the panorama's and hidden senders' sky rays. Not in the paper. Built on
+    /// as blocked), the panorama's and hidden senders' sky rays, and the screen's sky rays
+    /// past the view. Not in the paper. Built on
     /// the CPU when the geometry changes (one bit a voxel: at most 2 MB at 256 for a cubic
     /// scene); each such segment walks the grid's bricks of 4^3 voxels and the voxels of those
     /// that hold a surface. The hall 0.850 -> 0.873 of the path tracer's energy, a 60 m hall's
