@@ -1,4 +1,4 @@
-//! Soak: the editor driven through thousands of random actions on the software adapter (mode
+//! Soak: the editor driven through over a thousand random actions on the software adapter (mode
 //! switches, adding, duplicating, moving and deleting objects and lights, undo and redo, the
 //! inspector, save and reopen). In epochs: each opens the same file and ends with undo-all,
 //! which must give back that file's bytes exactly; the file saved after redo-all must reopen to
@@ -140,7 +140,7 @@ const CHILD: &str = "BOUNCELAB_SOAK_CHILD";
 
 #[test]
 #[ignore = "heavy: 1,250 editor actions in a process of their own (about 3 minutes in a debug build)"]
-fn thousands_of_random_actions_keep_memory_flat_and_undo_all_restores_the_file() {
+fn over_a_thousand_random_actions_keep_memory_flat_and_undo_all_restores_the_file() {
     if std::env::var_os(CHILD).is_some() {
         soak();
         return;
@@ -149,7 +149,7 @@ fn thousands_of_random_actions_keep_memory_flat_and_undo_all_restores_the_file()
         return;
     }
     let module = module_path!().split_once("::").map_or("", |(_, m)| m);
-    let name = format!("{module}::thousands_of_random_actions_keep_memory_flat_and_undo_all_restores_the_file");
+    let name = format!("{module}::over_a_thousand_random_actions_keep_memory_flat_and_undo_all_restores_the_file");
     let exe = std::env::current_exe().expect("test binary");
     let out = std::process::Command::new(exe)
         .args([name.as_str(), "--exact", "--include-ignored", "--nocapture", "--test-threads=1"])
