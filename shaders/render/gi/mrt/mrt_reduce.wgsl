@@ -4,14 +4,13 @@
 // per (mode, block, face slot): 64 threads each sum a strided share of the face's products, then
 // a tree reduction in workgroup memory (WGSL has no float atomics).
 #import render/gi/mrt/mrt_common.wgsl
+#import common/workgroup_sum.wgsl
 
 @group(0) @binding(0) var<uniform> mp: MrtParams;
 @group(0) @binding(1) var<storage, read> blocks: array<Block>;
 @group(0) @binding(2) var<storage, read> matrices: array<f32>;
 @group(0) @binding(3) var<storage, read> l_d: array<vec4<f32>>;
 @group(0) @binding(4) var<storage, read_write> b: array<vec4<f32>>;
-
-var<workgroup> partial: array<vec3<f32>, 64>;
 
 @compute @workgroup_size(64, 1, 1)
 fn cs_main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) li: u32) {
@@ -29,15 +28,8 @@ fn cs_main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index
     for (var i = first + li; i < last; i = i + 64u) {
         sum = sum + matrices[row + i] * l_d[blk.texels.x + i].rgb;
     }
-    partial[li] = sum;
-    workgroupBarrier();
-    for (var s = 32u; s > 0u; s = s >> 1u) {
-        if li < s {
-            partial[li] = partial[li] + partial[li + s];
-        }
-        workgroupBarrier();
-    }
+    workgroup_sum(li, vec4<f32>(sum, 0.0));
     if li == 0u {
-        b[(x * 6u + g) * mp.counts.w + mode] = vec4<f32>(partial[0], 0.0);
+        b[(x * 6u + g) * mp.counts.w + mode] = vec4<f32>(partial[0].xyz, 0.0);
     }
 }

@@ -4,6 +4,7 @@
 // previous bounce's (the screen's own decay, as `ism`'s screen tail ratio), at most `TAIL_CAP`.
 // Three dispatches: `sums` (each 8x8 tile's luminance of both bounces), `ratio` (one workgroup:
 // the tiles' sums and the factor r / (1 - r)) and `add` (dest = total + factor x last).
+#import common/workgroup_sum.wgsl
 
 // The largest ratio taken: a room that light reaches late sees its bounces grow for a while (the
 // suite's three rooms from the unlit room: 0.9 at the fourth bounce), and 1 / (1 - r) is steep.
@@ -19,22 +20,8 @@ const TAIL_CAP: f32 = 0.75;
 // [0]: x the factor r / (1 - r), y r; [1 + tile]: the tile's luminance sums (previous, last).
 @group(0) @binding(5) var<storage, read_write> tail: array<vec4<f32>>;
 
-var<workgroup> partial: array<vec2<f32>, 64>;
-
 fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
-}
-
-// Sums every invocation's v into partial[0] (64 invocations, uniform control flow).
-fn sum_over_workgroup(lid: u32, v: vec2<f32>) {
-    partial[lid] = v;
-    workgroupBarrier();
-    for (var stride = 32u; stride > 0u; stride = stride >> 1u) {
-        if lid < stride {
-            partial[lid] = partial[lid] + partial[lid + stride];
-        }
-        workgroupBarrier();
-    }
 }
 
 // The tiles across the start level.
@@ -53,9 +40,9 @@ fn sums(
     if id.x < size.x && id.y < size.y {
         v = vec2<f32>(luminance(textureLoad(previous, id.xy, 0).rgb), luminance(textureLoad(last, id.xy, 0).rgb));
     }
-    sum_over_workgroup(lid, v);
+    workgroup_sum(lid, vec4<f32>(v, 0.0, 0.0));
     if lid == 0u {
-        tail[1u + group.y * tiles().x + group.x] = vec4<f32>(partial[0], 0.0, 0.0);
+        tail[1u + group.y * tiles().x + group.x] = vec4<f32>(partial[0].xy, 0.0, 0.0);
     }
 }
 
@@ -67,9 +54,9 @@ fn ratio(@builtin(local_invocation_index) lid: u32) {
     for (var i = lid; i < count; i = i + 64u) {
         v = v + tail[1u + i].xy;
     }
-    sum_over_workgroup(lid, v);
+    workgroup_sum(lid, vec4<f32>(v, 0.0, 0.0));
     if lid == 0u {
-        let s = partial[0];
+        let s = partial[0].xy;
         let r = select(0.0, clamp(s.y / s.x, 0.0, TAIL_CAP), s.x > 0.0);
         tail[0] = vec4<f32>(r / (1.0 - r), r, 0.0, 0.0);
     }
