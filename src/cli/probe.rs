@@ -87,7 +87,8 @@ fn parse_mode(name: &str) -> Result<GiMode, String> {
 /// One probed render: the judged image, its trace, and the renderer (for ids and timings).
 struct Probed {
     image: HdrImage,
-    trace: Vec<f64>,
+    /// Each frame box-filtered to the references' pixels, with `--trace`.
+    trace: Vec<HdrImage>,
     renderer: Renderer,
 }
 
@@ -174,8 +175,14 @@ fn probe_scene(
         c.flip / d.flip
     );
     if args.trace {
-        let traced: Vec<String> = trace.iter().map(|m| format!("{:.2}", m / reference_mean)).collect();
+        let traced: Vec<String> =
+            trace.iter().map(|f| format!("{:.2}", metrics::mean_luminance(f) / reference_mean)).collect();
         write!(out, "\n         frames: {}", traced.join(" "))?;
+        let flips =
+            trace.iter().map(|f| Ok(metrics::compare(f, reference, ev)?.flip)).collect::<anyhow::Result<Vec<_>>>()?;
+        let (mean, worst) =
+            (flips.iter().sum::<f64>() / flips.len().max(1) as f64, flips.iter().fold(0.0f64, |a, b| a.max(*b)));
+        write!(out, "\n         each frame's FLIP / direct: mean {:.2}, worst {:.2}", mean / d.flip, worst / d.flip)?;
     }
     if args.timings {
         let passes: Vec<String> = r.timings(true).iter().map(|p| format!("{} {:.2}", p.name, p.ms)).collect();
@@ -213,7 +220,10 @@ fn render(
             continue;
         }
         let px = renderer.read_hdr()?;
-        trace.push(px.iter().map(|p| f64::from(metrics::luminance(p))).sum::<f64>() / px.len() as f64);
+        if args.trace {
+            let pixels = image_io::box_downsample(&px, size, args.ssaa);
+            trace.push(HdrImage { width: REFERENCE_SIZE.0, height: REFERENCE_SIZE.1, pixels });
+        }
         if summed {
             for (s, p) in sum.iter_mut().zip(px) {
                 (0..4).for_each(|c| s[c] += p[c] / averaged);

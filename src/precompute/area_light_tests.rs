@@ -154,7 +154,7 @@ fn the_emission_texture_is_read_at_the_surface_point() {
         .collect();
     assert!(samples.iter().any(|e| close(*e, full, 0.02)), "the white half emits fully: {samples:?}");
     assert!(samples.iter().any(|e| e.max_element() < 0.02), "the black half emits nothing: {samples:?}");
-    let points = crate::render::gi::ism::emitter_points::emitter_points(&scene, 4096);
+    let points = crate::render::gi::ism::emitter_points::emitter_points(&scene, 4096, 64);
     let total = crate::render::gi::ism::emitter_points::total_power(&points);
     let untextured = PI * 4.0 * full;
     assert!(close(total, 0.5 * untextured, 0.03), "half the panel's power: {total} of {untextured}");

@@ -211,6 +211,36 @@ fn ism_lights_with_vpls_on_the_emitters_and_the_sky() {
     }
 }
 
+/// `ism-ritschel` renders every frame afresh (no history), so one frame of sky VPLs is all it
+/// shows: on the window room lit only by the sky, eight consecutive frames' energies must stay
+/// within a few percent of each other. The sky's candidates lie on a grid of its directions in
+/// the emitter tile's layout (`emitter_points`, "Layout"), so each frame's evenly spread VPLs
+/// spread evenly over the sky; with the candidates in Halton order one frame read anywhere
+/// from 0.79 to 1.21 of the reference (`probe skylight --mode ism-ritschel --trace`).
+#[test]
+fn ism_ritschel_frames_of_a_sky_lit_room_hold_steady() {
+    let Some(ctx) = common::gpu() else { return };
+    let scene = bouncelab::suite::scene("skylight").expect("suite scene");
+    let project = scene.load(std::path::Path::new(".")).expect("loads");
+    let reference = scene.reference(std::path::Path::new(".")).expect("reference");
+    let size = (reference.width, reference.height);
+    let settings = RenderSettings { mode: GiMode::IsmRitschel, ..project.render.clone() };
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let target = bouncelab::metrics::mean_luminance(&reference);
+    let energies: Vec<f64> = (0..8)
+        .map(|_| {
+            r.render(&project.scene, &settings, size).expect("render");
+            let frame = HdrImage { width: size.0, height: size.1, pixels: r.read_hdr().expect("hdr") };
+            bouncelab::metrics::mean_luminance(&frame) / target
+        })
+        .collect();
+    let mean = energies.iter().sum::<f64>() / energies.len() as f64;
+    let spread = (energies.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / energies.len() as f64).sqrt() / mean;
+    eprintln!("ism-ritschel skylight frames {energies:.3?}: mean {mean:.3}, spread {:.1}%", 100.0 * spread);
+    assert!(spread < 0.03, "frame-to-frame spread {:.1}% of the energy", 100.0 * spread);
+    assert!(energies.iter().all(|e| (0.9..=1.15).contains(e)), "{energies:.3?}");
+}
+
 /// `sshgi` finds the sky through its voxel columns (from the screen's texels and the panorama's
 /// senders): in the courtyard open to the sky and in the window room lit only by the sky its
 /// energy is within 10% of the path tracer's and its FLIP under half of `direct`'s; without sky

@@ -435,7 +435,7 @@ impl VplPass {
         }
         let candidates = tiles.emitter_candidates() as u32;
         self.ensure(device, tiles.side, tiles.count() as u32, settings.vpl_count, candidates);
-        self.upload_emitters(queue, scene, candidates as usize);
+        self.upload_emitters(queue, scene, candidates as usize, tiles.tile_size as usize);
         let Some(s) = &self.sized else { return false };
         write_views(queue, s, scene, &tiles);
         let levels = tiles.side.trailing_zeros();
@@ -463,19 +463,19 @@ impl VplPass {
         true
     }
 
-    /// Uploads `count` emitter candidates when the emitters changed since the last upload (a
-    /// scene whose revision stands still costs one comparison).
-    fn upload_emitters(&mut self, queue: &wgpu::Queue, scene: &Scene, count: usize) {
+    /// Uploads `count` emitter candidates for tiles of `row` texels a row when the emitters
+    /// changed since the last upload (a scene whose revision stands still costs one comparison).
+    fn upload_emitters(&mut self, queue: &wgpu::Queue, scene: &Scene, count: usize, row: usize) {
         let Some(s) = &self.sized else { return };
         if count == 0 || self.emitters_uploaded.as_ref().is_some_and(|(r, _)| *r == scene.revision()) {
             return;
         }
-        let key = emitter_points::key(scene, count);
+        let key = emitter_points::key(scene, count, row);
         if self.emitters_uploaded.as_ref().is_some_and(|(_, k)| *k == key) {
             self.emitters_uploaded = Some((scene.revision(), key));
             return;
         }
-        let mut points = emitter_points::emitter_points(scene, count);
+        let mut points = emitter_points::emitter_points(scene, count, row);
         // Candidates the emitters could not fill (no power) send nothing, not last upload's light.
         points.resize(count, GpuEmitterPoint::default());
         queue.write_buffer(&s.emitter_points, 0, bytemuck::cast_slice(&points));
