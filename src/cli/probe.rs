@@ -60,7 +60,8 @@ pub struct ProbeArgs {
     /// missing of it.
     #[arg(long)]
     pub objects: bool,
-    /// Each frame's mean luminance over the reference's.
+    /// Each frame's mean luminance over the reference's, and the mean and the worst of each
+    /// frame's FLIP over `direct`'s (what a single-frame mode shows from frame to frame).
     #[arg(long)]
     pub trace: bool,
     /// The last frame's GPU pass timings.
