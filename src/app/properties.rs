@@ -138,8 +138,9 @@ fn object_ui(ui: &mut egui::Ui, object: &mut Object, materials: &[String]) {
 }
 
 /// The emission colour (glTF's `emissiveFactor`) and strength in the scene's light units
-/// (cd/m² or W/(sr m²); the model keeps it radiometric).
-fn emission_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, units: LightUnits) {
+/// (cd/m² or W/(sr m²); the model keeps it radiometric), and its texture among the scene's
+/// `images` (width, height).
+fn emission_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, units: LightUnits, images: &[(u32, u32)]) {
     ui.horizontal(|ui| {
         ui.label("Emission");
         ui.color_edit_button_rgb(&mut m.emissive_color)
@@ -148,12 +149,46 @@ fn emission_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, units: LightUn
     let tip =
         "Radiance of the front face per unit colour (KHR_materials_emissive_strength), in the scene's light units.";
     super::sky_panel::radiance_slider(ui, &mut m.emissive_strength, units, "emission strength", tip);
+    emission_texture_ui(ui, m, images);
+}
+
+/// The name the emission-texture picker gives image `i` of `(width, height)`.
+pub fn image_label(i: usize, (width, height): (u32, u32)) -> String {
+    format!("image {i} ({width}x{height})")
+}
+
+/// Picks the emission texture (glTF's `emissiveTexture`) among the images the scene's glTF
+/// files brought, or none; a screen or a sign usually emits its base colour texture.
+fn emission_texture_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, images: &[(u32, u32)]) {
+    if images.is_empty() {
+        return;
+    }
+    let label = |t: Option<crate::scene::TextureRef>| match t {
+        Some(t) => images.get(t.image).map_or_else(|| format!("image {}", t.image), |s| image_label(t.image, *s)),
+        None => "none".to_owned(),
+    };
+    // The base colour's UV set where the same image is picked, else the first.
+    let uv = |i: usize| m.base_color_texture.filter(|t| t.image == i).map_or(0, |t| t.tex_coord);
+    let mut picked = m.emissive_texture;
+    egui::ComboBox::from_label("emission texture")
+        .selected_text(label(picked))
+        .show_ui(ui, |ui| {
+            ui.selectable_value(&mut picked, None, "none");
+            for (i, size) in images.iter().enumerate() {
+                let texture = Some(crate::scene::TextureRef { image: i, tex_coord: uv(i) });
+                ui.selectable_value(&mut picked, texture, image_label(i, *size));
+            }
+        })
+        .response
+        .on_hover_text("Multiplies the emission colour per texel (sRGB); images come with the scene's glTF files.");
+    m.emissive_texture = picked;
 }
 
 /// Edits the object's material (shared by every object that uses it).
 fn material_ui(ui: &mut egui::Ui, state: &mut EditorState, index: usize) {
     let Some(original) = state.project.scene.materials().get(index).cloned() else { return };
     let units = state.project.scene.desc().light_units;
+    let images: Vec<(u32, u32)> = state.project.scene.resources().images.iter().map(|i| (i.width, i.height)).collect();
     let users = state.project.scene.objects().iter().filter(|o| o.material == index).count();
     let mut m = original.clone();
     egui::CollapsingHeader::new(format!("Material \"{}\" ({users} objects)", m.name)).default_open(false).show(
@@ -172,7 +207,7 @@ fn material_ui(ui: &mut egui::Ui, state: &mut EditorState, index: usize) {
                     .on_hover_text("Colour of the Blinn-Phong lobe; black = purely diffuse.");
             });
             ui.add(egui::Slider::new(&mut m.roughness, 0.02..=1.0).text("roughness"));
-            emission_ui(ui, &mut m, units);
+            emission_ui(ui, &mut m, units, &images);
             if m.base_color_texture.is_some() || m.normal_texture.is_some() || m.emissive_texture.is_some() {
                 ui.label("Textured (base colour, normal map and/or emission from the glTF).");
             }

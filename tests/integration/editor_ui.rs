@@ -574,3 +574,40 @@ fn a_sky_chosen_in_the_scene_panel_is_one_undo_step_shown_in_the_scenes_units() 
     h.run_steps(2);
     assert_eq!(h.state().state().project.scene.environment().sky, bouncelab::scene::Sky::None, "undone");
 }
+
+/// A material's emission texture is picked among the scene's images in the properties panel:
+/// one undo step, which the keyboard takes back.
+#[test]
+fn an_emission_texture_picked_in_the_material_panel_is_one_undo_step() {
+    if !common::has_gpu() {
+        eprintln!("skipping: no GPU adapter");
+        return;
+    }
+    let path = default_project_path();
+    let mut project = Project::load(&path).expect("default project");
+    let screen = bouncelab::scene::Image { width: 2, height: 1, rgba8: vec![255, 255, 255, 255, 0, 0, 0, 255] };
+    let resources = bouncelab::scene::Resources { images: vec![screen], ..project.scene.resources().clone() };
+    project.scene = bouncelab::scene::Scene::new(project.scene.desc().clone(), resources).expect("scene");
+    let material = project.scene.objects()[0].material;
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1280.0, 800.0))
+        .wgpu()
+        .build_eframe(move |cc| EditorApp::new(cc, project, Some(path)));
+    h.run_steps(3);
+    h.state_mut().state_mut().selection = Selection::Object(0);
+    h.run_steps(2);
+    h.get_by_label_contains("Material \"").click_accesskit();
+    h.run_steps(2);
+    h.get_by_label("emission texture").click_accesskit();
+    h.run_steps(2);
+    h.get_by_label("image 0 (2x1)").click_accesskit();
+    h.run_steps(2);
+    settle(&mut h);
+    let picked = h.state().state().project.scene.materials()[material].emissive_texture;
+    assert_eq!(picked.map(|t| t.image), Some(0), "the picked image");
+    assert!(h.state().state().history.is_dirty(), "an undo step");
+    h.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    h.run_steps(2);
+    assert_eq!(h.state().state().project.scene.materials()[material].emissive_texture, None, "undone");
+    settle(&mut h);
+}
