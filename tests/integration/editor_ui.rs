@@ -546,6 +546,15 @@ fn the_gi_panel_measures_the_light_sshgi_cannot_see_and_again_when_the_view_move
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Clicks the widgets labelled `labels` one after the other through accessibility (so widgets
+/// below the fold are reached too), two frames after each.
+fn click_through(h: &mut Harness<'static, EditorApp>, labels: &[&str]) {
+    for label in labels {
+        h.get_by_label(label).click_accesskit();
+        h.run_steps(2);
+    }
+}
+
 #[test]
 fn a_sky_chosen_in_the_scene_panel_is_one_undo_step_shown_in_the_scenes_units() {
     if !common::has_gpu() {
@@ -554,12 +563,7 @@ fn a_sky_chosen_in_the_scene_panel_is_one_undo_step_shown_in_the_scenes_units() 
     }
     let mut h = harness();
     // The Scene section sits below the fold of the GI panel: click through accessibility.
-    h.get_by_label("Scene").click_accesskit();
-    h.run_steps(2);
-    h.get_by_label("sky").click_accesskit();
-    h.run_steps(2);
-    h.get_by_label("constant colour").click_accesskit();
-    h.run_steps(2);
+    click_through(&mut h, &["Scene", "sky", "constant colour"]);
     settle(&mut h);
     let state = h.state().state();
     assert!(
@@ -598,10 +602,7 @@ fn an_emission_texture_picked_in_the_material_panel_is_one_undo_step() {
     h.run_steps(2);
     h.get_by_label_contains("Material \"").click_accesskit();
     h.run_steps(2);
-    h.get_by_label("emission texture").click_accesskit();
-    h.run_steps(2);
-    h.get_by_label("image 0 (2x1)").click_accesskit();
-    h.run_steps(2);
+    click_through(&mut h, &["emission texture", "image 0 (2x1)"]);
     settle(&mut h);
     let picked = h.state().state().project.scene.materials()[material].emissive_texture;
     assert_eq!(picked.map(|t| t.image), Some(0), "the picked image");
