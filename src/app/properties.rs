@@ -139,8 +139,8 @@ fn object_ui(ui: &mut egui::Ui, object: &mut Object, materials: &[String]) {
 
 /// The emission colour (glTF's `emissiveFactor`) and strength in the scene's light units
 /// (cd/m² or W/(sr m²); the model keeps it radiometric), and its texture among the scene's
-/// `images` (width, height).
-fn emission_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, units: LightUnits, images: &[(u32, u32)]) {
+/// `images`.
+fn emission_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, units: LightUnits, images: &[crate::scene::Image]) {
     ui.horizontal(|ui| {
         ui.label("Emission");
         ui.color_edit_button_rgb(&mut m.emissive_color)
@@ -152,19 +152,21 @@ fn emission_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, units: LightUn
     emission_texture_ui(ui, m, images);
 }
 
-/// The name the emission-texture picker gives image `i` of `(width, height)`.
-pub fn image_label(i: usize, (width, height): (u32, u32)) -> String {
-    format!("image {i} ({width}x{height})")
+/// The name the emission-texture picker gives image `i`.
+pub fn image_label(i: usize, image: &crate::scene::Image) -> String {
+    format!("image {i} ({}x{})", image.width, image.height)
 }
 
 /// Picks the emission texture (glTF's `emissiveTexture`) among the images the scene's glTF
 /// files brought, or none; a screen or a sign usually emits its base colour texture.
-fn emission_texture_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, images: &[(u32, u32)]) {
+fn emission_texture_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, images: &[crate::scene::Image]) {
     if images.is_empty() {
         return;
     }
     let label = |t: Option<crate::scene::TextureRef>| match t {
-        Some(t) => images.get(t.image).map_or_else(|| format!("image {}", t.image), |s| image_label(t.image, *s)),
+        Some(t) => {
+            images.get(t.image).map_or_else(|| format!("image {}", t.image), |image| image_label(t.image, image))
+        }
         None => "none".to_owned(),
     };
     // The base colour's UV set where the same image is picked, else the first.
@@ -174,9 +176,9 @@ fn emission_texture_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, images
         .selected_text(label(picked))
         .show_ui(ui, |ui| {
             ui.selectable_value(&mut picked, None, "none");
-            for (i, size) in images.iter().enumerate() {
+            for (i, image) in images.iter().enumerate() {
                 let texture = Some(crate::scene::TextureRef { image: i, tex_coord: uv(i) });
-                ui.selectable_value(&mut picked, texture, image_label(i, *size));
+                ui.selectable_value(&mut picked, texture, image_label(i, image));
             }
         })
         .response
@@ -188,7 +190,7 @@ fn emission_texture_ui(ui: &mut egui::Ui, m: &mut crate::scene::Material, images
 fn material_ui(ui: &mut egui::Ui, state: &mut EditorState, index: usize) {
     let Some(original) = state.project.scene.materials().get(index).cloned() else { return };
     let units = state.project.scene.desc().light_units;
-    let images: Vec<(u32, u32)> = state.project.scene.resources().images.iter().map(|i| (i.width, i.height)).collect();
+    let images = &state.project.scene.resources().images;
     let users = state.project.scene.objects().iter().filter(|o| o.material == index).count();
     let mut m = original.clone();
     egui::CollapsingHeader::new(format!("Material \"{}\" ({users} objects)", m.name)).default_open(false).show(
@@ -207,7 +209,7 @@ fn material_ui(ui: &mut egui::Ui, state: &mut EditorState, index: usize) {
                     .on_hover_text("Colour of the Blinn-Phong lobe; black = purely diffuse.");
             });
             ui.add(egui::Slider::new(&mut m.roughness, 0.02..=1.0).text("roughness"));
-            emission_ui(ui, &mut m, units, &images);
+            emission_ui(ui, &mut m, units, images);
             if m.base_color_texture.is_some() || m.normal_texture.is_some() || m.emissive_texture.is_some() {
                 ui.label("Textured (base colour, normal map and/or emission from the glTF).");
             }

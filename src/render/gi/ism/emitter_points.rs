@@ -120,26 +120,19 @@ pub fn emitter_points(scene: &Scene, count: usize, row: usize) -> Vec<GpuEmitter
     if sky.is_some() && !emitters.is_empty() && rows >= 2 {
         sky_rows = sky_rows.clamp(1, rows - 1);
     }
-    let on_sky = if sky_rows == rows { count } else { sky_rows * row };
-    let mut out = surface_points(scene, &bvh, &emitters, count - on_sky);
+    let mut out = surface_points(scene, &bvh, &emitters, count - sky_rows * row);
     if let Some(sky) = sky {
-        out.extend((0..on_sky).map(|j| {
-            let (u, cell) = grid_cell(j, row, on_sky);
-            sky.candidate(u, cell)
-        }));
+        let cell = 1.0 / (sky_rows * row) as f32;
+        out.extend((0..sky_rows * row).map(|j| sky.candidate(grid_centre(j, row, sky_rows), cell)));
     }
     out
 }
 
-/// The centre and the area of cell `j` of the unit square cut into `count / row` rows (first
-/// coordinate) of `row` columns (second coordinate); a last, partial row is spread over its
-/// own width.
-fn grid_cell(j: usize, row: usize, count: usize) -> ([f32; 2], f32) {
-    let rows = count.div_ceil(row);
+/// The centre of cell `j` of the unit square cut into `rows` rows (first coordinate) of `row`
+/// columns (second coordinate), row after row.
+fn grid_centre(j: usize, row: usize, rows: usize) -> [f32; 2] {
     let (r, c) = (j / row, j % row);
-    let width = if r + 1 == rows { count - r * row } else { row };
-    let u = [((r as f64 + 0.5) / rows as f64) as f32, ((c as f64 + 0.5) / width as f64) as f32];
-    (u, (1.0 / (rows * width) as f64) as f32)
+    [((r as f64 + 0.5) / rows as f64) as f32, ((c as f64 + 0.5) / row as f64) as f32]
 }
 
 /// `count` candidates on the emissive triangles of `bvh`.
