@@ -40,6 +40,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/gi/ism/ism_split.wgsl", include_str!("../../shaders/render/gi/ism/ism_split.wgsl")),
     ("render/gi/ism/ism_temporal.wgsl", include_str!("../../shaders/render/gi/ism/ism_temporal.wgsl")),
     ("render/gi/ism/ism_view_importance.wgsl", include_str!("../../shaders/render/gi/ism/ism_view_importance.wgsl")),
+    ("render/gi/ism/ism_light_texel.wgsl", include_str!("../../shaders/render/gi/ism/ism_light_texel.wgsl")),
     ("render/gi/ism/light_gbuffer.wgsl", include_str!("../../shaders/render/gi/ism/light_gbuffer.wgsl")),
     ("render/gi/ism/pull_push.wgsl", include_str!("../../shaders/render/gi/ism/pull_push.wgsl")),
     ("render/gi/ism/vpl_generate.wgsl", include_str!("../../shaders/render/gi/ism/vpl_generate.wgsl")),

@@ -109,7 +109,9 @@ fn every_light_gets_vpls_in_proportion_to_the_power_it_reflects() {
         // The box is open to +z: a sun shining in along -z reaches the back wall and the floor.
         Light::directional("sun", Vec3::new(0.1, -0.5, -1.0).normalize(), 2.0),
     ];
-    let settings = IsmSettings { vpl_count: 256, interleave: 1, ..IsmSettings::default() };
+    // The thesis's draw by power alone: the first set's seen weight would give the lit
+    // surfaces the camera sees more than their power's share.
+    let settings = IsmSettings { vpl_count: 256, interleave: 1, first_set_seen_weight: 0.0, ..IsmSettings::default() };
     let mut renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let first = vpls(&mut renderer, &project, &settings);
     let tiles = &first.tiles;
@@ -150,6 +152,70 @@ fn every_light_gets_vpls_in_proportion_to_the_power_it_reflects() {
         let share = count[l] as f64 / (frames * 256) as f64;
         let expected = importance[l] / total;
         assert!((share - expected).abs() < 0.05, "light {l}: VPL share {share} vs power share {expected}");
+    }
+}
+
+/// The sun's first-set VPLs on `window` over `frames` frames with the seen weight `s`: the
+/// share that lands inside the room (on the sunlit floor patch the camera sees; the rest lie on
+/// the roof and the front wall's outside), their mean power per frame (green), and the power
+/// the sun's texels reflect.
+fn sun_vpls_inside(ctx: &bouncelab::render::GpuContext, s: f32, frames: u32) -> (f64, f64, f64) {
+    let project = bouncelab::suite::scene("window").expect("scene").load(std::path::Path::new(".")).expect("loads");
+    let sun = project.scene.desc().lights.iter().position(|l| l.name == "sun").expect("the window room's sun");
+    let settings = IsmSettings { vpl_count: 1024, interleave: 1, first_set_seen_weight: s, ..IsmSettings::default() };
+    let mut renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let (mut inside, mut count, mut power, mut reflected) = (0usize, 0usize, 0.0f64, 0.0f64);
+    for _ in 0..frames {
+        let r = vpls(&mut renderer, &project, &settings);
+        reflected = r
+            .power
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| r.tiles.tile_of_texel(*i).is_some_and(|t| r.tiles.tiles[t].light == sun))
+            .map(|(_, p)| f64::from(p[1]))
+            .sum();
+        for v in &r.vpls {
+            let t = r.tiles.tile_of_texel(v.incident[3] as usize).expect("texel in a tile");
+            if r.tiles.tiles[t].light != sun {
+                continue;
+            }
+            count += 1;
+            power += f64::from(v.power[1]);
+            let p = Vec3::new(v.position[0], v.position[1], v.position[2]);
+            if p.x > 0.0 && p.x < 6.0 && p.y < 2.9 && p.z > 0.0 && p.z < 5.0 {
+                inside += 1;
+            }
+        }
+    }
+    eprintln!("seen weight {s}: {inside} of the sun's {count} VPLs inside the room");
+    (inside as f64 / count.max(1) as f64, power / f64::from(frames), reflected)
+}
+
+/// The first set's seen weight draws the lit surfaces the camera sees more often, each VPL
+/// carrying less: on `window` the sun lights the roof, the front wall's outside and a patch of
+/// floor through the window, and only the patch is in view. With the weight at 3 the patch's
+/// texels are drawn four times as often as the power alone says (the share inside would go
+/// from 2.6% to about 10% if all of the patch were in view), so the share of the sun's VPLs
+/// inside the room must rise by more than half; the power they carry must still sum, on average
+/// over frames, to the power the sun's texels reflect (the warp divides by the weighted pdf).
+/// The roof's top lies a slab's thickness behind the ceiling the camera sees: a depth test
+/// alone counted 59% of the sun's texels as seen at this 16 x 16 view (share inside 3.6%).
+#[test]
+fn the_first_sets_seen_weight_draws_more_vpls_where_the_camera_looks_and_keeps_their_power() {
+    let Some(ctx) = common::gpu() else { return };
+    let frames = 8;
+    let (plain, plain_power, reflected) = sun_vpls_inside(&ctx, 0.0, frames);
+    let (seen, seen_power, _) = sun_vpls_inside(&ctx, 3.0, frames);
+    eprintln!(
+        "sun VPLs inside the room: {plain:.3} by power, {seen:.3} seen-weighted; power {plain_power:.4} / {seen_power:.4} W of {reflected:.4} W reflected"
+    );
+    assert!(
+        plain > 0.02 && plain < 0.6,
+        "share inside by power alone {plain}: the test needs a patch in view and light out of it"
+    );
+    assert!(seen > 1.5 * plain, "share inside: {seen} seen-weighted vs {plain} by power");
+    for (name, p) in [("by power", plain_power), ("seen-weighted", seen_power)] {
+        assert!((p / reflected - 1.0).abs() < 0.05, "{name}: the sun's VPLs carry {p} W of {reflected} W");
     }
 }
 

@@ -8,6 +8,7 @@
 // (sections 4.4 and 4.5), and n^2 is there because a pixel shades only the N / n^2 VPLs of its
 // interleave tile (section 3.4.1).
 #import common/vpl.wgsl
+#import render/gi/ism/ism_light_texel.wgsl
 
 struct GenParams {
     // VPL count, frame index, interleave n, pyramid levels K (finest side = 2^K).
@@ -15,26 +16,6 @@ struct GenParams {
     // tiles per row, tile side in texels, tile count, unused.
     tiles: vec4<u32>,
 }
-
-// One light-G-buffer tile (a spot light's frustum, a cube face, a sun's orthographic view, or
-// candidates on the emissive surfaces).
-struct TileRecord {
-    world_from_clip: mat4x4<f32>,
-    // xyz light position (w = 0), the unit direction towards a directional light (w = 1), or
-    // x = the first emitter candidate of an emitter tile (w = 2).
-    light: vec4<f32>,
-}
-
-// A candidate VPL on an emissive surface (`ism_emitter_tiles.wgsl`).
-struct EmitterPoint {
-    // xyz world position, w = the area it stands for (m^2).
-    position: vec4<f32>,
-    // xyz unit front normal, w unused.
-    normal: vec4<f32>,
-    // rgb power pi L A (W), a = importance.
-    power: vec4<f32>,
-}
-
 
 @group(0) @binding(0) var<uniform> params: GenParams;
 @group(0) @binding(1) var importance: texture_2d<f32>;
@@ -138,16 +119,12 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let pdf = texel_imp / total;
     let ts = params.tiles.y;
-    let tile = (cell.y / ts) * params.tiles.x + cell.x / ts;
-    let uv = (vec2<f32>(cell % vec2<u32>(ts)) + 0.5) / f32(ts);
-    let record = tile_records[min(tile, params.tiles.z - 1u)];
+    let record = tile_records[tile_of(cell, params.tiles.xyz)];
     let interleave = f32(params.counts.z);
     let scale = interleave * interleave / (f32(n_vpl) * pdf);
-    if record.light.w > 1.5 {
+    if is_emitter_tile(record) {
         // An emitter candidate: a Lambertian VPL of power pi L A on the emitter's front face.
-        let local = cell % vec2<u32>(ts);
-        let last = max(arrayLength(&emitter_points), 1u) - 1u;
-        let e = emitter_points[min(u32(record.light.x) + local.y * ts + local.x, last)];
+        let e = emitter_points[candidate_of(record, cell, ts, arrayLength(&emitter_points))];
         out.position = vec4<f32>(e.position.xyz, max(e.position.w / (f32(n_vpl) * pdf) / PI, 1.0e-20));
         out.normal = vec4<f32>(e.normal.xyz, 0.0);
         out.power = vec4<f32>(e.power.rgb * scale, pdf);
@@ -156,10 +133,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         vpls[k] = out;
         return;
     }
-    let depth = textureLoad(depth_tex, cell, 0);
-    let ndc = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-    let h = record.world_from_clip * ndc;
-    let p = h.xyz / h.w;
+    let p = light_texel_position(record, cell, ts, textureLoad(depth_tex, cell, 0));
     let reflected = textureLoad(power_tex, cell, 0).rgb;
     let nt = textureLoad(normal_tex, cell, 0);
     // The VPL stands for a disk of the area its texel's patch covers among N draws: A / (N p).

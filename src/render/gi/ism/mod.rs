@@ -3,7 +3,8 @@
 //! labels"). [`light_tiles`] says where every light's view lives in the light G-buffer atlas,
 //! [`emitter_points`] what its emitter tiles hold.
 //!
-//! The GPU passes: [`vpl_pass`] (light G-buffer of every light, importance, VPLs), [`gather`]
+//! The GPU passes: [`vpl_pass`] (light G-buffer of every light, importance, VPLs; the first
+//! set's view weight in [`first_view`]), [`gather`]
 //! (ISM atlas and further bounces), [`screen`] (split G-buffer, shading, temporal merge,
 //! filter) and [`sh_filter`] (Segovia & Wald's SH filter), with their parameter blocks in
 //! [`params`]. [`technique`] puts them behind the GI seam; [`points`] builds the sample points'
@@ -12,6 +13,7 @@
 
 pub mod clusters;
 pub mod emitter_points;
+pub mod first_view;
 pub mod gather;
 pub mod light_tiles;
 pub mod oracle;

@@ -171,6 +171,21 @@ pub struct LightViewUniforms {
     pub axis: [f32; 4],
 }
 
+/// `SeedParams` in `importance.wgsl` (the first set's view weight, [`super::first_view`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct SeedParams {
+    /// Tiles per row, tile side in texels, tile count, unused.
+    pub tiles: [u32; 4],
+    /// x = the seen weight s (`first_set_seen_weight`), unused x3.
+    pub weight: [f32; 4],
+}
+
+impl SeedParams {
+    /// Bytes of the block.
+    pub const SIZE: u64 = std::mem::size_of::<Self>() as u64;
+}
+
 impl GenParams {
     /// Bytes of the block.
     pub const SIZE: u64 = std::mem::size_of::<Self>() as u64;
@@ -186,6 +201,7 @@ const _: () = assert!(std::mem::size_of::<ShadeParams>() == 64);
 const _: () = assert!(std::mem::size_of::<TemporalParams>() == 48);
 const _: () = assert!(std::mem::size_of::<FilterParams>() == 32);
 const _: () = assert!(std::mem::size_of::<GenParams>() == 32);
+const _: () = assert!(std::mem::size_of::<SeedParams>() == 32);
 const _: () = assert!(std::mem::size_of::<TileRecord>() == 80);
 const _: () = assert!(std::mem::size_of::<LightViewUniforms>() == 160);
 

@@ -11,6 +11,7 @@
 //!   point distribution by its own key; the temporal history stays; as for a light edit;
 //! - camera cut, settings changed, mode entered, resized: the temporal history.
 
+use super::first_view::ViewInputs;
 use super::gather::{IsmGather, MapScale, PointData};
 use super::light_tiles::LightTiles;
 use super::points::{mean_linear_colour, point_data, point_data_key};
@@ -372,6 +373,7 @@ impl GiTechnique for IsmTechnique {
             inputs.scene_gpu,
             settings,
             inputs.frame_index,
+            &ViewInputs { frame: inputs.frame_buffer, depth: &inputs.targets.depth.view },
             inputs.timer.scope("ism vpls"),
         );
         let Some(vpls) = self.vpl_pass.vpls().filter(|_| recorded) else { return Ok(GiOutput::Nothing) };

@@ -9,8 +9,9 @@
 use glam::Vec3;
 
 use super::emitter_points::{self, GpuEmitterPoint};
+use super::first_view::{AtlasInputs, FirstSetView, ViewInputs};
 use super::light_tiles::{LightTiles, layout};
-use super::params::{EmitterTileUniforms, GenParams, LightViewUniforms, TileRecord};
+use super::params::{EmitterTileUniforms, GenParams, LightViewUniforms, SeedParams, TileRecord};
 use crate::render::gi::technique::texture_bytes;
 use crate::render::layouts::{Layouts, compute_pipeline, storage_texture_entry, texture_entry, uniform_entry};
 use crate::render::scene_gpu::{SceneGpu, Vertex};
@@ -92,6 +93,8 @@ pub struct VplPass {
     gen_params: wgpu::Buffer,
     emitter_pipeline: wgpu::RenderPipeline,
     emitter_layout: wgpu::BindGroupLayout,
+    /// P3's seed with the first set's view weight (`first_set_seen_weight` > 0).
+    first_view: FirstSetView,
     sized: Option<Sized>,
     /// The layout of the last recorded frame.
     tiles: Option<LightTiles>,
@@ -207,7 +210,9 @@ impl VplPass {
         });
         let gen_module = shaders::module(device, "render/gi/ism/vpl_generate.wgsl")?;
         let (emitter_pipeline, emitter_layout) = emitter_pipeline(device, &view_layout)?;
+        let first_view = FirstSetView::new(device, &pyramid_layout)?;
         Ok(Self {
+            first_view,
             gbuffer_pipeline,
             seed_pipeline: compute_pipeline(device, "ism importance seed", &pyramid_layout, &imp_module, "seed"),
             reduce_pipeline: compute_pipeline(device, "ism importance reduce", &pyramid_layout, &imp_module, "reduce"),
@@ -381,6 +386,7 @@ impl VplPass {
 
     /// Frees the targets (another mode is active); pipelines stay.
     pub fn release(&mut self) {
+        self.first_view.release();
         self.sized = None;
         self.tiles = None;
         self.emitters_uploaded = None;
@@ -415,7 +421,8 @@ impl VplPass {
     }
 
     /// Records P2, P3 and P5 for every light and emitter of `scene`; returns false (nothing
-    /// recorded) when the scene has neither.
+    /// recorded) when the scene has neither. `view` is this frame's camera view, which the
+    /// first set's view weight reads (`settings.first_set_seen_weight` > 0).
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -426,6 +433,7 @@ impl VplPass {
         gpu: &SceneGpu,
         settings: &IsmSettings,
         frame: u32,
+        view: &ViewInputs<'_>,
         timestamps: Option<crate::render::timing::TimestampPair<'_>>,
     ) -> bool {
         let tiles = layout(scene);
@@ -439,10 +447,8 @@ impl VplPass {
         let Some(s) = &self.sized else { return false };
         write_views(queue, s, scene, &tiles);
         let levels = tiles.side.trailing_zeros();
-        let params = GenParams {
-            counts: [settings.vpl_count, frame, settings.interleave, levels],
-            tiles: [tiles.per_row, tiles.tile_size, tiles.count() as u32, 0],
-        };
+        let atlas = [tiles.per_row, tiles.tile_size, tiles.count() as u32, 0];
+        let params = GenParams { counts: [settings.vpl_count, frame, settings.interleave, levels], tiles: atlas };
         queue.write_buffer(&self.gen_params, 0, bytemuck::bytes_of(&params));
         self.draw_tiles(encoder, s, &tiles, gpu, timestamps.as_ref());
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -450,7 +456,18 @@ impl VplPass {
             timestamp_writes: timestamps.as_ref().map(|t| t.compute_end_writes()),
         });
         for (m, group) in s.pyramid_groups.iter().enumerate() {
-            pass.set_pipeline(if m == 0 { &self.seed_pipeline } else { &self.reduce_pipeline });
+            if m == 0 && settings.first_set_seen_weight > 0.0 {
+                let seed = SeedParams { tiles: atlas, weight: [settings.first_set_seen_weight, 0.0, 0.0, 0.0] };
+                let inputs = AtlasInputs {
+                    tiles: &s.tile_buffer,
+                    depth: &s.depth.view,
+                    normal: &s.normal.view,
+                    emitters: &s.emitter_points,
+                };
+                self.first_view.bind(device, queue, &mut pass, &seed, view, &inputs);
+            } else {
+                pass.set_pipeline(if m == 0 { &self.seed_pipeline } else { &self.reduce_pipeline });
+            }
             pass.set_bind_group(0, group, &[]);
             let side = (tiles.side >> m).max(1);
             pass.dispatch_workgroups(side.div_ceil(8), side.div_ceil(8), 1);
