@@ -113,10 +113,10 @@ pub struct IsmSettings {
     /// ism-ritschel --trace --frames 11` (lavapipe), each frame's FLIP over `direct`'s mean /
     /// worst at 0 / 1 / 3 / 8: the sun-and-sky window room 0.26 / 0.34, 0.19 / 0.31,
     /// 0.19 / 0.29, 0.17 / 0.31 (single frames' energy 0.86-1.18 at 0, 0.95-1.15 at 1);
-    /// the clutter 0.20 / 0.22, 0.21 / 0.23, 0.22 / 0.26, 0.21 / 0.28; the sun-lit window room,
-    /// courtyard, panels, hall and Cornell box within 0.01 of 0 in the mean up to 3, the worst
-    /// frames up to 0.04 higher at 8; the three rooms unchanged (no first-set VPL is on
-    /// screen). Cost: the importance seed reads the light normal and nine view depth texels per
+    /// the clutter 0.20 / 0.22, 0.21 / 0.23, 0.22 / 0.26, 0.21 / 0.28; the hall 0.12 / 0.14,
+    /// 0.13 / 0.17, 0.13 / 0.14, 0.15 / 0.17; the sun-lit window room, courtyard, panels and
+    /// Cornell box within 0.01 of 0 in the mean at 1 and 3, their worst frames no higher at 1;
+    /// the three rooms unchanged (no first-set VPL is on screen). Cost: the importance seed reads the light normal and nine view depth texels per
     /// lit light-G-buffer texel (`ism vpls`).
     pub first_set_seen_weight: f32,
     /// Radius of each point's ISM splat as a fraction of the radius of the disk it stands for
