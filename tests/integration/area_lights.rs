@@ -9,7 +9,7 @@ use bouncelab::image_io::{self, HdrImage};
 use bouncelab::project_file::Project;
 use bouncelab::render::Renderer;
 use bouncelab::scene::{Camera, Environment, Material, MeshSource, Sky, Transform};
-use bouncelab::settings::{GiMode, ReferenceSettings, RenderSettings};
+use bouncelab::settings::{GiMode, IsmSettings, ReferenceSettings, RenderSettings};
 use glam::Vec3;
 
 /// The Cornell box as a file from another tool (no recorded light units: photometric), its
@@ -211,6 +211,38 @@ fn ism_lights_with_vpls_on_the_emitters_and_the_sky() {
     }
 }
 
+/// The energies of `frames` consecutive `ism-ritschel` frames of suite scene `name` over its
+/// reference's, at the reference's size, with `ism` changed by `change`.
+fn ritschel_frames(
+    ctx: &bouncelab::render::GpuContext,
+    name: &str,
+    frames: usize,
+    change: impl Fn(&mut IsmSettings),
+) -> Vec<f64> {
+    let scene = bouncelab::suite::scene(name).expect("suite scene");
+    let project = scene.load(std::path::Path::new(".")).expect("loads");
+    let reference = scene.reference(std::path::Path::new(".")).expect("reference");
+    let size = (reference.width, reference.height);
+    let mut settings = RenderSettings { mode: GiMode::IsmRitschel, ..project.render.clone() };
+    change(&mut settings.ism);
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    let target = bouncelab::metrics::mean_luminance(&reference);
+    (0..frames)
+        .map(|_| {
+            r.render(&project.scene, &settings, size).expect("render");
+            let frame = HdrImage { width: size.0, height: size.1, pixels: r.read_hdr().expect("hdr") };
+            bouncelab::metrics::mean_luminance(&frame) / target
+        })
+        .collect()
+}
+
+/// The mean of `energies` and their spread (standard deviation over mean).
+fn mean_and_spread(energies: &[f64]) -> (f64, f64) {
+    let mean = energies.iter().sum::<f64>() / energies.len() as f64;
+    let spread = (energies.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / energies.len() as f64).sqrt() / mean;
+    (mean, spread)
+}
+
 /// `ism-ritschel` renders every frame afresh (no history), so one frame of sky VPLs is all it
 /// shows: on the window room lit only by the sky, eight consecutive frames' energies must stay
 /// within a few percent of each other. The sky's candidates lie on a grid of its directions in
@@ -220,25 +252,36 @@ fn ism_lights_with_vpls_on_the_emitters_and_the_sky() {
 #[test]
 fn ism_ritschel_frames_of_a_sky_lit_room_hold_steady() {
     let Some(ctx) = common::gpu() else { return };
-    let scene = bouncelab::suite::scene("skylight").expect("suite scene");
-    let project = scene.load(std::path::Path::new(".")).expect("loads");
-    let reference = scene.reference(std::path::Path::new(".")).expect("reference");
-    let size = (reference.width, reference.height);
-    let settings = RenderSettings { mode: GiMode::IsmRitschel, ..project.render.clone() };
-    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
-    let target = bouncelab::metrics::mean_luminance(&reference);
-    let energies: Vec<f64> = (0..8)
-        .map(|_| {
-            r.render(&project.scene, &settings, size).expect("render");
-            let frame = HdrImage { width: size.0, height: size.1, pixels: r.read_hdr().expect("hdr") };
-            bouncelab::metrics::mean_luminance(&frame) / target
-        })
-        .collect();
-    let mean = energies.iter().sum::<f64>() / energies.len() as f64;
-    let spread = (energies.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / energies.len() as f64).sqrt() / mean;
+    let energies = ritschel_frames(&ctx, "skylight", 8, |_| {});
+    let (mean, spread) = mean_and_spread(&energies);
     eprintln!("ism-ritschel skylight frames {energies:.3?}: mean {mean:.3}, spread {:.1}%", 100.0 * spread);
     assert!(spread < 0.03, "frame-to-frame spread {:.1}% of the energy", 100.0 * spread);
     assert!(energies.iter().all(|e| (0.9..=1.15).contains(e)), "{energies:.3?}");
+}
+
+/// Under the sun and the sky (`sunsky`) the sun's share of the VPLs lands mostly on the roof,
+/// and the handful on the sunlit floor in view changed in number from frame to frame. The
+/// first set's seen weight (`first_set_seen_weight`) draws lit surfaces the camera sees more
+/// often: single frames must spread clearly less than with the weight off, and their mean must
+/// stay within 10% of the path tracer's energy.
+#[test]
+fn ism_ritschel_frames_under_the_sun_and_the_sky_steady_with_the_seen_weight() {
+    let Some(ctx) = common::gpu() else { return };
+    let seen = ritschel_frames(&ctx, "sunsky", 8, |_| {});
+    let plain = ritschel_frames(&ctx, "sunsky", 8, |ism| ism.first_set_seen_weight = 0.0);
+    let ((mean, spread), (plain_mean, plain_spread)) = (mean_and_spread(&seen), mean_and_spread(&plain));
+    eprintln!(
+        "ism-ritschel sunsky frames seen-weighted {seen:.3?}: mean {mean:.3}, spread {:.1}%; by power {plain:.3?}: mean {plain_mean:.3}, spread {:.1}%",
+        100.0 * spread,
+        100.0 * plain_spread
+    );
+    assert!(
+        spread < 0.7 * plain_spread,
+        "spread {:.1}% seen-weighted vs {:.1}% by power",
+        100.0 * spread,
+        100.0 * plain_spread
+    );
+    assert!((0.9..=1.1).contains(&mean), "mean energy {mean:.3}");
 }
 
 /// `sshgi` finds the sky through its voxel columns (from the screen's texels and the panorama's
