@@ -1,11 +1,12 @@
 //! The first VPL set's view weight (P3, `seed_viewed` in `importance.wgsl`): the importance
 //! pyramid's finest level seeded with each light-G-buffer texel's importance times `1 + s`
 //! where the camera sees the texel's surface (its front faces the camera and its depth matches
-//! the view's; s = `first_set_seen_weight`), times 1 elsewhere. Knecht 2009 draws the first set by power alone; a sun on a roof or a sky around
-//! a building then spends most of the VPLs where the camera cannot see, and the few on the lit
-//! surfaces in view change in number from frame to frame (`ism-ritschel` on the suite's
-//! sun-and-sky window room: single frames read 0.86-1.18 of the reference). The warp divides
-//! every VPL's power by its texel's probability, so the set's expected light is unchanged.
+//! the view's; s = `first_set_seen_weight`), times 1 elsewhere. Knecht 2009 draws the first set
+//! by power alone; a sun on a roof or a sky around a building then spends most of the VPLs where
+//! the camera cannot see, and the few on the lit surfaces in view change in number from frame to
+//! frame (`ism-ritschel` on the suite's sun-and-sky window room: single frames read 0.86-1.18 of
+//! the reference, 0.95-1.15 with the weight at 1). The warp divides every VPL's power by its
+//! texel's probability, so the set's expected light is unchanged.
 //!
 //! This pass owns its pipeline, its parameter block and its bind group of the view and the
 //! atlas (made anew when any of them is a new object); the VPL pass binds group 0, the
