@@ -55,8 +55,8 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut m.view_importance, 0.0..=64.0).text("view importance")).on_hover_text(
             "Bounce picks favour points that can light what the camera sees, each such VPL carrying less: steadier light in a room lit through doorways. 0: picks by brightness alone.",
         );
-        ui.add(egui::Slider::new(&mut m.first_set_seen_weight, 0.0..=8.0).text("first set: seen weight")).on_hover_text(
-            "Lit surfaces the camera sees get 1 + this times as many of the lights' own VPLs, each carrying less: steadier frames where most light lands out of view (sun on a roof, sky outside). 0: by power alone (thesis).",
+        ui.add(egui::Slider::new(&mut m.first_set_seen_weight, 0.0..=64.0).text("first set: seen weight")).on_hover_text(
+            "Lit surfaces and emitters the camera sees get up to 1 + this times as many of the lights' own VPLs, each carrying less: steadier frames where most of a light lands out of view (sun on a roof). The sky's VPLs are never in view. 0: by power alone (thesis).",
         );
         ui.add(egui::Slider::new(&mut m.splat_radius, 0.25..=2.0).text("splat radius (x point disk)")).on_hover_text(
             "Each sample point's ISM splat, as a fraction of the surface disk it stands for. Smaller: holes that let light through walls; larger: occluders dilate, doorways close, contacts darken.",

@@ -103,21 +103,24 @@ pub struct IsmSettings {
     /// over the pool points per frame, 64 depth reads each (`ism view importance`, in
     /// `ism shade`).
     pub view_importance: f32,
-    /// The first set's view weight: a lit surface the camera sees (facing it, at the depth the
-    /// view has there) is drawn as if (1 + this) times brighter and each VPL on it carries
-    /// 1 / (1 + this) of the power it would (the set's expected light is unchanged; 0: by power
-    /// alone, as in the thesis). A VPL off screen carries at most (1 + this) times its power
-    /// without the weight. Where a light's power lands mostly out of view (the sun on a roof,
-    /// the sky on a building's outside), the VPLs on the lit surfaces in view then no longer
-    /// change in number from frame to frame. Measured with `bouncelab probe SCENE --mode
-    /// ism-ritschel --trace --frames 11` (lavapipe), each frame's FLIP over `direct`'s mean /
-    /// worst at 0 / 1 / 3 / 8: the sun-and-sky window room 0.26 / 0.34, 0.19 / 0.31,
-    /// 0.19 / 0.29, 0.17 / 0.31 (single frames' energy 0.86-1.18 at 0, 0.95-1.15 at 1);
-    /// the clutter 0.20 / 0.22, 0.21 / 0.23, 0.22 / 0.26, 0.21 / 0.28; the hall 0.12 / 0.14,
-    /// 0.13 / 0.17, 0.13 / 0.14, 0.15 / 0.17; the sun-lit window room, courtyard, panels and
-    /// Cornell box within 0.01 of 0 in the mean at 1 and 3, their worst frames no higher at 1;
-    /// the three rooms unchanged (no first-set VPL is on screen). Cost: the importance seed reads the light normal and nine view depth texels per
-    /// lit light-G-buffer texel (`ism vpls`).
+    /// The first set's view weight: a lit surface or emitter the camera sees (facing it, at
+    /// the depth the view has there) is drawn as if (1 + this) times brighter, and the VPLs
+    /// drawn there carry less (between 1 / (1 + this) and 1 times the power they would carry
+    /// by power alone), so the set's expected light is unchanged (0: by power alone, as in the
+    /// thesis). A VPL off screen carries at most (1 + this) times its power without the weight.
+    /// Where a light's power lands mostly out of view (the sun on a roof), the VPLs on its lit
+    /// surfaces in view then no longer change in number from frame to frame. The sky's VPLs sit
+    /// on the scene's bounding sphere, never in view: a sky-only scene is unchanged, and with a
+    /// sky the weight moves budget from the sky to the seen surfaces other lights light.
+    /// Measured with `bouncelab probe SCENE --mode ism-ritschel --trace --frames 11`
+    /// (lavapipe), each frame's FLIP over `direct`'s mean / worst at 0 / 1 / 3 / 8: the
+    /// sun-and-sky window room 0.26 / 0.34, 0.19 / 0.31, 0.19 / 0.29, 0.17 / 0.31 (single
+    /// frames' energy 0.86-1.18 at 0, 0.95-1.15 at 1); the clutter 0.20 / 0.22, 0.21 / 0.23,
+    /// 0.22 / 0.26, 0.21 / 0.28; the hall 0.12 / 0.14, 0.13 / 0.17, 0.13 / 0.14, 0.15 / 0.17;
+    /// the sun-lit window room, courtyard, panels and Cornell box within 0.01 of 0 in the mean
+    /// at 1 and 3, their worst frames no higher at 1; the three rooms unchanged (no first-set
+    /// VPL is on screen). Cost: the importance seed reads the light normal and nine view depth
+    /// texels per lit light-G-buffer texel (`ism vpls`).
     pub first_set_seen_weight: f32,
     /// Radius of each point's ISM splat as a fraction of the radius of the disk it stands for
     /// (the area it was chosen to stand for); the splat is that disk's elliptical footprint in

@@ -7,8 +7,9 @@
 // times brighter, s the `first_set_seen_weight` setting; the warp divides each VPL's power by
 // its texel's probability, so the set's expected light is unchanged. Knecht 2009 (section 3.3)
 // draws by power alone. Where most of a light's power lands where the camera cannot see it (a
-// sun on a roof, a sky around a building), the few VPLs on the lit surfaces in view then
-// change in number from frame to frame; the weight puts more of them there, each carrying less
+// sun on a roof), or a sky takes most of the budget (its VPLs sit on the bounding sphere, never
+// in view), the few VPLs on the lit surfaces in view then change in number from frame to
+// frame; the weight puts more of them there, each carrying less
 // (Segovia et al. 2006 place VPLs by what the camera sees for the same reason). A VPL off
 // screen carries at most 1 + s times the power it would with the weight everywhere, so light
 // that reaches the view only through the bounces is never carried by a few heavy VPLs.

@@ -1,6 +1,7 @@
 // ISM pass P5: first-bounce VPLs by hierarchical warping (Knecht 2009 section 3.3) over the
 // light G-buffer of every light (one tile per spot or directional light, six per point light),
-// so the VPLs spread over the lights in proportion to the power they reflect. One thread
+// so the VPLs spread over the lights in proportion to the power they reflect (times the first
+// set's seen weight where the camera sees the surface, `seed_viewed` in `importance.wgsl`). One thread
 // per VPL: a Halton point of this frame's window descends the importance pyramid from the 2x2
 // level to the finest (rows first, then the column within the row), lands in texel t with
 // probability p(t) = importance(t) / total, and becomes a VPL on the surface that texel sees,

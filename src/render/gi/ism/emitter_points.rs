@@ -2,7 +2,8 @@
 //! (2008) made imperfect shadow maps for exactly this, many VPLs standing for area and
 //! environment light. The candidates fill the emitter tiles of the light G-buffer atlas
 //! ([`super::light_tiles`]), so the same importance pyramid and warp that spread the VPLs over
-//! the punctual lights share the VPL budget with the emitters and the sky by power.
+//! the punctual lights share the VPL budget with the emitters and the sky by power (times the
+//! first set's seen weight on emitters the camera sees, [`super::first_view`]).
 //!
 //! **Emissive surfaces:** candidates stratified by power (area x luminance of the emission), a
 //! Halton point on the chosen triangle, the emission texture read at that point. Candidate `j`

@@ -2,7 +2,8 @@
 //! G-buffer of every light (tiles laid out by [`super::light_tiles`]), its importance sum pyramid,
 //! and first-bounce VPL generation by hierarchical warping over the whole atlas, so VPLs spread
 //! over all lights in proportion to the power they reflect, and over the emissive surfaces and
-//! the sky (the emitter tiles, [`super::emitter_points`]) in proportion to the power they emit.
+//! the sky (the emitter tiles, [`super::emitter_points`]) in proportion to the power they emit,
+//! each times the first set's seen weight where the camera sees the surface ([`super::first_view`]).
 //! The CPU oracles in [`crate::precompute::ism::warp`] and [`crate::precompute::ism::power`]
 //! define what these passes must produce.
 
@@ -238,6 +239,8 @@ impl VplPass {
             return;
         }
         self.emitters_uploaded = None;
+        // The first set's view group holds the old targets; let them go with the rest.
+        self.first_view.release();
         use wgpu::TextureUsages as U;
         let tile_capacity = tiles.max(1).next_power_of_two();
         let vpl_capacity = vpls.max(1).next_power_of_two();
@@ -447,6 +450,10 @@ impl VplPass {
         let Some(s) = &self.sized else { return false };
         write_views(queue, s, scene, &tiles);
         let levels = tiles.side.trailing_zeros();
+        if settings.first_set_seen_weight <= 0.0 {
+            // Unused this frame: keep no view or atlas resources alive through its group.
+            self.first_view.release();
+        }
         let atlas = [tiles.per_row, tiles.tile_size, tiles.count() as u32, 0];
         let params = GenParams { counts: [settings.vpl_count, frame, settings.interleave, levels], tiles: atlas };
         queue.write_buffer(&self.gen_params, 0, bytemuck::bytes_of(&params));
