@@ -21,6 +21,20 @@ fn world_from_pixel(frame: Frame, pixel: vec2<u32>, depth: f32) -> vec3<f32> {
     return h.xyz / h.w;
 }
 
+// The pixel (integer coordinates) world point `x` projects to; w = 1 where it lies in front of
+// the camera and inside the view, 0 elsewhere (xy undefined then).
+fn pixel_of_world(frame: Frame, x: vec3<f32>) -> vec3<u32> {
+    let c = frame.clip_from_world * vec4<f32>(x, 1.0);
+    if c.w <= 0.0 {
+        return vec3<u32>(0u);
+    }
+    let uv = vec2<f32>(c.x / c.w * 0.5 + 0.5, 0.5 - c.y / c.w * 0.5);
+    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) {
+        return vec3<u32>(0u);
+    }
+    return vec3<u32>(vec2<u32>(uv * frame.size.xy), 1u);
+}
+
 // World position of `pixel` read from the reversed-depth buffer `depth`, w = 1 where the pixel
 // sees geometry (0: far plane, nothing drawn).
 fn position_at(frame: Frame, depth: texture_depth_2d, pixel: vec2<u32>) -> vec4<f32> {

@@ -236,11 +236,9 @@ fn ritschel_frames(
         .collect()
 }
 
-/// The mean of `energies` and their spread (standard deviation over mean).
+/// The mean of `energies` and their spread ([`bouncelab::metrics::relative_spread`]).
 fn mean_and_spread(energies: &[f64]) -> (f64, f64) {
-    let mean = energies.iter().sum::<f64>() / energies.len() as f64;
-    let spread = (energies.iter().map(|e| (e - mean).powi(2)).sum::<f64>() / energies.len() as f64).sqrt() / mean;
-    (mean, spread)
+    (energies.iter().sum::<f64>() / energies.len() as f64, bouncelab::metrics::relative_spread(energies))
 }
 
 /// `ism-ritschel` renders every frame afresh (no history), so one frame of sky VPLs is all it

@@ -37,16 +37,11 @@ const FAR: f32 = 1.0e6;
 // beside the chord, and on a plane seen at a grazing angle that offset alone put the plane's own
 // next pixel in front of the chord (every grazing floor darkened itself).
 fn surface_behind(q: vec3<f32>, z: vec3<f32>, radius: f32, p: vec3<f32>, n: vec3<f32>) -> f32 {
-    let c = frame.clip_from_world * vec4<f32>(q, 1.0);
-    if c.w <= 0.0 {
+    let at = pixel_of_world(frame, q);
+    if at.z == 0u {
         return FAR;
     }
-    let ndc = c.xy / c.w;
-    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
-    if any(uv < vec2<f32>(0.0)) || any(uv >= vec2<f32>(1.0)) {
-        return FAR;
-    }
-    let pixel = vec2<u32>(uv * frame.size.xy);
+    let pixel = at.xy;
     let d = textureLoad(depth_tex, pixel, 0);
     if d <= 0.0 {
         return FAR;

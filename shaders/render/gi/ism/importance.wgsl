@@ -65,16 +65,12 @@ fn seen(x: vec3<f32>, n: vec3<f32>) -> f32 {
     if dot(n, frame.camera_position.xyz - x) <= 0.0 {
         return 0.0;
     }
-    let c = frame.clip_from_world * vec4<f32>(x, 1.0);
-    if c.w <= 0.0 {
-        return 0.0;
-    }
-    let ndc = c.xyz / c.w;
-    if abs(ndc.x) > 1.0 || abs(ndc.y) > 1.0 {
+    let at = pixel_of_world(frame, x);
+    if at.z == 0u {
         return 0.0;
     }
     let size = vec2<i32>(frame.size.xy);
-    let centre = vec2<i32>((vec2<f32>(ndc.x, -ndc.y) * 0.5 + 0.5) * vec2<f32>(size));
+    let centre = vec2<i32>(at.xy);
     var farthest = 0.0;
     for (var k = 0; k < 9; k = k + 1) {
         let pixel = vec2<u32>(clamp(centre + vec2<i32>(k % 3 - 1, k / 3 - 1), vec2<i32>(0), size - 1));
@@ -93,10 +89,9 @@ fn seed_viewed(@builtin(global_invocation_id) id: vec3<u32>) {
     if id.x >= size.x || id.y >= size.y {
         return;
     }
+    // Texels outside every tile are never drawn and hold 0, as `seed` relies on too.
     var v = max(textureLoad(source, id.xy, 0).a, 0.0);
-    let atlas = seed_params.tiles.xyz;
-    let in_tile = id.x < atlas.x * atlas.y && id.y / atlas.y * atlas.x + id.x / atlas.y < atlas.z;
-    if v > 0.0 && in_tile {
+    if v > 0.0 {
         let surface = texel_surface(id.xy);
         v = v * (1.0 + seed_params.weight.x * seen(surface[0], surface[1]));
     }
