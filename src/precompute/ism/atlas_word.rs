@@ -226,12 +226,14 @@ impl IsmLookupData {
 
     /// Whether a receiver at `dist` from the VPL at `o` (angular point spacing `sigma`, its
     /// normal.w) along unit `dir` (normalised depth `depth_norm`) is lit by the VPL of atlas tile
-    /// `tile`, whose map it falls in at `at`: the texel's own word decides, or where it cannot
-    /// (the ray passes its point's open edges, or the point is much nearer and its plane not
-    /// crossed), any of the four neighbouring words whose surface it crosses (`margin`: the
-    /// relative depth margin of texels without a point) blocks it, and so does no texel of the
-    /// five showing the way clear ([`shows_clear`]); where a coarse level is nearer than the
-    /// texel (a hole), its word's point. The twin of `ism_lit`.
+    /// `tile`, whose map it falls in at `at`: the texel's own word blocks it, or any of the four
+    /// neighbouring words whose surface it crosses (`margin`: the relative depth margin of
+    /// texels without a point), also where the own word shows the way clear and the texel's
+    /// 4x4 block holds a nearer surface (an occluder's edge a texel over; then only the words
+    /// that do not show it clear); where the own word cannot decide (the ray passes its point's open edges,
+    /// or the point is much nearer and its plane not crossed), so does no texel of the five
+    /// showing the way clear ([`shows_clear`]); where a coarse level is nearer than the texel
+    /// (a hole), its word's point. The twin of `ism_lit`.
     #[allow(clippy::too_many_arguments)]
     pub fn lit(
         &self,
@@ -250,19 +252,28 @@ impl IsmLookupData {
         let blocked = |w: u32, reach: f32| {
             self.point_test(o, tile, dir, dist, depth_norm, w, margin, reach, false) == PointTest::Blocked
         };
-        match self.point_test(o, tile, dir, dist, depth_norm, stored, margin, reach, true) {
-            PointTest::Blocked => return false,
-            PointTest::Unsure => {
-                let around = [(-1, 0), (1, 0), (0, -1), (0, 1)].map(|(dx, dy)| at.word(tile, x + dx, y + dy));
-                if around.iter().flatten().any(|&w| blocked(w, reach)) {
-                    return false;
-                }
-                // Lit only where the texel or a neighbour shows the way clear (`ism_shows_clear`).
-                if !std::iter::once(stored).chain(around.into_iter().flatten()).any(|w| shows_clear(w, depth_norm)) {
-                    return false;
-                }
+        let own = self.point_test(o, tile, dir, dist, depth_norm, stored, margin, reach, true);
+        if own == PointTest::Blocked {
+            return false;
+        }
+        // A neighbour whose surface the ray crosses blocks it even where the texel's own word
+        // shows the way clear (an occluder's edge a texel over: `ism_lit`), when the texel's
+        // 4x4 block holds a surface in front of the receiver; then only the neighbours that do
+        // not show the way clear themselves are tested.
+        let nearer_around = at.coarse_word(tile, 2).is_some_and(|w| !shows_clear(w, depth_norm));
+        if own == PointTest::Unsure || (own == PointTest::Clear && nearer_around) {
+            let around = [(-1, 0), (1, 0), (0, -1), (0, 1)].map(|(dx, dy)| at.word(tile, x + dx, y + dy));
+            let nearer_only = own == PointTest::Clear;
+            if around.iter().flatten().any(|&w| !(nearer_only && shows_clear(w, depth_norm)) && blocked(w, reach)) {
+                return false;
             }
-            PointTest::Clear => {}
+            // Where the texel cannot decide, lit only where it or a neighbour shows the way
+            // clear (`ism_shows_clear`).
+            if own == PointTest::Unsure
+                && !std::iter::once(stored).chain(around.into_iter().flatten()).any(|w| shows_clear(w, depth_norm))
+            {
+                return false;
+            }
         }
         // Ritschel's push, asked at lookup time (`ism_hole_blocks`).
         let own_depth = depth(stored);
@@ -527,6 +538,42 @@ mod tests {
         // A receiver on the floor in front of the wall stays lit.
         let near = Vec3::new(0.0, -1.0, 1.8);
         assert!(data.lit(at, Vec3::ZERO, 0.1, 0, near.normalize(), near.length(), 0.2, 0.06));
+    }
+
+    /// At an occluder's edge a texel's centre ray passes the occluder and the texel shows the
+    /// receiver's own surface, while the receiver's ray runs into the occluder a texel over: the
+    /// floor's point right at the receiver (y = -1, 4 m away) holds its texel of a 4 x 4 map, a
+    /// wall (z = 2, facing the VPL) the next one; the coarse levels name a third point of the
+    /// wall 3 m aside, whose disk the ray misses (so Ritschel's push does not decide it).
+    #[test]
+    fn the_receivers_own_surface_in_its_texel_leaves_a_nearer_wall_in_the_next_texel_to_decide() {
+        let none = [0.0, 0.0, 0.0, -1.0];
+        let data = IsmLookupData {
+            chosen_all: vec![0, 1, 2],
+            points: vec![[0.0, -1.0, 3.98, 0.0], [0.0, -0.6, 2.0, 0.0], [3.0, -0.6, 2.0, 0.0]],
+            normals: vec![[0.0, 1.0, 0.0, 1.0], [0.0, 0.0, -1.0, 1.0], [0.0, 0.0, -1.0, 1.0]],
+            clips: vec![none; 12],
+            per_ism: 3,
+        };
+        let receiver = Vec3::new(0.0, -1.0, 4.0);
+        let (dir, dist) = (receiver.normalize(), receiver.length());
+        // The finest level (4 x 4), then levels 1 (2 x 2) and 2 (1 x 1).
+        let mut words = [u32::MAX; 21];
+        words[5] = word(0.4, 1);
+        let lit = |words: &[u32]| {
+            let at = AtlasTexel { words, r: 4, c: 1, texel: (1, 1) };
+            data.lit(at, Vec3::ZERO, 0.1, 0, dir, dist, 0.4, 0.06)
+        };
+        assert!(lit(&words), "no neighbour, lit");
+        words[6] = word(0.2, 2);
+        assert!(lit(&words), "the 4x4 block's word shows nothing nearer: the neighbours are not read");
+        words[20] = word(0.2, 3);
+        assert!(!lit(&words), "the wall in the next texel shadows it");
+        // The wall's disk reaches only so far: a receiver whose ray passes well above the
+        // wall's point stays lit.
+        let above = Vec3::new(0.0, 1.4, 4.0);
+        let at = AtlasTexel { words: &words, r: 4, c: 1, texel: (1, 1) };
+        assert!(data.lit(at, Vec3::ZERO, 0.1, 0, above.normalize(), above.length(), 0.4, 0.06));
     }
 
     /// A receiver on a back wall (z = 4) seen through a hole in a nearer wall (z = 2): its texel

@@ -193,11 +193,16 @@ fn ism_lit(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, bias
         return false;
     }
     let side = r * c;
-    if own == UNSURE {
-        // A neighbour's point blocks it, or none does and neither the texel nor a neighbour
-        // shows the way clear.
-        let around = ism_neighbours(vpl, tile, l, r, c, per_ism, margin, reach);
-        if around == BLOCKED || (around == UNSURE && !ism_shows_clear(stored, l.depth)) {
+    // A neighbour's point whose surface the ray crosses blocks it, even where the texel's own
+    // word shows the way clear: a texel holds one surface, and at an occluder's edge (a door's
+    // head, a jamb) its centre ray passes the occluder and shows the receiver's own surface
+    // while the receiver's ray runs into the occluder a texel over. Where the own word shows
+    // the way clear, only neighbours that do not (a surface well in front of the receiver) are
+    // tested, so a lit wall costs four word reads. Where the texel cannot decide, neither the
+    // texel nor a neighbour showing the way clear blocks it too.
+    if own == UNSURE || (own == CLEAR && ism_nearer_around(l, side)) {
+        let around = ism_neighbours(vpl, tile, l, r, c, per_ism, margin, reach, own == CLEAR);
+        if around == BLOCKED || (own == UNSURE && around == UNSURE && !ism_shows_clear(stored, l.depth)) {
             return false;
         }
     }
@@ -247,10 +252,21 @@ fn ism_hole_blocks(vpl: Vpl, tile: u32, l: IsmLookup, side: u32, per_ism: u32, r
     return false;
 }
 
+// Whether the texel's 4x4 block (its second coarse level) holds a surface well in front of the
+// receiver (`ism_shows_clear` fails): one word read that spares a lit surface's lookups the
+// four neighbours' reads.
+fn ism_nearer_around(l: IsmLookup, side: u32) -> bool {
+    let x = l.index % side;
+    let y = l.index / side;
+    let w = atlas_coarse[side / 2u * (side / 2u) + (y >> 2u) * (side >> 2u) + (x >> 2u)];
+    return !ism_shows_clear(w, l.depth);
+}
+
 // What the four neighbouring texels say of the ray: BLOCKED where any one's point blocks it
-// (their words tested with `reach`), CLEAR where none does and one shows the way clear
-// (`ism_shows_clear`), UNSURE otherwise.
-fn ism_neighbours(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, margin: f32, reach: f32) -> u32 {
+// (their words tested with `reach`; with `nearer_only`, only words that do not show the way
+// clear), CLEAR where none does and one shows the way clear (`ism_shows_clear`), UNSURE
+// otherwise.
+fn ism_neighbours(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, margin: f32, reach: f32, nearer_only: bool) -> u32 {
     let side = r * c;
     let x = l.index % side;
     let y = l.index / side;
@@ -264,10 +280,11 @@ fn ism_neighbours(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u3
             continue;
         }
         let w = atlas[u32(q.y) * side + u32(q.x)];
-        if ism_point_test(vpl, tile, l, w, per_ism, margin, reach, false) == BLOCKED {
+        let clear = ism_shows_clear(w, l.depth);
+        if !(nearer_only && clear) && ism_point_test(vpl, tile, l, w, per_ism, margin, reach, false) == BLOCKED {
             return BLOCKED;
         }
-        if ism_shows_clear(w, l.depth) {
+        if clear {
             shown = CLEAR;
         }
     }
