@@ -197,9 +197,12 @@ fn ism_lit(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, bias
     // word shows the way clear: a texel holds one surface, and at an occluder's edge (a door's
     // head, a jamb) its centre ray passes the occluder and shows the receiver's own surface
     // while the receiver's ray runs into the occluder a texel over. Where the own word shows
-    // the way clear, only neighbours that do not (a surface well in front of the receiver) are
-    // tested, so a lit wall costs four word reads. Where the texel cannot decide, neither the
-    // texel nor a neighbour showing the way clear blocks it too.
+    // the way clear, the neighbours are read only where the texel's 4x4 block holds a surface
+    // in front of the receiver, and only those that do not show the way clear are tested: a lit
+    // wall away from any edge costs one more word read (the slab corridor level's doorways read
+    // 0.73 of the path tracer's light without this and the buried jambs' clip, 0.97 with both,
+    // `docs/notes/ism-tuning.md`). Where the texel cannot decide, neither the texel nor a
+    // neighbour showing the way clear blocks it too.
     if own == UNSURE || (own == CLEAR && ism_nearer_around(l, side)) {
         let around = ism_neighbours(vpl, tile, l, r, c, per_ism, margin, reach, own == CLEAR);
         if around == BLOCKED || (own == UNSURE && around == UNSURE && !ism_shows_clear(stored, l.depth)) {
