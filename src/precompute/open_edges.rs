@@ -50,7 +50,9 @@ pub struct ClipEdge {
     /// into extends past the edge (`solid_past`): a disk may hang that far into it and no
     /// farther. A partition's face hung 1.2 m past the 0.15 m corridor wall it butts into and
     /// shadowed the corridor beyond (the held-out offices' lamp lit its far end 0.73 of the
-    /// rays' light, `bouncelab probe-ism`). 0 where the edge is open.
+    /// rays' light, `bouncelab probe-ism`). Where the face is buried in a solid that ends at
+    /// the edge (an opening's jamb, [`buried_end`]) about 0; where nothing says how far, the
+    /// splat's reach (not clipped). 0 where the edge is open.
     pub overhang: f32,
 }
 
@@ -153,8 +155,8 @@ fn abuts(bvh: &SceneBvh, edge: &ClipEdge, m: glam::Mat4, eps: f32) -> bool {
 /// direction. A position whose first hit is an exit starts inside a third solid overlapping the
 /// corner (a floor's edge under the partition standing on it, a face buried against another
 /// solid) and says nothing unless that solid ends at an opening's jamb ([`buried_end`]); the
-/// largest of the others is taken, and `limit` (the disk is not clipped) where none says
-/// anything: such seams, clipped where they stand, let light along the walls' bases (the suite's
+/// largest of what the positions say is taken, and `limit` (the disk is not clipped) where none
+/// says anything: such seams, clipped where they stand, let light along the walls' bases (the suite's
 /// third room read 1.27x the reference).
 fn solid_past(bvh: &SceneBvh, edge: &ClipEdge, m: glam::Mat4, eps: f32, limit: f32) -> f32 {
     let (a, b, inner) = (m.transform_point3(edge.a), m.transform_point3(edge.b), m.transform_point3(edge.inner));
@@ -412,8 +414,9 @@ mod tests {
     #[test]
     fn a_corridor_walls_buried_end_does_not_hang_across_the_doorway_it_meets() {
         // The corridor wall's end (x = 5.2, facing the first room) is buried against the room
-        // wall, whose jamb (z = 1.1) is where the wall's end stops: its disks hung 0.2 m past it
-        // into the doorway and shadowed the next room (the slab corridor level read 0.73).
+        // wall, whose jamb (z = 1.1) is where the wall's end stops: its disks hung past it, as
+        // far as their reach, into the doorway and shadowed the next room (the slab corridor
+        // level read 0.73).
         let (scene, wall) = slab_corridor();
         let points = crate::precompute::sample_points::distribute(&scene, 40_000, 1, 3);
         let clips = point_clips(&scene, &points.points, 0.5, 0.001);
@@ -430,6 +433,20 @@ mod tests {
             assert!(!within(&lines, i, Vec3::new(5.2, p.y, 1.15), false), "point {p}: hangs into the doorway");
         }
         assert!(checked >= 3, "points on the corridor wall's buried end: {checked}");
+        // The corridor floor's end (x = 5.2, buried against the room's floor slab) ends where
+        // that slab ends too, at the building's underside: past it lies the void outside the
+        // level, not an opening, and its disks keep hanging there (they fill the maps' texels
+        // at the corners).
+        let floor = scene.objects().iter().position(|o| o.name == "corridor_floor").expect("floor") as u32;
+        let mut under = 0;
+        for (i, (p, n)) in world.iter().enumerate() {
+            if points.points[i].object != floor || n.x > -0.99 || p.z < 1.3 || p.z > 2.7 {
+                continue;
+            }
+            under += 1;
+            assert!(within(&lines, i, Vec3::new(5.2, -0.3, p.z), false), "point {p}: clipped at the shell");
+        }
+        assert!(under >= 3, "points on the corridor floor's buried end: {under}");
     }
 
     #[test]

@@ -94,6 +94,9 @@ pub struct AtlasTexel<'a> {
 /// keeps).
 pub const HOLE_LEVELS: u32 = PULL_LEVELS as u32;
 
+// `ism_nearer_around` (and [`IsmLookupData::lit`]) read the second coarse level.
+const _: () = assert!(PULL_LEVELS >= 2, "the lookups read the second coarse level");
+
 impl AtlasTexel<'_> {
     /// The word of level `level` (1 = half the side) over this texel of tile `tile`: the coarse
     /// levels follow the finest in `words` (at side^2 + `level_base`); `None` when `words`
@@ -155,7 +158,9 @@ pub const UNVOUCHED: f32 = 0.98;
 /// the five texels shows the way clear: in the held-out maisonette, rays past a door's jamb or
 /// head whose true occluder (the wall beside the door) no texel held were half of the first
 /// set's false light into the camera's room (`probe-ism --grid 6.15,6.05 --pair -1,3`: the
-/// first set's lookups read 2.73x the rays' light there, 1.86x with this test).
+/// first set's lookups read 2.73x the rays' light there, 1.86x with this test). Where the own
+/// word shows the way clear, the same test says whether the texel's 4x4 block holds a nearer
+/// surface (then the neighbours are asked) and which neighbours are tested.
 pub const SHOWN_CLEAR: f32 = 0.9;
 
 /// Whether atlas word `w` shows the way to a receiver at normalised depth `depth_norm` clear
@@ -260,8 +265,8 @@ impl IsmLookupData {
         // shows the way clear (an occluder's edge a texel over: `ism_lit`), when the texel's
         // 4x4 block holds a surface in front of the receiver; then only the neighbours that do
         // not show the way clear themselves are tested.
-        let nearer_around = at.coarse_word(tile, 2).is_some_and(|w| !shows_clear(w, depth_norm));
-        if own == PointTest::Unsure || (own == PointTest::Clear && nearer_around) {
+        let nearer_around = || at.coarse_word(tile, 2).is_some_and(|w| !shows_clear(w, depth_norm));
+        if own == PointTest::Unsure || (own == PointTest::Clear && nearer_around()) {
             let around = [(-1, 0), (1, 0), (0, -1), (0, 1)].map(|(dx, dy)| at.word(tile, x + dx, y + dy));
             let nearer_only = own == PointTest::Clear;
             if around.iter().flatten().any(|&w| !(nearer_only && shows_clear(w, depth_norm)) && blocked(w, reach)) {
@@ -569,11 +574,10 @@ mod tests {
         assert!(lit(&words), "the 4x4 block's word shows nothing nearer: the neighbours are not read");
         words[20] = word(0.2, 3);
         assert!(!lit(&words), "the wall in the next texel shadows it");
-        // The wall's disk reaches only so far: a receiver whose ray passes well above the
-        // wall's point stays lit.
-        let above = Vec3::new(0.0, 1.4, 4.0);
-        let at = AtlasTexel { words: &words, r: 4, c: 1, texel: (1, 1) };
-        assert!(data.lit(at, Vec3::ZERO, 0.1, 0, above.normalize(), above.length(), 0.4, 0.06));
+        // A neighbour whose word shows the way clear itself (a surface near the receiver's
+        // depth) is not tested, even where its point's disk lies on the ray.
+        words[6] = word(0.39, 2);
+        assert!(lit(&words), "a neighbour showing the way clear is not asked");
     }
 
     /// A receiver on a back wall (z = 4) seen through a hole in a nearer wall (z = 2): its texel

@@ -27,8 +27,11 @@
 // its plane is not crossed on the way (a floor at a grazing angle, or the receiver's own plane,
 // holds the texel while a wall stands in the next one), and a neighbour's point covers its disk
 // as the VPL sees it, stretched by 1 / cos along the ray's slope (`within_disk`): the flat's
-// first set then sent 14x the true light into the camera's room, against 19.7x. The including
-// shader binds `atlas`.
+// first set then sent 14x the true light into the camera's room, against 19.7x. Where the
+// texel's own word shows the way clear (it holds the receiver's own surface) they are asked
+// when the texel's 4x4 block holds a surface in front of the receiver (`ism_nearer_around`):
+// the receiver's ray may run into a door's head a texel over. The including shader binds
+// `atlas`.
 //
 // Most of what still leaked were holes: no splat of a wall's points covered the texel, which
 // showed the surface behind (each ISM's points are a sample; disks of 1.35 times their share
@@ -199,10 +202,13 @@ fn ism_lit(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, bias
     // while the receiver's ray runs into the occluder a texel over. Where the own word shows
     // the way clear, the neighbours are read only where the texel's 4x4 block holds a surface
     // in front of the receiver, and only those that do not show the way clear are tested: a lit
-    // wall away from any edge costs one more word read (the slab corridor level's doorways read
-    // 0.73 of the path tracer's light without this and the buried jambs' clip, 0.97 with both,
-    // `docs/notes/ism-tuning.md`). Where the texel cannot decide, neither the texel nor a
-    // neighbour showing the way clear blocks it too.
+    // wall away from any edge costs one more word read. With the buried jambs' clip
+    // (`open_edges::buried_end`) and without this, the suite's three rooms read 1.135 of the
+    // path tracer's light and the held-out four-room flat 1.141; with this 1.059 and 0.999
+    // (`docs/notes/ism-tuning.md`). The block's word is pull-push's mean of the depths near its
+    // nearest, and its blocks are aligned: an edge on a block's border, or a small occluder
+    // among farther surfaces, can still pass unasked. Where the texel cannot decide, neither
+    // the texel nor a neighbour showing the way clear blocks it too.
     if own == UNSURE || (own == CLEAR && ism_nearer_around(l, side)) {
         let around = ism_neighbours(vpl, tile, l, r, c, per_ism, margin, reach, own == CLEAR);
         if around == BLOCKED || (own == UNSURE && around == UNSURE && !ism_shows_clear(stored, l.depth)) {
@@ -255,7 +261,8 @@ fn ism_hole_blocks(vpl: Vpl, tile: u32, l: IsmLookup, side: u32, per_ism: u32, r
     return false;
 }
 
-// Whether the texel's 4x4 block (its second coarse level) holds a surface well in front of the
+// Whether the texel's 4x4 block (its second coarse level, which pull-push always keeps:
+// `PULL_LEVELS` >= 2, asserted in `atlas_word.rs`) holds a surface well in front of the
 // receiver (`ism_shows_clear` fails): one word read that spares a lit surface's lookups the
 // four neighbours' reads.
 fn ism_nearer_around(l: IsmLookup, side: u32) -> bool {
@@ -269,7 +276,9 @@ fn ism_nearer_around(l: IsmLookup, side: u32) -> bool {
 // (their words tested with `reach`; with `nearer_only`, only words that do not show the way
 // clear), CLEAR where none does and one shows the way clear (`ism_shows_clear`), UNSURE
 // otherwise.
-fn ism_neighbours(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, margin: f32, reach: f32, nearer_only: bool) -> u32 {
+fn ism_neighbours(
+    vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u32, margin: f32, reach: f32, nearer_only: bool,
+) -> u32 {
     let side = r * c;
     let x = l.index % side;
     let y = l.index / side;
@@ -284,7 +293,8 @@ fn ism_neighbours(vpl: Vpl, tile: u32, l: IsmLookup, r: u32, c: u32, per_ism: u3
         }
         let w = atlas[u32(q.y) * side + u32(q.x)];
         let clear = ism_shows_clear(w, l.depth);
-        if !(nearer_only && clear) && ism_point_test(vpl, tile, l, w, per_ism, margin, reach, false) == BLOCKED {
+        let asked = !(nearer_only && clear);
+        if asked && ism_point_test(vpl, tile, l, w, per_ism, margin, reach, false) == BLOCKED {
             return BLOCKED;
         }
         if clear {
