@@ -191,7 +191,7 @@ fn solid_past(bvh: &SceneBvh, edge: &ClipEdge, m: glam::Mat4, eps: f32, limit: f
 /// the exit, the point lies in no solid ([`super::facing::is_buried`]), no surface runs on in
 /// the face's plane (a partition's face below a ceiling slab's buried end), and geometry
 /// encloses it every way (an opening inside the level, not the void outside its shell, where a
-/// disk shadows nothing but fills the map's texels at the corners). Elsewhere nothing is said.
+/// disk shadows nothing; clipping those read the rooms at 1.141). Elsewhere nothing is said.
 fn buried_end(bvh: &SceneBvh, origin: Vec3, out: Vec3, n: Vec3, exit: f32, eps: f32, limit: f32) -> Option<f32> {
     let past = origin + out * (exit + 2.0 * eps);
     let open = !super::facing::is_buried(bvh, past, out, 0.0);
@@ -435,8 +435,8 @@ mod tests {
         assert!(checked >= 3, "points on the corridor wall's buried end: {checked}");
         // The corridor floor's end (x = 5.2, buried against the room's floor slab) ends where
         // that slab ends too, at the building's underside: past it lies the void outside the
-        // level, not an opening, and its disks keep hanging there (they fill the maps' texels
-        // at the corners).
+        // level, not an opening, and its disks keep hanging there (clipping such disks read
+        // the suite's rooms at 1.141).
         let floor = scene.objects().iter().position(|o| o.name == "corridor_floor").expect("floor") as u32;
         let mut under = 0;
         for (i, (p, n)) in world.iter().enumerate() {

@@ -510,18 +510,23 @@ mod tests {
         assert!(!within_disk(Vec3::new(0.0, 0.3, 0.0), -n, n, 0.2));
     }
 
+    /// One ISM whose pool holds `points` (position, normal), each chosen in order, without clip
+    /// lines and without solid behind them.
+    fn unclipped(points: &[([f32; 3], [f32; 3])]) -> IsmLookupData {
+        IsmLookupData {
+            chosen_all: (0..points.len() as u32).collect(),
+            points: points.iter().map(|(p, _)| [p[0], p[1], p[2], 0.0]).collect(),
+            normals: points.iter().map(|(_, n)| [n[0], n[1], n[2], 1.0]).collect(),
+            clips: vec![[0.0, 0.0, 0.0, -1.0]; points.len() * CLIPS_PER_POINT],
+            per_ism: points.len() as u32,
+        }
+    }
+
     /// A floor (y = -1) whose nearer point holds the receiver's texel, the receiver on the same
     /// floor 4 m away behind a wall (z = 2, facing the VPL) whose point is in the next texel.
     #[test]
     fn a_nearer_point_on_the_receivers_own_plane_leaves_the_wall_beside_it_to_decide() {
-        let none = [0.0, 0.0, 0.0, -1.0];
-        let data = IsmLookupData {
-            chosen_all: vec![0, 1],
-            points: vec![[0.0, -1.0, 1.5, 0.0], [0.0, -0.6, 2.0, 0.0]],
-            normals: vec![[0.0, 1.0, 0.0, 1.0], [0.0, 0.0, -1.0, 1.0]],
-            clips: vec![none; 8],
-            per_ism: 2,
-        };
+        let data = unclipped(&[([0.0, -1.0, 1.5], [0.0, 1.0, 0.0]), ([0.0, -0.6, 2.0], [0.0, 0.0, -1.0])]);
         let receiver = Vec3::new(0.0, -1.0, 4.0);
         let (dir, dist) = (receiver.normalize(), receiver.length());
         let mut words = [u32::MAX; 9];
@@ -552,14 +557,9 @@ mod tests {
     /// wall 3 m aside, whose disk the ray misses (so Ritschel's push does not decide it).
     #[test]
     fn the_receivers_own_surface_in_its_texel_leaves_a_nearer_wall_in_the_next_texel_to_decide() {
-        let none = [0.0, 0.0, 0.0, -1.0];
-        let data = IsmLookupData {
-            chosen_all: vec![0, 1, 2],
-            points: vec![[0.0, -1.0, 3.98, 0.0], [0.0, -0.6, 2.0, 0.0], [3.0, -0.6, 2.0, 0.0]],
-            normals: vec![[0.0, 1.0, 0.0, 1.0], [0.0, 0.0, -1.0, 1.0], [0.0, 0.0, -1.0, 1.0]],
-            clips: vec![none; 12],
-            per_ism: 3,
-        };
+        let wall = [0.0, 0.0, -1.0];
+        let data =
+            unclipped(&[([0.0, -1.0, 3.98], [0.0, 1.0, 0.0]), ([0.0, -0.6, 2.0], wall), ([3.0, -0.6, 2.0], wall)]);
         let receiver = Vec3::new(0.0, -1.0, 4.0);
         let (dir, dist) = (receiver.normalize(), receiver.length());
         // The finest level (4 x 4), then levels 1 (2 x 2) and 2 (1 x 1).
