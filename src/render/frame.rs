@@ -572,6 +572,13 @@ impl Renderer {
     pub fn frame_index(&self) -> u32 {
         self.frame_index
     }
+
+    /// Sets the frame counter every random sequence of the temporal techniques seeds from: a
+    /// renderer started at another index draws another realization of the same estimators
+    /// (`probe --seed`, to tell a change from the spread between realizations).
+    pub fn set_frame_index(&mut self, index: u32) {
+        self.frame_index = index;
+    }
 }
 
 fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
