@@ -139,10 +139,6 @@ pub fn within_disk(e: Vec3, dir: Vec3, n: Vec3, radius: f32) -> bool {
     across2 + (along * c) * (along * c) <= radius * radius
 }
 
-/// The share of a slab's depth [`IsmLookupData::slab_blocks`] keeps clear of its faces and clip
-/// lines (`SLAB_INSET` in `ism_lookup.wgsl`, which must match).
-pub const SLAB_INSET: f32 = 0.05;
-
 /// The least cosine [`within_disk`] stretches by.
 pub const MIN_COS: f32 = 0.05;
 
@@ -290,53 +286,6 @@ impl IsmLookupData {
         })
     }
 
-    /// Whether the ray from `o` along unit `dir` passes, before `dist`, through the solid behind
-    /// pool point `j`'s face near it: the slab from the face to the solid's depth (the point's
-    /// w, 0: none), inset by [`SLAB_INSET`], bounded by its clip lines as faces square to its
-    /// plane, with the middle of the ray's way through it within `reach` x t of the point across
-    /// its normal. The twin of `slab_blocks` in `ism_lookup.wgsl`.
-    pub fn slab_blocks(&self, j: u32, o: Vec3, dir: Vec3, dist: f32, reach: f32) -> bool {
-        let Some(point) = self.points.get(j as usize) else { return false };
-        let depth = point[3];
-        if depth <= 0.0 {
-            return false;
-        }
-        let p = Vec3::from_slice(&point[..3]);
-        let n = self.normals.get(j as usize).map_or(Vec3::ZERO, |v| Vec3::from_slice(&v[..3]));
-        let inset = SLAB_INSET * depth;
-        let (mut lo, mut hi) = (0.0f32, dist);
-        let (s0, dn) = (n.dot(p - o), n.dot(dir));
-        if dn.abs() <= 1e-6 {
-            if s0 <= inset || s0 >= depth - inset {
-                return false;
-            }
-        } else {
-            let (ta, tb) = ((s0 - inset) / dn, (s0 - depth + inset) / dn);
-            lo = lo.max(ta.min(tb));
-            hi = hi.min(ta.max(tb));
-        }
-        let j = j as usize;
-        for c in self.clips.get(j * CLIPS_PER_POINT..(j + 1) * CLIPS_PER_POINT).unwrap_or(&[]) {
-            let d = Vec3::from_slice(&c[..3]);
-            let (a, b) = (d.dot(o) - c[3] - inset * d.length(), d.dot(dir));
-            if b.abs() <= 1e-9 {
-                if a < 0.0 {
-                    return false;
-                }
-            } else if b > 0.0 {
-                lo = lo.max(-a / b);
-            } else {
-                hi = hi.min(-a / b);
-            }
-        }
-        if lo >= hi {
-            return false;
-        }
-        let tm = 0.5 * (lo + hi);
-        let e = o + dir * tm - p;
-        (e - n * e.dot(n)).length_squared() <= (reach * tm) * (reach * tm)
-    }
-
     /// Whether `h` (on pool point `j`'s plane) lies inside all of its open edges' clip lines,
     /// less `margin` (seam lines skipped): the twin of `on_surface` in `ism_clips.wgsl`.
     pub fn on_surface(&self, j: u32, h: Vec3, margin: f32) -> bool {
@@ -358,6 +307,7 @@ impl IsmLookupData {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::precompute::ism::slab::{SLAB_INSET, SLAB_INSET_MAX};
     use crate::precompute::open_edges::SEAM_SCALE;
 
     /// One pool point on a wall (plane z = 2, facing -z towards a VPL at the origin) whose open
@@ -649,6 +599,7 @@ mod tests {
             format!("const UNVOUCHED: f32 = {UNVOUCHED:?};"),
             format!("const MIN_COS: f32 = {MIN_COS:?};"),
             format!("const SLAB_INSET: f32 = {SLAB_INSET:?};"),
+            format!("const SLAB_INSET_MAX: f32 = {SLAB_INSET_MAX:?};"),
             format!("const SHOWN_CLEAR: f32 = {SHOWN_CLEAR:?};"),
         ] {
             assert!(wgsl.contains(&line), "ism_lookup.wgsl lacks `{line}`");

@@ -6,7 +6,8 @@
 //! - [`power`]: the unbiased VPL power the thesis leaves out (Knecht 2009 section 4.4 and
 //!   Eq. 4.7-4.9 give no 1/N, pdf or pi);
 //! - [`atlas_word`]: the ISM atlas word, the atlas's level layout, and the lookup made of them
-//!   (P7, P8, P10).
+//!   (P7, P8, P10);
+//! - [`slab`]: the lookups' test of the solid behind a point's face (P10).
 //!
 //! The P-labels name passes: docs/ARCHITECTURE.md, "ISM pass labels".
 
@@ -14,4 +15,5 @@ pub mod atlas_word;
 pub mod halton;
 pub mod paraboloid;
 pub mod power;
+pub mod slab;
 pub mod warp;
