@@ -46,7 +46,7 @@ pub struct ProbeArgs {
     /// Start the renderer's frame counter at S x 1000: every random sequence of the temporal
     /// techniques (VPLs, point sets, sample patterns) seeds from it, so another S is another
     /// realization of the same estimator. On levels lit through doorways the settled energy of
-    /// `ism` differs by several percent between realizations: compare changes over a few seeds.
+    /// `ism` differs by 1-15% between realizations: compare changes over a few seeds.
     #[arg(long, value_name = "S", default_value_t = 0)]
     pub seed: u32,
     /// Supersampling per axis, box-filtered to the references' pixels.

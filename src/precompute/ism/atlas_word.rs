@@ -604,6 +604,8 @@ mod tests {
         ] {
             assert!(wgsl.contains(&line), "ism_lookup.wgsl lacks `{line}`");
         }
+        // The inset's formula too (`slab::slab_inset`).
+        assert!(wgsl.contains("let inset = min(SLAB_INSET * depth, SLAB_INSET_MAX);"), "ism_lookup.wgsl's slab inset");
         let clips = include_str!("../../../shaders/render/gi/ism/ism_clips.wgsl");
         let line = format!("const SEAM_SCALE: f32 = {SEAM_SCALE:?};");
         assert!(clips.contains(&line), "ism_clips.wgsl lacks `{line}`");
