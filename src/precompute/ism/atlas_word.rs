@@ -307,7 +307,7 @@ impl IsmLookupData {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::precompute::ism::slab::{SLAB_INSET, SLAB_INSET_MAX};
+    use crate::precompute::ism::slab::SLAB_INSET;
     use crate::precompute::open_edges::SEAM_SCALE;
 
     /// One pool point on a wall (plane z = 2, facing -z towards a VPL at the origin) whose open
@@ -599,13 +599,12 @@ mod tests {
             format!("const UNVOUCHED: f32 = {UNVOUCHED:?};"),
             format!("const MIN_COS: f32 = {MIN_COS:?};"),
             format!("const SLAB_INSET: f32 = {SLAB_INSET:?};"),
-            format!("const SLAB_INSET_MAX: f32 = {SLAB_INSET_MAX:?};"),
             format!("const SHOWN_CLEAR: f32 = {SHOWN_CLEAR:?};"),
         ] {
             assert!(wgsl.contains(&line), "ism_lookup.wgsl lacks `{line}`");
         }
         // The inset's formula too (`slab::slab_inset`).
-        assert!(wgsl.contains("let inset = min(SLAB_INSET * depth, SLAB_INSET_MAX);"), "ism_lookup.wgsl's slab inset");
+        assert!(wgsl.contains("let inset = SLAB_INSET * depth;"), "ism_lookup.wgsl's slab inset");
         let clips = include_str!("../../../shaders/render/gi/ism/ism_clips.wgsl");
         let line = format!("const SEAM_SCALE: f32 = {SEAM_SCALE:?};");
         assert!(clips.contains(&line), "ism_clips.wgsl lacks `{line}`");

@@ -72,11 +72,9 @@ fn within_disk(e: vec3<f32>, dir: vec3<f32>, n: vec3<f32>, radius: f32) -> bool 
 }
 
 // The share of a slab's depth its test keeps clear of its faces and clip lines (a receiver on
-// the slab's far face, or a ray grazing its edge, is not taken for passing through it), at most
-// `SLAB_INSET_MAX` metres: 5% of a deep solid's depth was wider than a jamb's face (`slab.rs`
-// holds the twins and the figures).
+// the slab's far face, or a ray grazing its edge, is not taken for passing through it).
+// `SLAB_INSET` in `slab.rs` is the twin.
 const SLAB_INSET: f32 = 0.05;
-const SLAB_INSET_MAX: f32 = 0.01;
 
 // Whether the ray from `o` along `dir` passes, before `dist`, through the solid behind pool
 // point `j`'s face near it: the slab from the face to the depth of the solid behind it
@@ -93,7 +91,7 @@ fn slab_blocks(j: u32, o: vec3<f32>, dir: vec3<f32>, dist: f32, reach: f32) -> b
     }
     let p = points[j].xyz;
     let n = point_normals[j].xyz;
-    let inset = min(SLAB_INSET * depth, SLAB_INSET_MAX);
+    let inset = SLAB_INSET * depth;
     var lo = 0.0;
     var hi = dist;
     // Depth behind the face along the ray: s0 - dn t, kept within (inset, depth - inset).
