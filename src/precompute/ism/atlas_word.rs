@@ -603,7 +603,7 @@ mod tests {
         ] {
             assert!(wgsl.contains(&line), "ism_lookup.wgsl lacks `{line}`");
         }
-        // The inset's formula too (`slab::slab_inset`).
+        // The inset's formula too (`slab.rs`).
         assert!(wgsl.contains("let inset = SLAB_INSET * depth;"), "ism_lookup.wgsl's slab inset");
         let clips = include_str!("../../../shaders/render/gi/ism/ism_clips.wgsl");
         let line = format!("const SEAM_SCALE: f32 = {SEAM_SCALE:?};");
