@@ -193,6 +193,7 @@ fn row(
         r.wait_for_gpu()?;
     }
     let (mut cpu, mut wall, mut frames, mut waits) = (Vec::new(), Vec::new(), Vec::new(), 0);
+    let mut pieces = Vec::new();
     for _ in 0..args.frames.max(1) {
         let before = crate::render::readback::blocking_waits();
         let t = Instant::now();
@@ -202,10 +203,11 @@ fn row(
         r.wait_for_gpu()?;
         wall.push(t.elapsed().as_secs_f64() * 1e3);
         frames.push(r.timings(true));
+        pieces = r.timing_pieces();
     }
     let passes = median_passes(&frames);
-    let trace =
-        frames.last().map(|f| f.iter().map(|p| (p.name.clone(), p.start_ms, p.ms)).collect()).unwrap_or_default();
+    // The trace shows the last frame's passes as recorded: the ISM's steps once per VPL set.
+    let trace = pieces.iter().map(|p| (p.name.clone(), p.start_ms, p.ms)).collect();
     Ok(Row {
         mode,
         scene: scene.name,

@@ -531,6 +531,12 @@ impl Renderer {
         self.timer.collect(&self.device, wait).to_vec()
     }
 
+    /// The latest collected frame's timings with every piece of a pass recorded in pieces apart
+    /// (after [`Self::timings`]; what a trace shows).
+    pub fn timing_pieces(&self) -> Vec<PassTiming> {
+        self.timer.pieces().to_vec()
+    }
+
     /// Whether per-pass GPU timings are measured.
     pub fn has_gpu_timings(&self) -> bool {
         self.timer.enabled()

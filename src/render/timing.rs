@@ -1,13 +1,16 @@
 //! Per-pass GPU timing with timestamp queries (where the adapter has them). Results are read
 //! back without stalling: a frame's queries are copied to a readback buffer that is mapped
-//! asynchronously and collected on a later frame (or waited for by `bench`).
+//! asynchronously and collected on a later frame (or waited for by `bench`). A pass recorded in
+//! pieces under one name (the ISM's steps, one piece per VPL set) reads as one entry, the sum of
+//! its pieces, starting where its first piece began.
 
 use std::cell::Cell;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// Queries available per frame (two per pass).
-const MAX_QUERIES: u32 = 64;
+/// Queries available per frame (two per scope): `ism` alone records 24 scopes (its maps' steps,
+/// per VPL set) beside the frame's other passes.
+const MAX_QUERIES: u32 = 256;
 
 /// What kind of GPU work a timed pass is: rasterisation (render passes) or compute. On an H100
 /// only a small part of the chip rasterises, so the profile reads the two apart.
@@ -113,6 +116,8 @@ pub struct GpuTimer {
     kinds: Box<[Cell<PassKind>]>,
     period_ns: f32,
     latest: Vec<PassTiming>,
+    /// The latest frame's scopes as recorded, pieces apart (traces).
+    latest_pieces: Vec<PassTiming>,
 }
 
 impl GpuTimer {
@@ -143,7 +148,14 @@ impl GpuTimer {
             }
         });
         let kinds = (0..MAX_QUERIES / 2).map(|_| Cell::new(PassKind::Unknown)).collect();
-        Self { gpu, names: Vec::new(), kinds, period_ns: queue.get_timestamp_period(), latest: Vec::new() }
+        Self {
+            gpu,
+            names: Vec::new(),
+            kinds,
+            period_ns: queue.get_timestamp_period(),
+            latest: Vec::new(),
+            latest_pieces: Vec::new(),
+        }
     }
 
     /// Whether timestamps are recorded.
@@ -207,7 +219,7 @@ impl GpuTimer {
                     let ticks: &[u64] = bytemuck::cast_slice(&view[..names.len() * 16]);
                     let to_ms = |t: u64| t as f64 * f64::from(self.period_ns) * 1e-6;
                     let first = ticks.first().copied().unwrap_or(0);
-                    self.latest = names
+                    self.latest_pieces = names
                         .iter()
                         .enumerate()
                         .map(|(i, name)| PassTiming {
@@ -217,6 +229,7 @@ impl GpuTimer {
                             kind: kinds.get(i).copied().unwrap_or_default(),
                         })
                         .collect();
+                    self.latest = merge_pieces(self.latest_pieces.iter().cloned());
                 }
                 gpu.readback.unmap();
                 gpu.pending = None;
@@ -224,5 +237,40 @@ impl GpuTimer {
             }
         }
         &self.latest
+    }
+
+    /// The latest collected frame's scopes as recorded: a pass recorded in pieces appears once
+    /// per piece, each at its own start (what a trace shows).
+    pub fn pieces(&self) -> &[PassTiming] {
+        &self.latest_pieces
+    }
+}
+
+/// One entry per name, in the order names first appear: a pass recorded in several pieces under
+/// one name reads as the sum of its pieces, starting where its first piece began.
+fn merge_pieces(pieces: impl Iterator<Item = PassTiming>) -> Vec<PassTiming> {
+    let mut merged: Vec<PassTiming> = Vec::new();
+    for piece in pieces {
+        match merged.iter_mut().find(|p| p.name == piece.name) {
+            Some(p) => p.ms += piece.ms,
+            None => merged.push(piece),
+        }
+    }
+    merged
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn piece(name: &str, ms: f64, start_ms: f64) -> PassTiming {
+        PassTiming { name: name.to_owned(), ms, start_ms, kind: PassKind::Compute }
+    }
+
+    #[test]
+    fn pieces_of_one_name_sum_and_keep_the_first_start_and_the_order() {
+        let pieces = [piece("ism splat", 2.0, 1.0), piece("ism pull-push", 0.5, 3.0), piece("ism splat", 3.0, 4.0)];
+        let merged = merge_pieces(pieces.into_iter());
+        assert_eq!(merged, vec![piece("ism splat", 5.0, 1.0), piece("ism pull-push", 0.5, 3.0)]);
     }
 }

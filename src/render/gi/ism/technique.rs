@@ -405,15 +405,7 @@ impl GiTechnique for IsmTechnique {
             total_area,
         };
         self.gather.seed = inputs.frame_index;
-        self.gather.record_maps(
-            inputs.device,
-            inputs.queue,
-            inputs.encoder,
-            vpls,
-            &scale,
-            settings,
-            inputs.timer.scope("ism maps"),
-        );
+        self.gather.record_maps(inputs.device, inputs.queue, inputs.encoder, vpls, &scale, settings, inputs.timer);
         // Still: the camera where it was last frame, and no light or object edited for a while.
         let camera_still = inputs.frame.clip_from_world == inputs.frame.prev_clip_from_world;
         let (blend, settle_at) = self.stillness.next(settings, self.status.history_frames, camera_still);

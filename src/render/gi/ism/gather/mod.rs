@@ -12,6 +12,7 @@ use resources::{Buffers, Groups};
 use crate::render::layouts::{compute_pipeline, storage_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::ViewTargets;
+use crate::render::timing::GpuTimer;
 use crate::settings::{BouncePick, IsmSettings};
 
 use super::params::{BounceParams, PullPushParams, SelectParams, SplatParams};
@@ -356,14 +357,14 @@ impl IsmGather {
         vpls: &wgpu::Buffer,
         scale: &MapScale,
         settings: &IsmSettings,
-        timestamps: Option<crate::render::timing::TimestampPair<'_>>,
+        timer: &mut GpuTimer,
     ) {
         self.ensure_splat_copy(device);
         let Some(s) = &self.sized else { return };
         encoder.copy_buffer_to_buffer(vpls, 0, &s.all_vpls, 0, u64::from(s.key.vpls) * VPL_BYTES);
         self.write_set_params(queue, s, scale, settings);
         self.write_pull_push_params(queue, s, scale);
-        self.record_sets(encoder, s, settings, timestamps);
+        self.record_sets(encoder, s, settings, timer);
     }
 
     /// The atlas side (texels) of these sized resources.
@@ -453,59 +454,49 @@ impl IsmGather {
         }
     }
 
-    /// Records the `ism maps` pass: the atlas cleared, then set after set its bounce (from the
-    /// previous set), point choice, splats, the inspector's copy, and pull-push.
-    fn record_sets(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        s: &Sized,
-        settings: &IsmSettings,
-        timestamps: Option<crate::render::timing::TimestampPair<'_>>,
-    ) {
-        let capture = self.capture_splats;
+    /// Records the ISM maps: the atlas cleared, then set after set its bounce (from the previous
+    /// set), point choice, splats, the inspector's copy, and pull-push. Each step is a compute
+    /// pass of its own under its own timer scope (`ism clear`, `ism bounce`, `ism select`,
+    /// `ism splat`, `ism pull-push`; the timer sums a step's passes over the sets), so the profile
+    /// shows which step the maps' time goes to. Together they are what earlier figures call
+    /// `ism maps`.
+    fn record_sets(&self, encoder: &mut wgpu::CommandEncoder, s: &Sized, settings: &IsmSettings, timer: &mut GpuTimer) {
         let (key, side) = (s.key, Self::atlas_side(s));
-        let begin_writes =
-            timestamps.as_ref().map(|t| if capture { t.compute_begin_writes() } else { t.compute_writes() });
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("ism maps"),
-            timestamp_writes: begin_writes,
-        });
-        pass.set_bind_group(0, &s.splat_group, &[0]);
-        pass.set_pipeline(&self.clear);
-        let (x, y) = Self::clear_groups(side);
-        pass.dispatch_workgroups(x, y, 1);
+        {
+            let mut pass = step_pass(encoder, timer, "ism clear");
+            pass.set_bind_group(0, &s.splat_group, &[0]);
+            pass.set_pipeline(&self.clear);
+            let (x, y) = Self::clear_groups(side);
+            pass.dispatch_workgroups(x, y, 1);
+        }
         for b in 0..key.bounces {
+            let slot = (u64::from(b) * SLOT) as u32;
             if b > 0 {
+                let mut pass = step_pass(encoder, timer, "ism bounce");
                 self.record_bounce(&mut pass, s, settings, b);
             }
-            // This set's VPLs choose their points (after the bounce pass, which read the
-            // previous set's choice).
-            pass.set_bind_group(0, &s.select_group, &[(u64::from(b) * SLOT) as u32]);
-            pass.set_pipeline(&self.select);
-            pass.dispatch_workgroups(key.vpls, 1, 1);
-            pass.set_bind_group(0, &s.splat_group, &[(u64::from(b) * SLOT) as u32]);
-            pass.set_pipeline(&self.splat);
-            pass.dispatch_workgroups((key.vpls * key.per_ism).div_ceil(64), 1, 1);
+            {
+                // This set's VPLs choose their points (after the bounce pass, which read the
+                // previous set's choice).
+                let mut pass = step_pass(encoder, timer, "ism select");
+                pass.set_bind_group(0, &s.select_group, &[slot]);
+                pass.set_pipeline(&self.select);
+                pass.dispatch_workgroups(key.vpls, 1, 1);
+            }
+            {
+                let mut pass = step_pass(encoder, timer, "ism splat");
+                pass.set_bind_group(0, &s.splat_group, &[slot]);
+                pass.set_pipeline(&self.splat);
+                pass.dispatch_workgroups((key.vpls * key.per_ism).div_ceil(64), 1, 1);
+            }
             let (row0, rows) = Self::set_rows(s, b);
             if let Some(splats) = &s.splats {
-                // Copies may not happen inside a pass: end it, copy this set's rows, go on.
-                drop(pass);
+                // The inspector's copy of this set's rows before hole filling.
                 let (at, bytes) = (u64::from(row0) * u64::from(side) * 4, u64::from(rows) * u64::from(side) * 4);
                 encoder.copy_buffer_to_buffer(&s.atlas, at, splats, at, bytes);
-                pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("ism maps (after splat capture)"),
-                    timestamp_writes: None,
-                });
             }
+            let mut pass = step_pass(encoder, timer, "ism pull-push");
             self.record_pull_push(&mut pass, s, b, rows);
-        }
-        drop(pass);
-        if let (true, Some(t)) = (capture, timestamps.as_ref()) {
-            // The scope ends with an empty pass after the last set.
-            drop(encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ism maps end"),
-                timestamp_writes: Some(t.compute_end_writes()),
-            }));
         }
     }
 
@@ -611,6 +602,15 @@ impl IsmGather {
         self.sized = None;
         self.screen.release();
     }
+}
+
+/// A compute pass for one step of the ISM maps, timed under `name` where the timer has room.
+fn step_pass<'e>(encoder: &'e mut wgpu::CommandEncoder, timer: &mut GpuTimer, name: &str) -> wgpu::ComputePass<'e> {
+    let timestamps = timer.scope(name);
+    encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some(name),
+        timestamp_writes: timestamps.as_ref().map(|t| t.compute_writes()),
+    })
 }
 
 #[cfg(test)]
