@@ -12,7 +12,10 @@
 //! which the segment test pays back near its ends by skipping the voxels within a voxel and a
 //! half of them.
 
+use std::sync::atomic::{AtomicU32, Ordering};
+
 use glam::{IVec3, UVec3, Vec3};
+use rayon::prelude::*;
 
 use crate::scene::Scene;
 
@@ -71,10 +74,13 @@ impl SurfaceVoxels {
         let bricks = dims.map(|n| n.div_ceil(BRICK));
         let bricks_at = count.div_ceil(32);
         let brick_count = bricks.x as usize * bricks.y as usize * bricks.z as usize;
-        let mut grid = Self { origin, h, dims, words: vec![0; bricks_at + brick_count.div_ceil(32)], bricks_at };
-        for t in tris {
-            grid.mark(t);
-        }
+        let mut grid = Self { origin, h, dims, words: Vec::new(), bricks_at };
+        // The triangles are marked in parallel into shared words (an OR commutes: the grid is
+        // the same in any order).
+        let words: Vec<AtomicU32> = (0..bricks_at + brick_count.div_ceil(32)).map(|_| AtomicU32::new(0)).collect();
+        // Work items are a triangle's rows of voxel columns, so a large floor is shared out.
+        tris.par_iter().flat_map_iter(|t| grid.rows(t).map(move |a| (t, a))).for_each(|(t, a)| grid.mark(t, a, &words));
+        grid.words = words.into_iter().map(AtomicU32::into_inner).collect();
         Some(grid)
     }
 
@@ -112,26 +118,72 @@ impl SurfaceVoxels {
         self.cell(c, Level::Voxel)
     }
 
-    /// Marks the voxels triangle `t` overlaps, and their bricks.
-    fn mark(&mut self, t: &[Vec3; 3]) {
-        let lo = ((t[0].min(t[1]).min(t[2]) - self.origin) / self.h).floor().as_ivec3().max(IVec3::ZERO);
-        let hi = ((t[0].max(t[1]).max(t[2]) - self.origin) / self.h).floor().as_ivec3().min(self.dims.as_ivec3() - 1);
+    /// Marks the voxels triangle `t` overlaps in row `a` of its columns ([`Self::rows`]), and
+    /// their bricks.
+    fn mark(&self, t: &[Vec3; 3], a: i32, words: &[AtomicU32]) {
+        let Some((lo, hi)) = self.bounds(t) else { return };
         // A hair over half a voxel: a plane on a voxel boundary marks the voxels on both sides,
         // never neither (rounding).
         let half = Vec3::splat(0.5 * self.h * (1.0 + 1e-3));
-        for z in lo.z..=hi.z {
-            for y in lo.y..=hi.y {
-                for x in lo.x..=hi.x {
-                    let c = IVec3::new(x, y, z);
-                    let centre = self.origin + (c.as_vec3() + 0.5) * self.h;
-                    if triangle_overlaps_box(t, centre, half) {
-                        for (cell, level) in [(c.as_uvec3(), Level::Voxel), (c.as_uvec3() / BRICK, Level::Brick)] {
-                            let i = self.index(cell, level);
-                            self.words[i / 32] |= 1 << (i % 32);
-                        }
-                    }
+        // Only the voxels of each column along the normal's largest axis that the plane can
+        // reach are tested: the bounding box of a large slanted triangle holds n^3 voxels, the
+        // plane crosses n^2 of them.
+        let (n, (k, u, v)) = Self::axes(t);
+        for b in lo[v]..=hi[v] {
+            let (k_lo, k_hi) = self.plane_reach(t[0], n, (k, u, v), (a, b), half.x);
+            for c_k in k_lo.max(lo[k])..=k_hi.min(hi[k]) {
+                let mut c = IVec3::ZERO;
+                (c[k], c[u], c[v]) = (c_k, a, b);
+                let centre = self.origin + (c.as_vec3() + 0.5) * self.h;
+                if triangle_overlaps_box(t, centre, half) {
+                    self.set(c.as_uvec3(), words);
                 }
             }
+        }
+    }
+
+    /// Triangle `t`'s normal (unnormalised) and its axes: k the normal's largest, u and v the
+    /// other two.
+    fn axes(t: &[Vec3; 3]) -> (Vec3, (usize, usize, usize)) {
+        let n = (t[1] - t[0]).cross(t[2] - t[0]);
+        let k = n.abs().max_position();
+        (n, (k, (k + 1) % 3, (k + 2) % 3))
+    }
+
+    /// The rows (voxel indices along axis u of [`Self::axes`]) of triangle `t`'s columns.
+    fn rows(&self, t: &[Vec3; 3]) -> std::ops::RangeInclusive<i32> {
+        let (_, (_, u, _)) = Self::axes(t);
+        self.bounds(t).map_or(1..=0, |(lo, hi)| lo[u]..=hi[u])
+    }
+
+    /// The voxels of the bounding box of triangle `t`, clamped to the grid (`None` outside it).
+    fn bounds(&self, t: &[Vec3; 3]) -> Option<(IVec3, IVec3)> {
+        let lo = ((t[0].min(t[1]).min(t[2]) - self.origin) / self.h).floor().as_ivec3().max(IVec3::ZERO);
+        let hi = ((t[0].max(t[1]).max(t[2]) - self.origin) / self.h).floor().as_ivec3().min(self.dims.as_ivec3() - 1);
+        hi.cmpge(lo).all().then_some((lo, hi))
+    }
+
+    /// The voxel indices along axis `k` whose boxes (half side `half`) the plane through `p` of
+    /// normal `n` can touch in the column (`u`, `v`) = `cell`: the plane's reach over the
+    /// column's square widened by `half`, plus one voxel each way for rounding. `n[k]` is the
+    /// normal's largest component.
+    fn plane_reach(&self, p: Vec3, n: Vec3, (k, u, v): (usize, usize, usize), (a, b): (i32, i32), half: f32) -> (i32, i32) {
+        if n[k] == 0.0 {
+            return (i32::MIN, i32::MAX);
+        }
+        let centre = |axis: usize, i: i32| self.origin[axis] + (i as f32 + 0.5) * self.h;
+        // On the plane: x_k = p_k - (n_u (x_u - p_u) + n_v (x_v - p_v)) / n_k.
+        let at_centre = p[k] - (n[u] * (centre(u, a) - p[u]) + n[v] * (centre(v, b) - p[v])) / n[k];
+        let spread = (n[u].abs() + n[v].abs()) * half / n[k].abs() + half;
+        let index = |x: f32| ((x - self.origin[k]) / self.h).floor() as i32;
+        (index(at_centre - spread) - 1, index(at_centre + spread) + 1)
+    }
+
+    /// Marks voxel `c` and its brick in `words` (this grid's words while it is built).
+    fn set(&self, c: UVec3, words: &[AtomicU32]) {
+        for (cell, level) in [(c, Level::Voxel), (c / BRICK, Level::Brick)] {
+            let i = self.index(cell, level);
+            words[i / 32].fetch_or(1 << (i % 32), Ordering::Relaxed);
         }
     }
 
@@ -313,6 +365,58 @@ mod tests {
             [corner(false, false), corner(true, false), corner(true, true)],
             [corner(false, false), corner(true, true), corner(false, true)],
         ]
+    }
+
+    /// The marking before columns were pruned: every voxel of the bounding box tested.
+    fn mark_every_box_voxel(grid: &SurfaceVoxels, t: &[Vec3; 3], words: &[AtomicU32]) {
+        let Some((lo, hi)) = grid.bounds(t) else { return };
+        let half = Vec3::splat(0.5 * grid.h * (1.0 + 1e-3));
+        for z in lo.z..=hi.z {
+            for y in lo.y..=hi.y {
+                for x in lo.x..=hi.x {
+                    let c = IVec3::new(x, y, z);
+                    if triangle_overlaps_box(t, grid.origin + (c.as_vec3() + 0.5) * grid.h, half) {
+                        grid.set(c.as_uvec3(), words);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn pruned_columns_mark_exactly_the_voxels_every_box_voxel_marks() {
+        // Random triangles of every size and slant, some slivers and some axis-aligned, in a
+        // 64-voxel grid.
+        let mut state = 0x9e37_79b9_u32;
+        let mut rnd = || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            state as f32 / u32::MAX as f32
+        };
+        let mut tris = Vec::new();
+        for i in 0..600 {
+            let a = Vec3::new(rnd(), rnd(), rnd()) * 4.0;
+            let scale = [0.05, 0.5, 3.0][i % 3];
+            let mut b = a + (Vec3::new(rnd(), rnd(), rnd()) - 0.5) * scale;
+            let mut c = a + (Vec3::new(rnd(), rnd(), rnd()) - 0.5) * scale;
+            if i % 7 == 0 {
+                (b.y, c.y) = (a.y, a.y);
+            }
+            if i % 11 == 0 {
+                c = a + (b - a) * 0.5 + Vec3::splat(1e-4);
+            }
+            tris.push([a, b, c]);
+        }
+        let pruned = SurfaceVoxels::build(&tris, 64).expect("grid");
+        let words: Vec<AtomicU32> = pruned.words.iter().map(|_| AtomicU32::new(0)).collect();
+        for t in &tris {
+            mark_every_box_voxel(&pruned, t, &words);
+        }
+        let every: Vec<u32> = words.into_iter().map(AtomicU32::into_inner).collect();
+        let marked = every.iter().map(|w| w.count_ones()).sum::<u32>();
+        assert!(marked > 10_000, "the test's triangles mark too little to compare: {marked}");
+        assert!(pruned.words == every, "the pruned marking differs from the every-voxel marking");
     }
 
     #[test]
