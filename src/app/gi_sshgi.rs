@@ -68,13 +68,18 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
         )
         .on_hover_text("Not in the paper. A grid of the voxels the scene's surfaces pass through, built on the CPU when the geometry changes: where a hidden sender's light leaves the view it is walked there instead of being counted as blocked; the senders' sky rays walk it too, and the screen's where they leave the view (`bouncelab probe`, 32 frames: hall 0.85 to 0.87, clutter 0.77 to 0.80; a 60 m hall's side room with the hall behind the camera 0.29 to 0.55 of the path tracer's energy). Cost: each such segment walks the grid's bricks (lavapipe: sshgi's passes x1.3 on the clutter room).");
         if world != (m.world_voxels > 0) {
-            m.world_voxels = if world { 256 } else { 0 };
+            m.world_voxels = if world { 512 } else { 0 };
         }
         ui.add_enabled(
             m.panorama > 0 && m.hidden_senders > 0 && m.world_voxels > 0,
             egui::Slider::new(&mut m.world_voxels, 32..=512).logarithmic(true).text("world grid voxels"),
         )
         .on_hover_text("Voxels along the scene's longest side (at least 2 cm each). Finer: less false shadow near surfaces and in narrow doorways, a longer walk and up to 8x the memory per doubling.");
+        ui.add_enabled(
+            m.panorama > 0 && m.hidden_senders > 0 && m.world_voxels > 0,
+            egui::Checkbox::new(&mut m.world_grid_in_view, "world grid where finer than the view's columns"),
+        )
+        .on_hover_text("Not in the paper. A hidden sender's light that stays in view walks the world grid instead of the view's voxel columns where the grid's voxel is smaller than a column at the segment's depth: a corridor seen down its length spans few wide columns that block light the walls let through (32 frames: a 3 m corridor level 0.85 to 0.90, the suite's three rooms 0.85 to 0.90 of the path tracer's energy). Cost: those segments walk the grid.");
         ui.add_enabled(m.visibility, egui::Slider::new(&mut m.sky_rays, 0..=64).text("sky rays"))
             .on_hover_text("Rays per start-level texel and frame that look for the sky through the voxels (0: the sky lights nothing; needs visibility). Open where a ray leaves the voxels' far end or crosses a column where the camera sees the sky; where it leaves the screen elsewhere it walks on through the world grid (blocked without it; the courtyard 0.98 to 0.99 of the path tracer's energy). Linear cost.");
         ui.add(egui::Slider::new(&mut m.temporal_weight, 0.0..=0.99).text("temporal weight a"))

@@ -167,7 +167,14 @@ impl SurfaceVoxels {
     /// normal `n` can touch in the column (`u`, `v`) = `cell`: the plane's reach over the
     /// column's square widened by `half`, plus one voxel each way for rounding. `n[k]` is the
     /// normal's largest component.
-    fn plane_reach(&self, p: Vec3, n: Vec3, (k, u, v): (usize, usize, usize), (a, b): (i32, i32), half: f32) -> (i32, i32) {
+    fn plane_reach(
+        &self,
+        p: Vec3,
+        n: Vec3,
+        (k, u, v): (usize, usize, usize),
+        (a, b): (i32, i32),
+        half: f32,
+    ) -> (i32, i32) {
         if n[k] == 0.0 {
             return (i32::MIN, i32::MAX);
         }

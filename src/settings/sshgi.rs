@@ -111,8 +111,21 @@ pub struct SshgiSettings {
     /// scene); each such segment walks the grid's bricks of 4^3 voxels and the voxels of those
     /// that hold a surface. The hall 0.850 -> 0.873 of the path tracer's energy, a 60 m hall's
     /// side room with the hall behind the camera 0.285 -> 0.547; lavapipe: sshgi's passes 70 ->
-    /// 92 ms on the cluttered room (`probe --timings`).
+    /// 92 ms on the cluttered room (`probe --timings`). 512 since stop 63 (256 before): the rule
+    /// of `world_grid_in_view` needs voxels finer than the view's columns in rooms of a few
+    /// metres. Building it on the CPU: 22-275 ms on the suite's and development levels at 512
+    /// (release build, two cores; 6-122 ms at 256), up to 3.7 MB.
     pub world_voxels: u32,
+    /// A hidden sender's segment that stays in view is walked through the world grid instead of
+    /// the view's voxel columns where the grid's voxel is smaller than a column's width at the
+    /// segment's middle depth (a column is one or more view pixels wide: 4-7 cm at 4 m in the
+    /// quality matrix's 256x144 views). Not in the paper. A corridor seen down its length
+    /// spans few columns, each wide and deep at the far end, and they blocked light the
+    /// world's walls let through. With the 512-voxel grid (`bouncelab probe`, 32 frames,
+    /// energy over the path tracer's): corridors_3m 0.845 -> 0.903, corridors_tall 0.823 ->
+    /// 0.850, corridor_turning 0.532 -> 0.636, pillars 0.791 -> 0.810, the suite's three rooms
+    /// 0.845 -> 0.898; the held-out flat 0.790 -> 0.817. Cost: such segments walk the grid.
+    pub world_grid_in_view: bool,
 }
 
 impl Default for SshgiSettings {
@@ -134,7 +147,8 @@ impl Default for SshgiSettings {
             panorama_samples: 64,
             sky_rays: 16,
             hidden_senders: 2048,
-            world_voxels: 256,
+            world_voxels: 512,
+            world_grid_in_view: true,
         }
     }
 }

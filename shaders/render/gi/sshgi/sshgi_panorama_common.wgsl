@@ -15,7 +15,8 @@ struct PanoramaParams {
     counts: vec4<u32>,
     // The start level's width and height (texels), unused x2.
     screen: vec4<u32>,
-    // Solid angle of one start-level texel on the optical axis (sr), unused x3.
+    // Solid angle of one start-level texel on the optical axis (sr); a voxel column's width per
+    // metre of view depth (0: segments in view never walk the world grid), unused x2.
     geo: vec4<f32>,
     // xyz the camera's forward axis, w unused.
     forward: vec4<f32>,
@@ -64,7 +65,8 @@ fn clip_to_pixel(c: vec4<f32>) -> vec2<f32> {
 }
 
 // Whether the segment from x to y (normals nx, ny) passes through a solid voxel of the view
-// (`voxel_occluded_skipping`), or, where it leaves the view's frustum or the voxels' near end (clip
+// (`voxel_occluded_skipping`; through the world's surface voxels instead where they are finer
+// than a column at the segment's middle depth, `SshgiSettings::world_grid_in_view`), or, where it leaves the view's frustum or the voxels' near end (clip
 // space is linear along it), through a surface voxel of the world (`world_blocked`; without them
 // it counts as blocked: what lies outside the view is unknown). `on_surface.x` (y): x (y) lies on
 // a surface the view shows, whose own columns are skipped; a hidden point moved off its surface
@@ -102,6 +104,11 @@ fn world_occluded(x: vec3<f32>, nx: vec3<f32>, y: vec3<f32>, ny: vec3<f32>, on_s
     }
     let ca = c0 + dc * t0;
     let cb = c0 + dc * t1;
+    // Where the world's voxel is finer than a column at the segment's middle depth, the world
+    // answers (a corridor seen down its length spans few columns, wide and deep at its far end).
+    if world_grid_on() && gp.world.w < gp.geo.y * 0.5 * (ca.w + cb.w) {
+        return world_blocked(x, nx, y, ny);
+    }
     let skip = vec2<i32>(select(1, 2, on_surface.x && t0 <= 0.0), select(1, 2, on_surface.y && t1 >= 1.0));
     return voxel_occluded_skipping(clip_to_pixel(ca), clip_to_pixel(cb), ca.w, cb.w, skip);
 }

@@ -57,7 +57,9 @@ pub struct PanoramaParams {
     pub counts: [u32; 4],
     /// The start level's width and height, unused x2.
     pub screen: [u32; 4],
-    /// Solid angle of one start-level texel on the optical axis (sr), unused x3.
+    /// Solid angle of one start-level texel on the optical axis (sr); a voxel column's width
+    /// per metre of view depth where a segment in view walks the world grid when its voxel is
+    /// smaller (0: never, `SshgiSettings::world_grid_in_view` off), unused x2.
     pub geo: [f32; 4],
     /// The camera's forward axis, unused.
     pub forward: [f32; 4],

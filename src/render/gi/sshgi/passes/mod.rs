@@ -557,6 +557,12 @@ impl SshgiPasses {
             [near, far, 128.0 / (far - near).max(1e-6), 1.0]
         });
         let forward = axis.forward;
+        // A voxel column is grid[1] view pixels wide: its width per metre of view depth.
+        let grid_in_view = if settings.world_grid_in_view {
+            2.0 * axis.tan_x * grid[1] as f32 / plan.view.0.max(1) as f32
+        } else {
+            0.0
+        };
         for b in 0..chains as u32 {
             // The unshadowed chain repeats the first bounce's samples without the voxels.
             let (seed, vox) = if b == plan.bounces { (0, [0.0; 4]) } else { (b, vox) };
@@ -583,7 +589,7 @@ impl SshgiPasses {
             let p = PanoramaParams {
                 counts: [senders, settings.panorama_samples, seed, face],
                 screen: [start_size.0, start_size.1, 0, 0],
-                geo: [pixel_sr * (1u32 << (2 * plan.start)) as f32, 0.0, 0.0, 0.0],
+                geo: [pixel_sr * (1u32 << (2 * plan.start)) as f32, grid_in_view, 0.0, 0.0],
                 forward: [forward.x, forward.y, forward.z, 0.0],
                 // The hidden senders' segments are marched in every bounce: they lie behind
                 // something by definition, so without it each would light through it.
