@@ -76,7 +76,7 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
         )
         .on_hover_text("Voxels along the scene's longest side (at least 2 cm each). Finer: less false shadow near surfaces and in narrow doorways, a longer walk and up to 8x the memory per doubling.");
         ui.add_enabled(
-            m.panorama > 0 && m.hidden_senders > 0 && m.world_voxels > 0,
+            m.visibility && m.panorama > 0 && m.hidden_senders > 0 && m.world_voxels > 0,
             egui::Checkbox::new(&mut m.world_grid_in_view, "world grid where finer than the view's columns"),
         )
         .on_hover_text("Not in the paper. A hidden sender's light that stays in view walks the world grid instead of the view's voxel columns where the grid's voxel is smaller than a column at the segment's depth: a corridor seen down its length spans few wide columns that block light the walls let through (32 frames: a 3 m corridor level 0.85 to 0.90, the suite's three rooms 0.85 to 0.90 of the path tracer's energy). Cost: those segments walk the grid.");

@@ -130,7 +130,7 @@ impl SurfaceVoxels {
         // plane crosses n^2 of them.
         let (n, (k, u, v)) = Self::axes(t);
         for b in lo[v]..=hi[v] {
-            let (k_lo, k_hi) = self.plane_reach(t[0], n, (k, u, v), (a, b), half.x);
+            let (k_lo, k_hi) = self.plane_reach(t, n, (k, u, v), (a, b), half.x);
             for c_k in k_lo.max(lo[k])..=k_hi.min(hi[k]) {
                 let mut c = IVec3::ZERO;
                 (c[k], c[u], c[v]) = (c_k, a, b);
@@ -163,13 +163,15 @@ impl SurfaceVoxels {
         hi.cmpge(lo).all().then_some((lo, hi))
     }
 
-    /// The voxel indices along axis `k` whose boxes (half side `half`) the plane through `p` of
-    /// normal `n` can touch in the column (`u`, `v`) = `cell`: the plane's reach over the
-    /// column's square widened by `half`, plus one voxel each way for rounding. `n[k]` is the
-    /// normal's largest component.
+    /// The voxel indices along axis `k` whose boxes (half side `half`) triangle `t` of normal `n`
+    /// can touch in the column (`a`, `b`) of axes `u`, `v`: its plane's reach over the column's
+    /// square widened by `half` and by how far the vertices lie off that plane (a triangle
+    /// collinear but for rounding has a normal of noise, its vertices up to an edge's length
+    /// off its plane), plus one voxel each way for rounding. `n[k]` is the normal's largest
+    /// component.
     fn plane_reach(
         &self,
-        p: Vec3,
+        t: &[Vec3; 3],
         n: Vec3,
         (k, u, v): (usize, usize, usize),
         (a, b): (i32, i32),
@@ -178,10 +180,12 @@ impl SurfaceVoxels {
         if n[k] == 0.0 {
             return (i32::MIN, i32::MAX);
         }
+        let p = t[0];
         let centre = |axis: usize, i: i32| self.origin[axis] + (i as f32 + 0.5) * self.h;
         // On the plane: x_k = p_k - (n_u (x_u - p_u) + n_v (x_v - p_v)) / n_k.
         let at_centre = p[k] - (n[u] * (centre(u, a) - p[u]) + n[v] * (centre(v, b) - p[v])) / n[k];
-        let spread = (n[u].abs() + n[v].abs()) * half / n[k].abs() + half;
+        let off = n.dot(t[1] - p).abs().max(n.dot(t[2] - p).abs());
+        let spread = ((n[u].abs() + n[v].abs()) * half + off) / n[k].abs() + half;
         let index = |x: f32| ((x - self.origin[k]) / self.h).floor() as i32;
         (index(at_centre - spread) - 1, index(at_centre + spread) + 1)
     }
@@ -412,6 +416,10 @@ mod tests {
             }
             if i % 11 == 0 {
                 c = a + (b - a) * 0.5 + Vec3::splat(1e-4);
+            }
+            // Collinear but for rounding: the cross product is noise.
+            if i % 13 == 0 {
+                c = a + (b - a) * (0.1 + 0.8 * rnd());
             }
             tris.push([a, b, c]);
         }

@@ -359,7 +359,7 @@ fn sshgi_sky_sum(ctx: &bouncelab::render::GpuContext, name: &str, world_voxels: 
 #[test]
 fn sshgi_sky_rays_that_leave_the_view_find_the_sky_outdoors_and_the_walls_indoors() {
     let Some(ctx) = common::gpu() else { return };
-    let gain = |name: &str| sshgi_sky_sum(&ctx, name, 256, 8) / sshgi_sky_sum(&ctx, name, 0, 8);
+    let gain = |name: &str| sshgi_sky_sum(&ctx, name, 512, 8) / sshgi_sky_sum(&ctx, name, 0, 8);
     let (outdoors, indoors) = (gain("courtyard"), gain("skylight"));
     eprintln!("sky light with the world grid over without: courtyard {outdoors:.4}, window room {indoors:.4}");
     assert!(outdoors > 1.02, "the courtyard's sky rays past the view found no sky: {outdoors:.4}");

@@ -115,10 +115,10 @@ fn the_world_grid_brings_light_from_behind_the_camera_through_the_doorway_and_no
     };
     let light = |scene: &Scene, world_voxels| mean_luminance(&settled_mean(&ctx, scene, &settings(world_voxels)));
     let without = light(&project.scene, 0);
-    let with = light(&project.scene, 256);
+    let with = light(&project.scene, 512);
     let closed = doorways_closed(&project.scene);
     let closed_without = light(&closed, 0);
-    let closed_with = light(&closed, 256);
+    let closed_with = light(&closed, 512);
     eprintln!(
         "middle room facing away: without the world grid {without:.5}, with {with:.5}; doorways closed {closed_without:.5}, {closed_with:.5}"
     );

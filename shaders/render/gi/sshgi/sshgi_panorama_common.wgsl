@@ -2,8 +2,9 @@
 // `sshgi_panorama_receive.wgsl`): the parameters, the sender list and the estimate of E / pi at a
 // point from the senders. The list holds the panorama's 6 F^2 senders, then the hidden senders
 // (`sshgi_hidden_pack.wgsl`); a segment with a hidden sender at either end is marched through the
-// view's voxels, and one that leaves the view through the scene's surface voxels in the world
-// (`world_occluded`; blocked without them). The including shader binds `frame`, `gp`, `senders`,
+// view's voxels, and one that leaves the view, or whose columns are coarser than the world's
+// voxels, through the scene's surface voxels in the world (`world_occluded`; blocked without
+// them where it leaves the view). The including shader binds `frame`, `gp`, `senders`,
 // `radiance`, `voxels` and `world`.
 
 #import render/gi/sshgi/sshgi_hash.wgsl

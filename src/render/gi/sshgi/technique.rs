@@ -316,7 +316,7 @@ impl GiTechnique for SshgiTechnique {
             && settings.sshgi.hidden_senders > 0
             && settings.sshgi.world_voxels > 0
         {
-            "surfaces off screen send indirect light through the panorama, without indirect shadows; those hidden from the camera's position through a set of points on every surface, shadowed by the view's voxels and, where their light leaves the view, by a grid of the surfaces' voxels in the world (which also shadows within a voxel of a surface); a point set is coarser than the screen"
+            "surfaces off screen send indirect light through the panorama, without indirect shadows; those hidden from the camera's position through a set of points on every surface, shadowed by the view's voxels and, where their light leaves the view or the view's voxel columns are coarser, by a grid of the surfaces' voxels in the world (which also shadows within a voxel of a surface); a point set is coarser than the screen"
         } else if settings.sshgi.panorama > 0 && settings.sshgi.hidden_senders > 0 {
             "surfaces off screen send indirect light through the panorama, without indirect shadows; those hidden from the camera's position through a set of points on every surface, whose light is lost where it leaves the view (the world grid setting follows it there); a point set is coarser than the screen"
         } else if settings.sshgi.panorama > 0 {

@@ -1,6 +1,7 @@
 //! `sshgi`'s world grid: the scene's surface voxels ([`SurfaceVoxels`]) on the GPU, for the part
-//! of a hidden sender's segment that leaves the view, where the view's voxel columns say nothing
-//! (`sshgi_world_grid.wgsl`). Built on the CPU when the geometry changes (meshes, transforms,
+//! of a hidden sender's segment that leaves the view, where the view's voxel columns say nothing,
+//! and for a segment in view where its voxels are finer than the columns
+//! (`world_grid_in_view`; `sshgi_world_grid.wgsl`). Built on the CPU when the geometry changes (meshes, transforms,
 //! what is rendered), never for a light or camera edit; up to `world_voxels` voxels along the
 //! scene's longest side.
 
@@ -56,8 +57,9 @@ pub struct WorldGrid {
 
 /// Whether to rebuild for geometry `key`: there is no grid yet, or another resolution, or the
 /// geometry changed and has stood still for a frame since (`last`). While an object is dragged
-/// the grid keeps its last shape: a build takes tens of milliseconds on a level (the suite's
-/// rooms 125 ms, the cluttered room 343 ms in a debug build), too long to pay every frame.
+/// the grid keeps its last shape (segments in view that walk it shadow with it too): a build
+/// takes tens to hundreds of milliseconds on a level (at 512 voxels, release build, two cores:
+/// the suite's rooms 90 ms, the cluttered room 274 ms), too long to pay every frame.
 fn should_build(built: Option<&GeometryKey>, last: Option<&GeometryKey>, key: &GeometryKey) -> bool {
     match built {
         None => true,

@@ -458,8 +458,8 @@ impl IsmGather {
     /// set), point choice, splats, the inspector's copy, and pull-push. Each step is a compute
     /// pass of its own under its own timer scope (`ism clear`, `ism bounce`, `ism select`,
     /// `ism splat`, `ism pull-push`; the timer sums a step's passes over the sets), so the profile
-    /// shows which step the maps' time goes to. Together they are what earlier figures call
-    /// `ism maps`.
+    /// shows which step the maps' time goes to. Their sum stands where earlier figures had
+    /// `ism maps` (less the inspector's copy and the gaps between the passes).
     fn record_sets(&self, encoder: &mut wgpu::CommandEncoder, s: &Sized, settings: &IsmSettings, timer: &mut GpuTimer) {
         let (key, side) = (s.key, Self::atlas_side(s));
         {
