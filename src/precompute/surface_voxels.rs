@@ -151,9 +151,9 @@ impl SurfaceVoxels {
     }
 
     /// The rows (voxel indices along axis u of [`Self::axes`]) of triangle `t`'s columns.
-    fn rows(&self, t: &[Vec3; 3]) -> std::ops::RangeInclusive<i32> {
+    fn rows(&self, t: &[Vec3; 3]) -> impl Iterator<Item = i32> + use<> {
         let (_, (_, u, _)) = Self::axes(t);
-        self.bounds(t).map_or(1..=0, |(lo, hi)| lo[u]..=hi[u])
+        self.bounds(t).into_iter().flat_map(move |(lo, hi)| lo[u]..=hi[u])
     }
 
     /// The voxels of the bounding box of triangle `t`, clamped to the grid (`None` outside it).
