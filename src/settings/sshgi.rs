@@ -239,6 +239,17 @@ mod tests {
     }
 
     #[test]
+    fn a_project_saved_before_the_grid_in_view_keeps_it_off_and_new_settings_have_it_on() {
+        let old: SshgiSettings = ron::from_str("(world_voxels: 256, hidden_senders: 2048)").expect("old settings");
+        assert!(!old.world_grid_in_view, "an old project's 256-voxel grid got the rule it reads worse with");
+        assert_eq!(old.world_voxels, 256);
+        let new = SshgiSettings::default();
+        assert!(new.world_grid_in_view && new.world_voxels == 512, "the defaults: {new:?}");
+        let saved: SshgiSettings = ron::from_str(&ron::to_string(&new).expect("save")).expect("load");
+        assert_eq!(saved, new, "a saved project reads back its settings");
+    }
+
+    #[test]
     fn out_of_range_values_are_named() {
         let bad = SshgiSettings { bounces: 0, ..Default::default() };
         assert_eq!(bad.validate().map_err(|e| e.name), Err("sshgi.bounces"));
