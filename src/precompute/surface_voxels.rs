@@ -129,8 +129,9 @@ impl SurfaceVoxels {
         // reach are tested: the bounding box of a large slanted triangle holds n^3 voxels, the
         // plane crosses n^2 of them.
         let (n, (k, u, v)) = Self::axes(t);
+        let spread = Self::plane_spread(t, n, k, half.x);
         for b in lo[v]..=hi[v] {
-            let (k_lo, k_hi) = self.plane_reach(t, n, (k, u, v), (a, b), half.x);
+            let (k_lo, k_hi) = self.plane_reach(t[0], n, (k, u, v), (a, b), spread);
             for c_k in k_lo.max(lo[k])..=k_hi.min(hi[k]) {
                 let mut c = IVec3::ZERO;
                 (c[k], c[u], c[v]) = (c_k, a, b);
@@ -163,29 +164,34 @@ impl SurfaceVoxels {
         hi.cmpge(lo).all().then_some((lo, hi))
     }
 
-    /// The voxel indices along axis `k` whose boxes (half side `half`) triangle `t` of normal `n`
-    /// can touch in the column (`a`, `b`) of axes `u`, `v`: its plane's reach over the column's
-    /// square widened by `half` and by how far the vertices lie off that plane (a triangle
-    /// collinear but for rounding has a normal of noise, its vertices up to an edge's length
-    /// off its plane), plus one voxel each way for rounding. `n[k]` is the normal's largest
-    /// component.
+    /// How far along axis `k` (metres) from the plane's point at a column's centre a box of half
+    /// side `half` can still touch triangle `t` of normal `n`: the plane's rise over the
+    /// column's square widened by `half`, plus how far the vertices lie off that plane (a
+    /// triangle collinear but for rounding has a normal of noise, its vertices up to an edge's
+    /// length off its plane). `n[k]` is the normal's largest component.
+    fn plane_spread(t: &[Vec3; 3], n: Vec3, k: usize, half: f32) -> f32 {
+        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        let off = n.dot(t[1] - t[0]).abs().max(n.dot(t[2] - t[0]).abs());
+        ((n[u].abs() + n[v].abs()) * half + off) / n[k].abs() + half
+    }
+
+    /// The voxel indices along axis `k` whose boxes can touch the triangle in the column (`a`,
+    /// `b`) of axes `u`, `v`: within `spread` ([`Self::plane_spread`]) of the plane through `p`
+    /// of normal `n` at the column's centre, plus one voxel each way for rounding.
     fn plane_reach(
         &self,
-        t: &[Vec3; 3],
+        p: Vec3,
         n: Vec3,
         (k, u, v): (usize, usize, usize),
         (a, b): (i32, i32),
-        half: f32,
+        spread: f32,
     ) -> (i32, i32) {
         if n[k] == 0.0 {
             return (i32::MIN, i32::MAX);
         }
-        let p = t[0];
         let centre = |axis: usize, i: i32| self.origin[axis] + (i as f32 + 0.5) * self.h;
         // On the plane: x_k = p_k - (n_u (x_u - p_u) + n_v (x_v - p_v)) / n_k.
         let at_centre = p[k] - (n[u] * (centre(u, a) - p[u]) + n[v] * (centre(v, b) - p[v])) / n[k];
-        let off = n.dot(t[1] - p).abs().max(n.dot(t[2] - p).abs());
-        let spread = ((n[u].abs() + n[v].abs()) * half + off) / n[k].abs() + half;
         let index = |x: f32| ((x - self.origin[k]) / self.h).floor() as i32;
         (index(at_centre - spread) - 1, index(at_centre + spread) + 1)
     }

@@ -113,13 +113,13 @@ pub struct SshgiSettings {
     /// side room with the hall behind the camera 0.285 -> 0.547; lavapipe: sshgi's passes 70 ->
     /// 92 ms on the cluttered room (`probe --timings`). 512 since stop 63 (256 before): the rule
     /// of `world_grid_in_view` needs voxels finer than the view's columns in rooms of a few
-    /// metres. Building it on the CPU: 22-275 ms on the suite's and development levels at 512
-    /// (release build, two cores; 6-122 ms at 256), up to 3.7 MB.
+    /// metres. Building it on the CPU: 27-274 ms on six suite, development and held-out levels
+    /// at 512 (release build, two cores; 7-122 ms at 256), up to 3.7 MB.
     pub world_voxels: u32,
     /// A hidden sender's segment that stays in view is walked through the world grid instead of
     /// the view's voxel columns where the grid's voxel is smaller than a column's width at the
-    /// segment's middle depth (a column is one or more view pixels wide: 4-7 cm at 4 m in the
-    /// quality matrix's 256x144 views). Not in the paper. A corridor seen down its length
+    /// segment's middle depth (a column spans 2 tan(half the horizontal field) x depth x view
+    /// pixels per column / view width). Not in the paper. A corridor seen down its length
     /// spans few columns, each wide and deep at the far end, and they blocked light the
     /// world's walls let through. With the 512-voxel grid (`bouncelab probe`, 32 frames,
     /// energy over the path tracer's): corridors_3m 0.845 -> 0.903, corridors_tall 0.823 ->

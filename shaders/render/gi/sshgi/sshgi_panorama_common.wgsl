@@ -67,8 +67,8 @@ fn clip_to_pixel(c: vec4<f32>) -> vec2<f32> {
 
 // Whether the segment from x to y (normals nx, ny) passes through a solid voxel of the view
 // (`voxel_occluded_skipping`; through the world's surface voxels instead where they are finer
-// than a column at the segment's middle depth, `SshgiSettings::world_grid_in_view`), or, where it leaves the view's frustum or the voxels' near end (clip
-// space is linear along it), through a surface voxel of the world (`world_blocked`; without them
+// than a column at the segment's middle depth, `SshgiSettings::world_grid_in_view`), or, where
+// it leaves the view's frustum or the voxels' near end (clip space is linear along it), through a surface voxel of the world (`world_blocked`; without them
 // it counts as blocked: what lies outside the view is unknown). `on_surface.x` (y): x (y) lies on
 // a surface the view shows, whose own columns are skipped; a hidden point moved off its surface
 // (`off_surface`) and an end clipped to the view skip none. Off without visibility.

@@ -1,8 +1,8 @@
 // The scene's surface voxels in the world (`precompute/surface_voxels.rs`, which this ports:
 // `SurfaceVoxels::blocked`): visibility for the segments of sshgi's hidden senders that leave
 // the view, where the view's voxel columns say nothing, and for those in view where its voxels
-// are finer than the columns (`world_occluded` in `sshgi_panorama_common.wgsl`). Every voxel a triangle overlaps is set,
-// so no wall leaks; a segment's ends are moved 1.5 voxels along their normals, out of their own
+// are finer than the columns (`world_occluded` in `sshgi_panorama_common.wgsl`). Every voxel a
+// triangle overlaps is set, so no wall leaks; a segment's ends are moved 1.5 voxels along their normals, out of their own
 // surface's voxels, and the voxels within half a voxel of either end are left out. The including
 // shader binds `world: array<u32>` (one bit per voxel, x fastest, then y, then z; from word
 // `gp.world_dims.w` on one bit per brick of 4^3 voxels), `gp.world` = (origin xyz, voxel side)

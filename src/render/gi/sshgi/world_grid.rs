@@ -1,9 +1,9 @@
 //! `sshgi`'s world grid: the scene's surface voxels ([`SurfaceVoxels`]) on the GPU, for the part
 //! of a hidden sender's segment that leaves the view, where the view's voxel columns say nothing,
 //! and for a segment in view where its voxels are finer than the columns
-//! (`world_grid_in_view`; `sshgi_world_grid.wgsl`). Built on the CPU when the geometry changes (meshes, transforms,
-//! what is rendered), never for a light or camera edit; up to `world_voxels` voxels along the
-//! scene's longest side.
+//! (`world_grid_in_view`; `sshgi_world_grid.wgsl`). Built on the CPU when the geometry changes
+//! (meshes, transforms, what is rendered), never for a light or camera edit; up to
+//! `world_voxels` voxels along the scene's longest side.
 
 use crate::precompute::surface_voxels::SurfaceVoxels;
 use crate::scene::Scene;
