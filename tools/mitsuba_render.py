@@ -10,6 +10,7 @@ Usage:
     python3 tools/mitsuba_render.py SCENE.gltf --out OUT.exr --width W --height H \
         --spp N --max-bounces K [--seed S] [--sky R,G,B | --sky FILE.exr]
         [--sky-intensity X] [--sky-rotation DEG]
+        [--variant llvm_ad_rgb] [--rr-depth D] [--sampler independent|stratified|multijitter|sobol]
 
 Conventions used:
   * Every triangle primitive -> one-sided Mitsuba `diffuse` BSDF with reflectance =
@@ -31,15 +32,35 @@ Conventions used:
   * First camera in depth-first node order; yfov = vertical FOV; aspect = W/H.
   * Film: hdrfilm with a box filter (each sample lands only in its own pixel, i.e. a
     pixel is the average over its area), independent sampler.
-  * Integrator: path, max_depth = K+1 (K=1: direct light only), rr_depth = 1000, i.e.
-    Russian roulette is effectively disabled (unbiased either way, just less noise).
+  * Integrator: path, max_depth = K+1 (K=1: direct light only), rr_depth = 1000 unless
+    --rr-depth says otherwise, i.e. Russian roulette is effectively disabled (unbiased either
+    way, just less noise); Mitsuba's own default is 5.
+  * Variant: scalar_rgb unless --variant says otherwise. The llvm_* variants (vectorised, the
+    fast ones) need LLVM >= 16: Debian 12's LLVM 15 crashes, its libllvm19 package works; the
+    library is found at /usr/lib/x86_64-linux-gnu/libLLVM-19.so (or set DRJIT_LIBLLVM_PATH).
 Output is linear radiance, float32 RGB EXR, row 0 = top of the image.
 """
 import argparse, base64, json, math, os, sys, time
 import numpy as np
-import mitsuba as mi
 
-mi.set_variant("scalar_rgb")  # the llvm_* variants need LLVM >= 16 here (system LLVM 15 crashes)
+LLVM_CANDIDATES = ["/usr/lib/x86_64-linux-gnu/libLLVM-19.so", "/usr/lib/x86_64-linux-gnu/libLLVM-18.so",
+                   "/usr/lib/x86_64-linux-gnu/libLLVM-17.so", "/usr/lib/x86_64-linux-gnu/libLLVM-16.so"]
+
+
+def select_variant(variant):
+    """Imports Mitsuba with `variant`; for llvm_* points Dr.Jit at an LLVM >= 16 first."""
+    if variant.startswith("llvm") and "DRJIT_LIBLLVM_PATH" not in os.environ:
+        found = next((c for c in LLVM_CANDIDATES if os.path.exists(c)), None)
+        if found is None:
+            sys.exit(f"{variant} needs LLVM >= 16 (Debian 12: apt-get install libllvm19) or DRJIT_LIBLLVM_PATH")
+        os.environ["DRJIT_LIBLLVM_PATH"] = found
+    global mi
+    import mitsuba
+    mi = mitsuba
+    mi.set_variant(variant)
+
+
+mi = None
 
 COMP = {5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}
 NCOMP = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
@@ -216,12 +237,13 @@ def make_sky(sky, intensity, rotation, per_unit):
     return {"type": "envmap", "filename": sky, "scale": intensity * per_unit, "to_world": to_world}
 
 
-def build_scene(path, width, height, spp, max_bounces, sky=None, sky_intensity=1.0, sky_rotation=0.0):
+def build_scene(path, width, height, spp, max_bounces, sky=None, sky_intensity=1.0, sky_rotation=0.0,
+                rr_depth=1000, sampler="independent"):
     with open(path) as f:
         gltf = json.load(f)
     buffers = load_buffers(gltf, os.path.dirname(os.path.abspath(path)))
     scene = {"type": "scene",
-             "integrator": {"type": "path", "max_depth": max_bounces + 1, "rr_depth": 1000}}
+             "integrator": {"type": "path", "max_depth": max_bounces + 1, "rr_depth": rr_depth}}
     lights = gltf.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
     units = gltf.get("extras", {}).get("bouncelab", {}).get("light_units", "photometric")
     per_unit = 1.0 if units == "radiometric" else 1.0 / 683.0
@@ -249,7 +271,7 @@ def build_scene(path, width, height, spp, max_bounces, sky=None, sky_intensity=1
                       "film": {"type": "hdrfilm", "width": width, "height": height,
                                "pixel_format": "rgb", "component_format": "float32",
                                "rfilter": {"type": "box"}},
-                      "sampler": {"type": "independent", "sample_count": spp}}
+                      "sampler": {"type": sampler, "sample_count": spp}}
     if sensor is None:
         sys.exit("scene has no camera")
     scene["sensor"] = sensor
@@ -271,13 +293,22 @@ def main():
     ap.add_argument("--sky", help="R,G,B (a constant sky in the scene's light units) or an equirectangular .exr")
     ap.add_argument("--sky-intensity", type=float, default=1.0)
     ap.add_argument("--sky-rotation", type=float, default=0.0, help="degrees about +Y")
+    ap.add_argument("--variant", default="scalar_rgb", help="Mitsuba variant, e.g. llvm_ad_rgb (vectorised)")
+    ap.add_argument("--rr-depth", type=int, default=1000, help="Russian roulette from this depth (Mitsuba's default: 5)")
+    ap.add_argument("--sampler", default="independent", help="Mitsuba sampler: independent, stratified, multijitter, sobol...")
     a = ap.parse_args()
-    scene = build_scene(a.scene, a.width, a.height, a.spp, a.max_bounces, a.sky, a.sky_intensity, a.sky_rotation)
+    select_variant(a.variant)
+    scene = build_scene(a.scene, a.width, a.height, a.spp, a.max_bounces, a.sky, a.sky_intensity, a.sky_rotation,
+                        a.rr_depth, a.sampler)
     t0 = time.time()
     img = mi.render(scene, spp=a.spp, seed=a.seed)
+    import drjit as dr
+    dr.eval(img)  # the llvm variants render lazily: evaluate before stopping the clock
+    dr.sync_thread()
     dt = time.time() - t0
     mi.Bitmap(img).write(a.out)
-    print(f"wrote {a.out} ({a.width}x{a.height}, {a.spp} spp, max_depth {a.max_bounces + 1}) in {dt:.2f} s")
+    print(f"wrote {a.out} ({a.width}x{a.height}, {a.spp} spp, max_depth {a.max_bounces + 1}, {a.variant}) "
+          f"in {dt:.2f} s")
 
 
 if __name__ == "__main__":

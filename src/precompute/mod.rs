@@ -15,8 +15,10 @@ pub mod open_edges;
 pub mod pathtracer;
 pub mod rng;
 pub mod sample_points;
+pub mod sampler;
 pub mod sky_sampler;
 pub mod surface_voxels;
 #[cfg(test)]
 pub(crate) mod test_scenes;
 pub mod unseen;
+pub mod wide_bvh;

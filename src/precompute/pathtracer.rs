@@ -11,7 +11,8 @@
 //! Russian roulette from `rr_start`; `max_bounces = 1` is direct light only (the BRDF-sampled
 //! ray is still traced, to find emitters and the sky for MIS, but the path ends). One call of
 //! [`PathTracer::add_sample`] adds one jittered (box-filtered) sample to every pixel, in parallel
-//! over rows with rayon, and can be cancelled.
+//! over rows with rayon, and can be cancelled. Each path draws its decisions from its pixel's
+//! Owen-scrambled Sobol sequence (`sampler.rs`), so a pixel's samples spread evenly.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::{Duration, Instant};
@@ -22,13 +23,15 @@ use rayon::prelude::*;
 use super::brdf::{Surface, phong_exponent};
 use super::bvh::{Hit, SceneBvh};
 use super::emitters::{Emitters, power_heuristic};
-use super::rng::Pcg32;
+use super::sampler::{PathSampler, Sampler};
 use super::sky_sampler::{SkyDistribution, sky_distribution};
 use crate::image_io::srgb_to_linear;
 use crate::scene::{Camera, Environment, Image, Light, LightKind, Material, Scene, SkyImage};
 use crate::settings::ReferenceSettings;
 
-/// Bump when the tracer's estimator changes: cached suite references keyed on it go stale.
+/// Bump when what the tracer converges to changes (its conventions or light transport): cached
+/// suite references keyed on it go stale. A change of its noise alone (the sampler, where
+/// Russian roulette starts) leaves every reference an estimate of the same image.
 pub const TRACER_VERSION: u32 = 1;
 /// Progress after a pass.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -145,8 +148,8 @@ impl PathTracer {
             let mut row_rays = 0u64;
             for (x, out) in row.iter_mut().enumerate() {
                 let pixel = y as u64 * u64::from(w) + x as u64;
-                let mut rng = Pcg32::new(self.settings.seed, pixel, u64::from(sample));
-                let (l, r) = self.trace(x as f32, y as f32, &mut rng);
+                let mut sampler = PathSampler::new(self.settings.seed, pixel, sample);
+                let (l, r) = self.trace(x as f32, y as f32, &mut sampler);
                 *out = l.to_array();
                 row_rays += r;
             }
@@ -188,7 +191,14 @@ impl PathTracer {
         let p = tri.p[0] * w0 + tri.p[1] * w1 + tri.p[2] * w2;
         let mut n = (tri.n[0] * w0 + tri.n[1] * w1 + tri.n[2] * w2).try_normalize().unwrap_or(tri.ng);
         let uv = tri.uv[0] * w0 + tri.uv[1] * w1 + tri.uv[2] * w2;
-        let m = self.materials.get(tri.material as usize).cloned().unwrap_or_default();
+        let fallback;
+        let m = match self.materials.get(tri.material as usize) {
+            Some(m) => m,
+            None => {
+                fallback = Material::default();
+                &fallback
+            }
+        };
         let mut albedo = Vec3::new(m.base_color[0], m.base_color[1], m.base_color[2]);
         if let Some(img) = m.base_color_texture.and_then(|t| self.images.get(t.image)) {
             albedo *= sample_image(img, uv, true);
@@ -208,15 +218,16 @@ impl PathTracer {
     }
 
     /// One path through pixel (x, y): radiance and the number of rays traced.
-    fn trace(&self, x: f32, y: f32, rng: &mut Pcg32) -> (Vec3, u64) {
+    fn trace(&self, x: f32, y: f32, rng: &mut impl Sampler) -> (Vec3, u64) {
         let dir = self.camera_ray(x, y, rng);
         self.radiance(self.camera.position, dir, rng)
     }
 
     /// The direction of a camera ray through pixel (x, y), jittered within the pixel.
-    pub fn camera_ray(&self, x: f32, y: f32, rng: &mut Pcg32) -> Vec3 {
+    pub fn camera_ray(&self, x: f32, y: f32, rng: &mut impl Sampler) -> Vec3 {
         let (w, h) = self.size;
-        self.camera.ray_direction(x + rng.next_f32(), y + rng.next_f32(), w, h)
+        let (jx, jy) = rng.next_2d();
+        self.camera.ray_direction(x + jx, y + jy, w, h)
     }
 
     /// The scene's ray-tracing BVH.
@@ -231,7 +242,7 @@ impl PathTracer {
 
     /// One path estimate of the radiance arriving at `origin` from direction `-dir` (the ray
     /// `origin + t dir`), and the number of rays traced.
-    pub fn radiance(&self, origin: Vec3, dir: Vec3, rng: &mut Pcg32) -> (Vec3, u64) {
+    pub fn radiance(&self, origin: Vec3, dir: Vec3, rng: &mut impl Sampler) -> (Vec3, u64) {
         let mut radiance = Vec3::ZERO;
         let rays = self.walk(origin, dir, rng, |vertex| radiance += vertex.light);
         if let Some(c) = self.settings.clamp {
@@ -248,7 +259,7 @@ impl PathTracer {
     /// the first, its next-event estimate, and the MIS-weighted emission and sky its sampled
     /// bounce ray finds, times the path's throughput); a first ray that leaves the scene hands
     /// over the sky it sees as a vertex at depth 0 far along `dir`. Returns the rays traced.
-    pub fn walk(&self, mut origin: Vec3, mut dir: Vec3, rng: &mut Pcg32, mut visit: impl FnMut(Vertex)) -> u64 {
+    pub fn walk(&self, mut origin: Vec3, mut dir: Vec3, rng: &mut impl Sampler, mut visit: impl FnMut(Vertex)) -> u64 {
         let mut throughput = Vec3::ONE;
         let mut rays = 1u64;
         let eps = 1e-4 * self.bvh.scale;
@@ -292,7 +303,7 @@ impl PathTracer {
             }
             if depth + 1 >= self.settings.rr_start {
                 let q = throughput.max_element().min(0.95);
-                if q <= 0.0 || rng.next_f32() >= q {
+                if q <= 0.0 || rng.next_1d() >= q {
                     break;
                 }
                 throughput /= q;
@@ -345,13 +356,13 @@ impl PathTracer {
     /// The light every light sends off the shading point towards its viewer by next-event
     /// estimation: each punctual light, one point on an emissive triangle and one sky direction
     /// (the last two weighted against BRDF sampling); counts the shadow rays in `rays`.
-    fn next_event(&self, at: &ShadingPoint<'_>, rng: &mut Pcg32, rays: &mut u64) -> Vec3 {
+    fn next_event(&self, at: &ShadingPoint<'_>, rng: &mut impl Sampler, rays: &mut u64) -> Vec3 {
         let mut out = self.punctual(at, rays);
         if !self.emitters.is_empty() {
             out += self.emitter_sample(at, rng, rays);
         }
         if let Some(dist) = &self.sky_distribution {
-            let (d, pdf) = dist.sample((rng.next_f32(), rng.next_f32()));
+            let (d, pdf) = dist.sample(rng.next_2d());
             let l = self.environment.to_world(d);
             if let Some(cos) = at.facing(l).filter(|_| pdf > 0.0) {
                 *rays += 1;
@@ -365,8 +376,8 @@ impl PathTracer {
     }
 
     /// One point on an emissive triangle, its light weighted against BRDF sampling.
-    fn emitter_sample(&self, at: &ShadingPoint<'_>, rng: &mut Pcg32, rays: &mut u64) -> Vec3 {
-        let Some(s) = self.emitters.sample(&self.bvh, [rng.next_f32(), rng.next_f32(), rng.next_f32()]) else {
+    fn emitter_sample(&self, at: &ShadingPoint<'_>, rng: &mut impl Sampler, rays: &mut u64) -> Vec3 {
+        let Some(s) = self.emitters.sample(&self.bvh, rng.next_3d()) else {
             return Vec3::ZERO;
         };
         let to = s.p - at.lifted;
@@ -426,8 +437,9 @@ impl ShadingPoint<'_> {
 }
 
 /// A bounce direction sampled from the BRDF above the geometric normal, with its density.
-fn sample_bounce(surface: &Surface, ng: Vec3, v: Vec3, rng: &mut Pcg32) -> Option<(Vec3, f32)> {
-    let l = surface.sample(v, (rng.next_f32(), rng.next_f32()), rng.next_f32())?;
+fn sample_bounce(surface: &Surface, ng: Vec3, v: Vec3, rng: &mut impl Sampler) -> Option<(Vec3, f32)> {
+    let [u0, u1, choice] = rng.next_3d();
+    let l = surface.sample(v, (u0, u1), choice)?;
     if ng.dot(l) <= 0.0 {
         return None;
     }
