@@ -377,7 +377,9 @@ impl PathTracer {
 
     /// One point on an emissive triangle, its light weighted against BRDF sampling.
     fn emitter_sample(&self, at: &ShadingPoint<'_>, rng: &mut impl Sampler, rays: &mut u64) -> Vec3 {
-        let Some(s) = self.emitters.sample(&self.bvh, rng.next_3d()) else {
+        // The point on the triangle takes the pattern's first two dimensions, the pick the third.
+        let [x, y, pick] = rng.next_3d();
+        let Some(s) = self.emitters.sample(&self.bvh, [pick, x, y]) else {
             return Vec3::ZERO;
         };
         let to = s.p - at.lifted;

@@ -95,9 +95,9 @@ fn sobol_bitwise(index: u32, dim: usize) -> u32 {
     (0..32).filter(|bit| (index >> bit) & 1 == 1).fold(0, |x, bit| x ^ DIRECTIONS[dim][bit])
 }
 
-/// A hash that permutes the bits of `x` only towards the more significant ones, so applied to
-/// bit-reversed numbers it is a nested uniform (Owen) scramble (Vegdahl's improvement of Laine
-/// & Karras's hash).
+/// A hash in which each output bit depends only on the same and less significant input bits,
+/// so applied to bit-reversed numbers it is a nested uniform (Owen) scramble (Vegdahl's
+/// improvement of Laine & Karras's hash).
 fn laine_karras(mut x: u32, seed: u32) -> u32 {
     x ^= x.wrapping_mul(0x3d20_adea);
     x = x.wrapping_add(seed);
@@ -142,14 +142,15 @@ impl PathSampler {
     }
 }
 
-/// What a path draws its decisions from: the tracer's low-discrepancy [`PathSampler`], or a
-/// plain random stream (probes that trace many paths from one point).
+/// What a path draws its decisions from: the tracer's low-discrepancy [`PathSampler`] (whose
+/// 2D draws are spread jointly over a pixel's samples), or a plain random stream (probes that
+/// trace many paths from one point). Every number is uniform in [0, 1).
 pub trait Sampler {
-    /// One number uniform in [0, 1).
+    /// One number.
     fn next_1d(&mut self) -> f32;
-    /// Two numbers, well spread jointly over a pixel's samples.
+    /// Two numbers (a 2D decision: a direction, a point).
     fn next_2d(&mut self) -> (f32, f32);
-    /// Three numbers, well spread jointly over a pixel's samples.
+    /// Three numbers: put a 2D decision on the first two, a discrete choice on the third.
     fn next_3d(&mut self) -> [f32; 3];
 }
 
