@@ -22,6 +22,9 @@ const LEAF: u32 = 1 << 31;
 const COUNT_BITS: u32 = 6;
 /// Triangles a leaf may hold: one packet.
 const LEAF_SIZE: u32 = 4;
+/// 1 + 2 gamma_3: the relative error bound of a box's entry and exit distances (Pharr et al.'s
+/// gamma_n = n u / (1 - n u), u = 2^-24).
+const WIDEN: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 /// Traversal stack entries kept on the call stack; a deeper tree (three pushes a level at
 /// most) gets one on the heap.
 const STACK: usize = 64;
@@ -88,11 +91,11 @@ impl BoxRay {
     }
 
     /// Entry distances of the four children and the mask of those entered before `tmax`. The
-    /// exit distance is widened by 1 + 2 gamma_3 (Ize 2013, "Robust BVH Ray Traversal"), so a
-    /// ray grazing a box's edge, or crossing a flat box (an axis-aligned wall's), is never
-    /// culled by rounding.
+    /// exit distance and `tmax` are widened by [`WIDEN`] (Ize 2013, "Robust BVH Ray
+    /// Traversal"), so neither a ray grazing a box's edge or crossing a flat box (an
+    /// axis-aligned wall's) nor a triangle a rounding error nearer than the closest hit so far
+    /// is culled by rounding.
     fn test(&self, n: &Node, tmax: f32) -> (Vec4, u32) {
-        const WIDEN: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
         let mut near = Vec4::ZERO;
         let mut far = Vec4::splat(f32::INFINITY);
         for a in 0..3 {
@@ -101,7 +104,7 @@ impl BoxRay {
             near = near.max(t0.min(t1));
             far = far.min(t0.max(t1));
         }
-        let far = (far * WIDEN).min(Vec4::splat(tmax));
+        let far = (far * WIDEN).min(Vec4::splat(tmax * WIDEN));
         (near, near.cmple(far).bitmask() & n.lanes)
     }
 
@@ -193,8 +196,8 @@ impl WideBvh {
             let n = &bvh2.nodes[k];
             let b = n.aabb();
             for a in 0..3 {
-                node.lo[a][lane] = b.min[a];
-                node.hi[a][lane] = b.max[a];
+                node.lo[a][lane] = b.min[a] - outward(b.min[a]);
+                node.hi[a][lane] = b.max[a] + outward(b.max[a]);
             }
             node.lanes |= 1 << lane;
             node.child[lane] = if n.is_leaf() {
@@ -222,7 +225,7 @@ impl WideBvh {
         while top > 0 {
             top -= 1;
             let (child, entry) = stack[top];
-            if entry >= t_best {
+            if entry > t_best * WIDEN {
                 continue;
             }
             if child & LEAF != 0 {
@@ -311,6 +314,15 @@ impl WideBvh {
     }
 }
 
+/// How far a box's face at coordinate `c` is moved outward (a few ulps of `c`, and a little
+/// at 0): a ray that lies in the face's plane (an axis-aligned ray along a wall's edge) is then
+/// inside the box's slab, not on its border, where the zero direction component's huge
+/// reciprocal would put it inside or outside by its sign. `obvhs`'s compressed nodes rounded
+/// their boxes outward the same way.
+fn outward(c: f32) -> f32 {
+    c.abs() * (1.0 / (1 << 21) as f32) + 1e-20
+}
+
 /// The packets a leaf child lists.
 fn leaf_packets(child: u32) -> std::ops::Range<usize> {
     let first = ((child & !LEAF) >> COUNT_BITS) as usize;
@@ -349,11 +361,12 @@ mod tests {
         if det.abs() < 1e-20 {
             return None;
         }
+        let inv = 1.0 / det;
         let tv = o - tri[0];
-        let u = tv.dot(pv) / det;
+        let u = tv.dot(pv) * inv;
         let qv = tv.cross(e1);
-        let v = d.dot(qv) / det;
-        let t = e2.dot(qv) / det;
+        let v = d.dot(qv) * inv;
+        let t = e2.dot(qv) * inv;
         ((0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < tmax).then_some(t)
     }
 
@@ -419,6 +432,71 @@ mod tests {
             assert_eq!(all, want, "ray {o} {d}");
         }
         assert!(hits > 300, "the soup should be hit often: {hits}");
+    }
+
+    /// Every hit of a ray, nearest first, by testing every triangle.
+    fn every_hit(tris: &[[Vec3A; 3]], o: Vec3A, d: Vec3A, tmax: f32) -> Vec<f32> {
+        let mut ts: Vec<f32> = tris.iter().filter_map(|t| hit(t, o, d, tmax)).collect();
+        ts.sort_by(f32::total_cmp);
+        ts
+    }
+
+    /// The twelve triangles of the box `lo`-`hi`.
+    fn cuboid(lo: Vec3A, hi: Vec3A) -> Vec<[Vec3A; 3]> {
+        let c = |x: bool, y: bool, z: bool| {
+            Vec3A::new(if x { hi.x } else { lo.x }, if y { hi.y } else { lo.y }, if z { hi.z } else { lo.z })
+        };
+        let (f, t) = (false, true);
+        let faces = [
+            [c(f, f, f), c(f, t, f), c(f, t, t), c(f, f, t)],
+            [c(t, f, f), c(t, f, t), c(t, t, t), c(t, t, f)],
+            [c(f, f, f), c(f, f, t), c(t, f, t), c(t, f, f)],
+            [c(f, t, f), c(t, t, f), c(t, t, t), c(f, t, t)],
+            [c(f, f, f), c(t, f, f), c(t, t, f), c(f, t, f)],
+            [c(f, f, t), c(f, t, t), c(t, t, t), c(t, f, t)],
+        ];
+        faces.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect()
+    }
+
+    /// Slabs and boxes that touch, and rays as the precomputes cast them: from points just off
+    /// each face (at its corners, its edges' middles and at random), along its normal both ways
+    /// and along the axes with zero and negative-zero components, which lie in other boxes'
+    /// faces. Fails when the boxes are not moved outward (`outward`): an axis-aligned ray in a
+    /// box's face plane misses the edge hits inside it.
+    #[test]
+    fn axis_aligned_rays_from_slab_faces_find_every_hit() {
+        let tris: Vec<[Vec3A; 3]> = [
+            cuboid(Vec3A::new(0.0, 0.0, 0.0), Vec3A::new(5.0, 0.2, 4.0)),
+            cuboid(Vec3A::new(0.0, 0.2, 0.0), Vec3A::new(0.2, 3.0, 4.0)),
+            cuboid(Vec3A::new(0.2, 0.2, 0.0), Vec3A::new(4.8, 3.0, 0.2)),
+            cuboid(Vec3A::new(0.0, 3.0, 0.0), Vec3A::new(5.0, 3.2, 4.0)),
+            cuboid(Vec3A::new(1.3, 0.2, 1.1), Vec3A::new(2.1, 0.95, 1.7)),
+            cuboid(Vec3A::new(1.3, 0.95, 1.1), Vec3A::new(1.7, 1.4, 1.7)),
+        ]
+        .concat();
+        let bvh = WideBvh::build(&tris);
+        let mut rng = Pcg32::new(8, 8, 8);
+        let eps = 4e-4;
+        let axes =
+            [Vec3A::X, Vec3A::new(-1.0, -0.0, -0.0), Vec3A::Y, Vec3A::new(-0.0, -1.0, -0.0), Vec3A::Z, Vec3A::NEG_Z];
+        let spots = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.5, 0.0), (0.0, 0.5), (0.5, 0.5)];
+        for tri in &tris {
+            let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]).normalize();
+            let random = (0..6).map(|_| (rng.next_f32() * 0.5, rng.next_f32() * 0.5));
+            for (a, b) in spots.into_iter().chain(random) {
+                let p = tri[0] + (tri[1] - tri[0]) * a + (tri[2] - tri[0]) * b;
+                let rays = [(p - n * eps, -n), (p + n * eps, n)].into_iter().chain(axes.map(|d| (p + n * eps, d)));
+                for (o, d) in rays {
+                    let want = every_hit(&tris, o, d, f32::MAX);
+                    let mut got = Vec::new();
+                    bvh.all(o, d, f32::MAX, |_, t| got.push(t));
+                    got.sort_by(f32::total_cmp);
+                    assert_eq!(got, want, "all hits of {o} along {d}");
+                    assert_eq!(bvh.closest(o, d, f32::MAX).map(|h| h.1), want.first().copied(), "{o} along {d}");
+                    assert_eq!(bvh.any(o, d, f32::MAX), !want.is_empty(), "{o} along {d}");
+                }
+            }
+        }
     }
 
     #[test]
