@@ -92,6 +92,7 @@ impl PathTracer {
     pub fn new(scene: &Scene, size: (u32, u32), settings: ReferenceSettings) -> Self {
         let n = size.0 as usize * size.1 as usize;
         let bvh = SceneBvh::build(scene);
+        bvh.wide(); // Built here, not in the first sample's time.
         let emitters = Emitters::new(&bvh, scene.materials());
         let sky = scene.sky_texels();
         Self {
@@ -264,7 +265,7 @@ impl PathTracer {
         let mut rays = 1u64;
         let eps = 1e-4 * self.bvh.scale;
         let area_lights = !self.emitters.is_empty() || self.environment.emits(self.sky.as_deref());
-        let mut hit = self.bvh.intersect(origin, dir, f32::INFINITY);
+        let mut hit = self.bvh.trace(origin, dir, f32::INFINITY);
         for depth in 0..self.settings.max_bounces {
             let Some(h) = hit else {
                 if depth == 0 {
@@ -295,7 +296,7 @@ impl PathTracer {
             };
             throughput *= surface.eval(v, l) * surface.n.dot(l) / pdf;
             rays += 1;
-            hit = self.bvh.intersect(lifted, l, f32::INFINITY);
+            hit = self.bvh.trace(lifted, l, f32::INFINITY);
             light += throughput * self.found_light(l, hit.as_ref(), pdf);
             visit(Vertex { depth, p, ng, light });
             if last {
@@ -366,7 +367,7 @@ impl PathTracer {
             let l = self.environment.to_world(d);
             if let Some(cos) = at.facing(l).filter(|_| pdf > 0.0) {
                 *rays += 1;
-                if !self.bvh.occluded(at.lifted, l, f32::INFINITY) {
+                if !self.bvh.trace_occluded(at.lifted, l, f32::INFINITY) {
                     let w = power_heuristic(pdf, at.surface.pdf(at.v, l));
                     out += at.surface.eval(at.v, l) * self.sky_radiance(l) * cos / pdf * w;
                 }
@@ -391,7 +392,7 @@ impl PathTracer {
         let cos_light = self.bvh.tris[s.tri as usize].ng.dot(-l);
         let Some(cos) = at.facing(l).filter(|_| cos_light > 0.0) else { return Vec3::ZERO };
         *rays += 1;
-        if self.bvh.occluded(at.lifted, l, dist * (1.0 - 1e-4)) {
+        if self.bvh.trace_occluded(at.lifted, l, dist * (1.0 - 1e-4)) {
             return Vec3::ZERO;
         }
         let pdf = s.pdf_area * dist * dist / cos_light;
@@ -411,7 +412,7 @@ impl PathTracer {
                 _ => (light.position - at.lifted).length(),
             };
             *rays += 1;
-            if !self.bvh.occluded(at.lifted, l, dist) {
+            if !self.bvh.trace_occluded(at.lifted, l, dist) {
                 out += at.surface.eval(at.v, l) * e * cos;
             }
         }

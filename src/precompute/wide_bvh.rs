@@ -54,9 +54,11 @@ struct Packet {
     prim: [u32; 4],
 }
 
-/// A ray's hit on a packet's triangles: which lanes hit, and where.
+/// A ray's hit on a packet's triangles: which lanes hit, which of those the ray meets from the
+/// front (the counter-clockwise side), and where.
 struct PacketHits {
     mask: u32,
+    front: u32,
     t: Vec4,
     u: Vec4,
     v: Vec4,
@@ -129,7 +131,8 @@ impl BoxRay {
             & (u + v).cmple(Vec4::ONE)
             & t.cmpgt(Vec4::splat(tmin))
             & t.cmplt(Vec4::splat(tmax));
-        PacketHits { mask: ok.bitmask(), t, u, v }
+        // det = e1 . (d x e2) = -d . (e1 x e2): positive when the ray meets the front.
+        PacketHits { mask: ok.bitmask(), front: det.cmpgt(Vec4::ZERO).bitmask(), t, u, v }
     }
 }
 
@@ -218,7 +221,7 @@ impl WideBvh {
         }
         let ray = BoxRay::new(o, d);
         let mut best = None;
-        let mut t_best = tmax;
+        let (mut t_best, mut best_front) = (tmax, false);
         let (mut local, mut heap) = ([(0u32, 0.0f32); STACK], Vec::new());
         let stack = self.stack(&mut local, &mut heap);
         let mut top = 1;
@@ -230,12 +233,15 @@ impl WideBvh {
             }
             if child & LEAF != 0 {
                 for p in &self.packets[leaf_packets(child)] {
-                    let mut h = ray.triangles(p, 0.0, t_best);
+                    // Up to and including the closest so far: a hit as near may be the one to keep.
+                    let limit = if best.is_some() { t_best.next_up() } else { tmax };
+                    let mut h = ray.triangles(p, 0.0, limit);
                     while h.mask != 0 {
                         let lane = h.mask.trailing_zeros() as usize;
                         h.mask &= h.mask - 1;
-                        if h.t[lane] < t_best {
-                            t_best = h.t[lane];
+                        let front = h.front & (1 << lane) != 0;
+                        if nearer(h.t[lane], front, t_best, best_front) {
+                            (t_best, best_front) = (h.t[lane], front);
                             best = Some((p.prim[lane], h.t[lane], h.u[lane], h.v[lane]));
                         }
                     }
@@ -312,6 +318,15 @@ impl WideBvh {
             heap
         }
     }
+}
+
+/// Whether a hit at `t` (met from the front or not) replaces the closest so far: nearer, or
+/// as near and met from the front where the closest so far is met from behind. Two faces at
+/// the same distance are where solids touch or a ray grazes an edge; a ray that got there
+/// through empty space meets the front one, and the choice no longer hangs on the order the
+/// tree lists them in.
+fn nearer(t: f32, front: bool, t_best: f32, best_front: bool) -> bool {
+    t < t_best || (t == t_best && front && !best_front)
 }
 
 /// How far a box's face at coordinate `c` is moved outward (a few ulps of `c`, and a little
