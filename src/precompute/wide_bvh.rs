@@ -389,9 +389,12 @@ mod tests {
         Vec3A::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, rng.next_f32() - 0.5) * size
     }
 
+    /// Origin, direction and the distance limit.
+    type TestRay = (Vec3A, Vec3A, f32);
+
     /// A soup of large, small, sliver and degenerate triangles, and rays among them, some
     /// along the axes with negative zero components.
-    fn soup() -> (Vec<[Vec3A; 3]>, Vec<(Vec3A, Vec3A, f32)>) {
+    fn soup() -> (Vec<[Vec3A; 3]>, Vec<TestRay>) {
         let mut rng = Pcg32::new(21, 0, 0);
         let tris = (0..600)
             .map(|i| {
