@@ -31,7 +31,7 @@ Conventions used:
     Bounce Lab takes the nearest texel, so compare with smooth skies.
   * First camera in depth-first node order; yfov = vertical FOV; aspect = W/H.
   * Film: hdrfilm with a box filter (each sample lands only in its own pixel, i.e. a
-    pixel is the average over its area), independent sampler.
+    pixel is the average over its area), the independent sampler unless --sampler says otherwise.
   * Integrator: path, max_depth = K+1 (K=1: direct light only), rr_depth = 1000 unless
     --rr-depth says otherwise, i.e. Russian roulette is effectively disabled (unbiased either
     way, just less noise); Mitsuba's own default is 5.

@@ -8,7 +8,7 @@ sample counts. Every render is a whole process, timed from start to exit, run on
 FLIP against the truth comes from `bouncelab compare --exposure-auto` (the reference's mean at
 0.18, as docs/QUALITY.md judges). For each Mitsuba render, the time Bounce Lab needs for the
 same FLIP is read off its ladder (log-log interpolation between the two rungs that bracket it;
-"> ladder" when no rung reaches it), and the ratio of the two times is printed: <= 1 means Bounce
+the cheapest rung's time if it already reaches it; "> ladder" when no rung does), and the ratio of the two times is printed: <= 1 means Bounce
 Lab reaches Mitsuba's error in no more time.
 
     python3 tools/reference_race.py [--bouncelab target/release/bouncelab] [--work /tmp/race]
@@ -69,20 +69,21 @@ def flip(a, image, truth):
 
 
 def time_for(ladder, target):
-    """Seconds at which the ladder's FLIP falls to `target` (log-log between bracketing rungs)."""
+    """Seconds at which the ladder's FLIP falls to `target` (log-log between bracketing rungs);
+    the cheapest rung if it already reaches it (then an upper bound)."""
+    if ladder and ladder[0][1] <= target:
+        return ladder[0][0]
     for (t0, f0), (t1, f1) in zip(ladder, ladder[1:]):
         if f0 >= target >= f1 and f0 > f1:
             s = (math.log(f0) - math.log(target)) / (math.log(f0) - math.log(f1))
             return math.exp(math.log(t0) + s * (math.log(t1) - math.log(t0)))
-    if ladder and ladder[0][1] <= target:
-        return ladder[0][0]  # the cheapest rung already reaches it: an upper bound
     return None
 
 
 def race(a, name):
     rel, w, h = SCENES[name]
     gltf = os.path.join(ROOT, rel)
-    truth = os.path.join(a.work, f"{name}.truth.{a.truth_spp}.exr")
+    truth = os.path.join(a.work, f"{name}.{w}x{h}.rr{a.rr_depth}.{a.sampler}.truth.{a.truth_spp}.exr")
     if not os.path.exists(truth):
         dt = mitsuba(a, gltf, w, h, a.truth_spp, truth, seed=1234)
         print(f"{name}: truth, Mitsuba {a.truth_spp} spp, {dt:.1f} s", flush=True)

@@ -158,7 +158,7 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
     egui::CollapsingHeader::new("Reference path tracer").default_open(false).show(ui, |ui| {
         let r = &mut render.reference;
         ui.add(egui::Slider::new(&mut r.spp, 1..=16384).logarithmic(true).text("samples per pixel"))
-            .on_hover_text("Cost: linear; noise falls as 1/sqrt(spp).");
+            .on_hover_text("Cost: linear; noise falls as 1/sqrt(spp) or faster (stratified samples).");
         ui.add(egui::Slider::new(&mut r.max_bounces, 1..=64).text("max bounces"))
             .on_hover_text("1 = direct light only. Cutting paths short darkens the image (bias).");
         ui.add(egui::Slider::new(&mut r.rr_start, 1..=64).text("Russian roulette from"))

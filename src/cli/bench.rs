@@ -151,10 +151,11 @@ fn reference_rows(md: &mut String, project: &Project, quick: bool) {
     let _ = writeln!(md, "\n## Reference path tracer (CPU)\n");
     let _ = writeln!(
         md,
-        "{} threads. Rays = camera + bounce + shadow rays. {}x{}, {spp} spp, Russian roulette from bounce 3.\n",
+        "{} threads. Rays = camera + bounce + shadow rays. {}x{}, {spp} spp, Russian roulette from bounce {}.\n",
         rayon::current_num_threads(),
         size.0,
-        size.1
+        size.1,
+        crate::settings::ReferenceSettings::default().rr_start
     );
     let _ = writeln!(md, "| max bounces | Mrays/s | Msamples/s | seconds |");
     let _ = writeln!(md, "|---|---|---|---|");

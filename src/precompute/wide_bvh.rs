@@ -6,9 +6,9 @@
 //! triangles): a node takes its two children, then opens the largest inner one until it has four
 //! (the usual BVH2-to-BVH4 collapse, as Embree's BVH4 and Wald et al. 2008 describe). Traversal
 //! visits the hit children nearest first and skips a popped node whose entry lies beyond the
-//! closest hit (any-hit and all-hit walks take them in stack order). Triangles are Möller-Trumbore, both sides. Measured on the reference tracer
-//! against `obvhs`'s compressed eight-wide BVH with one triangle test per call
-//! (docs/notes/reference-tracer.md).
+//! closest hit (any-hit and all-hit walks take them in stack order). Triangles are
+//! Möller-Trumbore, both sides. Measured on the reference tracer against `obvhs`'s compressed
+//! eight-wide BVH with one triangle test per call (docs/notes/reference-tracer.md).
 
 use glam::{Vec3A, Vec4};
 use obvhs::BvhBuildParams;
@@ -321,10 +321,10 @@ impl WideBvh {
 }
 
 /// Whether a hit at `t` (met from the front or not) replaces the closest so far: nearer, or
-/// as near and met from the front where the closest so far is met from behind. Two faces at
-/// the same distance are where solids touch or a ray grazes an edge; a ray that got there
-/// through empty space meets the front one, and the choice no longer hangs on the order the
-/// tree lists them in.
+/// exactly as near and met from the front where the closest so far is met from behind. Two
+/// faces at the same distance are where solids touch or a ray grazes an edge; a ray that got
+/// there through empty space meets the front one. Between two faces that face the same way the
+/// tree's order still decides, which changes nothing the tracer reads but the triangle.
 fn nearer(t: f32, front: bool, t_best: f32, best_front: bool) -> bool {
     t < t_best || (t == t_best && front && !best_front)
 }

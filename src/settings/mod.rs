@@ -117,14 +117,15 @@ impl Default for ViewSettings {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ReferenceSettings {
-    /// Samples per pixel to converge to. Cost: linear; noise falls as 1/sqrt(spp).
+    /// Samples per pixel to converge to. Cost: linear; noise falls as 1/sqrt(spp) or faster
+    /// (the samples are stratified).
     pub spp: u32,
     /// Longest path in bounces (1 = direct light only). Cost: grows with each bounce until
     /// Russian roulette ends most paths; cutting it biases the result dark.
     pub max_bounces: u32,
     /// Bounce from which Russian roulette may end paths (unbiased). Lower: faster, noisier.
-    /// 5 (Mitsuba's default too) reached a given FLIP on the Cornell box in about 10% less
-    /// time than 3 or 8 (docs/notes/reference-tracer.md).
+    /// 5 (Mitsuba's default too) reached a given FLIP on the Cornell box in 10% less time than
+    /// 3 and 6% less than 8 (docs/notes/reference-tracer.md).
     pub rr_start: u32,
     /// Random seed; the same seed gives the same image.
     pub seed: u64,
