@@ -256,8 +256,10 @@ impl WideBvh {
     }
 
     /// Every triangle hit along the ray with `0 < t < tmax`, in no particular order: `visit`
-    /// gets the triangle's index in the input and `t`.
-    pub fn all(&self, o: Vec3A, d: Vec3A, tmax: f32, mut visit: impl FnMut(u32, f32)) {
+    /// gets the triangle's index in the input and `t`. Only the tests call it, to check that
+    /// [`Self::walk`] (what [`Self::any`] stops early) reaches every leaf the ray enters.
+    #[cfg(test)]
+    fn all(&self, o: Vec3A, d: Vec3A, tmax: f32, mut visit: impl FnMut(u32, f32)) {
         self.walk(o, d, tmax, |p, h| {
             let mut mask = h.mask;
             while mask != 0 {
@@ -306,9 +308,7 @@ impl WideBvh {
         }
         false
     }
-}
 
-impl WideBvh {
     /// The traversal stack: `local` when the tree is shallow enough, else `heap`, grown.
     fn stack<'a, T: Copy + Default>(&self, local: &'a mut [T; STACK], heap: &'a mut Vec<T>) -> &'a mut [T] {
         if self.stack_len <= STACK {
