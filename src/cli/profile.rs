@@ -4,7 +4,8 @@
 //! passes summed (`technique_ms`) apart from the shared direct path (`direct_ms`: G-buffer,
 //! shadows, direct light, composite, tonemap), the CPU time to record and submit a frame
 //! (`cpu_ms`), and the frames' wall-clock time; one Chrome trace per mode (chrome://tracing,
-//! Perfetto) of a frame at the first scene and resolution. The JSON is rewritten after every
+//! Perfetto) of a frame at the first scene and resolution. Still frames keep their shadow maps,
+//! so each row also measures one frame that redraws them (`shadows_redraw_ms`). The JSON is rewritten after every
 //! row, so a run cut short by the machine's time limit keeps what it measured, and rows past
 //! `--budget-s` are skipped and named. `tools/gpu_bench.sh` packs the binary for the machine.
 
@@ -18,7 +19,8 @@ use crate::render::gi::registry;
 use crate::render::harness::{median, median_passes, until_ready};
 use crate::render::timing::{PassKind, PassTiming};
 use crate::render::{GpuContext, Renderer};
-use crate::settings::GiMode;
+use crate::scene::Scene;
+use crate::settings::{GiMode, RenderSettings};
 use crate::suite::SCENES;
 
 /// The passes of the shared direct path; every other pass is the technique's own.
@@ -73,6 +75,9 @@ struct Row {
     /// The most blocking GPU waits inside one measured frame's `render`.
     cpu_waits: u64,
     frame_ms: f64,
+    /// The shadow maps' GPU time in a frame that redraws every layer, as after a light or an
+    /// object moved (a still frame keeps them: `render/shadows.rs`); 0 without shadowed lights.
+    shadows_redraw_ms: f64,
     /// One frame's passes with their start times (ms from the frame's first pass).
     trace: Vec<(String, f64, f64)>,
 }
@@ -105,6 +110,7 @@ impl Row {
             "cpu_ms": self.cpu_ms,
             "cpu_waits": self.cpu_waits,
             "frame_ms": self.frame_ms,
+            "shadows_redraw_ms": self.shadows_redraw_ms,
             "raster_ms": raster,
             "compute_ms": compute,
             "passes": passes,
@@ -206,6 +212,7 @@ fn row(
         pieces = r.timing_pieces();
     }
     let passes = median_passes(&frames);
+    let shadows_redraw_ms = shadows_redrawn(&mut r, &project.scene, &settings, size)?;
     // The trace shows the last frame's passes as recorded: the ISM's steps once per VPL set.
     let trace = pieces.iter().map(|p| (p.name.clone(), p.start_ms, p.ms)).collect();
     Ok(Row {
@@ -216,8 +223,17 @@ fn row(
         cpu_ms: median(cpu),
         cpu_waits: waits,
         frame_ms: median(wall),
+        shadows_redraw_ms,
         trace,
     })
+}
+
+/// The shadow maps' GPU time in one frame after every layer was made stale.
+fn shadows_redrawn(r: &mut Renderer, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> anyhow::Result<f64> {
+    r.invalidate_shadow_maps();
+    r.render(scene, settings, size)?;
+    r.wait_for_gpu()?;
+    Ok(r.timings(true).iter().filter(|p| p.name == "shadows").map(|p| p.ms).sum())
 }
 
 /// The profile JSON in the shape `docs/gpu-profile.json` is checked against (atomically).
@@ -261,7 +277,7 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
     let mut md = String::new();
     let _ = writeln!(
         md,
-        "GPU profile on **{}** ({}), commit `{}`: median of {} frames after warm-up; technique = its own passes, direct = G-buffer, shadows, direct light, composite, tonemap.\n",
+        "GPU profile on **{}** ({}), commit `{}`: median of {} frames after warm-up; technique = its own passes, direct = G-buffer, shadows, direct light, composite, tonemap. Shadow maps are drawn only when a light or an object moved; \"shadows redrawn\" is their time in such a frame.\n",
         header["card"].as_str().unwrap_or_default(),
         header["driver"].as_str().unwrap_or_default(),
         header["commit"].as_str().unwrap_or_default(),
@@ -269,9 +285,9 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
     );
     let _ = writeln!(
         md,
-        "| mode | scene | resolution | technique ms | direct ms | raster ms | compute ms | CPU record+submit ms | CPU waits | frame ms | slowest passes |"
+        "| mode | scene | resolution | technique ms | direct ms | raster ms | compute ms | CPU record+submit ms | CPU waits | frame ms | shadows redrawn ms | slowest passes |"
     );
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|");
     for r in rows {
         let (technique, direct) = r.split();
         let (raster, compute) = r.by_kind();
@@ -280,7 +296,7 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
         let top: Vec<String> = passes.iter().take(3).map(|p| format!("{} {:.2}", p.name, p.ms)).collect();
         let _ = writeln!(
             md,
-            "| {} | {} | {}x{} | {technique:.2} | {direct:.2} | {raster:.2} | {compute:.2} | {:.2} | {} | {:.2} | {} |",
+            "| {} | {} | {}x{} | {technique:.2} | {direct:.2} | {raster:.2} | {compute:.2} | {:.2} | {} | {:.2} | {:.2} | {} |",
             r.mode.name(),
             r.scene,
             r.size.0,
@@ -288,6 +304,7 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
             r.cpu_ms,
             r.cpu_waits,
             r.frame_ms,
+            r.shadows_redraw_ms,
             top.join(", ")
         );
     }

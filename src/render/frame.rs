@@ -369,6 +369,7 @@ impl Renderer {
         }
         self.timer.resolve(&mut encoder);
         self.queue.submit([encoder.finish()]);
+        self.shadows.submitted();
         self.timer.after_submit();
         Ok(())
     }
@@ -396,8 +397,9 @@ impl Renderer {
             gpu,
             emission_ts.map(|t| t.render_writes(true, true)),
         );
-        let shadow_ts = if self.shadows.layer_matrices.is_empty() { None } else { self.timer.scope("shadows") };
-        self.shadows.record(device, queue, encoder, gpu, shadow_ts);
+        let stale = self.shadows.stale_layers(gpu);
+        let shadow_ts = if stale.is_empty() { None } else { self.timer.scope("shadows") };
+        self.shadows.record(device, queue, encoder, gpu, &stale, shadow_ts);
         self.lighting.record(
             encoder,
             lighting_inputs,
@@ -535,6 +537,18 @@ impl Renderer {
     /// (after [`Self::timings`]; what a trace shows).
     pub fn timing_pieces(&self) -> Vec<PassTiming> {
         self.timer.pieces().to_vec()
+    }
+
+    /// How many shadow-map layers the last frame drew; the others kept their depth from an
+    /// earlier frame (nothing they depend on had changed: `shadows.rs`).
+    pub fn shadow_layers_drawn(&self) -> usize {
+        self.shadows.last_drawn
+    }
+
+    /// Makes every shadow-map layer stale, so the next frame draws them all (what a frame after
+    /// an object moved costs; the profile measures it).
+    pub fn invalidate_shadow_maps(&mut self) {
+        self.shadows.invalidate();
     }
 
     /// Whether per-pass GPU timings are measured.

@@ -83,6 +83,9 @@ pub struct SceneGpu {
     pub batches: Vec<Batch>,
     prev_world: Vec<Mat4>,
     resources_revision: u64,
+    /// Bumped by [`Self::sync`] whenever what depth-only passes draw changed (see
+    /// [`Self::geometry_generation`]).
+    geometry_generation: u64,
     textures: Vec<wgpu::TextureView>,
     white: wgpu::TextureView,
     flat_normal: wgpu::TextureView,
@@ -202,6 +205,7 @@ impl SceneGpu {
             batches: Vec::new(),
             prev_world: Vec::new(),
             resources_revision: 0,
+            geometry_generation: 0,
             textures: Vec::new(),
             white,
             flat_normal,
@@ -229,18 +233,23 @@ impl SceneGpu {
     /// Brings the GPU copy up to date: geometry when resources changed, materials and object
     /// matrices always (cheap). Call once per frame; it also advances the previous-frame matrices.
     pub fn sync(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, layouts: &Layouts, scene: &Scene) {
-        if self.resources_revision != scene.resources_revision() {
+        let resources_changed = self.resources_revision != scene.resources_revision();
+        if resources_changed {
             self.upload_geometry(device, queue, scene);
             self.resources_revision = scene.resources_revision();
         }
         self.upload_materials(device, queue, layouts, scene);
         let objects = scene.objects();
+        let batches_before = std::mem::take(&mut self.batches);
         let order = self.draw_order(scene);
         if order.len() > self.object_capacity {
             self.object_capacity = order.len().next_power_of_two();
             (self.object_buffer, self.object_bind_group) = Self::object_buffer(device, layouts, self.object_capacity);
         }
         let worlds: Vec<Mat4> = objects.iter().map(|o| o.transform.matrix()).collect();
+        if resources_changed || self.batches != batches_before || worlds != self.prev_world {
+            self.geometry_generation += 1;
+        }
         let mut data = vec![0u8; OBJECT_SLOT as usize * order.len()];
         for (slot, &i) in order.iter().enumerate() {
             let world = worlds[i];
@@ -279,6 +288,14 @@ impl SceneGpu {
             }
         }
         order
+    }
+
+    /// A counter that changes whenever the geometry that depth-only passes draw changes: the
+    /// meshes, which objects are drawn and in which batches, or an object's placement (a
+    /// forgotten motion history counts as a change). Material edits leave it alone. Passes whose
+    /// output depends on nothing else but their own view (shadow maps) key their caches on it.
+    pub fn geometry_generation(&self) -> u64 {
+        self.geometry_generation
     }
 
     /// Forgets the previous frame's matrices (no motion on the next frame).

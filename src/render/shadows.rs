@@ -4,6 +4,11 @@
 //! slightly wider than 90 degrees so the PCF kernel never reads across a face edge. All geometry
 //! is drawn without culling (one-sided surfaces still block light, as in the path tracer), with
 //! slope-scaled depth bias; receivers add a normal offset sized in texels (`common/shadow.wgsl`).
+//!
+//! A layer's depth depends only on its matrix and the scene's geometry, so a layer is drawn
+//! again only when one of them changed since it was last drawn and submitted (cached shadow
+//! maps, as engines keep them for lights that stand still): a still frame draws none, moving
+//! one light redraws that light's layers, moving an object redraws all of them.
 
 use glam::camera::rh::proj::directx;
 use glam::camera::rh::view::look_at_mat4;
@@ -39,6 +44,20 @@ pub struct ShadowPass {
     pub layer_matrices: Vec<Mat4>,
     /// Bumped whenever `texture` is recreated (bind groups that use it must be rebuilt).
     pub generation: u64,
+    /// Per layer: what its depth was last drawn from, once that frame was submitted.
+    drawn: Vec<Option<LayerKey>>,
+    /// The layers recorded into the frame not yet submitted (`Self::submitted` keeps them).
+    pending: Vec<(usize, LayerKey)>,
+    /// How many layers the last [`Self::record`] drew.
+    pub last_drawn: usize,
+}
+
+/// What a layer's depth is drawn from: its matrix and the scene geometry's generation
+/// ([`SceneGpu::geometry_generation`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct LayerKey {
+    clip_from_world: Mat4,
+    geometry: u64,
 }
 
 /// Per-light output of [`ShadowPass::prepare`].
@@ -103,6 +122,9 @@ impl ShadowPass {
             resolution: 64,
             layer_matrices: Vec::new(),
             generation: 0,
+            drawn: Vec::new(),
+            pending: Vec::new(),
+            last_drawn: 0,
         })
     }
 
@@ -223,35 +245,42 @@ impl ShadowPass {
             (self.texture, self.array_view, self.layer_views) = Self::array(device, res, layers);
             self.resolution = res;
             self.generation += 1;
+            self.drawn.clear();
         }
         ShadowAssignment { lights }
     }
 
-    /// Renders every assigned layer.
+    /// The layers whose depth must be drawn this frame: those never drawn into the current
+    /// array, and those whose matrix or the scene's geometry changed since.
+    pub fn stale_layers(&self, gpu: &SceneGpu) -> Vec<usize> {
+        let geometry = gpu.geometry_generation();
+        (0..self.layer_matrices.len())
+            .filter(|&l| {
+                let key = LayerKey { clip_from_world: self.layer_matrices[l], geometry };
+                self.drawn.get(l).copied().flatten() != Some(key)
+            })
+            .collect()
+    }
+
+    /// Renders the `stale` layers ([`Self::stale_layers`]); the others keep their depth.
     pub fn record(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
         gpu: &SceneGpu,
+        stale: &[usize],
         timestamps: Option<TimestampPair<'_>>,
     ) {
-        let layers = self.layer_matrices.len() as u64;
-        if layers > self.draw_capacity {
-            self.draw_capacity = layers.next_power_of_two();
-            (self.draw_buffer, self.draw_bind_group) = Self::draw_buffer(device, &self.draw_layout, self.draw_capacity);
+        self.pending.clear();
+        self.last_drawn = stale.len();
+        if stale.is_empty() {
+            return;
         }
-        let mut data = vec![0u8; (DRAW_SLOT * layers) as usize];
-        for (l, m) in self.layer_matrices.iter().enumerate() {
-            let at = l * DRAW_SLOT as usize;
-            data[at..at + 64].copy_from_slice(bytemuck::cast_slice(&m.to_cols_array()));
-        }
-        if !data.is_empty() {
-            queue.write_buffer(&self.draw_buffer, 0, &data);
-        }
-        let layer_count = self.layer_matrices.len();
-        for l in 0..layer_count {
-            let (first, last) = (l == 0, l + 1 == layer_count);
+        self.write_layer_matrices(device, queue);
+        let geometry = gpu.geometry_generation();
+        for (i, &l) in stale.iter().enumerate() {
+            let (first, last) = (i == 0, i + 1 == stale.len());
             let ts = timestamps.as_ref().filter(|_| first || last).map(|t| t.render_writes(first, last));
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow pass"),
@@ -269,6 +298,40 @@ impl ShadowPass {
             pass.set_bind_group(0, &self.draw_bind_group, &[(l as u64 * DRAW_SLOT) as u32]);
             pass.set_bind_group(1, &gpu.object_bind_group, &[]);
             gpu.draw_geometry(&mut pass);
+            self.pending.push((l, LayerKey { clip_from_world: self.layer_matrices[l], geometry }));
+        }
+    }
+
+    /// The frame holding the last [`Self::record`] was submitted: its layers are drawn. (A
+    /// frame dropped before submission leaves them stale, so the next frame draws them.)
+    pub fn submitted(&mut self) {
+        for (l, key) in self.pending.drain(..) {
+            if self.drawn.len() <= l {
+                self.drawn.resize(l + 1, None);
+            }
+            self.drawn[l] = Some(key);
+        }
+    }
+
+    /// Forgets what every layer was drawn from: the next frame draws them all.
+    pub fn invalidate(&mut self) {
+        self.drawn.clear();
+    }
+
+    /// Every layer's matrix into its dynamic-offset slot of the draw buffer.
+    fn write_layer_matrices(&mut self, device: &wgpu::Device, queue: &wgpu::Queue) {
+        let layers = self.layer_matrices.len() as u64;
+        if layers > self.draw_capacity {
+            self.draw_capacity = layers.next_power_of_two();
+            (self.draw_buffer, self.draw_bind_group) = Self::draw_buffer(device, &self.draw_layout, self.draw_capacity);
+        }
+        let mut data = vec![0u8; (DRAW_SLOT * layers) as usize];
+        for (l, m) in self.layer_matrices.iter().enumerate() {
+            let at = l * DRAW_SLOT as usize;
+            data[at..at + 64].copy_from_slice(bytemuck::cast_slice(&m.to_cols_array()));
+        }
+        if !data.is_empty() {
+            queue.write_buffer(&self.draw_buffer, 0, &data);
         }
     }
 

@@ -41,6 +41,7 @@ mod project_file;
 mod rcs;
 mod reference;
 mod shaders;
+mod shadow_cache;
 mod sshgi;
 mod sshgi_hidden;
 mod sshgi_panorama;
