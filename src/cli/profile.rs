@@ -5,7 +5,9 @@
 //! shadows, direct light, composite, tonemap), the CPU time to record and submit a frame
 //! (`cpu_ms`), and the frames' wall-clock time; one Chrome trace per mode (chrome://tracing,
 //! Perfetto) of a frame at the first scene and resolution. Still frames keep their shadow maps,
-//! so each row also measures one frame that redraws them (`shadows_redraw_ms`). The JSON is rewritten after every
+//! so each row also measures one frame that redraws them (`shadows_redraw_ms`), and one after a
+//! 10 cm camera move (`moved_technique_ms`, `moved_cpu_waits`); `rcs` rows fill and converge
+//! their cache first (at most 128 frames). The JSON is rewritten after every
 //! row, so a run cut short by the machine's time limit keeps what it measured, and rows past
 //! `--budget-s` are skipped and named. `tools/gpu_bench.sh` packs the binary for the machine.
 
@@ -16,7 +18,7 @@ use std::time::{Duration, Instant};
 use serde_json::{Value, json};
 
 use crate::render::gi::registry;
-use crate::render::harness::{median, median_passes, until_ready};
+use crate::render::harness::{converge, median, median_passes, until_ready};
 use crate::render::timing::{PassKind, PassTiming};
 use crate::render::{GpuContext, Renderer};
 use crate::scene::Scene;
@@ -78,6 +80,9 @@ struct Row {
     /// The shadow maps' GPU time in a frame that redraws every layer, as after a light or an
     /// object moved (a still frame keeps them: `render/shadows.rs`); 0 without shadowed lights.
     shadows_redraw_ms: f64,
+    /// The technique's GPU time, and the CPU's waits for the GPU, in the frame after the camera
+    /// moved 10 cm (what `rcs`'s second budget is about: records for the uncovered surface).
+    moved: (f64, u64),
     /// One frame's passes with their start times (ms from the frame's first pass).
     trace: Vec<(String, f64, f64)>,
 }
@@ -111,6 +116,8 @@ impl Row {
             "cpu_waits": self.cpu_waits,
             "frame_ms": self.frame_ms,
             "shadows_redraw_ms": self.shadows_redraw_ms,
+            "moved_technique_ms": self.moved.0,
+            "moved_cpu_waits": self.moved.1,
             "raster_ms": raster,
             "compute_ms": compute,
             "passes": passes,
@@ -194,6 +201,10 @@ fn row(
     let mut r = Renderer::new(&ctx.device, &ctx.queue)?;
     r.support(&settings, size).map_err(|why| anyhow::anyhow!("cannot run here: {why}"))?;
     until_ready(&mut r, &project.scene, &settings, size, |_| {})?;
+    if mode == GiMode::Rcs {
+        // Its warm cost is the filled cache's (at most 128 frames, as the quality matrix).
+        converge(&mut r, &project.scene, &settings, size, 128)?;
+    }
     for _ in 0..args.warm_up {
         r.render(&project.scene, &settings, size)?;
         r.wait_for_gpu()?;
@@ -212,6 +223,7 @@ fn row(
         pieces = r.timing_pieces();
     }
     let passes = median_passes(&frames);
+    let moved = after_camera_move(&mut r, &project.scene, &settings, size)?;
     let shadows_redraw_ms = shadows_redrawn(&mut r, &project.scene, &settings, size)?;
     // The trace shows the last frame's passes as recorded: the ISM's steps once per VPL set.
     let trace = pieces.iter().map(|p| (p.name.clone(), p.start_ms, p.ms)).collect();
@@ -224,16 +236,45 @@ fn row(
         cpu_waits: waits,
         frame_ms: median(wall),
         shadows_redraw_ms,
+        moved,
         trace,
     })
 }
 
+/// The technique's GPU time and the blocking waits in one frame after the camera moved 10 cm
+/// sideways; the camera goes back after it.
+fn after_camera_move(
+    r: &mut Renderer,
+    scene: &Scene,
+    settings: &RenderSettings,
+    size: (u32, u32),
+) -> anyhow::Result<(f64, u64)> {
+    let mut moved = scene.clone();
+    let mut camera = *scene.camera();
+    camera.position += camera.world_from_view().x_axis.truncate() * 0.1;
+    moved.set_camera(camera);
+    let before = crate::render::readback::blocking_waits();
+    r.render(&moved, settings, size)?;
+    let waits = crate::render::readback::blocking_waits() - before;
+    r.wait_for_gpu()?;
+    let technique: f64 =
+        r.timings(true).iter().filter(|p| !DIRECT_PASSES.contains(&p.name.as_str())).map(|p| p.ms).sum();
+    // (An empty sum of f64 is -0.)
+    Ok((technique.max(0.0), waits))
+}
+
 /// The shadow maps' GPU time in one frame after every layer was made stale.
-fn shadows_redrawn(r: &mut Renderer, scene: &Scene, settings: &RenderSettings, size: (u32, u32)) -> anyhow::Result<f64> {
+fn shadows_redrawn(
+    r: &mut Renderer,
+    scene: &Scene,
+    settings: &RenderSettings,
+    size: (u32, u32),
+) -> anyhow::Result<f64> {
     r.invalidate_shadow_maps();
     r.render(scene, settings, size)?;
     r.wait_for_gpu()?;
-    Ok(r.timings(true).iter().filter(|p| p.name == "shadows").map(|p| p.ms).sum())
+    let ms: f64 = r.timings(true).iter().filter(|p| p.name == "shadows").map(|p| p.ms).sum();
+    Ok(ms.max(0.0))
 }
 
 /// The profile JSON in the shape `docs/gpu-profile.json` is checked against (atomically).
@@ -285,9 +326,9 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
     );
     let _ = writeln!(
         md,
-        "| mode | scene | resolution | technique ms | direct ms | raster ms | compute ms | CPU record+submit ms | CPU waits | frame ms | shadows redrawn ms | slowest passes |"
+        "| mode | scene | resolution | technique ms | direct ms | raster ms | compute ms | CPU record+submit ms | CPU waits | frame ms | shadows redrawn ms | technique ms after a 10 cm move (waits) | slowest passes |"
     );
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for r in rows {
         let (technique, direct) = r.split();
         let (raster, compute) = r.by_kind();
@@ -296,7 +337,7 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
         let top: Vec<String> = passes.iter().take(3).map(|p| format!("{} {:.2}", p.name, p.ms)).collect();
         let _ = writeln!(
             md,
-            "| {} | {} | {}x{} | {technique:.2} | {direct:.2} | {raster:.2} | {compute:.2} | {:.2} | {} | {:.2} | {:.2} | {} |",
+            "| {} | {} | {}x{} | {technique:.2} | {direct:.2} | {raster:.2} | {compute:.2} | {:.2} | {} | {:.2} | {:.2} | {:.2} ({}) | {} |",
             r.mode.name(),
             r.scene,
             r.size.0,
@@ -305,6 +346,8 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
             r.cpu_waits,
             r.frame_ms,
             r.shadows_redraw_ms,
+            r.moved.0,
+            r.moved.1,
             top.join(", ")
         );
     }

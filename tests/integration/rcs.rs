@@ -133,6 +133,32 @@ fn a_small_camera_move_reuses_most_records() {
     assert!((made as f64) < 0.15 * before as f64, "{made} new records of {before}: the cache was not reused");
 }
 
+#[test]
+fn a_warm_still_frame_waits_for_no_readback_and_a_camera_move_still_places_records_at_once() {
+    let Some(ctx) = common::gpu() else { return };
+    let (mut project, _) = cornell();
+    let settings = with(&project, GiMode::Rcs, RcsSettings::default());
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    converge(&mut r, &project, &settings, SIZE, 12);
+    // The first quiet frame reads the coverage back and finds nothing to do; the next ones,
+    // with the same inputs, skip that readback and show the same image.
+    r.render(&project.scene, &settings, SIZE).expect("render");
+    let seen = r.read_hdr().expect("hdr");
+    for frame in 0..2 {
+        r.render(&project.scene, &settings, SIZE).expect("render");
+        assert_eq!(counter(&r, "GPU waits last frame"), 0, "still frame {frame} waited for the GPU");
+        assert_eq!(counter(&r, "uncovered tiles"), 0);
+        assert!(r.read_hdr().expect("hdr") == seen, "still frame {frame} differs from the frame before");
+    }
+    let mut camera = *project.scene.camera();
+    camera.position += Vec3::new(0.08, 0.03, 0.0);
+    project.scene.set_camera(camera);
+    r.render(&project.scene, &settings, SIZE).expect("render");
+    let (made, waits) = (counter(&r, "records made last frame"), counter(&r, "GPU waits last frame"));
+    eprintln!("after the move: {made} records made, {waits} GPU waits");
+    assert!(made > 0 && waits > 0, "the move's uncovered surface got no records in its own frame");
+}
+
 /// Two 4 x 4 m halves of a floor split by a closed 0.3 m wall 2 m high, a point light 1.5 m up
 /// in each half (below the wall's top, so neither lights the other half), a 0.6 m box in the
 /// west half; the camera looks down on both.

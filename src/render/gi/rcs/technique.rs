@@ -37,6 +37,9 @@ struct FrameStats {
     uncovered_tiles: u64,
     light_renewals: u64,
     reused: u64,
+    /// Readbacks the CPU waited for (one per round, and the coverage's unless the frame was
+    /// quiet).
+    readbacks: u64,
 }
 
 /// Radiance cache splatting.
@@ -78,7 +81,21 @@ pub struct RcsTechnique {
     tallest_view: u32,
     /// tan of the camera's half vertical field of view.
     tan_half_fov: Option<f32>,
+    /// What the last frame's coverage was found from, when it found nothing to do (no
+    /// uncovered tile, no queued site or renewal, no invalidation, no bounce pass to start): a
+    /// frame with the same inputs would find the same, so it skips the coverage pass and its
+    /// readback, the one GPU wait of a warm frame.
+    quiet: Option<CoverageInputs>,
     status: TechniqueStatus,
+}
+
+/// What a frame's coverage depends on besides the cache: the scene (every edit, camera moves
+/// included, changes its revision), the view's size and the settings.
+#[derive(Clone, Debug, PartialEq)]
+struct CoverageInputs {
+    revision: u64,
+    size: (u32, u32),
+    settings: RcsSettings,
 }
 
 /// The settings whose change invalidates every record (the bounce settings too: targets are
@@ -115,6 +132,7 @@ impl RcsTechnique {
             dropped: 0,
             tallest_view: 0,
             tan_half_fov: None,
+            quiet: None,
             status: TechniqueStatus::default(),
         })
     }
@@ -310,10 +328,14 @@ impl RcsTechnique {
     }
 
     /// The frame's rounds.
-    fn rounds(&mut self, inputs: &mut GiInputs<'_>, store: &mut Store) -> Result<FrameStats, RenderError> {
+    fn rounds(&mut self, inputs: &mut GiInputs<'_>, store: &mut Store, quiet: bool) -> Result<FrameStats, RenderError> {
         let settings = inputs.settings.rcs.clone();
         let mut stats = FrameStats { reused: self.cache.live() as u64, ..FrameStats::default() };
         let Some(accum) = self.splat.targets().map(|t| t.0.view.clone()) else { return Ok(stats) };
+        if quiet {
+            self.splat.record(inputs, store, Splat::All(self.cache.high_water()), settings.accuracy);
+            return Ok(stats);
+        }
         let check = self.light_check && self.cache.live() > 0;
         if check {
             self.check.record(inputs, store, CheckMode::Compare, self.cache.high_water(), settings.light_tolerance);
@@ -324,6 +346,7 @@ impl RcsTechnique {
         self.splat.record(inputs, store, Splat::All(self.cache.high_water()), settings.accuracy);
         self.coverage.record(inputs, store, &accum, 0);
         let mut bytes = staging::submit_and_read(inputs, store)?;
+        stats.readbacks += 1;
         if check {
             let changed = staging::changed_slots(&bytes, store);
             stats.light_renewals = changed.len() as u64;
@@ -384,6 +407,7 @@ impl RcsTechnique {
             self.splat.record(inputs, store, which, settings.accuracy);
             self.coverage.record(inputs, store, &accum, round);
             bytes = staging::submit_and_read(inputs, store)?;
+            stats.readbacks += 1;
             let results: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(
                 bytes.get(l.results as usize..(l.results + u64::from(n) * 16) as usize).unwrap_or(&[]),
             );
@@ -468,11 +492,18 @@ impl GiTechnique for RcsTechnique {
         self.splat.ensure(inputs.device, size);
         self.coverage.ensure(inputs.device, size, settings.rounds);
         self.hemisphere.ensure(inputs.device, h, jobs);
+        let now = CoverageInputs { revision: inputs.scene.revision(), size, settings: settings.clone() };
+        let untouched = !self.drop_all && self.changed.is_empty() && !self.light_check;
+        let quiet = untouched && self.quiet.take().is_some_and(|q| q == now);
         self.invalidate(inputs, &store, settings.light_tolerance);
-        let result = self.rounds(inputs, &mut store);
+        let result = self.rounds(inputs, &mut store, quiet);
         self.splat.resolve(inputs, settings.gradients);
         self.store = Some(store);
         let stats = result?;
+        let idle = stats.rounds == 0 && stats.uncovered_tiles == 0 && stats.light_renewals == 0;
+        if untouched && idle && self.secondary.is_empty() && self.cache.pending_renewals() == 0 {
+            self.quiet = Some(now);
+        }
         self.frame += 1;
         self.last = stats;
         self.totals.made += stats.made;
@@ -592,6 +623,7 @@ impl GiTechnique for RcsTechnique {
             ("bounce passes", u64::from(self.passes)),
             ("bounce passes converged", u64::from(self.converged)),
             ("uncovered tiles", self.last.uncovered_tiles),
+            ("GPU waits last frame", self.last.readbacks),
         ];
         s
     }
