@@ -594,7 +594,8 @@ fn probe_ism_reports_each_set_and_refuses_bad_flags() {
 /// `bouncelab profile` writes the profile in the shape the GPU budget is checked against (card,
 /// driver, commit; per row mode, scene, resolution, technique_ms, direct_ms, cpu_ms, cpu_waits),
 /// a Chrome trace per mode, and a table; `direct` has no technique passes of its own and
-/// `sshgi` has some.
+/// `sshgi` has some; still frames keep their shadow maps, which a redrawing frame is timed for;
+/// a warm `rcs` frame does not wait for the GPU, and the frame after a camera move does.
 #[test]
 fn profile_writes_the_json_the_budget_is_checked_against_and_a_trace_per_mode() {
     if !has_gpu() {
@@ -610,7 +611,7 @@ fn profile_writes_the_json_the_budget_is_checked_against_and_a_trace_per_mode() 
         "--scenes",
         "cornell",
         "--modes",
-        "direct,sshgi",
+        "direct,sshgi,rcs",
         "--frames",
         "2",
         "--warm-up",
@@ -629,13 +630,20 @@ fn profile_writes_the_json_the_budget_is_checked_against_and_a_trace_per_mode() 
     assert_eq!(doc["commit"], "abc123");
     assert!(doc["card"].as_str().is_some_and(|c| !c.is_empty()) && doc["driver"].is_string());
     let rows = doc["rows"].as_array().expect("rows");
-    assert_eq!(rows.len(), 2);
+    assert_eq!(rows.len(), 3);
     for row in rows {
         for key in ["mode", "scene", "resolution", "technique_ms", "direct_ms", "cpu_ms", "cpu_waits"] {
             assert!(row.get(key).is_some(), "{key} missing in {row}");
         }
         assert!(row["direct_ms"].as_f64().is_some_and(|v| v > 0.0), "{row}");
+        assert!(row["shadows_redraw_ms"].as_f64().is_some_and(|v| v > 0.0), "the point light's maps redrawn: {row}");
     }
+    let has = |row: &serde_json::Value, pass: &str| {
+        row["passes"].as_array().is_some_and(|p| p.iter().any(|p| p["name"] == pass))
+    };
+    assert!(!has(&rows[0], "shadows"), "a still frame draws no shadow map: {}", rows[0]);
+    assert_eq!(rows[2]["cpu_waits"].as_u64(), Some(0), "a warm rcs frame waits for no readback: {}", rows[2]);
+    assert!(rows[2]["moved_cpu_waits"].as_u64().is_some_and(|w| w > 0), "the moved frame places records: {}", rows[2]);
     assert_eq!(rows[0]["technique_ms"].as_f64(), Some(0.0), "direct has no passes of its own");
     assert_eq!(rows[0]["cpu_waits"].as_u64(), Some(0), "direct never waits for the GPU inside a frame");
     let kind = |row: &serde_json::Value, pass: &str| {
