@@ -89,6 +89,11 @@ pub struct ProbeIsmArgs {
     /// With --texel: print each point's clip lines and the texel's hit on its plane.
     #[arg(long, requires = "texel")]
     pub clips: bool,
+    /// Print how evenly the splat pass's lanes share the last set's footprints (lock-step
+    /// groups of 32 lanes, a GPU's warp, and 8, lavapipe's SIMD): a thread per point against
+    /// each workgroup's rows, or its texels (what `ism_splat.wgsl` does), dealt out in equal runs.
+    #[arg(long)]
+    pub splat_lanes: bool,
     /// Print each set's VPL count and luminance power per room.
     #[arg(long)]
     pub vpls: bool,
@@ -163,6 +168,23 @@ pub fn run(args: &ProbeIsmArgs) -> anyhow::Result<String> {
     if let Some((tile, bbox)) = args.points {
         let query = PointsQuery { tile, bbox, texel: args.texel, clips: args.clips };
         write_points(&mut out, &oracle::list_points(&capture, &renderer, &query)?)?;
+    }
+    if args.splat_lanes {
+        let l = oracle::splat_lanes(&capture, &renderer, &[32, 8])?;
+        writeln!(
+            out,
+            "{name} splat lanes (last set): {} points, {} rows, {} texels walked, the largest footprint {} rows and {} texels",
+            l.points, l.rows, l.texels, l.largest.0, l.largest.1
+        )?;
+        for (width, [per_point, rows, texels]) in &l.busy {
+            writeln!(
+                out,
+                "{name} splat lanes, groups of {width}: busy {:.1}% with a thread per point, {:.1}% with the rows dealt out, {:.1}% with the texels dealt out",
+                100.0 * per_point,
+                100.0 * rows,
+                100.0 * texels
+            )?;
+        }
     }
     let sets = args.settings.bounces as usize;
     for set in 0..sets {

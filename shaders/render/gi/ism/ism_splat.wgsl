@@ -45,80 +45,230 @@ struct SplatParams {
 // The sine of the elevation, seen from a point, below which the VPL counts as on its plane.
 const ON_PLANE: f32 = 2.0e-3;
 
-@compute @workgroup_size(64, 1, 1)
-fn splat(@builtin(global_invocation_id) id: vec3<u32>) {
+// One point's splat, set up once: its VPL and tile, its disk and the footprint's ellipse, the
+// rows it covers in the tile, and its clip lines.
+struct Splat {
+    // Whether the point splats at all (chosen, its VPL alive, in front of it, not edge-on).
+    valid: bool,
+    // Its slot among its VPL's points, + 1 (the texel's point, `ism_pack`).
+    slot: u32,
+    origin: vec2<i32>,
+    side: u32,
+    o: vec3<f32>,
+    frame: mat3x3<f32>,
+    p: vec3<f32>,
+    n: vec3<f32>,
+    radius: f32,
+    depth: f32,
+    centre: vec2<f32>,
+    // The footprint's covariance (m00, m01, m11, det).
+    m: vec4<f32>,
+    // Its box in the tile: columns lo.x..hi.x, rows lo.y..hi.y (empty where lo.y > hi.y).
+    lo: vec2<i32>,
+    hi: vec2<i32>,
+    edges: SplatClips,
+}
+
+// The splat of slot `i` (VPL i / P of the set, its point chosen[i]).
+fn splat_setup(i: u32) -> Splat {
+    var s: Splat;
+    s.valid = false;
+    s.lo = vec2<i32>(1);
+    s.hi = vec2<i32>(0);
     let per = sp.counts.y;
-    if id.x >= sp.counts.x * per {
-        return;
+    if i >= sp.counts.x * per {
+        return s;
     }
-    let k = id.x / per;
-    let pick = chosen[id.x];
+    let k = i / per;
+    let pick = chosen[i];
     if pick.x == 0xffffffffu {
-        return;
+        return s;
     }
     let j = pick.x;
     let tile = sp.sets.x + k;
     let vpl = vpls[tile];
     if vpl.position.w <= 0.0 {
-        return;
+        return s;
     }
     let pb = paraboloid(vpl.position.xyz, vpl.normal.xyz, points[j].xyz);
     if pb.w <= 0.0 {
-        return;
+        return s;
     }
     // A point whose plane runs through the VPL (the ceiling around a VPL on the ceiling) is seen
     // edge-on: no ray leaving the VPL crosses its surface, so it shadows nothing, while its
     // splat (a depth-only word where the texel's ray runs away from its plane) would fill the
     // texels at the horizon with the nearest depths and hide the walls behind them.
     if abs(dot(points[j].xyz - vpl.position.xyz, point_normals[j].xyz)) <= ON_PLANE * distance(points[j].xyz, vpl.position.xyz) {
-        return;
+        return s;
     }
     let r = sp.counts.z;
     let c = sp.counts.w;
-    let side = r * c;
-    let origin = vec2<i32>(i32((tile % c) * r), i32((tile / c) * r));
+    s.valid = true;
+    s.slot = i % per + 1u;
+    s.side = r * c;
+    s.origin = vec2<i32>(i32((tile % c) * r), i32((tile / c) * r));
     // The disk's footprint: centre and the images of two orthogonal tangent radii (texels).
     let fr = f32(r);
-    let p = points[j].xyz;
-    let nw = point_normals[j];
-    let radius = sqrt(sp.params.y * bitcast<f32>(pick.y));
-    let centre = pb.xy * fr;
-    let ta = paraboloid(vpl.position.xyz, vpl.normal.xyz, p + onb_tangent(nw.xyz) * radius).xy * fr - centre;
-    let tb = paraboloid(vpl.position.xyz, vpl.normal.xyz, p + onb_bitangent(nw.xyz) * radius).xy * fr - centre;
+    s.p = points[j].xyz;
+    s.n = point_normals[j].xyz;
+    s.radius = sqrt(sp.params.y * bitcast<f32>(pick.y));
+    s.depth = pb.z;
+    s.centre = pb.xy * fr;
+    let ta = paraboloid(vpl.position.xyz, vpl.normal.xyz, s.p + onb_tangent(s.n) * s.radius).xy * fr - s.centre;
+    let tb = paraboloid(vpl.position.xyz, vpl.normal.xyz, s.p + onb_bitangent(s.n) * s.radius).xy * fr - s.centre;
     // Its covariance plus half a texel each way; texel offsets q with q^T M^-1 q <= 1 are in.
-    let m = footprint_moments(ta, tb);
-    let m00 = m.x;
-    let m01 = m.y;
-    let m11 = m.z;
-    let det = m.w;
-    let ext = min(vec2<f32>(sqrt(m00), sqrt(m11)), vec2<f32>(sp.params.z));
-    let lo = vec2<i32>(floor(centre - ext));
-    let hi = vec2<i32>(floor(centre + ext));
-    let o = vpl.position.xyz;
-    let frame = mat3x3<f32>(onb_tangent(vpl.normal.xyz), onb_bitangent(vpl.normal.xyz), vpl.normal.xyz);
+    s.m = footprint_moments(ta, tb);
+    let ext = min(vec2<f32>(sqrt(s.m.x), sqrt(s.m.z)), vec2<f32>(sp.params.z));
+    s.lo = vec2<i32>(floor(s.centre - ext));
+    s.hi = vec2<i32>(floor(s.centre + ext));
+    s.lo.y = max(s.lo.y, 0);
+    s.hi.y = min(s.hi.y, i32(r) - 1);
+    s.o = vpl.position.xyz;
+    s.frame = mat3x3<f32>(onb_tangent(vpl.normal.xyz), onb_bitangent(vpl.normal.xyz), vpl.normal.xyz);
     // The point's clip lines, read once for the whole footprint (rereading them from storage
     // for every texel cost lavapipe about a fifth of the maps pass: rooms 2650 -> 2100 ms).
-    let edges = splat_clips(j, 0.01 * radius);
-    for (var y = max(lo.y, 0); y <= min(hi.y, i32(r) - 1); y = y + 1) {
-        let span = row_span(centre, y, m00, m01, m11, det);
-        for (var x = max(max(lo.x, span.x), 0); x <= min(min(hi.x, span.y), i32(r) - 1); x = x + 1) {
-            if footprint_covers(centre, x, y, m00, m01, m11, det) {
-                let own = x == i32(centre.x) && y == i32(centre.y);
-                let dir = texel_ray(frame, (vec2<f32>(f32(x), f32(y)) + 0.5) / fr);
-                let hit = plane_hit(o, dir, p, nw.xyz);
-                // Texels whose ray meets the plane past the surface's open edges (over a
-                // doorway, past a wall's end) show no surface: the disk does not hang there.
-                // (A margin of 1% of the disk radius: two faces meeting at an edge leave no
-                // crack between them.)
-                if !own && hit > 0.0 && edges.any_line && !splat_clips_admit(edges, o + dir * hit) {
-                    continue;
+    s.edges = splat_clips(j, 0.01 * s.radius);
+    return s;
+}
+
+// The columns row `y` of splat `s` walks, x0..x1 (empty where x0 > x1): its span
+// (`row_span`) within its box and the tile.
+fn row_columns(s: Splat, y: i32) -> vec2<i32> {
+    let span = row_span(s.centre, y, s.m.x, s.m.y, s.m.z, s.m.w);
+    return vec2<i32>(max(max(s.lo.x, span.x), 0), min(min(s.hi.x, span.y), i32(sp.counts.z) - 1));
+}
+
+fn width(columns: vec2<i32>) -> u32 {
+    return u32(max(columns.y - columns.x + 1, 0));
+}
+
+// The texels splat `s` walks, over all its rows.
+fn splat_texels(s: Splat) -> u32 {
+    var n = 0u;
+    for (var y = s.lo.y; y <= s.hi.y && s.valid; y = y + 1) {
+        n = n + width(row_columns(s, y));
+    }
+    return n;
+}
+
+// Texel (x, y) of splat `s`, if the footprint covers it and the surface holds it, gets the
+// disk's depth along its ray (an atomic min, so any order of texels and points writes the same
+// atlas).
+fn splat_texel(s: Splat, x: i32, y: i32) {
+    let m = s.m;
+    if !footprint_covers(s.centre, x, y, m.x, m.y, m.z, m.w) {
+        return;
+    }
+    let own = x == i32(s.centre.x) && y == i32(s.centre.y);
+    let dir = texel_ray(s.frame, (vec2<f32>(f32(x), f32(y)) + 0.5) / f32(sp.counts.z));
+    let hit = plane_hit(s.o, dir, s.p, s.n);
+    // Texels whose ray meets the plane past the surface's open edges (over a doorway, past a
+    // wall's end) show no surface: the disk does not hang there. (A margin of 1% of the disk
+    // radius: two faces meeting at an edge leave no crack between them.)
+    if !own && hit > 0.0 && s.edges.any_line && !splat_clips_admit(s.edges, s.o + dir * hit) {
+        return;
+    }
+    let a = s.origin + vec2<i32>(x, y);
+    let t = disk_depth(hit, s.depth, s.radius);
+    // The point goes with the depth where its texel's ray meets its plane ahead.
+    let bits = ism_pack(t * sp.params.x, select(0u, s.slot, hit > 0.0));
+    atomicMin(&atlas[u32(a.y) * s.side + u32(a.x)], bits);
+}
+
+// One thread per point, walking its whole footprint: the software adapter's splat (its atomics
+// run lane by lane, so idle lanes cost it little; `splat_entry` in `gather/mod.rs`), and the
+// reference the balanced pass below is checked against (`tests/integration/ism_footprint.rs`).
+@compute @workgroup_size(64, 1, 1)
+fn splat_per_point(@builtin(global_invocation_id) id: vec3<u32>) {
+    let s = splat_setup(id.x);
+    for (var y = s.lo.y; y <= s.hi.y && s.valid; y = y + 1) {
+        let columns = row_columns(s, y);
+        for (var x = columns.x; x <= columns.y; x = x + 1) {
+            splat_texel(s, x, y);
+        }
+    }
+}
+
+// A workgroup's 64 points, their texels dealt out among its threads in equal runs. A point's
+// footprint can be 33 rows of 33 texels (one beside its VPL, or seen at a grazing angle) where
+// most are a few texels, and a thread walking a whole footprint kept the other lanes of its
+// group idle: over the suite's rooms, a 32-lane group spent 19% of its time walking texels
+// (`bouncelab probe-ism rooms --splat-lanes`). Dealing out whole rows raised that to 30% only
+// (rows run from 1 to 33 texels); texels themselves keep every lane within one texel of the
+// others, at the cost of walking each point's rows' spans once more to count them.
+const SPLAT_GROUP: u32 = 64u;
+// Per point of the workgroup: the end of its texels in the workgroup's texel list (the
+// inclusive scan of the points' texels).
+var<workgroup> texel_end: array<u32, 64>;
+
+fn texel_start(q: u32) -> u32 {
+    if q == 0u {
+        return 0u;
+    }
+    return texel_end[q - 1u];
+}
+
+@compute @workgroup_size(64, 1, 1)
+fn splat(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    let base = wid.x * SPLAT_GROUP;
+    texel_end[lid] = splat_texels(splat_setup(base + lid));
+    workgroupBarrier();
+    // Inclusive scan of the texels (Hillis-Steele).
+    for (var off = 1u; off < SPLAT_GROUP; off = off * 2u) {
+        var v = texel_end[lid];
+        if lid >= off {
+            v = v + texel_end[lid - off];
+        }
+        workgroupBarrier();
+        texel_end[lid] = v;
+        workgroupBarrier();
+    }
+    let total = texel_end[SPLAT_GROUP - 1u];
+    let run = (total + SPLAT_GROUP - 1u) / SPLAT_GROUP;
+    let first = min(lid * run, total);
+    let last = min(first + run, total);
+    if first >= last {
+        return;
+    }
+    // The point that holds texel `first`: the first whose texels end past it.
+    var lo = 0u;
+    var hi = SPLAT_GROUP - 1u;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        if texel_end[mid] > first {
+            hi = mid;
+        } else {
+            lo = mid + 1u;
+        }
+    }
+    var q = lo;
+    var s = splat_setup(base + q);
+    // Its row and column: skip the rows before it.
+    var k = first - texel_start(q);
+    var y = s.lo.y;
+    var columns = row_columns(s, y);
+    while k >= width(columns) {
+        k = k - width(columns);
+        y = y + 1;
+        columns = row_columns(s, y);
+    }
+    for (var item = first; item < last; item = item + 1u) {
+        splat_texel(s, columns.x + i32(k), y);
+        k = k + 1u;
+        // On to the next texel: the rest of this row, the next row with columns, or the next
+        // point with texels (one exists while items are left).
+        while item + 1u < last && k >= width(columns) {
+            k = 0u;
+            y = y + 1;
+            if y > s.hi.y {
+                q = q + 1u;
+                while texel_end[q] == texel_start(q) {
+                    q = q + 1u;
                 }
-                let a = origin + vec2<i32>(x, y);
-                let t = disk_depth(hit, pb.z, radius);
-                // The point goes with the depth where its texel's ray meets its plane ahead.
-                let bits = ism_pack(t * sp.params.x, select(0u, id.x % per + 1u, hit > 0.0));
-                atomicMin(&atlas[u32(a.y) * side + u32(a.x)], bits);
+                s = splat_setup(base + q);
+                y = s.lo.y;
             }
+            columns = row_columns(s, y);
         }
     }
 }

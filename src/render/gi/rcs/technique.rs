@@ -84,7 +84,8 @@ pub struct RcsTechnique {
     /// What the last frame's coverage was found from, when it found nothing to do (no
     /// uncovered tile, no queued site or renewal, no invalidation, no bounce pass to start): a
     /// frame with the same inputs would find the same, so it skips the coverage pass and its
-    /// readback, the one GPU wait of a warm frame.
+    /// readback, the one GPU wait of a warm frame, and the splat, whose targets (the
+    /// technique's own) still hold the same sums; only the resolve into the frame runs.
     quiet: Option<CoverageInputs>,
     status: TechniqueStatus,
 }
@@ -333,7 +334,8 @@ impl RcsTechnique {
         let mut stats = FrameStats { reused: self.cache.live() as u64, ..FrameStats::default() };
         let Some(accum) = self.splat.targets().map(|t| t.0.view.clone()) else { return Ok(stats) };
         if quiet {
-            self.splat.record(inputs, store, Splat::All(self.cache.high_water()), settings.accuracy);
+            // The records, the G-buffer and the settings are those of the frame that set
+            // `quiet`: the splat targets already hold this frame's splat (only the resolve runs).
             return Ok(stats);
         }
         let check = self.light_check && self.cache.live() > 0;

@@ -20,6 +20,19 @@ use super::screen::{IsmInputs, IsmScreen};
 
 pub use crate::precompute::ism::atlas_word::{PULL_LEVELS, level_base};
 
+/// The splat pass's entry point for `device`: on a GPU each workgroup deals its points' texels
+/// out evenly among its threads (`splat` in `ism_splat.wgsl`: a thread per point kept a 32-lane
+/// warp 18-19% busy on the suite's rooms and window, the texels dealt out 99%, by
+/// `bouncelab probe-ism LEVEL --splat-lanes`). On the software adapter (lavapipe) the dealing
+/// made `ism splat` slower (the rooms 636 -> 889 ms, the window 446 -> 694 ms at 320x180)
+/// although its 8-lane groups idled too (38% busy with a thread per point); my reading is that
+/// its atomics run lane by lane, so idle lanes cost it little and the dealing's second walk of
+/// the rows costs it more. It keeps a thread per point. Both write the same atlas, word for
+/// word (`tests/integration/ism_footprint.rs`).
+fn splat_entry(device: &wgpu::Device) -> &'static str {
+    if device.adapter_info().device_type == wgpu::DeviceType::Cpu { "splat_per_point" } else { "splat" }
+}
+
 /// Largest splat half-extent in texels (a 33^2 box), a bound on one thread's work for points
 /// right next to a VPL.
 const MAX_SPLAT_HALF_EXTENT: f32 = 16.0;
@@ -237,7 +250,7 @@ impl IsmGather {
             bounce_params: slots("ism bounce params"),
             bounce_layout,
             clear: compute_pipeline(device, "ism atlas clear", &splat_layout, &clear_module, "clear"),
-            splat: compute_pipeline(device, "ism splat", &splat_layout, &splat_module, "splat"),
+            splat: compute_pipeline(device, "ism splat", &splat_layout, &splat_module, splat_entry(device)),
             pull: compute_pipeline(device, "ism pull", &pp_layout, &pp_module, "pull"),
             push: compute_pipeline(device, "ism push", &pp_layout, &pp_module, "push"),
             splat_params: slots("ism splat params"),

@@ -340,9 +340,11 @@ pub fn tile_depths(c: &Capture, tile: usize) -> Result<Rgba8, OracleError> {
 }
 
 mod bounce;
+mod lanes;
 mod lookups;
 mod points;
 
 pub use bounce::*;
+pub use lanes::*;
 pub use lookups::*;
 pub use points::*;
