@@ -242,7 +242,7 @@ fn row(
 }
 
 /// The technique's GPU time and the blocking waits in one frame after the camera moved 10 cm
-/// sideways; the camera goes back after it.
+/// sideways (the scene itself is left as it was).
 fn after_camera_move(
     r: &mut Renderer,
     scene: &Scene,

@@ -219,8 +219,13 @@ impl Renderer {
         let result = self.render_inner(FrameRequest { scene, settings, size }, then);
         let oom = pollster::block_on(memory.pop());
         let invalid = pollster::block_on(validation.pop());
+        let failed = oom.or(invalid);
+        if result.is_err() || failed.is_some() {
+            // The frame's shadow layers may not have been drawn: draw them all again.
+            self.shadows.invalidate();
+        }
         result?;
-        match oom.or(invalid) {
+        match failed {
             Some(e) => Err(RenderError::Gpu(e.to_string())),
             None => Ok(()),
         }

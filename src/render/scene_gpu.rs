@@ -86,6 +86,8 @@ pub struct SceneGpu {
     /// Bumped by [`Self::sync`] whenever what depth-only passes draw changed (see
     /// [`Self::geometry_generation`]).
     geometry_generation: u64,
+    /// The object array's matrices in slot order as last uploaded: what the batches draw.
+    drawn_worlds: Vec<Mat4>,
     textures: Vec<wgpu::TextureView>,
     white: wgpu::TextureView,
     flat_normal: wgpu::TextureView,
@@ -206,6 +208,7 @@ impl SceneGpu {
             prev_world: Vec::new(),
             resources_revision: 0,
             geometry_generation: 0,
+            drawn_worlds: Vec::new(),
             textures: Vec::new(),
             white,
             flat_normal,
@@ -247,8 +250,12 @@ impl SceneGpu {
             (self.object_buffer, self.object_bind_group) = Self::object_buffer(device, layouts, self.object_capacity);
         }
         let worlds: Vec<Mat4> = objects.iter().map(|o| o.transform.matrix()).collect();
-        if resources_changed || self.batches != batches_before || worlds != self.prev_world {
+        // What the batches draw: each slot's matrix (one object hidden and another of the same
+        // mesh and material shown leave the batches alike but move the slot's matrix).
+        let drawn: Vec<Mat4> = order.iter().map(|&i| worlds[i]).collect();
+        if resources_changed || self.batches != batches_before || drawn != self.drawn_worlds {
             self.geometry_generation += 1;
+            self.drawn_worlds = drawn;
         }
         let mut data = vec![0u8; OBJECT_SLOT as usize * order.len()];
         for (slot, &i) in order.iter().enumerate() {
@@ -291,8 +298,8 @@ impl SceneGpu {
     }
 
     /// A counter that changes whenever the geometry that depth-only passes draw changes: the
-    /// meshes, which objects are drawn and in which batches, or an object's placement (a
-    /// forgotten motion history counts as a change). Material edits leave it alone. Passes whose
+    /// meshes, the batches, or the matrix in any slot of the object array (an object moved,
+    /// shown or hidden). Material edits that keep the batches leave it alone. Passes whose
     /// output depends on nothing else but their own view (shadow maps) key their caches on it.
     pub fn geometry_generation(&self) -> u64 {
         self.geometry_generation

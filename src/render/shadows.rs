@@ -316,6 +316,7 @@ impl ShadowPass {
     /// Forgets what every layer was drawn from: the next frame draws them all.
     pub fn invalidate(&mut self) {
         self.drawn.clear();
+        self.pending.clear();
     }
 
     /// Every layer's matrix into its dynamic-offset slot of the draw buffer.

@@ -272,7 +272,7 @@ fn splat_atlas(ctx: &bouncelab::render::GpuContext, entry: &str) -> Vec<u32> {
     bytemuck::cast_slice(&bytes).to_vec()
 }
 
-/// The splat pass shares each workgroup's footprint rows out among its threads (`splat` in
+/// The splat pass deals each workgroup's footprint texels out among its threads (`splat` in
 /// `ism_splat.wgsl`); the atlas it writes must be the one a thread per point walking its
 /// whole footprint writes (`splat_per_point`), word for word: the same texels with the same
 /// depths and points, whatever the order (an atomic min).

@@ -139,7 +139,8 @@ fn a_warm_still_frame_waits_for_no_readback_and_a_camera_move_still_places_recor
     let (mut project, _) = cornell();
     let settings = with(&project, GiMode::Rcs, RcsSettings::default());
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
-    converge(&mut r, &project, &settings, SIZE, 12);
+    let frames = converge(&mut r, &project, &settings, SIZE, 24);
+    assert!(frames < 24, "the cache did not converge in {frames} frames");
     // The first quiet frame reads the coverage back and finds nothing to do; the next ones,
     // with the same inputs, skip that readback and show the same image.
     r.render(&project.scene, &settings, SIZE).expect("render");
@@ -157,6 +158,14 @@ fn a_warm_still_frame_waits_for_no_readback_and_a_camera_move_still_places_recor
     let (made, waits) = (counter(&r, "records made last frame"), counter(&r, "GPU waits last frame"));
     eprintln!("after the move: {made} records made, {waits} GPU waits");
     assert!(made > 0 && waits > 0, "the move's uncovered surface got no records in its own frame");
+    // Another mode and back drops the cache: the frames after it place records again, however
+    // quiet the view was before.
+    r.render(&project.scene, &with(&project, GiMode::Direct, RcsSettings::default()), SIZE).expect("render");
+    for frame in 0..2 {
+        r.render(&project.scene, &settings, SIZE).expect("render");
+        let waits = counter(&r, "GPU waits last frame");
+        assert!(waits > 0, "frame {frame} back in rcs skipped its placement");
+    }
 }
 
 /// Two 4 x 4 m halves of a floor split by a closed 0.3 m wall 2 m high, a point light 1.5 m up

@@ -1,7 +1,9 @@
 //! Cached shadow maps (`src/render/shadows.rs`): a frame in which no light and no object moved
 //! draws no shadow layer, moving a light redraws that light's layers only, moving an object
 //! redraws every layer, and in each case the image equals a fresh renderer's image of the same
-//! scene (a cache that missed a change would leave the old shadow in place).
+//! scene (a cache that missed a change would leave the old shadow in place); so does showing one
+//! of two alike boxes in place of the other, which changes neither the draw batches nor the
+//! lights' matrices.
 
 use crate::common;
 
@@ -70,4 +72,31 @@ fn shadow_layers_are_redrawn_exactly_when_a_light_or_an_object_moves() {
     scene.desc_mut().objects[1].visible = false;
     assert_eq!(frame_matches_fresh(&ctx, &mut r, &scene, "box hidden"), 7, "hiding the box redraws every layer");
     assert_eq!(frame_matches_fresh(&ctx, &mut r, &scene, "still again"), 0, "a still frame draws no layer");
+}
+
+#[test]
+fn showing_one_box_in_place_of_its_twin_redraws_the_shadows() {
+    let Some(ctx) = common::gpu() else { return };
+    let (floor, floor_mat) = common::floor(4.0, 0.6);
+    let twin = |name: &str, x: f32, visible: bool| {
+        let mut o = common::object(
+            name,
+            MeshSource::Cuboid { size: Vec3::splat(0.5), openings: [false; 6] },
+            1,
+            Transform { translation: Vec3::new(x, 0.25, -0.3), ..Transform::default() },
+        );
+        o.visible = visible;
+        o
+    };
+    let mut scene = common::scene(
+        vec![floor, twin("a", -0.6, true), twin("b", 0.6, false)],
+        vec![floor_mat, Material::diffuse("box", [0.5; 3])],
+        vec![Light::point("p", Vec3::new(0.0, 1.4, -0.6), 3.0)],
+        Camera::look_at(Vec3::new(0.3, 2.2, 2.4), Vec3::new(0.0, 0.0, -0.2), 0.9),
+    );
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    assert_eq!(frame_matches_fresh(&ctx, &mut r, &scene, "box a"), 6);
+    let objects = &mut scene.desc_mut().objects;
+    (objects[1].visible, objects[2].visible) = (false, true);
+    assert_eq!(frame_matches_fresh(&ctx, &mut r, &scene, "box b in a's place"), 6, "the swap redraws the layers");
 }

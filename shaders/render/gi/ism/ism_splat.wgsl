@@ -247,7 +247,9 @@ fn splat(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_index)
     var k = first - texel_start(q);
     var y = s.lo.y;
     var columns = row_columns(s, y);
-    while k >= width(columns) {
+    // (Bounded by the point's rows and the workgroup's points: should a row's span come out
+    // narrower here than where it was counted, a texel is lost, not the device.)
+    while k >= width(columns) && y <= s.hi.y {
         k = k - width(columns);
         y = y + 1;
         columns = row_columns(s, y);
@@ -261,8 +263,11 @@ fn splat(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_index)
             k = 0u;
             y = y + 1;
             if y > s.hi.y {
+                if q + 1u >= SPLAT_GROUP {
+                    return;
+                }
                 q = q + 1u;
-                while texel_end[q] == texel_start(q) {
+                while texel_end[q] == texel_start(q) && q + 1u < SPLAT_GROUP {
                     q = q + 1u;
                 }
                 s = splat_setup(base + q);

@@ -496,7 +496,10 @@ impl GiTechnique for RcsTechnique {
         self.hemisphere.ensure(inputs.device, h, jobs);
         let now = CoverageInputs { revision: inputs.scene.revision(), size, settings: settings.clone() };
         let untouched = !self.drop_all && self.changed.is_empty() && !self.light_check;
-        let quiet = untouched && self.quiet.take().is_some_and(|q| q == now);
+        // Taken in every frame: a frame that drops or changes records must not leave the marker
+        // of the quiet frame before it for the next.
+        let last_quiet = self.quiet.take();
+        let quiet = untouched && last_quiet.as_ref() == Some(&now);
         self.invalidate(inputs, &store, settings.light_tolerance);
         let result = self.rounds(inputs, &mut store, quiet);
         self.splat.resolve(inputs, settings.gradients);
@@ -585,6 +588,7 @@ impl GiTechnique for RcsTechnique {
         self.boxes = None;
         self.made_with = None;
         self.drop_all = true;
+        self.quiet = None;
     }
 
     fn gpu_bytes(&self) -> u64 {

@@ -21,8 +21,9 @@ use super::screen::{IsmInputs, IsmScreen};
 pub use crate::precompute::ism::atlas_word::{PULL_LEVELS, level_base};
 
 /// The splat pass's entry point for `device`: on a GPU each workgroup deals its points' texels
-/// out evenly among its threads (`splat` in `ism_splat.wgsl`: a thread per point kept a 32-lane
-/// warp 18-19% busy on the suite's rooms and window, the texels dealt out 99%, by
+/// out evenly among its threads (`splat` in `ism_splat.wgsl`: with a thread per point a 32-lane
+/// warp spent 18-19% of its time walking texels on the suite's rooms and window, with the
+/// texels dealt out at most 99%, its counting walk and set-ups left out; by
 /// `bouncelab probe-ism LEVEL --splat-lanes`). On the software adapter (lavapipe) the dealing
 /// made `ism splat` slower (the rooms 636 -> 889 ms, the window 446 -> 694 ms at 320x180)
 /// although its 8-lane groups idled too (38% busy with a thread per point); my reading is that
@@ -35,7 +36,7 @@ fn splat_entry(device: &wgpu::Device) -> &'static str {
 
 /// Largest splat half-extent in texels (a 33^2 box), a bound on one thread's work for points
 /// right next to a VPL.
-const MAX_SPLAT_HALF_EXTENT: f32 = 16.0;
+pub(crate) const MAX_SPLAT_HALF_EXTENT: f32 = 16.0;
 pub(super) use crate::render::layouts::storage_rw_entry as storage_rw;
 
 /// Sizes the atlas and view resources were made for.

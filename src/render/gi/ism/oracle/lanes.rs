@@ -3,6 +3,8 @@
 //! in lock-step groups (32 lanes on NVIDIA, 8 on lavapipe's 256-bit SIMD): a group takes as long
 //! as its busiest lane, so a few points whose footprints fill 33 rows keep the rest of their
 //! group idle. The software adapter's timings cannot show what that costs a GPU; this counts it.
+//! It counts the texel walks alone: the dealt-out kernel's first walk (each lane counting its own
+//! point's texels, row by row) and its set-ups are left out, so its share is an upper bound.
 
 use super::*;
 
@@ -21,8 +23,8 @@ pub struct LaneReport {
     pub busy: Vec<(usize, [f64; 3])>,
 }
 
-/// The rows of one footprint and the texels each walks, as `splat_row` walks them (its box
-/// clamped to the tile, each row's span; `row_span` in `ism_footprint.wgsl`).
+/// The rows of one footprint and the texels each walks, as `ism_splat.wgsl` walks them (its box
+/// clamped to the tile, each row's columns: `row_columns`, `row_span` in `ism_footprint.wgsl`).
 fn row_walks(fp: &Footprint, r: i32) -> Vec<u64> {
     const SLACK: f32 = 0.01;
     let (ta, tb) = (fp.ta, fp.tb);
@@ -30,7 +32,8 @@ fn row_walks(fp: &Footprint, r: i32) -> Vec<u64> {
     let m01 = ta.x * ta.y + tb.x * tb.y;
     let m11 = ta.y * ta.y + tb.y * tb.y + 0.25;
     let det = m00 * m11 - m01 * m01;
-    let ext = Vec2::new(m00.sqrt().min(16.0), m11.sqrt().min(16.0));
+    let cap = crate::render::gi::ism::gather::MAX_SPLAT_HALF_EXTENT;
+    let ext = Vec2::new(m00.sqrt().min(cap), m11.sqrt().min(cap));
     let (lo, hi) = ((fp.centre - ext).floor().as_ivec2(), (fp.centre + ext).floor().as_ivec2());
     let c = fp.centre;
     (lo.y.max(0)..=hi.y.min(r - 1))
@@ -89,6 +92,15 @@ fn texel_lanes(per_slot: &[Vec<u64>]) -> Vec<u64> {
     lanes
 }
 
+/// Whether the splat pass splats point `p` of `tile` at all (`splat_setup`): its VPL alive, the
+/// point in front of it and not seen edge-on.
+fn splats(tile: &PointsReport, p: &ChosenPoint) -> bool {
+    const ON_PLANE: f32 = 2.0e-3;
+    let (o, n) = (Vec3::from_slice(&tile.position[..3]), Vec3::from_slice(&tile.normal[..3]));
+    let (q, pn) = (Vec3::from_slice(&p.position[..3]), Vec3::from_slice(&p.normal[..3]));
+    tile.position[3] > 0.0 && (q - o).dot(n) > 0.0 && (q - o).dot(pn).abs() > ON_PLANE * q.distance(o)
+}
+
 /// Threads per workgroup of the splat pass.
 const GROUP: usize = 64;
 
@@ -98,11 +110,12 @@ pub fn splat_lanes(c: &Capture, renderer: &Renderer, widths: &[usize]) -> Result
     let n = c.n().max(1);
     let last = c.ism.bounces.max(1) as usize - 1;
     let r = c.res() as i32;
+    let chosen = read_chosen(renderer)?;
     let mut per_slot: Vec<Vec<u64>> = Vec::new();
     for tile in last * n..(last + 1) * n {
-        let report = list_points(c, renderer, &PointsQuery { tile, ..PointsQuery::default() })?;
+        let report = list_chosen_points(c, &chosen, &PointsQuery { tile, ..PointsQuery::default() })?;
         let mut slots = vec![Vec::new(); c.lookup.per_ism as usize];
-        for p in &report.points {
+        for p in report.points.iter().filter(|p| splats(&report, p)) {
             if let (Some(fp), Some(slot)) = (&p.footprint, slots.get_mut(p.slot)) {
                 *slot = row_walks(fp, r);
             }

@@ -73,8 +73,21 @@ pub enum TexelCover {
 /// Tile `q.tile`'s chosen points (those inside the box), with their splats where the renderer
 /// kept their areas (the last set's tiles).
 pub fn list_points(c: &Capture, renderer: &Renderer, q: &PointsQuery) -> Result<PointsReport, OracleError> {
+    list_chosen_points(c, &read_chosen(renderer)?, q)
+}
+
+/// The last set's chosen points as the renderer kept them: per slot, pool index and area.
+pub(super) fn read_chosen(renderer: &Renderer) -> Result<Vec<(u32, f32)>, OracleError> {
     let t = renderer.technique_as::<IsmTechnique>().ok_or(OracleError::NotIsm)?;
-    let chosen = t.read_chosen(renderer.device(), renderer.queue())?;
+    Ok(t.read_chosen(renderer.device(), renderer.queue())?)
+}
+
+/// [`list_points`] with the chosen points read once ([`read_chosen`]).
+pub(super) fn list_chosen_points(
+    c: &Capture,
+    chosen: &[(u32, f32)],
+    q: &PointsQuery,
+) -> Result<PointsReport, OracleError> {
     let tiles = c.vpls.len();
     let vpl = *c.vpls.get(q.tile).ok_or(OracleError::NoTile { tile: q.tile, tiles })?;
     let last_set = q.tile / c.n().max(1) + 1 == c.ism.bounces.max(1) as usize;
