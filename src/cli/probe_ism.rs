@@ -173,8 +173,8 @@ pub fn run(args: &ProbeIsmArgs) -> anyhow::Result<String> {
         let l = oracle::splat_lanes(&capture, &renderer, &[32, 8])?;
         writeln!(
             out,
-            "{name} splat lanes (last set): {} points, {} rows, {} texels walked, the largest footprint {} rows and {} texels",
-            l.points, l.rows, l.texels, l.largest.0, l.largest.1
+            "{name} splat lanes (last set): {} points, {} rows, {} texels walked, the largest footprint {} rows and {} texels; chosen points the splat drops: {} of dead VPLs, {} behind their VPL, {} seen edge-on",
+            l.points, l.rows, l.texels, l.largest.0, l.largest.1, l.dropped[0], l.dropped[1], l.dropped[2]
         )?;
         for (width, [per_point, rows, texels]) in &l.busy {
             writeln!(

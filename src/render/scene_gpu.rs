@@ -94,6 +94,13 @@ pub struct SceneGpu {
     sampler: wgpu::Sampler,
 }
 
+/// One counter for every [`SceneGpu`], so that no two states of two scenes' geometry share a
+/// generation (a cache keyed on it never takes one scene's geometry for another's).
+fn next_geometry_generation() -> u64 {
+    static GENERATIONS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+    GENERATIONS.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+}
+
 fn upload_image(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -254,7 +261,7 @@ impl SceneGpu {
         // mesh and material shown leave the batches alike but move the slot's matrix).
         let drawn: Vec<Mat4> = order.iter().map(|&i| worlds[i]).collect();
         if resources_changed || self.batches != batches_before || drawn != self.drawn_worlds {
-            self.geometry_generation += 1;
+            self.geometry_generation = next_geometry_generation();
             self.drawn_worlds = drawn;
         }
         let mut data = vec![0u8; OBJECT_SLOT as usize * order.len()];

@@ -13,6 +13,8 @@ use super::*;
 pub struct LaneReport {
     /// Points with a footprint (the last set's), and their footprints' rows and texels walked.
     pub points: usize,
+    /// Chosen points the splat drops: of dead VPLs, behind their VPL, seen edge-on from it.
+    pub dropped: [usize; 3],
     pub rows: u64,
     pub texels: u64,
     /// The largest footprint: rows, texels.
@@ -92,13 +94,21 @@ fn texel_lanes(per_slot: &[Vec<u64>]) -> Vec<u64> {
     lanes
 }
 
-/// Whether the splat pass splats point `p` of `tile` at all (`splat_setup`): its VPL alive, the
-/// point in front of it and not seen edge-on.
-fn splats(tile: &PointsReport, p: &ChosenPoint) -> bool {
+/// Why the splat pass drops point `p` of `tile` (`splat_setup`): 0 its VPL is dead, 1 the point
+/// lies behind it, 2 it is seen edge-on; `None` when it splats.
+fn dropped(tile: &PointsReport, p: &ChosenPoint) -> Option<usize> {
     const ON_PLANE: f32 = 2.0e-3;
     let (o, n) = (Vec3::from_slice(&tile.position[..3]), Vec3::from_slice(&tile.normal[..3]));
     let (q, pn) = (Vec3::from_slice(&p.position[..3]), Vec3::from_slice(&p.normal[..3]));
-    tile.position[3] > 0.0 && (q - o).dot(n) > 0.0 && (q - o).dot(pn).abs() > ON_PLANE * q.distance(o)
+    if tile.position[3] <= 0.0 {
+        Some(0)
+    } else if (q - o).dot(n) <= 0.0 {
+        Some(1)
+    } else if (q - o).dot(pn).abs() <= ON_PLANE * q.distance(o) {
+        Some(2)
+    } else {
+        None
+    }
 }
 
 /// Threads per workgroup of the splat pass.
@@ -112,11 +122,14 @@ pub fn splat_lanes(c: &Capture, renderer: &Renderer, widths: &[usize]) -> Result
     let r = c.res() as i32;
     let chosen = read_chosen(renderer)?;
     let mut per_slot: Vec<Vec<u64>> = Vec::new();
+    let mut drops = [0usize; 3];
     for tile in last * n..(last + 1) * n {
         let report = list_chosen_points(c, &chosen, &PointsQuery { tile, ..PointsQuery::default() })?;
         let mut slots = vec![Vec::new(); c.lookup.per_ism as usize];
-        for p in report.points.iter().filter(|p| splats(&report, p)) {
-            if let (Some(fp), Some(slot)) = (&p.footprint, slots.get_mut(p.slot)) {
+        for p in &report.points {
+            if let Some(why) = dropped(&report, p) {
+                drops[why] += 1;
+            } else if let (Some(fp), Some(slot)) = (&p.footprint, slots.get_mut(p.slot)) {
                 *slot = row_walks(fp, r);
             }
         }
@@ -127,6 +140,7 @@ pub fn splat_lanes(c: &Capture, renderer: &Renderer, widths: &[usize]) -> Result
     let largest = per_slot.iter().map(|rows| (rows.len() as u32, rows.iter().sum::<u64>())).max_by_key(|l| l.1);
     Ok(LaneReport {
         points: per_slot.iter().filter(|rows| !rows.is_empty()).count(),
+        dropped: drops,
         rows: per_slot.iter().map(|rows| rows.len() as u64).sum(),
         texels: per_point.iter().sum(),
         largest: largest.unwrap_or((0, 0)),
