@@ -193,7 +193,7 @@ fn splat_per_point(@builtin(global_invocation_id) id: vec3<u32>) {
 // footprint can be 33 rows of 33 texels (one beside its VPL, or seen at a grazing angle) where
 // most are a few texels, and a thread walking a whole footprint kept the other lanes of its
 // group idle: over the suite's rooms, a 32-lane group spent 19% of its time walking texels
-// (`bouncelab probe-ism rooms --splat-lanes`). Dealing out whole rows raised that to 30% only
+// (`bouncelab probe-ism rooms --splat-lanes`). Dealing out whole rows raised that to 42% only
 // (rows run from 1 to 33 texels); texels themselves keep every lane within one texel of the
 // others, at the cost of walking each point's rows' spans once more to count them.
 const SPLAT_GROUP: u32 = 64u;

@@ -22,11 +22,11 @@ pub use crate::precompute::ism::atlas_word::{PULL_LEVELS, level_base};
 
 /// The splat pass's entry point for `device`: on a GPU each workgroup deals its points' texels
 /// out evenly among its threads (`splat` in `ism_splat.wgsl`: with a thread per point a 32-lane
-/// warp spent 18-19% of its time walking texels on the suite's rooms and window, with the
+/// warp spent 17-19% of its time walking texels on the suite's rooms and window, with the
 /// texels dealt out at most 99%, its counting walk and set-ups left out; by
 /// `bouncelab probe-ism LEVEL --splat-lanes`). On the software adapter (lavapipe) the dealing
 /// made `ism splat` slower (the rooms 636 -> 889 ms, the window 446 -> 694 ms at 320x180)
-/// although its 8-lane groups idled too (38% busy with a thread per point); my reading is that
+/// although its 8-lane groups idled too (37% busy with a thread per point); my reading is that
 /// its atomics run lane by lane, so idle lanes cost it little and the dealing's second walk of
 /// the rows costs it more. It keeps a thread per point. Both write the same atlas, word for
 /// word (`tests/integration/ism_footprint.rs`).
