@@ -174,7 +174,7 @@ pub fn run(root: &Path, out: &Path) -> anyhow::Result<String> {
          {}-spp path-traced reference (32768 spp for the rooms, seen from the unlit room); FLIP at the exposure that puts the reference's mean at 0.18 (`assets/suite/references/`, `bouncelab suite --references`). \
          `ism`, `sshgi` and `mrt` (temporal, or multi-bounce feedback for `mrt`, whose blocks are fitted on the fly where a scene has none) render until the technique says its history has settled (the viewport's refining indicator ends), then {SETTLED_FRAMES} frames, the last of which is compared here; `rcs` renders until its cache has filled and its bounce passes converged (at most {FILL_FRAMES} frames), then 9 frames with the warm cache; `direct` and `ism-ritschel` single frames. Energy is the \
          mean-luminance ratio to the reference; frame time is relative to `direct` on the same scene in \
-         the same run (wall clock, median of the last 8 frames; `rcs`: with the warm cache).\n",
+         the same run (wall clock, median of the last 8 frames; `rcs`: with the warm cache in a still view, whose frames only resolve the last splat; a camera move costs the splat and placement again, `bouncelab profile`'s `moved_technique_ms`).\n",
         ctx.describe(),
         REFERENCE_SIZE.0,
         REFERENCE_SIZE.1,
