@@ -253,14 +253,8 @@ fn after_camera_move(
     let mut camera = *scene.camera();
     camera.position += camera.world_from_view().x_axis.truncate() * 0.1;
     moved.set_camera(camera);
-    let before = crate::render::readback::blocking_waits();
-    r.render(&moved, settings, size)?;
-    let waits = crate::render::readback::blocking_waits() - before;
-    r.wait_for_gpu()?;
-    let technique: f64 =
-        r.timings(true).iter().filter(|p| !DIRECT_PASSES.contains(&p.name.as_str())).map(|p| p.ms).sum();
-    // (An empty sum of f64 is -0.)
-    Ok((technique.max(0.0), waits))
+    let (passes, waits) = one_frame(r, &moved, settings, size)?;
+    Ok((sum_ms(&passes, |name| !DIRECT_PASSES.contains(&name)), waits))
 }
 
 /// The shadow maps' GPU time in one frame after every layer was made stale.
@@ -271,10 +265,28 @@ fn shadows_redrawn(
     size: (u32, u32),
 ) -> anyhow::Result<f64> {
     r.invalidate_shadow_maps();
+    let (passes, _) = one_frame(r, scene, settings, size)?;
+    Ok(sum_ms(&passes, |name| name == "shadows"))
+}
+
+/// One frame's pass timings, once the GPU has finished it, and the blocking waits inside it.
+fn one_frame(
+    r: &mut Renderer,
+    scene: &Scene,
+    settings: &RenderSettings,
+    size: (u32, u32),
+) -> anyhow::Result<(Vec<PassTiming>, u64)> {
+    let before = crate::render::readback::blocking_waits();
     r.render(scene, settings, size)?;
+    let waits = crate::render::readback::blocking_waits() - before;
     r.wait_for_gpu()?;
-    let ms: f64 = r.timings(true).iter().filter(|p| p.name == "shadows").map(|p| p.ms).sum();
-    Ok(ms.max(0.0))
+    Ok((r.timings(true), waits))
+}
+
+/// The summed GPU time of the passes whose names `keep` accepts (0 for none).
+fn sum_ms(passes: &[PassTiming], keep: impl Fn(&str) -> bool) -> f64 {
+    // Summed from 0.0: an empty `sum()` of f64 is -0.
+    passes.iter().filter(|p| keep(&p.name)).fold(0.0, |t, p| t + p.ms)
 }
 
 /// The profile JSON in the shape `docs/gpu-profile.json` is checked against (atomically).

@@ -83,7 +83,7 @@ pub struct SceneGpu {
     pub batches: Vec<Batch>,
     prev_world: Vec<Mat4>,
     resources_revision: u64,
-    /// Bumped by [`Self::sync`] whenever what depth-only passes draw changed (see
+    /// Set anew by [`Self::sync`] whenever what depth-only passes draw changed (see
     /// [`Self::geometry_generation`]).
     geometry_generation: u64,
     /// The object array's matrices in slot order as last uploaded: what the batches draw.
@@ -262,11 +262,11 @@ impl SceneGpu {
         let drawn: Vec<Mat4> = order.iter().map(|&i| worlds[i]).collect();
         if resources_changed || self.batches != batches_before || drawn != self.drawn_worlds {
             self.geometry_generation = next_geometry_generation();
-            self.drawn_worlds = drawn;
         }
+        self.drawn_worlds = drawn;
         let mut data = vec![0u8; OBJECT_SLOT as usize * order.len()];
         for (slot, &i) in order.iter().enumerate() {
-            let world = worlds[i];
+            let world = self.drawn_worlds[slot];
             let prev = self.prev_world.get(i).copied().unwrap_or(world);
             let u = ObjectUniforms::new(world, prev, i as u32 + 1, objects[i].material as u32);
             let start = slot * OBJECT_SLOT as usize;

@@ -44,6 +44,22 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 "#;
 
+/// A compute pipeline of `entry` in WGSL `source`, its layout derived from the shader.
+fn test_pipeline(device: &wgpu::Device, label: &str, source: String, entry: &str) -> wgpu::ComputePipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: None,
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
 /// A small deterministic generator (xorshift), so that a failure repeats.
 struct Rng(u32);
 
@@ -85,18 +101,7 @@ fn row_spans_keep_every_covered_texel_and_skip_the_bounding_boxes_corners() {
     let Some(ctx) = common::gpu() else { return };
     let device = &ctx.device;
     let source = assemble("render/gi/ism/ism_footprint.wgsl").expect("footprint shader") + KERNEL;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("ism footprint test"),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("ism footprint test"),
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
+    let pipeline = test_pipeline(device, "ism footprint test", source, "main");
     let shapes = footprints(20_000);
     let input = wgpu::util::DeviceExt::create_buffer_init(
         device,
@@ -198,18 +203,7 @@ fn splat_atlas(ctx: &bouncelab::render::GpuContext, entry: &str) -> Vec<u32> {
     use wgpu::util::DeviceExt;
     let device = &ctx.device;
     let source = assemble("render/gi/ism/ism_splat.wgsl").expect("splat shader");
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("ism splat test"),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("ism splat test"),
-        layout: None,
-        module: &module,
-        entry_point: Some(entry),
-        compilation_options: Default::default(),
-        cache: None,
-    });
+    let pipeline = test_pipeline(device, "ism splat test", source, entry);
     let init = |label: &str, words: &[u32], usage: wgpu::BufferUsages| {
         device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some(label),

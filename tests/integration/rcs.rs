@@ -113,6 +113,13 @@ fn gradients_bring_sparse_records_closer_to_the_reference() {
     assert!(errors[1].1 < errors[0].1, "gradients: FLIP {:.4} not below {:.4}", errors[1].1, errors[0].1);
 }
 
+/// Moves the camera 8.5 cm (a small move: some surface is uncovered at the view's edge).
+fn nudge_camera(project: &mut Project) {
+    let mut camera = *project.scene.camera();
+    camera.position += Vec3::new(0.08, 0.03, 0.0);
+    project.scene.set_camera(camera);
+}
+
 #[test]
 fn a_small_camera_move_reuses_most_records() {
     let Some(ctx) = common::gpu() else { return };
@@ -121,9 +128,7 @@ fn a_small_camera_move_reuses_most_records() {
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     converge(&mut r, &project, &settings, SIZE, 12);
     let before = counter(&r, "records");
-    let mut camera = *project.scene.camera();
-    camera.position += Vec3::new(0.08, 0.03, 0.0);
-    project.scene.set_camera(camera);
+    nudge_camera(&mut project);
     r.render(&project.scene, &settings, SIZE).expect("render");
     let made = counter(&r, "records made last frame");
     let reused = counter(&r, "records reused last frame");
@@ -151,9 +156,7 @@ fn a_warm_still_frame_waits_for_no_readback_and_a_camera_move_still_places_recor
         assert_eq!(counter(&r, "uncovered tiles"), 0);
         assert!(r.read_hdr().expect("hdr") == seen, "still frame {frame} differs from the frame before");
     }
-    let mut camera = *project.scene.camera();
-    camera.position += Vec3::new(0.08, 0.03, 0.0);
-    project.scene.set_camera(camera);
+    nudge_camera(&mut project);
     r.render(&project.scene, &settings, SIZE).expect("render");
     let (made, waits) = (counter(&r, "records made last frame"), counter(&r, "GPU waits last frame"));
     eprintln!("after the move: {made} records made, {waits} GPU waits");
