@@ -1,6 +1,6 @@
 //! Cached shadow maps (`src/render/shadows.rs`): a frame in which no light and no object moved
-//! draws no shadow layer, moving a light redraws that light's layers only, moving an object
-//! redraws every layer, and in each case the image equals a fresh renderer's image of the same
+//! (the camera or a material's colour may have) draws no shadow layer, moving a light redraws
+//! that light's layers only, moving an object redraws every layer, and in each case the image equals a fresh renderer's image of the same
 //! scene (a cache that missed a change would leave the old shadow in place); so does showing one
 //! of two alike boxes in place of the other, which changes neither the draw batches nor the
 //! lights' matrices.
@@ -56,9 +56,11 @@ fn shadow_layers_are_redrawn_exactly_when_a_light_or_an_object_moves() {
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     assert_eq!(frame_matches_fresh(&ctx, &mut r, &scene, "first frame"), 7, "first frame draws all 7 layers");
     assert_eq!(frame_matches_fresh(&ctx, &mut r, &scene, "still frame"), 0, "a still frame draws no layer");
-    // The camera moving changes no shadow.
+    // The camera moving, or a material's colour, changes no shadow.
     scene.set_camera(Camera::look_at(Vec3::new(0.5, 2.0, 2.4), Vec3::new(0.0, 0.0, -0.2), 0.9));
     assert_eq!(frame_matches_fresh(&ctx, &mut r, &scene, "camera moved"), 0, "a camera move draws no layer");
+    scene.desc_mut().materials[1].base_color = [0.9, 0.2, 0.1, 1.0];
+    assert_eq!(frame_matches_fresh(&ctx, &mut r, &scene, "colour changed"), 0, "a colour edit draws no layer");
     scene.desc_mut().lights[1].position += Vec3::new(0.2, 0.0, 0.0);
     assert_eq!(frame_matches_fresh(&ctx, &mut r, &scene, "spot moved"), 1, "moving the spot redraws its layer");
     scene.desc_mut().lights[0].position += Vec3::new(0.0, 0.0, 0.3);
