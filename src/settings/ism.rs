@@ -199,7 +199,7 @@ pub enum TailRatio {
     /// decays as the scene's light does (one room), too small for a room light reaches late.
     Power,
     /// The light the last set gave the screen over the previous set's (last frame's shading,
-    /// a running mean; the power ratio until the screen has seen both): for a room that light
+    /// a running mean that starts from the power ratio): for a room that light
     /// reaches late (the default since the lookups' hole test: with the power ratio the suite's
     /// unlit third room read 0.848 at the CI test's size, under its 0.9). The held-out offices
     /// (camera two doors from the light, 24% of the light on screen after the sixth bounce)
