@@ -15,6 +15,7 @@ pub mod harness;
 pub(crate) mod layouts;
 mod lighting;
 pub mod obscurance;
+pub mod octahedral;
 pub mod pyramid;
 pub mod readback;
 pub(crate) mod scene_gpu;

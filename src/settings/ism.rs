@@ -43,9 +43,10 @@ pub struct IsmSettings {
     /// spacing sqrt(2 pi / P)). Measured on lavapipe (`bouncelab probe cornell --frames 8`, whole run):
     /// 10.1 s at 256, 11.9 s at 1024; the splats' texel coverage, not their count, dominates.
     /// On the suite's three rooms, where a wall far from a VPL gets about one point, the first
-    /// bounce alone reads 1.098 of a one-bounce reference at 1024 and 1.052 at 2048 (FLIP over
-    /// `direct`'s 0.91 and 0.64; it keeps converging up to 4096), for `ism maps` 1369-1376 ms at
-    /// 1024 and 1662-1674 ms at 2048 on lavapipe (`docs/notes/ism-tuning.md`, "Stop 62").
+    /// bounce alone reads 1.059 of a one-bounce reference at 1024 and 1.030 at 2048 (FLIP over
+    /// `direct`'s 0.61 and 0.42), since the selection gives the VPL's own plane no points
+    /// (1.092 and 1.046 before); for `ism maps` 1369-1376 ms at 1024 and 1662-1674 ms at 2048
+    /// on lavapipe (`docs/notes/ism-tuning.md`, "Stop 62", "The VPL's own plane").
     pub points_per_ism: u32,
     /// Interleave size n (the G-buffer splits into n x n tiles; 1..=8). Cost: none; quality:
     /// each pixel sees N/n^2 VPLs, the n x n filter hides the pattern but blurs detail.
@@ -198,7 +199,7 @@ pub enum TailRatio {
     /// decays as the scene's light does (one room), too small for a room light reaches late.
     Power,
     /// The light the last set gave the screen over the previous set's (last frame's shading,
-    /// a running mean; the power ratio until the screen has seen both): for a room that light
+    /// a running mean that starts from the power ratio): for a room that light
     /// reaches late (the default since the lookups' hole test: with the power ratio the suite's
     /// unlit third room read 0.848 at the CI test's size, under its 0.9). The held-out offices
     /// (camera two doors from the light, 24% of the light on screen after the sixth bounce)

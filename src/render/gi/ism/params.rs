@@ -32,8 +32,8 @@ pub struct GpuCluster {
     pub count: u32,
     /// Sum of the points' areas (m^2).
     pub area: f32,
-    /// Padding.
-    pub pad: u32,
+    /// The points' plane: octahedral mean normal and thickness bound (`clusters::plane_code`).
+    pub plane: u32,
 }
 
 /// `SplatParams` in `ism_splat.wgsl`.

@@ -14,6 +14,7 @@ use rayon::prelude::*;
 use crate::image_io::HdrImage;
 use crate::precompute::bvh::SceneBvh;
 use crate::project_file::Project;
+use crate::render::octahedral::oct_decode;
 use crate::render::{RenderError, Renderer};
 use crate::settings::{GiMode, SshgiSettings};
 
@@ -174,14 +175,6 @@ fn exact_gather(
             (vis, open)
         })
         .collect()
-}
-
-fn oct_decode(e: [f32; 2]) -> Vec3 {
-    let mut n = Vec3::new(e[0], e[1], 1.0 - e[0].abs() - e[1].abs());
-    let t = (-n.z).clamp(0.0, 1.0);
-    n.x += if n.x >= 0.0 { -t } else { t };
-    n.y += if n.y >= 0.0 { -t } else { t };
-    n.normalize_or_zero()
 }
 
 fn mean_rgb(img: &HdrImage) -> f64 {
