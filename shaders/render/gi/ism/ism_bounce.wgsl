@@ -384,8 +384,8 @@ const TAIL_BLEND: f32 = 0.25;
 // is their power ratio, and the screen sums' running mean starts from it: the first frame the
 // screen sees (the least settled VPLs) weighs TAIL_BLEND like every later one. Started from that
 // frame alone, one realization of the suite's three rooms (seed 0) read its unlit room at 1.194
-// of the path tracer (frames 17-48, 128x72; r at the 0.9 cap in frame 3), 1.126 seeded. One workgroup; runs after `write_winner` of the last set, which no later pass reads
-// as a source.
+// of the path tracer (frames 17-48, 128x72; r at the 0.9 cap in frame 3), 1.126 seeded. One
+// workgroup; runs after `write_winner` of the last set, which no later pass reads as a source.
 @compute @workgroup_size(64, 1, 1)
 fn tail(@builtin(local_invocation_index) lid: u32) {
     let n = bp.counts.x;
