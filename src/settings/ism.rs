@@ -45,8 +45,9 @@ pub struct IsmSettings {
     /// On the suite's three rooms, where a wall far from a VPL gets about one point, the first
     /// bounce alone reads 1.059 of a one-bounce reference at 1024 and 1.030 at 2048 (FLIP over
     /// `direct`'s 0.61 and 0.42), since the selection gives the VPL's own plane no points
-    /// (1.092 and 1.046 before); for `ism maps` 1369-1376 ms at 1024 and 1662-1674 ms at 2048
-    /// on lavapipe (`docs/notes/ism-tuning.md`, "Stop 62", "The VPL's own plane").
+    /// (1.092 and 1.046 before). `ism maps` took 1369-1376 ms at 1024 and 1662-1674 ms at 2048
+    /// on lavapipe before that change (stop 62, not timed since; the splat now walks 5% more
+    /// texels: `docs/notes/ism-tuning.md`, "Stop 62", "The VPL's own plane").
     pub points_per_ism: u32,
     /// Interleave size n (the G-buffer splits into n x n tiles; 1..=8). Cost: none; quality:
     /// each pixel sees N/n^2 VPLs, the n x n filter hides the pattern but blurs detail.

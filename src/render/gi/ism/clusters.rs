@@ -104,32 +104,28 @@ pub fn build(data: &mut PointData, area_of: impl Fn(f32) -> f32) -> Vec<GpuClust
     }
     (0..n)
         .step_by(CLUSTER_POINTS)
-        .map(|first| {
-            let range = first..(first + CLUSTER_POINTS).min(n);
-            let (mut a, mut b) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-            let mut area = 0.0f32;
-            for i in range.clone() {
-                let p = Vec3::new(data.positions[i][0], data.positions[i][1], data.positions[i][2]);
-                a = a.min(p);
-                b = b.max(p);
-                area += area_of(data.normals[i][3]);
-            }
-            let centre = (a + b) * 0.5;
-            let radius = range
-                .clone()
-                .map(|i| Vec3::new(data.positions[i][0], data.positions[i][1], data.positions[i][2]).distance(centre))
-                .fold(0.0f32, f32::max);
-            let points: Vec<Vec3> = range.clone().map(|i| Vec3::from_slice(&data.positions[i][..3])).collect();
-            let normal_sum: Vec3 = range.clone().map(|i| Vec3::from_slice(&data.normals[i][..3])).sum();
-            GpuCluster {
-                sphere: [centre.x, centre.y, centre.z, radius],
-                first: first as u32,
-                count: range.len() as u32,
-                area,
-                plane: plane_code(&points, normal_sum, centre, radius),
-            }
-        })
+        .map(|first| cluster(data, first..(first + CLUSTER_POINTS).min(n), &area_of))
         .collect()
+}
+
+/// The cluster of `data`'s points in `range`: bounding sphere (centred on the bounding box),
+/// pool area and plane.
+fn cluster(data: &PointData, range: std::ops::Range<usize>, area_of: &impl Fn(f32) -> f32) -> GpuCluster {
+    let points: Vec<Vec3> = range.clone().map(|i| Vec3::from_slice(&data.positions[i][..3])).collect();
+    let (a, b) = points
+        .iter()
+        .fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(a, b), p| (a.min(*p), b.max(*p)));
+    let centre = (a + b) * 0.5;
+    let radius = points.iter().map(|p| p.distance(centre)).fold(0.0f32, f32::max);
+    let area = range.clone().map(|i| area_of(data.normals[i][3])).sum();
+    let normal_sum: Vec3 = range.clone().map(|i| Vec3::from_slice(&data.normals[i][..3])).sum();
+    GpuCluster {
+        sphere: [centre.x, centre.y, centre.z, radius],
+        first: range.start as u32,
+        count: range.len() as u32,
+        area,
+        plane: plane_code(&points, normal_sum, centre, radius),
+    }
 }
 
 #[cfg(test)]
