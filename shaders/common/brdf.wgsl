@@ -17,3 +17,20 @@ fn brdf_eval(albedo: vec3<f32>, specular: vec3<f32>, roughness: f32, n: vec3<f32
     }
     return f;
 }
+
+// The lobe's directional albedo (precompute::brdf::specular_albedo): the share of the irradiance
+// arriving at cos_l that the lobe reflects over the hemisphere, fitted as g + (1 - g) cos_l^p
+// with g = 1 / (1 + e / 0.9), p = 2e / (e + 4); within 0.08 of the integral for every exponent.
+fn specular_albedo(specular: vec3<f32>, roughness: f32, cos_l: f32) -> vec3<f32> {
+    let e = phong_exponent(roughness);
+    let g = 1.0 / (1.0 + e / 0.9);
+    return specular * (g + (1.0 - g) * pow(clamp(cos_l, 1.0e-6, 1.0), 2.0 * e / (e + 4.0)));
+}
+
+// Its mean under uniform incident radiance, g + (1 - g) 2 / (p + 2)
+// (precompute::brdf::specular_albedo_diffuse): what the lobe reflects of diffuse light.
+fn specular_albedo_diffuse(specular: vec3<f32>, roughness: f32) -> vec3<f32> {
+    let e = phong_exponent(roughness);
+    let g = 1.0 / (1.0 + e / 0.9);
+    return specular * (g + (1.0 - g) * 2.0 / (2.0 * e / (e + 4.0) + 2.0));
+}

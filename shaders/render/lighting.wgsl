@@ -3,6 +3,12 @@
 // (`emission.wgsl`'s target) and, where no surface is, the sky (render::sky; the same mapping
 // and nearest texel as the path tracer). The GI technique may read it; `composite.wgsl` adds
 // the indirect term. One-sided surfaces: a light behind the geometric normal adds nothing.
+// Beside it, the same light as a diffuse sender sends it (`exitance`): the emission plus
+// (albedo + specular x the lobe's directional albedo) / pi x each light's irradiance, the
+// surface's radiant exitance over pi. A GI technique that treats the surfaces it sees as
+// diffuse senders (`sshgi`) reads it: the direct term's glossy lobe points at the camera only,
+// while a glossy floor under a lamp sends half as much again upwards. Without a lobe the two are
+// equal.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/lights.wgsl
@@ -24,6 +30,7 @@
 @group(1) @binding(3) var material_tex: texture_2d<f32>;
 @group(1) @binding(4) var out_radiance: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(5) var emission_tex: texture_2d<f32>;
+@group(1) @binding(6) var out_exitance: texture_storage_2d<rgba16float, write>;
 
 #import common/shadow.wgsl
 
@@ -38,7 +45,9 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     // Reversed depth: 0 is the far plane (nothing drawn).
     if depth <= 0.0 {
         let dir = normalize(world_from_pixel(frame, pixel, 0.5) - frame.camera_position.xyz);
-        textureStore(out_radiance, pixel, vec4<f32>(sky_radiance(dir), 1.0));
+        let sky_light = vec4<f32>(sky_radiance(dir), 1.0);
+        textureStore(out_radiance, pixel, sky_light);
+        textureStore(out_exitance, pixel, sky_light);
         return;
     }
     let p = world_from_pixel(frame, pixel, depth);
@@ -49,6 +58,8 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let mat = textureLoad(material_tex, pixel, 0);
     let v = normalize(frame.camera_position.xyz - p);
     var radiance = textureLoad(emission_tex, pixel, 0).rgb;
+    var exitance = radiance;
+    let glossy = any(mat.rgb > vec3<f32>(0.0));
     for (var i = 0u; i < frame.params.x; i = i + 1u) {
         let light = lights[i];
         let inc = light_incident(light, p);
@@ -61,7 +72,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let vis = shadow_factor(frame, light, p, ng, inc.distance);
         let f = brdf_eval(albedo, mat.rgb, mat.a, n, v, inc.dir);
-        radiance = radiance + f * inc.irradiance * cos_s * vis;
+        let e = inc.irradiance * cos_s * vis;
+        radiance = radiance + f * e;
+        var reflectance = albedo;
+        if glossy {
+            reflectance = reflectance + specular_albedo(mat.rgb, mat.a, cos_s);
+        }
+        exitance = exitance + reflectance / PI * e;
     }
     textureStore(out_radiance, pixel, vec4<f32>(radiance, 1.0));
+    textureStore(out_exitance, pixel, vec4<f32>(exitance, 1.0));
 }

@@ -1,5 +1,6 @@
 //! Deferred direct lighting (`shaders/render/lighting.wgsl`), one compute pass over the
-//! G-buffer into the view's `direct` target, with the emission the camera sees and the sky.
+//! G-buffer into the view's `direct` target, with the emission the camera sees and the sky, and
+//! the same light as diffuse senders send it into `exitance`.
 
 use super::layouts::{
     comparison_sampler_entry, depth_array_entry, shadow_sampler, storage_entry, storage_texture_entry, texture_entry,
@@ -54,6 +55,7 @@ impl LightingPass {
                 texture_entry(3, c, unfilterable),
                 storage_texture_entry(4, formats::HDR),
                 texture_entry(5, c, unfilterable),
+                storage_texture_entry(6, formats::EXITANCE),
             ],
         });
         let module = shaders::module(device, "render/lighting.wgsl")?;
@@ -110,6 +112,7 @@ impl LightingPass {
                 view(3, &t.material.view),
                 view(4, &t.direct.view),
                 view(5, &t.emission.view),
+                view(6, &t.exitance.view),
             ],
         })
     }

@@ -22,6 +22,7 @@ pub mod formats {
     pub const MOTION: wgpu::TextureFormat = wgpu::TextureFormat::Rg16Float;
     pub const OBJECT_ID: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
     pub const EMISSION: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+    pub const EXITANCE: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
     pub const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
     pub const HDR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
     pub const LDR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -70,6 +71,9 @@ pub struct ViewTargets {
     pub depth: Target,
     /// Shadowed direct radiance (the lighting pass); GI techniques may read it.
     pub direct: Target,
+    /// The direct term as a diffuse sender sends it (the lighting pass): radiant exitance / pi,
+    /// the glossy lobe's share in every direction instead of towards the camera.
+    pub exitance: Target,
     /// Indirect light written by the active GI technique; what it holds (E / pi, outgoing
     /// radiance, the whole image) is the technique's `GiOutput` for the frame.
     pub indirect: Target,
@@ -87,7 +91,7 @@ pub struct ViewTargets {
 
 impl ViewTargets {
     /// Every target.
-    pub fn all(&self) -> [&Target; 14] {
+    pub fn all(&self) -> [&Target; 15] {
         [
             &self.albedo,
             &self.normal,
@@ -97,6 +101,7 @@ impl ViewTargets {
             &self.emission,
             &self.depth,
             &self.direct,
+            &self.exitance,
             &self.indirect,
             &self.hdr,
             &self.ldr,
@@ -121,6 +126,7 @@ impl ViewTargets {
             emission: Target::new(device, "emission", size, formats::EMISSION, rt),
             depth: Target::new(device, "gbuffer depth", size, formats::DEPTH, rt),
             direct: Target::new(device, "direct radiance", size, formats::HDR, storage),
+            exitance: Target::new(device, "direct exitance", size, formats::EXITANCE, storage),
             indirect: Target::new(device, "indirect radiance", size, formats::HDR, storage | U::RENDER_ATTACHMENT),
             hdr: Target::new(device, "hdr radiance", size, formats::HDR, storage),
             ldr: Target::new(device, "ldr display", size, formats::LDR, storage | U::RENDER_ATTACHMENT),

@@ -104,6 +104,27 @@ pub fn floor_hit(camera: &Camera, x: u32, y: u32, size: (u32, u32), half: f32) -
     (p.x.abs() < half && p.z.abs() < half).then_some(p)
 }
 
+/// The default Cornell box with a dark glossy floor (albedo 0.2, specular 0.6, roughness 0.4)
+/// that a spot grazes: most of the floor's first-bounce light leaves it in its specular lobe.
+pub fn glossy_cornell() -> bouncelab::project_file::Project {
+    use bouncelab::project_file::{Project, default_project_path};
+    let mut project = Project::load(&default_project_path()).expect("default project");
+    let desc = project.scene.desc_mut();
+    let mut floor = desc.materials[0].clone();
+    floor.name = "glossy floor".into();
+    floor.base_color = [0.2, 0.2, 0.2, 1.0];
+    floor.specular = [0.6, 0.6, 0.6];
+    floor.roughness = 0.4;
+    desc.materials.push(floor);
+    let glossy = desc.materials.len() - 1;
+    desc.objects[0].material = glossy;
+    desc.lights =
+        vec![Light::spot("spot", Vec3::new(-0.9, 1.2, 0.3), Vec3::new(1.0, -1.1, -0.2).normalize(), 8.0, 0.4, 0.8)];
+    let desc = desc.clone();
+    project.scene = bouncelab::import::resolve(desc, &project.imported).expect("resolves");
+    project
+}
+
 /// Unused silencer for helpers some test files do not need.
 pub fn _unused(_: Resources, _: Mesh) {}
 

@@ -8,34 +8,13 @@ use crate::common;
 
 use bouncelab::image_io::HdrImage;
 use bouncelab::metrics;
-use bouncelab::project_file::{Project, default_project_path};
 use bouncelab::render::Renderer;
-use bouncelab::scene::Light;
 use bouncelab::settings::{GiMode, ReferenceSettings};
-use glam::Vec3;
-
-fn glossy_cornell() -> Project {
-    let mut project = Project::load(&default_project_path()).expect("default project");
-    let desc = project.scene.desc_mut();
-    let mut floor = desc.materials[0].clone();
-    floor.name = "glossy floor".into();
-    floor.base_color = [0.2, 0.2, 0.2, 1.0];
-    floor.specular = [0.6, 0.6, 0.6];
-    floor.roughness = 0.4;
-    desc.materials.push(floor);
-    let glossy = desc.materials.len() - 1;
-    desc.objects[0].material = glossy;
-    desc.lights =
-        vec![Light::spot("spot", Vec3::new(-0.9, 1.2, 0.3), Vec3::new(1.0, -1.1, -0.2).normalize(), 8.0, 0.4, 0.8)];
-    let desc = desc.clone();
-    project.scene = bouncelab::import::resolve(desc, &project.imported).expect("resolves");
-    project
-}
 
 #[test]
 fn glossy_first_bounce_matches_the_reference() {
     let Some(ctx) = common::gpu() else { return };
-    let mut project = glossy_cornell();
+    let mut project = common::glossy_cornell();
     project.render.ism.bounces = 1;
     let size = (64, 36);
     let reference =

@@ -43,6 +43,7 @@ mod reference;
 mod shaders;
 mod shadow_cache;
 mod sshgi;
+mod sshgi_glossy;
 mod sshgi_hidden;
 mod sshgi_panorama;
 mod suite;

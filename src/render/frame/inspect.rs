@@ -48,6 +48,12 @@ pub const FRAME_BUFFERS: &[BufferInfo] = &[
         view: BufferView::Colour,
     },
     BufferInfo {
+        name: "exitance",
+        description: "The direct light as a diffuse sender sends it: emission + (albedo + the glossy lobe's directional albedo) / pi x irradiance (what sshgi's screen senders send).",
+        format: "rgba16f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
         name: "indirect",
         description: "The GI technique's output: E / pi, outgoing radiance or the whole image (see its mode).",
         format: "rgba32f",
@@ -123,6 +129,7 @@ impl Renderer {
             "object_id" => &t.object_id.texture,
             "depth" => &t.depth.texture,
             "direct" => &t.direct.texture,
+            "exitance" => &t.exitance.texture,
             "indirect" => &t.indirect.texture,
             "hdr" => &t.hdr.texture,
             "vo_raw" => &t.vo_raw.texture,

@@ -5,10 +5,13 @@
 // the camera than every one of the 2x2 panorama texels around its direction (by `hp.tolerance.x`
 // of their distance): the panorama and the screen, both seen from the camera, send what it sees,
 // and a point at a silhouette is left to them (no light counted twice). A hidden point's first
-// radiance is its diffuse direct light (the view's lights and shadow maps, the lighting pass's own
-// functions) plus its emission; its area is its share of its object's surface.
+// radiance is its direct light as a diffuse sender sends it (the view's lights and shadow maps, the
+// lighting pass's own functions and its `exitance`: albedo + a glossy lobe's directional albedo
+// per light) plus its emission; its reflectance for later bounces is albedo + the lobe's share of
+// diffuse light; its area is its share of its object's surface.
 #import common/frame.wgsl
 #import common/lights.wgsl
+#import common/brdf.wgsl
 
 struct HiddenParams {
     // Each panorama face's clip_from_world (the cube turned this frame).
@@ -30,6 +33,8 @@ struct Surfel {
     albedo: vec4<f32>,
     // rgb emitted radiance (W / (sr m^2)), a unused.
     emission: vec4<f32>,
+    // rgb specular colour (zero: no glossy lobe), a roughness.
+    specular: vec4<f32>,
 }
 
 #import render/gi/sshgi/sshgi_sender.wgsl
@@ -50,7 +55,29 @@ struct Surfel {
 
 #import common/shadow.wgsl
 
-const PI: f32 = 3.14159265358979;
+// The direct light the surfel sends as a diffuse sender: (albedo + the lobe's directional albedo
+// at each light's incidence) / pi x that light's shadowed irradiance, as the lighting pass's
+// `exitance` (one-sided: a light behind the normal adds nothing).
+fn direct_exitance(s: Surfel) -> vec3<f32> {
+    let p = s.point.xyz;
+    let n = s.normal.xyz;
+    let glossy = any(s.specular.rgb > vec3<f32>(0.0));
+    var sum = vec3<f32>(0.0);
+    for (var i = 0u; i < frame.params.x; i = i + 1u) {
+        let light = lights[i];
+        let inc = light_incident(light, p);
+        let cos_s = dot(n, inc.dir);
+        if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
+            continue;
+        }
+        var reflectance = s.albedo.rgb;
+        if glossy {
+            reflectance = reflectance + specular_albedo(s.specular.rgb, s.specular.a, cos_s);
+        }
+        sum = sum + reflectance / PI * inc.irradiance * cos_s * shadow_factor(frame, light, p, n, inc.distance);
+    }
+    return sum;
+}
 
 // Whether the camera sees p: it lies no farther than the farthest of the 2x2 panorama texels
 // around its direction (plus the tolerance). A point no face holds counts as seen.
@@ -90,8 +117,11 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
         radiance[index] = vec4<f32>(0.0);
         return;
     }
-    senders[index] = Sender(s.point, s.normal, s.albedo);
-    // Diffuse: albedo / pi x the shadowed irradiance of every light, plus the emission.
-    let light = s.albedo.rgb / PI * shadowed_irradiance(frame, s.point.xyz, s.normal.xyz) + s.emission.rgb;
+    var reflectance = s.albedo.rgb;
+    if any(s.specular.rgb > vec3<f32>(0.0)) {
+        reflectance = reflectance + specular_albedo_diffuse(s.specular.rgb, s.specular.a);
+    }
+    senders[index] = Sender(s.point, s.normal, vec4<f32>(reflectance, 0.0));
+    let light = direct_exitance(s) + s.emission.rgb;
     radiance[index] = vec4<f32>(light, 0.0);
 }

@@ -2,7 +2,11 @@
 // "Multi-bounce computation"): the start level's outgoing radiance as the box average of the
 // view's 2^s x 2^s blocks, coarser levels by 2x2 box averages (the paper does not say how it
 // reduces illumination; depth and normal are voted in `render/pyramid.wgsl`), a later bounce's
-// start level as albedo x the previous bounce's E / pi, and the sum of two levels (bounces).
+// start level as reflectance x the previous bounce's E / pi, and the sum of two levels (bounces).
+// The start level's senders are diffuse: the first bounce's send the lighting pass's `exitance`
+// (a glossy lobe's share of the light in every direction), later bounces' their reflectance,
+// albedo + the lobe's share of diffuse light (`reflectance_seed`).
+#import common/brdf.wgsl
 
 struct MipParams {
     // block side (2^s, `box_seed`), unused x3.
@@ -34,6 +38,35 @@ fn box_seed(@builtin(global_invocation_id) id: vec3<u32>) {
             let w = textureLoad(b_tex, q, 0).a;
             sum = sum + textureLoad(a_tex, q, 0).rgb * w;
             covered = covered + w;
+        }
+    }
+    textureStore(dest, id.xy, vec4<f32>(sum / max(covered, 1.0e-6), covered / f32(n * n)));
+}
+
+// dest = the mean of the senders' reflectance over a block of side counts.x texels, as
+// `box_seed`: albedo (a, alpha its coverage) + what the glossy lobe (b: the G-buffer's specular
+// colour and roughness) reflects of diffuse light; alpha = the coverage.
+@compute @workgroup_size(8, 8, 1)
+fn reflectance_seed(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(dest);
+    if id.x >= size.x || id.y >= size.y {
+        return;
+    }
+    let n = mp.counts.x;
+    let src = textureDimensions(a_tex);
+    var sum = vec3<f32>(0.0);
+    var covered = 0.0;
+    for (var y = 0u; y < n; y = y + 1u) {
+        for (var x = 0u; x < n; x = x + 1u) {
+            let q = min(id.xy * n + vec2<u32>(x, y), src - 1u);
+            let albedo = textureLoad(a_tex, q, 0);
+            let mat = textureLoad(b_tex, q, 0);
+            var reflectance = albedo.rgb;
+            if any(mat.rgb > vec3<f32>(0.0)) {
+                reflectance = reflectance + specular_albedo_diffuse(mat.rgb, mat.a);
+            }
+            sum = sum + reflectance * albedo.a;
+            covered = covered + albedo.a;
         }
     }
     textureStore(dest, id.xy, vec4<f32>(sum / max(covered, 1.0e-6), covered / f32(n * n)));

@@ -2,11 +2,13 @@
 // low-resolution cube G-buffer around the camera, lit by the same direct-light pass as the view,
 // turned into senders: per texel its world point, the area ds it stands for (a cube texel's solid
 // angle, (2/F)^2 / (1 + u^2 + v^2)^(3/2), times distance^2 over the tilt), its geometric normal and
-// outgoing radiance (the first bounce's sender radiance; later bounces' come from
-// `sshgi_panorama_receive.wgsl`) and albedo. A texel inside the view's frustum is left out
+// outgoing radiance (the first bounce's sender radiance, the lighting pass's `exitance`: a
+// glossy lobe's share of the light sent in every direction; later bounces' come from
+// `sshgi_panorama_receive.wgsl`) and reflectance (albedo + the lobe's share of diffuse light). A texel inside the view's frustum is left out
 // (ds = 0): the view shows it, and the screen's own gathers send it.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
+#import common/brdf.wgsl
 
 struct PackParams {
     // face index, face size F (texels), unused x2.
@@ -28,6 +30,8 @@ struct PackParams {
 // Every face texel's distance to its surface (1e30 where it sees none): what the camera sees
 // around it, for the hidden senders' test (`sshgi_hidden_pack.wgsl`).
 @group(0) @binding(9) var<storage, read_write> distances: array<f32>;
+// The faces' specular colour and roughness (the G-buffer's material target).
+@group(0) @binding(10) var face_material: texture_2d<f32>;
 
 // Whether the view shows the point p: whether it lies inside the view's frustum. The faces are
 // rendered from the view's own centre of projection, so what a face sees inside that frustum is
@@ -63,8 +67,12 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
             let uv = (vec2<f32>(id.xy) + 0.5) / f32(f) * 2.0 - 1.0;
             let solid_angle = 4.0 / f32(f * f) / pow(1.0 + dot(uv, uv), 1.5);
             let ds = solid_angle * dist * dist / max(dot(n, -dir), 0.05);
-            let albedo = textureLoad(face_albedo, id.xy, 0).rgb;
-            sender = Sender(vec4<f32>(p.xyz, ds), vec4<f32>(n, 0.0), vec4<f32>(albedo, 0.0));
+            let mat = textureLoad(face_material, id.xy, 0);
+            var reflectance = textureLoad(face_albedo, id.xy, 0).rgb;
+            if any(mat.rgb > vec3<f32>(0.0)) {
+                reflectance = reflectance + specular_albedo_diffuse(mat.rgb, mat.a);
+            }
+            sender = Sender(vec4<f32>(p.xyz, ds), vec4<f32>(n, 0.0), vec4<f32>(reflectance, 0.0));
             light = vec4<f32>(textureLoad(face_direct, id.xy, 0).rgb, 0.0);
         }
     }

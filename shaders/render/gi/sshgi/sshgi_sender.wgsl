@@ -5,6 +5,7 @@ struct Sender {
     point: vec4<f32>,
     // xyz geometric normal, w unused.
     normal: vec4<f32>,
-    // rgb albedo, a unused.
+    // rgb reflectance as a diffuse sender (albedo + a glossy lobe's share of diffuse light,
+    // precompute::brdf::specular_albedo_diffuse), a unused.
     albedo: vec4<f32>,
 }

@@ -45,6 +45,8 @@ pub struct GpuSurfel {
     pub albedo: [f32; 4],
     /// Emitted radiance (W / (sr m^2)), unused.
     pub emission: [f32; 4],
+    /// Specular colour (zero: no glossy lobe), roughness.
+    pub specular: [f32; 4],
 }
 
 /// `HiddenParams` in `sshgi_hidden_pack.wgsl`.
@@ -60,7 +62,7 @@ pub struct HiddenParams {
     pub tolerance: [f32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<GpuSurfel>() == 64);
+const _: () = assert!(std::mem::size_of::<GpuSurfel>() == 80);
 const _: () = assert!(std::mem::size_of::<HiddenParams>() == 416);
 
 /// What a distribution of points was made from (as the ISM's: geometry, weights, scale).
@@ -300,6 +302,7 @@ pub fn surfels(scene: &Scene, points: &SamplePoints) -> Vec<GpuSurfel> {
                 normal: normal.extend(0.0).to_array(),
                 albedo: albedo.extend(0.0).to_array(),
                 emission: emission.extend(0.0).to_array(),
+                specular: Vec3::from_array(material.specular).extend(material.roughness).to_array(),
             }
         })
         .collect()

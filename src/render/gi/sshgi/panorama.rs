@@ -165,6 +165,7 @@ impl Panorama {
                 storage_rw_entry(7),
                 texture_entry(8, c, float),
                 storage_rw_entry(9),
+                texture_entry(10, c, float),
             ],
         });
         let module = shaders::module(device, "render/gi/sshgi/sshgi_panorama_pack.wgsl")?;
@@ -364,11 +365,12 @@ fn face_groups(
             wgpu::BindGroupEntry { binding: 2, resource: face.params.as_entire_binding() },
             view(3, &face.targets.depth.view),
             view(4, &face.targets.normal.view),
-            view(5, &face.targets.direct.view),
+            view(5, &face.targets.exitance.view),
             wgpu::BindGroupEntry { binding: 6, resource: senders.as_entire_binding() },
             wgpu::BindGroupEntry { binding: 7, resource: radiance.as_entire_binding() },
             view(8, &face.targets.albedo.view),
             wgpu::BindGroupEntry { binding: 9, resource: distances.as_entire_binding() },
+            view(10, &face.targets.material.view),
         ],
     });
     (lighting, pack)

@@ -192,7 +192,8 @@ struct Sized {
     gathered: Vec<Target>,
     /// Per level below the coarsest: the up-sampled sum Acc_k (the last bounce's).
     summed: Vec<Target>,
-    /// Start level: the view's albedo, box-averaged.
+    /// Start level: the view's reflectance as a diffuse sender (albedo + the glossy lobe's share
+    /// of diffuse light), box-averaged.
     albedo: Target,
     /// Start level: each bounce's E / pi.
     bounce: Vec<Target>,
@@ -228,6 +229,7 @@ pub struct SshgiPasses {
     /// The tail's sums, ratio and add ([`tail`]).
     tail: [wgpu::ComputePipeline; 3],
     box_seed: wgpu::ComputePipeline,
+    reflectance_seed: wgpu::ComputePipeline,
     reduce: wgpu::ComputePipeline,
     product: wgpu::ComputePipeline,
     add: wgpu::ComputePipeline,
@@ -257,8 +259,10 @@ pub struct SshgiPasses {
 #[derive(PartialEq)]
 struct Inputs {
     pyramid: Vec<wgpu::TextureView>,
-    direct: wgpu::TextureView,
+    /// The direct term as diffuse senders send it (the first bounce's senders).
+    exitance: wgpu::TextureView,
     albedo: wgpu::TextureView,
+    material: wgpu::TextureView,
     out: wgpu::TextureView,
     voxels: wgpu::Buffer,
     frame: wgpu::Buffer,
@@ -274,6 +278,7 @@ struct Inputs {
 #[derive(Clone, Copy)]
 enum Pipe {
     BoxSeed,
+    ReflectanceSeed,
     Reduce,
     Product,
     Add,
@@ -386,6 +391,7 @@ impl SshgiPasses {
             tail_layout,
             tail,
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
+            reflectance_seed: compute_pipeline(device, "sshgi reflectance seed", &mip_layout, &mip, "reflectance_seed"),
             reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
             product: compute_pipeline(device, "sshgi product", &mip_layout, &mip, "product"),
             add: compute_pipeline(device, "sshgi add", &mip_layout, &mip, "add"),
@@ -469,8 +475,9 @@ impl SshgiPasses {
         self.ensure(inputs.device, plan);
         let key = Inputs {
             pyramid: pyramid.iter().map(|t| t.view.clone()).collect(),
-            direct: inputs.targets.direct.view.clone(),
+            exitance: inputs.targets.exitance.view.clone(),
             albedo: inputs.targets.albedo.view.clone(),
+            material: inputs.targets.material.view.clone(),
             out: out.view.clone(),
             voxels: visibility.map_or(&self.no_voxels, |v| v.columns).clone(),
             frame: inputs.frame_buffer.clone(),
@@ -498,6 +505,7 @@ impl SshgiPasses {
             let Some((_, pass)) = open.as_mut() else { return };
             pass.set_pipeline(match step.pipeline {
                 Pipe::BoxSeed => &self.box_seed,
+                Pipe::ReflectanceSeed => &self.reflectance_seed,
                 Pipe::Reduce => &self.reduce,
                 Pipe::Product => &self.product,
                 Pipe::Add => &self.add,

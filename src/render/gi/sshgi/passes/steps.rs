@@ -187,20 +187,21 @@ impl<'a> StepBuilder<'a> {
         });
     }
 
-    /// Illumination levels: the direct term (first bounce; plus albedo x the sky's E / pi when
-    /// the sky pass runs) or albedo x the previous bounce's E / pi, then 2x2 box averages.
+    /// Illumination levels: the direct term as diffuse senders send it (first bounce; plus
+    /// reflectance x the sky's E / pi when the sky pass runs) or reflectance x the previous
+    /// bounce's E / pi, then 2x2 box averages.
     fn illumination(&mut self, b: usize, first: bool) {
         let (s, key) = (self.s, self.key);
         let illumination = &s.illumination[0];
         let pass = self.pass(b, "sshgi illumination");
         if first {
-            // The start level's albedo, for the sky-lit senders and the later bounces.
-            let g = self.mip_group(&key.albedo, &key.albedo, &s.albedo.view);
-            self.step(pass.clone(), Pipe::BoxSeed, g, 0, &s.albedo);
+            // The start level's reflectance, for the sky-lit senders and the later bounces.
+            let g = self.mip_group(&key.albedo, &key.material, &s.albedo.view);
+            self.step(pass.clone(), Pipe::ReflectanceSeed, g, 0, &s.albedo);
         }
         match (&s.sky, first) {
             (Some([sky, lit, direct]), true) => {
-                let g = self.mip_group(&key.direct, &key.albedo, &direct.view);
+                let g = self.mip_group(&key.exitance, &key.albedo, &direct.view);
                 self.step(pass.clone(), Pipe::BoxSeed, g, 0, direct);
                 let g = self.mip_group(&s.albedo.view, &sky.view, &lit.view);
                 self.step(pass.clone(), Pipe::Product, g, 1, lit);
@@ -208,7 +209,7 @@ impl<'a> StepBuilder<'a> {
                 self.step(pass.clone(), Pipe::AddLit, g, 1, illumination);
             }
             (None, true) => {
-                let g = self.mip_group(&key.direct, &key.albedo, &illumination.view);
+                let g = self.mip_group(&key.exitance, &key.albedo, &illumination.view);
                 self.step(pass.clone(), Pipe::BoxSeed, g, 0, illumination);
             }
             (_, false) => {
