@@ -18,19 +18,32 @@ fn brdf_eval(albedo: vec3<f32>, specular: vec3<f32>, roughness: f32, n: vec3<f32
     return f;
 }
 
-// The lobe's directional albedo (precompute::brdf::specular_albedo): the share of the irradiance
-// arriving at cos_l that the lobe reflects over the hemisphere, fitted as g + (1 - g) cos_l^p
-// with g = 1 / (1 + e / 0.9), p = 2e / (e + 4); within 0.08 of the integral for every exponent.
-fn specular_albedo(specular: vec3<f32>, roughness: f32, cos_l: f32) -> vec3<f32> {
-    let e = phong_exponent(roughness);
-    let g = 1.0 / (1.0 + e / 0.9);
-    return specular * (g + (1.0 - g) * pow(clamp(cos_l, 1.0e-6, 1.0), 2.0 * e / (e + 4.0)));
+// Whether a material has a glossy lobe.
+fn has_lobe(specular: vec3<f32>) -> bool {
+    return any(specular > vec3<f32>(0.0));
 }
 
-// Its mean under uniform incident radiance, g + (1 - g) 2 / (p + 2)
-// (precompute::brdf::specular_albedo_diffuse): what the lobe reflects of diffuse light.
-fn specular_albedo_diffuse(specular: vec3<f32>, roughness: f32) -> vec3<f32> {
+// The fit of the lobe's directional albedo (precompute::brdf::albedo_fit): its floor g at
+// grazing light and the power p of cos_l above it, for roughness `roughness`.
+fn albedo_fit(roughness: f32) -> vec2<f32> {
     let e = phong_exponent(roughness);
-    let g = 1.0 / (1.0 + e / 0.9);
-    return specular * (g + (1.0 - g) * 2.0 / (2.0 * e / (e + 4.0) + 2.0));
+    return vec2<f32>(1.0 / (1.0 + e / 0.9), 2.0 * e / (e + 4.0));
+}
+
+// The lobe's directional albedo (precompute::brdf::specular_albedo): the share of the irradiance
+// arriving at cos_l that the lobe reflects over the hemisphere, g + (1 - g) cos_l^p; within 0.08
+// of the integral for roughness 0.2-1 (exponents up to 1248).
+fn specular_albedo(specular: vec3<f32>, roughness: f32, cos_l: f32) -> vec3<f32> {
+    let f = albedo_fit(roughness);
+    return specular * (f.x + (1.0 - f.x) * pow(clamp(cos_l, 1.0e-6, 1.0), f.y));
+}
+
+// A surface's reflectance as a diffuse sender under uniform incident light: albedo + the lobe's
+// mean directional albedo, g + (1 - g) 2 / (p + 2) (precompute::brdf::specular_albedo_diffuse).
+fn sender_reflectance(albedo: vec3<f32>, specular: vec3<f32>, roughness: f32) -> vec3<f32> {
+    if !has_lobe(specular) {
+        return albedo;
+    }
+    let f = albedo_fit(roughness);
+    return albedo + specular * (f.x + (1.0 - f.x) * 2.0 / (f.y + 2.0));
 }

@@ -74,18 +74,25 @@ fn shadow_factor(frame: Frame, light: GpuLight, p: vec3<f32>, n_geo: vec3<f32>, 
     return sum / taps;
 }
 
+// Light i's shadowed irradiance (rgb) at p on the front of a surface with geometric normal n,
+// and the cosine of its incidence there (w); zero where it adds nothing (one-sided: a light
+// behind n, or no light).
+fn shadowed_light(frame: Frame, i: u32, p: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    let light = lights[i];
+    let inc = light_incident(light, p);
+    let cos_s = dot(n, inc.dir);
+    if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(inc.irradiance * cos_s * shadow_factor(frame, light, p, n, inc.distance), cos_s);
+}
+
 // The shadowed irradiance at p on the front of a surface with geometric normal n from every light
-// of the frame (one-sided: a light behind n adds nothing): what a diffuse point there receives.
+// of the frame: what a diffuse point there receives.
 fn shadowed_irradiance(frame: Frame, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     var e = vec3<f32>(0.0);
     for (var i = 0u; i < frame.params.x; i = i + 1u) {
-        let light = lights[i];
-        let inc = light_incident(light, p);
-        let cos_s = dot(n, inc.dir);
-        if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
-            continue;
-        }
-        e = e + inc.irradiance * cos_s * shadow_factor(frame, light, p, n, inc.distance);
+        e = e + shadowed_light(frame, i, p, n).rgb;
     }
     return e;
 }

@@ -30,7 +30,7 @@
 @group(1) @binding(3) var material_tex: texture_2d<f32>;
 @group(1) @binding(4) var out_radiance: texture_storage_2d<rgba32float, write>;
 @group(1) @binding(5) var emission_tex: texture_2d<f32>;
-@group(1) @binding(6) var out_exitance: texture_storage_2d<rgba16float, write>;
+@group(1) @binding(6) var out_exitance: texture_storage_2d<rgba32float, write>;
 
 #import common/shadow.wgsl
 
@@ -59,7 +59,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let v = normalize(frame.camera_position.xyz - p);
     var radiance = textureLoad(emission_tex, pixel, 0).rgb;
     var exitance = radiance;
-    let glossy = any(mat.rgb > vec3<f32>(0.0));
+    let glossy = has_lobe(mat.rgb);
     for (var i = 0u; i < frame.params.x; i = i + 1u) {
         let light = lights[i];
         let inc = light_incident(light, p);

@@ -23,7 +23,7 @@ fn albedo_fit(exponent: f32) -> (f32, f32) {
 /// The lobe's directional albedo: the share of the irradiance arriving at `cos_l` that the
 /// Blinn-Phong lobe (without `specular`) reflects over the hemisphere, fitted as
 /// `g + (1 - g) cos_l^p` ([`albedo_fit`]; matches `specular_albedo` in WGSL), within 0.08 of the
-/// integral for every exponent (`the_fitted_albedo_follows_the_lobes_integral`).
+/// integral for roughness 0.2-1, exponents up to 1248 (`the_fitted_albedo_follows_the_lobes_integral`).
 pub fn specular_albedo(exponent: f32, cos_l: f32) -> f32 {
     let (g, p) = albedo_fit(exponent);
     g + (1.0 - g) * cos_l.clamp(0.0, 1.0).powf(p)
@@ -112,7 +112,7 @@ mod tests {
     fn lobe_albedo(exponent: f32, theta: f32) -> f32 {
         let s = Surface { albedo: Vec3::ZERO, specular: Vec3::ONE, exponent, n: Vec3::Z };
         let l = Vec3::new(theta.sin(), 0.0, theta.cos());
-        let (rows, cols) = (400, 800);
+        let (rows, cols) = (300, 600);
         let (dt, dp) = (0.5 * PI / rows as f32, 2.0 * PI / cols as f32);
         let mut sum = 0.0f64;
         for i in 0..rows {
@@ -131,7 +131,7 @@ mod tests {
         for roughness in [1.0, 0.7, 0.5, 0.4, 0.3, 0.2] {
             let e = phong_exponent(roughness);
             let (mut mean_fit, mut mean_true) = (0.0, 0.0);
-            let steps = 24;
+            let steps = 12;
             for k in 0..steps {
                 let c = (k as f32 + 0.5) / steps as f32;
                 let (fit, truth) = (specular_albedo(e, c), lobe_albedo(e, c.acos()));

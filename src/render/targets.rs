@@ -1,5 +1,6 @@
-//! The per-view render targets: the G-buffer, the direct term, the GI technique's indirect
-//! term, the linear HDR image and the tonemapped display image. Recreated on resize.
+//! The per-view render targets: the G-buffer, the direct term (and its exitance, what a diffuse
+//! sender sends), the GI technique's indirect term, the linear HDR image and the tonemapped display
+//! image. Recreated on resize.
 //!
 //! G-buffer packing (see `shaders/render/gbuffer.wgsl`):
 //! - `albedo` Rgba16Float: linear albedo (8-bit storage would cost up to 2.6% error on dark
@@ -22,7 +23,7 @@ pub mod formats {
     pub const MOTION: wgpu::TextureFormat = wgpu::TextureFormat::Rg16Float;
     pub const OBJECT_ID: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
     pub const EMISSION: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-    pub const EXITANCE: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+    pub const EXITANCE: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
     pub const DEPTH: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
     pub const HDR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
     pub const LDR: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
@@ -72,7 +73,8 @@ pub struct ViewTargets {
     /// Shadowed direct radiance (the lighting pass); GI techniques may read it.
     pub direct: Target,
     /// The direct term as a diffuse sender sends it (the lighting pass): radiant exitance / pi,
-    /// the glossy lobe's share in every direction instead of towards the camera.
+    /// the glossy lobe's share in every direction instead of towards the camera; f32 like
+    /// `direct` (16 bytes a pixel), so the two agree to float rounding where there is no lobe.
     pub exitance: Target,
     /// Indirect light written by the active GI technique; what it holds (E / pi, outgoing
     /// radiance, the whole image) is the technique's `GiOutput` for the frame.

@@ -50,7 +50,7 @@ pub const FRAME_BUFFERS: &[BufferInfo] = &[
     BufferInfo {
         name: "exitance",
         description: "The direct light as a diffuse sender sends it: emission + (albedo + the glossy lobe's directional albedo) / pi x irradiance (what sshgi's screen senders send).",
-        format: "rgba16f",
+        format: "rgba32f",
         view: BufferView::Colour,
     },
     BufferInfo {

@@ -57,24 +57,16 @@ struct Surfel {
 
 // The direct light the surfel sends as a diffuse sender: (albedo + the lobe's directional albedo
 // at each light's incidence) / pi x that light's shadowed irradiance, as the lighting pass's
-// `exitance` (one-sided: a light behind the normal adds nothing).
+// `exitance`.
 fn direct_exitance(s: Surfel) -> vec3<f32> {
-    let p = s.point.xyz;
-    let n = s.normal.xyz;
-    let glossy = any(s.specular.rgb > vec3<f32>(0.0));
+    if !has_lobe(s.specular.rgb) {
+        return s.albedo.rgb / PI * shadowed_irradiance(frame, s.point.xyz, s.normal.xyz);
+    }
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < frame.params.x; i = i + 1u) {
-        let light = lights[i];
-        let inc = light_incident(light, p);
-        let cos_s = dot(n, inc.dir);
-        if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
-            continue;
-        }
-        var reflectance = s.albedo.rgb;
-        if glossy {
-            reflectance = reflectance + specular_albedo(s.specular.rgb, s.specular.a, cos_s);
-        }
-        sum = sum + reflectance / PI * inc.irradiance * cos_s * shadow_factor(frame, light, p, n, inc.distance);
+        let lit = shadowed_light(frame, i, s.point.xyz, s.normal.xyz);
+        let reflectance = s.albedo.rgb + specular_albedo(s.specular.rgb, s.specular.a, lit.w);
+        sum = sum + reflectance / PI * lit.rgb;
     }
     return sum;
 }
@@ -117,10 +109,7 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
         radiance[index] = vec4<f32>(0.0);
         return;
     }
-    var reflectance = s.albedo.rgb;
-    if any(s.specular.rgb > vec3<f32>(0.0)) {
-        reflectance = reflectance + specular_albedo_diffuse(s.specular.rgb, s.specular.a);
-    }
+    let reflectance = sender_reflectance(s.albedo.rgb, s.specular.rgb, s.specular.a);
     senders[index] = Sender(s.point, s.normal, vec4<f32>(reflectance, 0.0));
     let light = direct_exitance(s) + s.emission.rgb;
     radiance[index] = vec4<f32>(light, 0.0);

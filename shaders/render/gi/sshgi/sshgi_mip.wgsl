@@ -9,7 +9,7 @@
 #import common/brdf.wgsl
 
 struct MipParams {
-    // block side (2^s, `box_seed`), unused x3.
+    // block side (2^s, `box_seed`, `reflectance_seed`), unused x3.
     counts: vec4<u32>,
 }
 
@@ -18,58 +18,53 @@ struct MipParams {
 @group(0) @binding(2) var b_tex: texture_2d<f32>;
 @group(0) @binding(3) var dest: texture_storage_2d<rgba32float, write>;
 
-// dest = the mean of a's block of side counts.x texels (clamped at a's border) over the texels
-// that hold geometry (b's alpha: the G-buffer albedo's coverage), alpha = that coverage. The
-// depth and normal levels take a surface by vote, so a texel on a silhouette must carry that
-// surface's light, not a mean with the empty background.
+// The mean over the block of side counts.x texels at `id` (clamped at a's border) of the texels
+// that hold geometry, alpha = their coverage: of a's colour weighted by b's alpha (the G-buffer
+// albedo's coverage), or with `reflectance` of the senders' reflectance, albedo (a, alpha its
+// coverage) + what the glossy lobe (b: the G-buffer's specular colour and roughness) reflects of
+// diffuse light. The depth and normal levels take a surface by vote, so a texel on a silhouette
+// must carry that surface's light, not a mean with the empty background.
+fn block_mean(id: vec2<u32>, reflectance: bool) -> vec4<f32> {
+    let n = mp.counts.x;
+    let src = textureDimensions(a_tex);
+    var sum = vec3<f32>(0.0);
+    var covered = 0.0;
+    for (var y = 0u; y < n; y = y + 1u) {
+        for (var x = 0u; x < n; x = x + 1u) {
+            let q = min(id * n + vec2<u32>(x, y), src - 1u);
+            let a = textureLoad(a_tex, q, 0);
+            let b = textureLoad(b_tex, q, 0);
+            var value = a.rgb;
+            var w = b.a;
+            if reflectance {
+                value = sender_reflectance(a.rgb, b.rgb, b.a);
+                w = a.a;
+            }
+            sum = sum + value * w;
+            covered = covered + w;
+        }
+    }
+    return vec4<f32>(sum / max(covered, 1.0e-6), covered / f32(n * n));
+}
+
+// dest = a's block mean (the start level's light).
 @compute @workgroup_size(8, 8, 1)
 fn box_seed(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = textureDimensions(dest);
     if id.x >= size.x || id.y >= size.y {
         return;
     }
-    let n = mp.counts.x;
-    let src = textureDimensions(a_tex);
-    var sum = vec3<f32>(0.0);
-    var covered = 0.0;
-    for (var y = 0u; y < n; y = y + 1u) {
-        for (var x = 0u; x < n; x = x + 1u) {
-            let q = min(id.xy * n + vec2<u32>(x, y), src - 1u);
-            let w = textureLoad(b_tex, q, 0).a;
-            sum = sum + textureLoad(a_tex, q, 0).rgb * w;
-            covered = covered + w;
-        }
-    }
-    textureStore(dest, id.xy, vec4<f32>(sum / max(covered, 1.0e-6), covered / f32(n * n)));
+    textureStore(dest, id.xy, block_mean(id.xy, false));
 }
 
-// dest = the mean of the senders' reflectance over a block of side counts.x texels, as
-// `box_seed`: albedo (a, alpha its coverage) + what the glossy lobe (b: the G-buffer's specular
-// colour and roughness) reflects of diffuse light; alpha = the coverage.
+// dest = the senders' reflectance, block mean (the start level's, for later bounces).
 @compute @workgroup_size(8, 8, 1)
 fn reflectance_seed(@builtin(global_invocation_id) id: vec3<u32>) {
     let size = textureDimensions(dest);
     if id.x >= size.x || id.y >= size.y {
         return;
     }
-    let n = mp.counts.x;
-    let src = textureDimensions(a_tex);
-    var sum = vec3<f32>(0.0);
-    var covered = 0.0;
-    for (var y = 0u; y < n; y = y + 1u) {
-        for (var x = 0u; x < n; x = x + 1u) {
-            let q = min(id.xy * n + vec2<u32>(x, y), src - 1u);
-            let albedo = textureLoad(a_tex, q, 0);
-            let mat = textureLoad(b_tex, q, 0);
-            var reflectance = albedo.rgb;
-            if any(mat.rgb > vec3<f32>(0.0)) {
-                reflectance = reflectance + specular_albedo_diffuse(mat.rgb, mat.a);
-            }
-            sum = sum + reflectance * albedo.a;
-            covered = covered + albedo.a;
-        }
-    }
-    textureStore(dest, id.xy, vec4<f32>(sum / max(covered, 1.0e-6), covered / f32(n * n)));
+    textureStore(dest, id.xy, block_mean(id.xy, true));
 }
 
 // dest = the mean of a's 2x2 children weighted by their coverage (alpha), alpha = its mean.

@@ -4,8 +4,9 @@
 // angle, (2/F)^2 / (1 + u^2 + v^2)^(3/2), times distance^2 over the tilt), its geometric normal and
 // outgoing radiance (the first bounce's sender radiance, the lighting pass's `exitance`: a
 // glossy lobe's share of the light sent in every direction; later bounces' come from
-// `sshgi_panorama_receive.wgsl`) and reflectance (albedo + the lobe's share of diffuse light). A texel inside the view's frustum is left out
-// (ds = 0): the view shows it, and the screen's own gathers send it.
+// `sshgi_panorama_receive.wgsl`) and reflectance (albedo + the lobe's share of diffuse light).
+// A texel inside the view's frustum is left out (ds = 0): the view shows it, and the screen's
+// own gathers send it.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/brdf.wgsl
@@ -22,7 +23,7 @@ struct PackParams {
 @group(0) @binding(2) var<uniform> pp: PackParams;
 @group(0) @binding(3) var face_depth: texture_depth_2d;
 @group(0) @binding(4) var face_normal: texture_2d<f32>;
-@group(0) @binding(5) var face_direct: texture_2d<f32>;
+@group(0) @binding(5) var face_exitance: texture_2d<f32>;
 @group(0) @binding(6) var<storage, read_write> senders: array<Sender>;
 // The senders' outgoing radiance of the first bounce (rgb).
 @group(0) @binding(7) var<storage, read_write> radiance: array<vec4<f32>>;
@@ -68,12 +69,9 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
             let solid_angle = 4.0 / f32(f * f) / pow(1.0 + dot(uv, uv), 1.5);
             let ds = solid_angle * dist * dist / max(dot(n, -dir), 0.05);
             let mat = textureLoad(face_material, id.xy, 0);
-            var reflectance = textureLoad(face_albedo, id.xy, 0).rgb;
-            if any(mat.rgb > vec3<f32>(0.0)) {
-                reflectance = reflectance + specular_albedo_diffuse(mat.rgb, mat.a);
-            }
+            let reflectance = sender_reflectance(textureLoad(face_albedo, id.xy, 0).rgb, mat.rgb, mat.a);
             sender = Sender(vec4<f32>(p.xyz, ds), vec4<f32>(n, 0.0), vec4<f32>(reflectance, 0.0));
-            light = vec4<f32>(textureLoad(face_direct, id.xy, 0).rgb, 0.0);
+            light = vec4<f32>(textureLoad(face_exitance, id.xy, 0).rgb, 0.0);
         }
     }
     senders[index] = sender;

@@ -1,5 +1,5 @@
 // sshgi panorama, receive (an extension of Soler et al. 2010, not in the paper): the panorama's
-// senders' outgoing radiance of the next bounce, albedo x E / pi, where E comes from this
+// senders' outgoing radiance of the next bounce, reflectance x E / pi, where E comes from this
 // bounce's senders on screen (N start-level texels, one per stratum, each with the texel area of
 // the screen gathers' Eq. 2) and in the panorama (N senders, `gather_senders`). So light that
 // leaves the screen, lights a surface off screen and comes back reaches the view in the later
@@ -72,5 +72,5 @@ fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
     let hidden = index >= hidden_from();
     let e = gather_screen(s.point.xyz, s.normal.xyz, jitter, hidden)
         + gather_senders(s.point.xyz, s.normal.xyz, fract(jitter + 0.5), hidden);
-    next[index] = vec4<f32>(s.albedo.rgb * e, 0.0);
+    next[index] = vec4<f32>(s.reflectance.rgb * e, 0.0);
 }

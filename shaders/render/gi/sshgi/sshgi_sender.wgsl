@@ -6,6 +6,6 @@ struct Sender {
     // xyz geometric normal, w unused.
     normal: vec4<f32>,
     // rgb reflectance as a diffuse sender (albedo + a glossy lobe's share of diffuse light,
-    // precompute::brdf::specular_albedo_diffuse), a unused.
-    albedo: vec4<f32>,
+    // `sender_reflectance`), a unused.
+    reflectance: vec4<f32>,
 }

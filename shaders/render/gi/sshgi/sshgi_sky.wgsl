@@ -13,10 +13,10 @@
 // (Open where it merely crossed a column showing the sky, the window room read 1.53 of the path
 // tracer's energy: rays inside the room cross the window's columns in front of it.)
 // With cosine sampling E / pi = the mean of L over the rays. `sky_light` writes E / pi of the
-// start level (the first bounce's illumination adds albedo x it to the direct term: the sky-lit
-// surfaces send light too); `sender_sky` adds albedo x E / pi to the panorama's senders' first
-// radiance (a wall behind the camera lit by the sky through a window in view): their rays are
-// marched from where they enter the view, the way there taken as free.
+// start level (the first bounce's illumination adds reflectance x it to the direct term: the
+// sky-lit surfaces send light too); `sender_sky` adds reflectance x E / pi to the panorama's
+// senders' first radiance (a wall behind the camera lit by the sky through a window in view):
+// their rays are marched from where they enter the view, the way there taken as free.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/onb.wgsl
@@ -259,7 +259,7 @@ fn sky_through_world(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitt
 }
 
 // The panorama's and the hidden senders (F per row, one per thread): their first radiance gains
-// albedo x E / pi, from rays walked through the world grid where there is one; otherwise through
+// reflectance x E / pi, from rays walked through the world grid where there is one; otherwise through
 // the view's voxels from where they enter the view (a hidden sender inside the view skips its own
 // columns, as a point on screen).
 @compute @workgroup_size(8, 8, 1)
@@ -282,5 +282,5 @@ fn sender_sky(@builtin(global_invocation_id) id: vec3<u32>) {
     } else {
         e = sky_irradiance(s.point.xyz, s.normal.xyz, max(gp.counts.x, 1u), rotation, jitter, skip);
     }
-    sender_radiance[index] = sender_radiance[index] + vec4<f32>(s.albedo.rgb * e, 0.0);
+    sender_radiance[index] = sender_radiance[index] + vec4<f32>(s.reflectance.rgb * e, 0.0);
 }

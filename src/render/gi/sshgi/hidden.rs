@@ -8,7 +8,8 @@
 //!
 //! Each frame `sshgi_hidden_pack.wgsl` tests this frame's block against the panorama's distances
 //! (a point the camera sees is left to the screen and the panorama), lights the hidden points with
-//! the view's lights and shadow maps (diffuse) and their emission, and writes them after the
+//! the view's lights and shadow maps (as diffuse senders: a glossy lobe's share of the light too,
+//! spread over the hemisphere) and their emission, and writes them after the
 //! panorama's senders into its list: the gathers and receives then treat them as senders like
 //! the panorama's, with one difference, visibility: their segments are marched through the view's
 //! voxels, and where a segment leaves the view through the world grid of surface voxels
@@ -209,7 +210,7 @@ impl HiddenSenders {
     }
 
     /// Draws the points when the geometry, weights or count changed, and places them in the
-    /// world (with their albedo and emission) when the scene changed.
+    /// world (with their albedo, glossy lobe and emission) when the scene changed.
     fn update(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene, per_frame: u32) {
         let key = PointsKey {
             resources: scene.resources_revision(),
@@ -266,7 +267,8 @@ impl HiddenSenders {
 }
 
 /// Each point in the world with the area it stands for (its object's sampled area over its
-/// points, over the blocks: each block covers the scene once), its albedo and its emission.
+/// points, over the blocks: each block covers the scene once), its albedo, glossy lobe and
+/// emission.
 pub fn surfels(scene: &Scene, points: &SamplePoints) -> Vec<GpuSurfel> {
     let objects = scene.objects();
     let counts = points.counts(objects.len());
@@ -323,7 +325,7 @@ mod tests {
     use crate::precompute::test_scenes;
 
     #[test]
-    fn each_block_of_points_stands_for_the_whole_surface_with_its_materials_albedo() {
+    fn each_block_of_points_stands_for_the_whole_surface_with_its_materials_albedo_and_lobe() {
         // A closed 4 x 3 x 4 m room of 0.2 m slabs (their outer faces see nothing and get no
         // points).
         let v = Vec3::new;
@@ -338,6 +340,11 @@ mod tests {
             ],
             vec![],
         );
+        // A glossy floor: its points carry the lobe.
+        let mut desc = scene.desc().clone();
+        desc.materials.push(crate::scene::Material { specular: [0.5, 0.4, 0.3], roughness: 0.3, ..Default::default() });
+        desc.objects[0].material = 1;
+        let scene = Scene::new(desc, scene.resources().clone()).expect("scene");
         let per_block = 512;
         let points = distribute(&scene, per_block * BLOCKS as usize, BLOCKS as usize, 7);
         let records = surfels(&scene, &points);
@@ -353,8 +360,11 @@ mod tests {
         }
         for (r, p) in records.iter().zip(&points.points) {
             let object = &scene.objects()[p.object as usize];
-            let albedo = scene.materials()[object.material].base_color;
+            let material = &scene.materials()[object.material];
+            let albedo = material.base_color;
             assert!((0..3).all(|c| (r.albedo[c] - albedo[c]).abs() < 1e-6), "{:?} vs {albedo:?}", r.albedo);
+            let lobe = [material.specular[0], material.specular[1], material.specular[2], material.roughness];
+            assert_eq!(r.specular, lobe, "the surfel carries its material's glossy lobe");
             let n = Vec3::from_slice(&r.normal[..3]);
             assert!((n.length() - 1.0).abs() < 1e-4);
         }

@@ -4,7 +4,7 @@
 //! and emission passes, lit by its direct-light pass (the same lights and shadow maps, and the
 //! emission: an emissive panel behind the camera sends its light), and packed
 //! (`sshgi_panorama_pack.wgsl`) into a list of senders: the surfaces around the camera that the
-//! view does not show, each with its point, area, normal, albedo and outgoing radiance. In every
+//! view does not show, each with its point, area, normal, reflectance and outgoing radiance. In every
 //! bounce the start level gathers N of them per texel (`sshgi_panorama_gather.wgsl`) beside
 //! the screen's own gathers, and the senders gather that bounce's light from the screen and
 //! from each other (`sshgi_panorama_receive.wgsl`) for their radiance of the next: light that
@@ -35,7 +35,7 @@ use crate::scene::{Camera, rotation_looking};
 /// The cube faces' view directions.
 const FACES: [Vec3; 6] = [Vec3::X, Vec3::NEG_X, Vec3::Y, Vec3::NEG_Y, Vec3::Z, Vec3::NEG_Z];
 
-/// Bytes of one sender (`Sender` in the WGSL: point and area, normal, albedo).
+/// Bytes of one sender (`Sender` in the WGSL: point and area, normal, reflectance).
 const SENDER_BYTES: u64 = 48;
 /// Bytes of one sender's radiance (rgb and a pad).
 const RADIANCE_BYTES: u64 = 16;

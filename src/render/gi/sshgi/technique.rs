@@ -23,7 +23,10 @@ const fn level(name: &'static str, description: &'static str) -> BufferInfo {
 /// The inspector's buffers: per gather level k (0 = the start level) its illumination, its
 /// gather and the up-sampled sum, and each bounce's E / pi.
 pub const BUFFERS: &[BufferInfo] = &[
-    level("sshgi_illumination_0", "outgoing radiance of the start level (box average of the direct term)"),
+    level(
+        "sshgi_illumination_0",
+        "outgoing radiance of the start level (box average of the direct term as diffuse senders send it, `exitance`)",
+    ),
     level("sshgi_illumination_1", "outgoing radiance of level 1 (2x2 box average)"),
     level("sshgi_illumination_2", "outgoing radiance of level 2"),
     level("sshgi_illumination_3", "outgoing radiance of level 3"),
@@ -39,7 +42,7 @@ pub const BUFFERS: &[BufferInfo] = &[
         "sshgi_screen_bounce",
         "first bounce's E / pi from the screen alone, before the panorama's senders join it (sshgi_bounce_1 minus this is their light)",
     ),
-    level("sshgi_bounce_2", "second bounce's E / pi (albedo x the first, gathered again)"),
+    level("sshgi_bounce_2", "second bounce's E / pi (reflectance x the first, gathered again)"),
     level("sshgi_bounce_3", "third bounce's E / pi"),
     level("sshgi_bounce_4", "fourth bounce's E / pi"),
     level(
@@ -327,7 +330,7 @@ impl GiTechnique for SshgiTechnique {
         let mut out = vec![
             senders.to_owned(),
             "indirect shadows come from a voxelisation of the view: occluders hidden behind others or off screen cast none, and meshes must be closed".to_owned(),
-            "senders are diffuse: they send the direct term's outgoing radiance".to_owned(),
+            "senders and receivers are diffuse: a glossy surface sends its lobe's share of the light spread over its hemisphere, and receives no glossy reflection of the bounce light".to_owned(),
         ];
         if emissive {
             out.push(

@@ -204,8 +204,8 @@ struct Sized {
     /// Start level, per bounce: the screen's own gather, before the panorama's senders join it
     /// (empty without the panorama).
     screen_bounce: Vec<Target>,
-    /// Start level, with the sky pass: the sky's E / pi, albedo x it, and the direct term's
-    /// box average before the sky-lit light joins it.
+    /// Start level, with the sky pass: the sky's E / pi, reflectance x it, and the direct
+    /// term's box average (as diffuse senders send it) before the sky-lit light joins it.
     sky: Option<[Target; 3]>,
     /// Which of `bounce[0]` and `sums` holds the bounces' sum (and the sky's).
     total: Total,
@@ -440,7 +440,7 @@ impl SshgiPasses {
             illumination: (0..plan.levels).map(|k| target("sshgi illumination", k)).collect(),
             gathered: (0..plan.levels).map(|k| target("sshgi gather", k)).collect(),
             summed: (0..plan.levels.saturating_sub(1)).map(|k| target("sshgi upsampled sum", k)).collect(),
-            albedo: target("sshgi albedo", 0),
+            albedo: target("sshgi sender reflectance", 0),
             bounce: (0..plan.bounces).map(|_| target("sshgi bounce", 0)).collect(),
             sums: [target("sshgi bounce sum", 0), target("sshgi bounce sum", 0)],
             unshadowed: plan.unshadowed.then(|| target("sshgi unshadowed bounce", 0)),
