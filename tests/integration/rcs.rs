@@ -408,3 +408,29 @@ fn rcs_records_see_emissive_surfaces_and_the_sky_and_renew_when_the_sky_changes(
         assert!(fr < 0.5 * fd, "sky x{sky}: rcs FLIP {fr:.4} is not below half of direct's {fd:.4}");
     }
 }
+
+/// A spot grazes a dark glossy floor (`common::glossy_cornell`): most of the floor's first-bounce
+/// light leaves it in its lobe, and the records' hemisphere renders must send it (as a diffuse
+/// sender: the lobe's directional albedo per light). One bounce finds 0.98 of the one-bounce
+/// reference's indirect light; with the floor sending its albedo alone it found 0.66.
+#[test]
+fn records_gather_the_light_a_glossy_floor_sends_in_its_lobe() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = common::glossy_cornell();
+    let size = (64, 36);
+    let one_bounce = common::reference(
+        &project.scene,
+        size,
+        bouncelab::settings::ReferenceSettings { spp: 256, max_bounces: 2, ..Default::default() },
+    );
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    r.render(&project.scene, &with(&project, GiMode::Direct, RcsSettings::default()), size).expect("render");
+    let hdr = |r: &Renderer| HdrImage { width: size.0, height: size.1, pixels: r.read_hdr().expect("hdr") };
+    let direct = metrics::mean_luminance(&hdr(&r));
+    let rcs = RcsSettings { bounces: 1, ..RcsSettings::default() };
+    let frames = converge(&mut r, &project, &with(&project, GiMode::Rcs, rcs), size, 16);
+    let lit = metrics::mean_luminance(&hdr(&r));
+    let found = (lit - direct) / (metrics::mean_luminance(&one_bounce) - direct);
+    eprintln!("glossy floor: rcs finds {found:.3} of the one-bounce reference's indirect light after {frames} frames");
+    assert!((0.85..=1.15).contains(&found), "rcs finds {found:.3} of the reference's indirect light");
+}

@@ -1,9 +1,12 @@
 // rcs record computation, step 1 (notes: "GPU hemisphere sampling"): the scene rasterised by a
 // square-plane camera at the record, looking along its normal with tan(half aperture) = 2 (126.87
 // degrees), into the record's tile of the atlas. Outputs per texel:
-//   0 rgba32float  rgb = outgoing radiance of the surface seen (diffuse: albedo / pi x the
-//                  shadowed direct irradiance of every light, plus the cache's irradiance for
-//                  later bounces, plus the emission of an emissive front face), a = its distance
+//   0 rgba32float  rgb = outgoing radiance of the surface seen as a diffuse sender: albedo / pi
+//                  x the shadowed direct irradiance of every light and the cache's irradiance
+//                  for later bounces, a glossy lobe's share of both too (its directional albedo
+//                  per light, its mean under the cache's light: `sender_reflectance`; spread
+//                  over the hemisphere instead of along the lobe), plus the emission of an
+//                  emissive front face), a = its distance
 //                  from the record (0: nothing, the background, where the reduce takes the sky)
 //   1 rgba16float  xy = octahedral normal of the surface seen, z = its albedo's luminance (0 on
 //                  back faces), for the light check's strata; a = 0 nothing or a back face, 1 a
@@ -15,6 +18,7 @@
 #import common/lights.wgsl
 #import common/color.wgsl
 #import common/material.wgsl
+#import common/brdf.wgsl
 #import render/gi/rcs/rcs_job.wgsl
 #import render/gi/rcs/rcs_common.wgsl
 
@@ -32,7 +36,6 @@
 #import common/shadow.wgsl
 #import render/gi/rcs/rcs_lookup.wgsl
 
-const PI: f32 = 3.14159265358979;
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -77,16 +80,21 @@ fn fs_main(in: VertexOut) -> HemisphereOut {
         out.surface = vec4<f32>(oct_encode(n), 0.0, 0.0);
         return out;
     }
-    var e = vec3<f32>(0.0);
+    let albedo = material_albedo(in.uv);
+    let lobe = material.specular;
+    // The direct light sent (x pi): each light's shadowed irradiance times the reflectance at its
+    // incidence.
+    var sent = vec3<f32>(0.0);
     for (var i = 0u; i < frame.params.x; i = i + 1u) {
-        let light = lights[i];
-        let inc = light_incident(light, in.world);
-        let cos_s = dot(n, inc.dir);
-        if cos_s <= 0.0 || all(inc.irradiance <= vec3<f32>(0.0)) {
-            continue;
+        let lit = shadowed_light(frame, i, in.world, n);
+        var reflectance = albedo;
+        if has_lobe(lobe.rgb) {
+            reflectance = reflectance + specular_albedo(lobe.rgb, lobe.a, lit.w);
         }
-        e = e + inc.irradiance * cos_s * shadow_factor(frame, light, in.world, n, inc.distance);
+        sent = sent + reflectance * lit.rgb;
     }
+    // The cache's irradiance (later bounces).
+    var e = vec3<f32>(0.0);
     // a = 1: a lit front face; 2: and the cache answered the lookup; 0.5: it did not.
     var found = 1.0;
     if job.params.y > 0.5 {
@@ -103,8 +111,8 @@ fn fs_main(in: VertexOut) -> HemisphereOut {
             e = e + cached.rgb;
         }
     }
-    let albedo = material_albedo(in.uv);
-    out.radiance = vec4<f32>(albedo * e / PI + material_emission(in.uv), distance);
+    sent = sent + sender_reflectance(albedo, lobe.rgb, lobe.a) * e;
+    out.radiance = vec4<f32>(sent / PI + material_emission(in.uv), distance);
     out.surface = vec4<f32>(oct_encode(n), luminance(albedo), found);
     return out;
 }
