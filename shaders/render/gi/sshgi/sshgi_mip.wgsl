@@ -47,24 +47,24 @@ fn block_mean(id: vec2<u32>, reflectance: bool) -> vec4<f32> {
     return vec4<f32>(sum / max(covered, 1.0e-6), covered / f32(n * n));
 }
 
+// dest = the block mean at id (`block_mean`).
+fn seed(id: vec3<u32>, reflectance: bool) {
+    let size = textureDimensions(dest);
+    if id.x < size.x && id.y < size.y {
+        textureStore(dest, id.xy, block_mean(id.xy, reflectance));
+    }
+}
+
 // dest = a's block mean (the start level's light).
 @compute @workgroup_size(8, 8, 1)
 fn box_seed(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = textureDimensions(dest);
-    if id.x >= size.x || id.y >= size.y {
-        return;
-    }
-    textureStore(dest, id.xy, block_mean(id.xy, false));
+    seed(id, false);
 }
 
 // dest = the senders' reflectance, block mean (the start level's, for later bounces).
 @compute @workgroup_size(8, 8, 1)
 fn reflectance_seed(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = textureDimensions(dest);
-    if id.x >= size.x || id.y >= size.y {
-        return;
-    }
-    textureStore(dest, id.xy, block_mean(id.xy, true));
+    seed(id, true);
 }
 
 // dest = the mean of a's 2x2 children weighted by their coverage (alpha), alpha = its mean.
