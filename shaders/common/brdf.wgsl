@@ -38,6 +38,15 @@ fn specular_albedo(specular: vec3<f32>, roughness: f32, cos_l: f32) -> vec3<f32>
     return specular * (f.x + (1.0 - f.x) * pow(clamp(cos_l, 1.0e-6, 1.0), f.y));
 }
 
+// A surface's reflectance as a diffuse sender of light arriving at cos_l: albedo + the lobe's
+// directional albedo there.
+fn sender_reflectance_at(albedo: vec3<f32>, specular: vec3<f32>, roughness: f32, cos_l: f32) -> vec3<f32> {
+    if !has_lobe(specular) {
+        return albedo;
+    }
+    return albedo + specular_albedo(specular, roughness, cos_l);
+}
+
 // A surface's reflectance as a diffuse sender under uniform incident light: albedo + the lobe's
 // mean directional albedo, g + (1 - g) 2 / (p + 2) (precompute::brdf::specular_albedo_diffuse).
 fn sender_reflectance(albedo: vec3<f32>, specular: vec3<f32>, roughness: f32) -> vec3<f32> {

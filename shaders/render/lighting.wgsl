@@ -7,8 +7,8 @@
 // (albedo + specular x the lobe's directional albedo) / pi x each light's irradiance, the
 // surface's radiant exitance over pi. A GI technique that treats the surfaces it sees as
 // diffuse senders (`sshgi`) reads it: the direct term's glossy lobe points at the camera only,
-// while a glossy floor under a lamp sends half as much again upwards. Without a lobe the two are
-// equal.
+// while a glossy floor under a lamp sends up to its specular colour more upwards. Without a lobe
+// the two are equal.
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/lights.wgsl
@@ -59,7 +59,6 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     let v = normalize(frame.camera_position.xyz - p);
     var radiance = textureLoad(emission_tex, pixel, 0).rgb;
     var exitance = radiance;
-    let glossy = has_lobe(mat.rgb);
     for (var i = 0u; i < frame.params.x; i = i + 1u) {
         let light = lights[i];
         let inc = light_incident(light, p);
@@ -74,11 +73,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
         let f = brdf_eval(albedo, mat.rgb, mat.a, n, v, inc.dir);
         let e = inc.irradiance * cos_s * vis;
         radiance = radiance + f * e;
-        var reflectance = albedo;
-        if glossy {
-            reflectance = reflectance + specular_albedo(mat.rgb, mat.a, cos_s);
-        }
-        exitance = exitance + reflectance / PI * e;
+        exitance = exitance + sender_reflectance_at(albedo, mat.rgb, mat.a, cos_s) / PI * e;
     }
     textureStore(out_radiance, pixel, vec4<f32>(radiance, 1.0));
     textureStore(out_exitance, pixel, vec4<f32>(exitance, 1.0));

@@ -139,7 +139,7 @@ fn apply(args: &ProbeArgs, project: &mut Project) -> anyhow::Result<()> {
     if let Some(text) = &args.settings {
         match args.mode {
             GiMode::Ism | GiMode::IsmRitschel => r.ism = ron::from_str(text)?,
-            GiMode::Sshgi => r.sshgi = sshgi_overrides(text)?,
+            GiMode::Sshgi => r.sshgi = crate::settings::SshgiSettings::from_overrides(text)?,
             GiMode::Mrt => r.mrt = ron::from_str(text)?,
             GiMode::Rcs => r.rcs = ron::from_str(text)?,
             GiMode::Direct | GiMode::Reference => {}
@@ -155,17 +155,6 @@ fn apply(args: &ProbeArgs, project: &mut Project) -> anyhow::Result<()> {
     }
     project.render.validate()?;
     Ok(())
-}
-
-/// `sshgi` settings from `--settings`, every field left out at its default. A project file's
-/// missing `world_grid_in_view` reads as off (a project saved before it existed keeps its
-/// image), which would turn the rule off in every probe that names other fields.
-fn sshgi_overrides(text: &str) -> anyhow::Result<crate::settings::SshgiSettings> {
-    let mut settings: crate::settings::SshgiSettings = ron::from_str(text)?;
-    if !text.contains("world_grid_in_view") {
-        settings.world_grid_in_view = crate::settings::SshgiSettings::default().world_grid_in_view;
-    }
-    Ok(settings)
 }
 
 /// Probes one scene: `direct`, then the technique; the report's lines.
@@ -335,18 +324,4 @@ fn write_images(
     image_io::write_exr(&dir.join(format!("{label}_{m}.exr")), img)?;
     image_io::write_exr(&dir.join(format!("{label}_direct.exr")), direct)?;
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sshgi_fields_left_out_of_the_settings_keep_their_defaults() {
-        let defaults = crate::settings::SshgiSettings::default();
-        let probed = sshgi_overrides("(bounces: 3)").expect("settings");
-        assert_eq!(probed, crate::settings::SshgiSettings { bounces: 3, ..defaults.clone() });
-        let off = sshgi_overrides("(world_grid_in_view: false)").expect("settings");
-        assert_eq!(off, crate::settings::SshgiSettings { world_grid_in_view: false, ..defaults });
-    }
 }

@@ -157,6 +157,18 @@ impl Default for SshgiSettings {
 }
 
 impl SshgiSettings {
+    /// Settings from RON that names only the fields it changes (`bouncelab probe --settings`),
+    /// every field left out at its current default. A project file's missing
+    /// `world_grid_in_view` reads as off instead (a project saved before it existed keeps its
+    /// image); here it would turn the rule off whenever other fields are named.
+    pub fn from_overrides(text: &str) -> Result<Self, ron::error::SpannedError> {
+        let mut settings: Self = ron::from_str(text)?;
+        if !text.contains("world_grid_in_view") {
+            settings.world_grid_in_view = Self::default().world_grid_in_view;
+        }
+        Ok(settings)
+    }
+
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
         let checks: [(&'static str, bool, String, &'static str); 13] = [
@@ -247,6 +259,15 @@ mod tests {
         assert!(new.world_grid_in_view && new.world_voxels == 512, "the defaults: {new:?}");
         let saved: SshgiSettings = ron::from_str(&ron::to_string(&new).expect("save")).expect("load");
         assert_eq!(saved, new, "a saved project reads back its settings");
+    }
+
+    #[test]
+    fn fields_left_out_of_overrides_keep_their_defaults() {
+        let defaults = SshgiSettings::default();
+        let probed = SshgiSettings::from_overrides("(bounces: 3)").expect("settings");
+        assert_eq!(probed, SshgiSettings { bounces: 3, ..defaults.clone() });
+        let off = SshgiSettings::from_overrides("(world_grid_in_view: false)").expect("settings");
+        assert_eq!(off, SshgiSettings { world_grid_in_view: false, ..defaults });
     }
 
     #[test]

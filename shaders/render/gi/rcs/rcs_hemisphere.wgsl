@@ -87,11 +87,7 @@ fn fs_main(in: VertexOut) -> HemisphereOut {
     var sent = vec3<f32>(0.0);
     for (var i = 0u; i < frame.params.x; i = i + 1u) {
         let lit = shadowed_light(frame, i, in.world, n);
-        var reflectance = albedo;
-        if has_lobe(lobe.rgb) {
-            reflectance = reflectance + specular_albedo(lobe.rgb, lobe.a, lit.w);
-        }
-        sent = sent + reflectance * lit.rgb;
+        sent = sent + sender_reflectance_at(albedo, lobe.rgb, lobe.a, lit.w) * lit.rgb;
     }
     // The cache's irradiance (later bounces).
     var e = vec3<f32>(0.0);

@@ -65,8 +65,7 @@ fn direct_exitance(s: Surfel) -> vec3<f32> {
     var sum = vec3<f32>(0.0);
     for (var i = 0u; i < frame.params.x; i = i + 1u) {
         let lit = shadowed_light(frame, i, s.point.xyz, s.normal.xyz);
-        let reflectance = s.albedo.rgb + specular_albedo(s.specular.rgb, s.specular.a, lit.w);
-        sum = sum + reflectance / PI * lit.rgb;
+        sum = sum + sender_reflectance_at(s.albedo.rgb, s.specular.rgb, s.specular.a, lit.w) / PI * lit.rgb;
     }
     return sum;
 }
