@@ -31,9 +31,9 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
         ui.add_enabled(m.visibility, egui::Slider::new(&mut m.visibility_detail, 0..=2).text("visibility detail"))
             .on_hover_text("Voxel columns this many levels finer than the start level: coarse columns falsely shadow light leaving a surface at a grazing angle (Cornell box first bounce 0.98 / 1.00 / 1.01 of exact); each step finer doubles the march cost.");
         ui.horizontal(|ui| {
-            ui.label("voxel depth range (m, 0 0 = scene bounds)");
-            ui.add(egui::DragValue::new(&mut m.voxel_range[0]).range(0.0..=1.0e4).speed(0.1));
-            ui.add(egui::DragValue::new(&mut m.voxel_range[1]).range(0.0..=1.0e4).speed(0.1));
+            let label = ui.label("voxel depth range (m, 0 0 = scene bounds)");
+            ui.add(egui::DragValue::new(&mut m.voxel_range[0]).range(0.0..=1.0e4).speed(0.1)).labelled_by(label.id);
+            ui.add(egui::DragValue::new(&mut m.voxel_range[1]).range(0.0..=1.0e4).speed(0.1)).labelled_by(label.id);
         })
         .response
         .on_hover_text("The 128 slices cover this view depth; occluders thinner than a slice can vanish.");
