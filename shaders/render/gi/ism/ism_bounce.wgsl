@@ -157,14 +157,31 @@ fn pick(@builtin(global_invocation_id) id: vec3<u32>) {
     if bp.sets.w != 2u {
         atomicMax(&selection[2u * k], bitcast<u32>(pick_key(id.x, y)));
     }
-    // Float add by compare-and-swap.
-    var old = atomicLoad(&selection[2u * k + 1u]);
-    loop {
-        let res = atomicCompareExchangeWeak(&selection[2u * k + 1u], old, bitcast<u32>(bitcast<f32>(old) + y));
-        if res.exchanged {
-            break;
+}
+
+// Per source VPL k (one workgroup each): the sum of its P slots' weights (`slot_weight`) into
+// selection[2k + 1], which `write_winner` and `scan_sources` read. A tree reduction in
+// workgroup memory: `pick` used to add every slot by a compare-and-swap loop on that one word,
+// P = 1024 threads contending for each address, and the H200 profile read 4-7 ms per bounce
+// for it (`ism bounce` 22-34 ms of the frame at 1080p, whatever the view's size).
+@compute @workgroup_size(256, 1, 1)
+fn source_sums(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    let k = wid.x;
+    let first = k * bp.counts.y;
+    var own = 0.0;
+    for (var i = lid; i < bp.counts.y; i = i + 256u) {
+        own = own + slot_weight(first + i);
+    }
+    scan[lid] = own;
+    workgroupBarrier();
+    for (var half = 128u; half > 0u; half = half / 2u) {
+        if lid < half {
+            scan[lid] = scan[lid] + scan[lid + half];
         }
-        old = res.old_value;
+        workgroupBarrier();
+    }
+    if lid == 0u && k < bp.counts.x {
+        atomicStore(&selection[2u * k + 1u], bitcast<u32>(scan[0]));
     }
 }
 
@@ -208,7 +225,7 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
 // that reaches a room through a doorway no longer carries its source's whole power alone. The
 // slots are ordered by source VPL and then by its points' cluster order (`ism_select.wgsl`), so
 // the draws are stratified over the sources and, within each, over space.
-// `scan_sources` turns the per-source sums `pick` added into their exclusive prefix
+// `scan_sources` turns the per-source sums (`source_sums`) into their exclusive prefix
 // (selection[2k] = the bits of the prefix before source k, [2k + 1] = the source's sum).
 var<workgroup> scan: array<f32, 256>;
 var<workgroup> last_thread: atomic<u32>;
@@ -361,11 +378,17 @@ fn write_vpl(g: u32, k: u32, s: u32, weight: f32) {
 }
 
 var<workgroup> set_power: array<vec2<f32>, 64>;
+var<workgroup> screen_power: array<vec2<f32>, 64>;
 
-// Screen sums of the tail (`ism_shade.wgsl`) and their running means, f32: [0] the last set's
-// and [1] the previous set's luminance on screen last frame (read and zeroed here), [2], [3]
-// their running means, [4] the scale the last set was given last frame.
+// Screen sums of the tail (`ism_shade.wgsl`) and their running means, f32: [2], [3] the running
+// means, [4] the scale the last set was given last frame; from [TAIL_SUMS_AT], TAIL_SLOTS pairs
+// of the last set's and the previous set's luminance on screen last frame (read and zeroed here).
 @group(0) @binding(12) var<storage, read_write> tail_state: array<f32>;
+
+// Where the shading's partial screen sums start, and how many pairs (`ism_shade.wgsl`, which
+// adds workgroup w's sums to pair w mod TAIL_SLOTS). Rust: `gather::resources::TAIL_BYTES`.
+const TAIL_SUMS_AT: u32 = 8u;
+const TAIL_SLOTS: u32 = 1024u;
 // The atlas's coarse levels (`ism_lookup.wgsl`).
 @group(0) @binding(13) var<storage, read> atlas_coarse: array<u32>;
 
@@ -395,15 +418,25 @@ fn tail(@builtin(local_invocation_index) lid: u32) {
         sums.y = sums.y + luminance(vpls[bp.sets.y + i].power.rgb);
     }
     set_power[lid] = sums;
-    // The last frame's screen sums, the last set's without the scale it was given.
-    let fresh = vec2<f32>(tail_state[0] / max(tail_state[4], 1.0), tail_state[1]);
+    var screen = vec2<f32>(0.0);
+    for (var i = lid; i < TAIL_SLOTS; i = i + 64u) {
+        let at = TAIL_SUMS_AT + 2u * i;
+        screen = screen + vec2<f32>(tail_state[at], tail_state[at + 1u]);
+        tail_state[at] = 0.0;
+        tail_state[at + 1u] = 0.0;
+    }
+    screen_power[lid] = screen;
     var mean = vec2<f32>(tail_state[2], tail_state[3]);
     workgroupBarrier();
     storageBarrier();
     var total = vec2<f32>(0.0);
+    var last_screen = vec2<f32>(0.0);
     for (var i = 0u; i < 64u; i = i + 1u) {
         total = total + set_power[i];
+        last_screen = last_screen + screen_power[i];
     }
+    // The last frame's screen sums, the last set's without the scale it was given.
+    let fresh = vec2<f32>(last_screen.x / max(tail_state[4], 1.0), last_screen.y);
     if fresh.y > 0.0 && all(fresh == fresh) {
         // An empty mean starts from the power ratio at the screen's scale.
         let seed = vec2<f32>(fresh.y * select(0.0, total.y / total.x, total.x > 0.0), fresh.y);
@@ -420,8 +453,6 @@ fn tail(@builtin(local_invocation_index) lid: u32) {
     r = clamp(r, 0.0, 0.9);
     let scale = 1.0 / (1.0 - r);
     if lid == 0u {
-        tail_state[0] = 0.0;
-        tail_state[1] = 0.0;
         tail_state[2] = mean.x;
         tail_state[3] = mean.y;
         tail_state[4] = scale;

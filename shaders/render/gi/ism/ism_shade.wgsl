@@ -39,8 +39,10 @@ struct ShadeParams {
 @group(0) @binding(8) var<storage, read> point_normals: array<vec4<f32>>;
 @group(0) @binding(9) var<storage, read> clips: array<vec4<f32>>;
 @group(0) @binding(10) var<storage, read> chosen_all: array<u32>;
-// [0] the last set's and [1] the previous set's luminance E cos / pi summed over the screen (f32
-// bits, added per workgroup by compare-and-swap); `tail` in `ism_bounce.wgsl` reads and zeroes them.
+// From TAIL_SUMS_AT, TAIL_SLOTS pairs: the last set's and the previous set's luminance E cos / pi
+// summed over the screen (f32 bits, workgroup w adding its sums to pair w mod TAIL_SLOTS by
+// compare-and-swap); `tail` in `ism_bounce.wgsl` adds them up and zeroes them. One pair for the
+// whole screen had 32,400 workgroups contending for each word at 1080p.
 @group(0) @binding(11) var<storage, read_write> tail_sums: array<atomic<u32>>;
 // The atlas's coarse levels (`ism_lookup.wgsl`).
 @group(0) @binding(12) var<storage, read> atlas_coarse: array<u32>;
@@ -155,8 +157,13 @@ fn atomic_add_f32(at: u32, v: f32) {
 
 var<workgroup> group_sums: array<vec2<f32>, 64>;
 
-// Adds every thread's (last, previous) luminance to `tail_sums`; called by the whole workgroup.
-fn add_tail_sums(lid: u32, v: vec2<f32>) {
+// As in `ism_bounce.wgsl`'s `tail`.
+const TAIL_SUMS_AT: u32 = 8u;
+const TAIL_SLOTS: u32 = 1024u;
+
+// Adds every thread's (last, previous) luminance to workgroup `group`'s pair of `tail_sums`;
+// called by the whole workgroup.
+fn add_tail_sums(lid: u32, group: vec3<u32>, v: vec2<f32>) {
     group_sums[lid] = v;
     workgroupBarrier();
     if lid == 0u {
@@ -164,17 +171,22 @@ fn add_tail_sums(lid: u32, v: vec2<f32>) {
         for (var i = 0u; i < 64u; i = i + 1u) {
             total = total + group_sums[i];
         }
+        let at = TAIL_SUMS_AT + 2u * ((group.y * 4099u + group.x) % TAIL_SLOTS);
         if total.x > 0.0 {
-            atomic_add_f32(0u, total.x);
+            atomic_add_f32(at, total.x);
         }
         if total.y > 0.0 {
-            atomic_add_f32(1u, total.y);
+            atomic_add_f32(at + 1u, total.y);
         }
     }
 }
 
 @compute @workgroup_size(8, 8, 1)
-fn shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+fn shade(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+    @builtin(workgroup_id) group: vec3<u32>,
+) {
     var sum = vec3<f32>(0.0);
     var tail = vec3<f32>(0.0);
     let inside = in_split(id.xy);
@@ -190,17 +202,21 @@ fn shade(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation
         }
         textureStore(out_indirect, id.xy, vec4<f32>(sum, 1.0));
     }
-    add_tail_sums(lid, tail.xy);
+    add_tail_sums(lid, group, tail.xy);
 }
 
 @compute @workgroup_size(8, 8, 1)
-fn project_sh(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+fn project_sh(
+    @builtin(global_invocation_id) id: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+    @builtin(workgroup_id) group: vec3<u32>,
+) {
     let inside = in_split(id.xy);
     var tail = vec3<f32>(0.0);
     if inside {
         tail = write_sh(id.xy);
     }
-    add_tail_sums(lid, tail.xy);
+    add_tail_sums(lid, group, tail.xy);
 }
 
 // Projects split texel `s`'s incident light on SH and stores it; returns its tail sums.

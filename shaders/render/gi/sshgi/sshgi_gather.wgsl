@@ -8,7 +8,10 @@
 // coarse levels is in the texel solid angle of level k (4^k that of a view pixel), applied once.
 // Samples are stratified in area with a per-pixel (4x4 interleaved) and per-frame rotation, so the
 // temporal accumulation averages the pattern out. With visibility on, each sample's segment is
-// marched through the view's voxel columns (`sshgi_visibility.wgsl`).
+// marched through the view's voxel columns (`sshgi_visibility.wgsl`). A texel's samples are
+// spread over S = `gp.grid.w` threads of its workgroup (every S-th sample each, then added up in
+// workgroup memory): a thread per texel made each a serial chain of N marches, and the coarse
+// levels, which march the farthest, have the fewest texels (`passes::steps::gather_split`).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import render/gi/sshgi/sshgi_hash.wgsl
@@ -23,7 +26,8 @@ struct GatherParams {
     forward: vec4<f32>,
     // Voxel slices: near, far (view depth, m), slices per metre, visibility on (1) or off (0).
     vox: vec4<f32>,
-    // Voxel columns marched: width, view pixels per column, height, unused.
+    // Voxel columns marched: width, view pixels per column, height; threads per texel S (1, 4,
+    // 16 or 64: the workgroup's 64 threads cover a tile of 64 / S texels, 8 / sqrt(S) a side).
     grid: vec4<u32>,
 }
 
@@ -44,18 +48,39 @@ const PI: f32 = 3.14159265358979;
 const GOLDEN_ANGLE: f32 = 2.39996322972865;
 
 
-@compute @workgroup_size(8, 8, 1)
-fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
+// Threads' partial sums, added up per texel.
+var<workgroup> partial: array<vec3<f32>, 64>;
+
+@compute @workgroup_size(64, 1, 1)
+fn gather(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    let split = max(gp.grid.w, 1u);
+    let side = max(8u / u32(round(sqrt(f32(split)))), 1u);
+    let slot = lid / split;
+    let t = vec2<i32>(group.xy * side + vec2<u32>(slot % side, slot / side));
     let size = vec2<i32>(textureDimensions(dest));
-    let t = vec2<i32>(id.xy);
-    if t.x >= size.x || t.y >= size.y {
+    let inside = all(t < size) && slot < side * side;
+    var g = vec4<f32>(0.0);
+    if inside {
+        g = textureLoad(geometry, t, 0);
+    }
+    var sum = vec3<f32>(0.0);
+    if g.a >= 0.5 {
+        sum = gathered(t, g, lid % split, split);
+    }
+    partial[lid] = sum;
+    workgroupBarrier();
+    if !inside || lid % split != 0u {
         return;
     }
-    let g = textureLoad(geometry, t, 0);
-    if g.a < 0.5 {
-        textureStore(dest, t, vec4<f32>(0.0, 0.0, 0.0, 1.0));
-        return;
+    for (var i = 1u; i < split; i = i + 1u) {
+        sum = sum + partial[lid + i];
     }
+    textureStore(dest, t, vec4<f32>(sum, 1.0));
+}
+
+// Texel t's (geometry g) samples first, first + step, ... of its N.
+fn gathered(t: vec2<i32>, g: vec4<f32>, first: u32, step: u32) -> vec3<f32> {
+    let size = vec2<i32>(textureDimensions(dest));
     let cam = frame.camera_position.xyz;
     let pixel_x = pyramid_pixel(frame, g);
     let x = point_on_pixel_ray(frame, pixel_x, g.r);
@@ -75,11 +100,12 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
     let dp_disc = max(dp, 1.0);
     let share = dp / dp_disc;
     // Per-pixel rotation from the 4x4 interleave cell and the frame; per-pixel radial jitter.
-    let cell = vec2<u32>(id.xy & vec2<u32>(3u));
+    let id = vec2<u32>(t);
+    let cell = id & vec2<u32>(3u);
     let rotation = 2.0 * PI * hash01(cell.x, cell.y, gp.level.w);
     let jitter = hash01(id.x, id.y, gp.level.w ^ 0x9e3779b9u);
     var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < n; i = i + 1u) {
+    for (var i = first; i < n; i = i + step) {
         let u = (f32(i) + jitter) / f32(n);
         let rho = sqrt(inner * inner + u * (r * r - inner * inner));
         let a = rotation + f32(i) * GOLDEN_ANGLE;
@@ -117,5 +143,5 @@ fn gather(@builtin(global_invocation_id) id: vec3<u32>) {
         let r2_disc = cos_s * ds / PI;
         sum = sum + textureLoad(illumination, y, 0).rgb * (share * r2_disc * cos_r / (d2 + r2_disc));
     }
-    textureStore(dest, t, vec4<f32>(sum, 1.0));
+    return sum;
 }

@@ -130,8 +130,9 @@ fn samples(march: bool) -> u32 {
 
 // E / pi at x (normal nx) from N senders picked one per stratum of the list (jittered by
 // `jitter`), each weighted by the list's size over N: an unbiased estimate over frames. With
-// `march`, every sender's segment is marched; otherwise only a hidden sender's.
-fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3<f32> {
+// `march`, every sender's segment is marched; otherwise only a hidden sender's. This thread's
+// share: samples first, first + step, ... (`SPLIT` threads share a receiver, `split_sum`).
+fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool, first: u32, step: u32) -> vec3<f32> {
     let count = gp.counts.x;
     let n = samples(march);
     if count == 0u || n == 0u {
@@ -141,7 +142,7 @@ fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3
     // A marching receiver is a hidden sender itself.
     let xm = select(x, off_surface(x, nx), march);
     var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < n; i = i + 1u) {
+    for (var i = first; i < n; i = i + step) {
         let pick = min(u32((f32(i) + fract(jitter + f32(i) * 0.618034)) * stratum), count - 1u);
         let s = senders[pick];
         if s.point.w <= 0.0 {
@@ -156,4 +157,23 @@ fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3
         }
     }
     return sum * stratum;
+}
+
+// The including shader's receivers each take SPLIT threads of a 64-thread workgroup, each
+// thread every SPLIT-th sample (a thread per receiver made each a serial chain of N marched
+// samples: on the H200 the 8,192 senders' receive was 5 ms, `bouncelab profile`).
+var<workgroup> split_partial: array<vec3<f32>, 64>;
+
+// The sum of the SPLIT threads' `own` of receiver `lid / SPLIT`, valid in its first thread (lid
+// a multiple of SPLIT); the whole workgroup calls it.
+fn split_sum(lid: u32, own: vec3<f32>, split: u32) -> vec3<f32> {
+    split_partial[lid] = own;
+    workgroupBarrier();
+    var sum = own;
+    if lid % split == 0u {
+        for (var i = 1u; i < split; i = i + 1u) {
+            sum = sum + split_partial[lid + i];
+        }
+    }
+    return sum;
 }

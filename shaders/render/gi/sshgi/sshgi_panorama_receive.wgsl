@@ -28,14 +28,14 @@
 
 // E / pi at x (normal nx) from N start-level texels of the screen, one per stratum (with
 // `march`, each segment marched through the view's voxels).
-fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3<f32> {
+fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool, first: u32, step: u32) -> vec3<f32> {
     let w = gp.screen.x;
     let count = w * gp.screen.y;
     let n = samples(march);
     let stratum = f32(count) / f32(n);
     let cam = frame.camera_position.xyz;
     var sum = vec3<f32>(0.0);
-    for (var i = 0u; i < n; i = i + 1u) {
+    for (var i = first; i < n; i = i + step) {
         let pick = min(u32((f32(i) + fract(jitter + f32(i) * 0.618034)) * stratum), count - 1u);
         let t = vec2<u32>(pick % w, pick / w);
         let g = textureLoad(geometry, t, 0);
@@ -56,21 +56,31 @@ fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool) -> vec3<
     return sum * stratum;
 }
 
-@compute @workgroup_size(8, 8, 1)
-fn receive(@builtin(global_invocation_id) id: vec3<u32>) {
+// Threads per sender (`passes::steps::RECEIVE_TILE`: 64 / RECEIVE_SPLIT senders, 2 x 2, per
+// workgroup).
+const RECEIVE_SPLIT: u32 = 16u;
+
+@compute @workgroup_size(64, 1, 1)
+fn receive(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
     let f = gp.counts.w;
+    let slot = lid / RECEIVE_SPLIT;
+    let id = group.xy * 2u + vec2<u32>(slot % 2u, slot / 2u);
     let index = id.y * f + id.x;
-    if id.x >= f || index >= gp.counts.x {
-        return;
-    }
-    let s = senders[index];
-    if s.point.w <= 0.0 {
-        next[index] = vec4<f32>(0.0);
-        return;
+    let inside = id.x < f && index < gp.counts.x;
+    var s = Sender();
+    if inside {
+        s = senders[index];
     }
     let jitter = hash01(id.x, id.y, gp.counts.z ^ 0x68bc21ebu);
     let hidden = index >= hidden_from();
-    let e = gather_screen(s.point.xyz, s.normal.xyz, jitter, hidden)
-        + gather_senders(s.point.xyz, s.normal.xyz, fract(jitter + 0.5), hidden);
-    next[index] = vec4<f32>(s.reflectance.rgb * e, 0.0);
+    var own = vec3<f32>(0.0);
+    if s.point.w > 0.0 {
+        let part = lid % RECEIVE_SPLIT;
+        own = gather_screen(s.point.xyz, s.normal.xyz, jitter, hidden, part, RECEIVE_SPLIT)
+            + gather_senders(s.point.xyz, s.normal.xyz, fract(jitter + 0.5), hidden, part, RECEIVE_SPLIT);
+    }
+    let e = split_sum(lid, own, RECEIVE_SPLIT);
+    if inside && lid % RECEIVE_SPLIT == 0u {
+        next[index] = vec4<f32>(s.reflectance.rgb * e, 0.0);
+    }
 }

@@ -152,6 +152,7 @@ pub struct IsmGather {
     bounce_layout: wgpu::BindGroupLayout,
     bounce_clear: wgpu::ComputePipeline,
     bounce_select: wgpu::ComputePipeline,
+    bounce_sums: wgpu::ComputePipeline,
     bounce_write: wgpu::ComputePipeline,
     bounce_tail: wgpu::ComputePipeline,
     /// `BouncePick::Resampled`: the per-source sums' prefix, then the set's systematic draws.
@@ -232,6 +233,7 @@ impl IsmGather {
             seed: 0,
             bounce_clear: compute_pipeline(device, "ism bounce clear", &bounce_layout, &bounce_module, "clear"),
             bounce_select: compute_pipeline(device, "ism bounce select", &bounce_layout, &bounce_module, "pick"),
+            bounce_sums: compute_pipeline(device, "ism bounce source sums", &bounce_layout, &bounce_module, "source_sums"),
             bounce_write: compute_pipeline(device, "ism bounce write", &bounce_layout, &bounce_module, "write_winner"),
             bounce_tail: compute_pipeline(device, "ism bounce tail", &bounce_layout, &bounce_module, "tail"),
             bounce_scan: compute_pipeline(
@@ -533,6 +535,8 @@ impl IsmGather {
         pass.dispatch_workgroups(key.vpls.div_ceil(64), 1, 1);
         pass.set_pipeline(&self.bounce_select);
         pass.dispatch_workgroups(slots.div_ceil(64), 1, 1);
+        pass.set_pipeline(&self.bounce_sums);
+        pass.dispatch_workgroups(key.vpls, 1, 1);
         if settings.bounce_pick == BouncePick::Resampled {
             pass.set_pipeline(&self.bounce_scan);
             pass.dispatch_workgroups(1, 1, 1);

@@ -7,6 +7,11 @@ use crate::render::gi::ism::params::{BounceParams, GpuCluster, PullPushParams, S
 
 /// The buffers of one atlas size and point count ([`IsmGather::ensure`]), before they join
 /// their bind groups in [`Sized`].
+/// The bounce tail's state (`ism_bounce.wgsl` `tail`): 8 words of running means and scale, then
+/// `TAIL_SLOTS` = 1024 pairs of partial screen sums, one per group of the shading's workgroups
+/// (`ism_shade.wgsl`; one pair for the whole screen made every workgroup contend for it).
+const TAIL_BYTES: u64 = (8 + 2 * 1024) * 4;
+
 pub(super) struct Buffers {
     pub(super) atlas: wgpu::Buffer,
     pub(super) coarse: wgpu::Buffer,
@@ -68,7 +73,7 @@ impl Buffers {
             lit: storage("ism bounce lit points", slots * 32),
             chosen: storage("ism chosen points", slots * 8),
             chosen_all: storage("ism chosen points of every set", slots * u64::from(key.bounces) * 4),
-            tail: storage("ism bounce tail state", 32),
+            tail: storage("ism bounce tail state", TAIL_BYTES),
             clips: storage("ism sample point clip lines", clip_bytes),
             clusters: storage(
                 "ism point clusters",

@@ -63,7 +63,7 @@ pub struct GatherParams {
     pub forward: [f32; 4],
     /// Voxel slices: near, far, slices per metre, on.
     pub vox: [f32; 4],
-    /// Voxel columns: width, view pixels per column, height, unused.
+    /// Voxel columns: width, view pixels per column, height; threads per texel.
     pub grid: [u32; 4],
 }
 
@@ -302,6 +302,8 @@ struct Step {
     group: wgpu::BindGroup,
     slot: u32,
     size: (u32, u32),
+    /// Texels per workgroup along each axis: 8, or a gather's tile ([`steps::gather_split`]).
+    tile: u32,
 }
 
 /// The sky pass's layouts and pipelines (`sshgi_sky.wgsl`): the start level's (`sky_light`) and
@@ -521,7 +523,7 @@ impl SshgiPasses {
                 Pipe::TailAdd => &self.tail[2],
             });
             pass.set_bind_group(0, &step.group, &[step.slot * SLOT as u32]);
-            pass.dispatch_workgroups(step.size.0.div_ceil(8), step.size.1.div_ceil(8), 1);
+            pass.dispatch_workgroups(step.size.0.div_ceil(step.tile), step.size.1.div_ceil(step.tile), 1);
         }
     }
 
@@ -587,7 +589,7 @@ impl SshgiPasses {
                     forward: [forward.x, forward.y, forward.z, 0.0],
                     // The paper's saving: later bounces may skip visibility.
                     vox: if b == 0 || settings.visibility_all_bounces { vox } else { [0.0; 4] },
-                    grid,
+                    grid: [grid[0], grid[1], grid[2], steps::gather_split(k).0],
                 };
                 put(gather_slot(plan, b as usize, k as usize), bytemuck::bytes_of(&p));
             }

@@ -110,7 +110,7 @@ impl<'a> StepBuilder<'a> {
     /// Appends a dispatch of `pipeline` writing `dest`.
     fn step(&mut self, pass: String, pipeline: Pipe, group: wgpu::BindGroup, slot: u32, dest: &Target) {
         let size = (dest.texture.width(), dest.texture.height());
-        self.steps.push(Step { pass, pipeline, group, slot, size });
+        self.steps.push(Step { pass, pipeline, group, slot, size, tile: 8 });
     }
 
     /// The timed pass of chain `b`'s `phase`: the first bounce's phases are timed apart, the
@@ -160,7 +160,9 @@ impl<'a> StepBuilder<'a> {
                 wgpu::BindGroupEntry { binding: 9, resource: key.world.as_entire_binding() },
             ],
         });
-        self.step("sshgi sky".to_owned(), Pipe::Sky, group, sky_slot(s.plan), sky);
+        let size = (sky.texture.width(), sky.texture.height());
+        let slot = sky_slot(s.plan);
+        self.steps.push(Step { pass: "sshgi sky".to_owned(), pipeline: Pipe::Sky, group, slot, size, tile: SKY_TILE });
         // The panorama's senders off screen: their first radiance gains the sky's light.
         let Some(([list, first, _], side, count)) = &key.senders else { return };
         let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -184,6 +186,7 @@ impl<'a> StepBuilder<'a> {
             group,
             slot,
             size: (*side, count.div_ceil(*side)),
+            tile: SKY_TILE,
         });
     }
 
@@ -236,13 +239,14 @@ impl<'a> StepBuilder<'a> {
         for k in 0..levels {
             let dest = if levels == 1 { out } else { &s.gathered[k] };
             let group = self.gather_group(k, dest);
-            self.step(
-                self.pass(b, &format!("sshgi gather level {k}")),
-                Pipe::Gather,
+            self.steps.push(Step {
+                pass: self.pass(b, &format!("sshgi gather level {k}")),
+                pipeline: Pipe::Gather,
                 group,
-                gather_slot(s.plan, b, k),
-                dest,
-            );
+                slot: gather_slot(s.plan, b, k),
+                size: (dest.texture.width(), dest.texture.height()),
+                tile: gather_split(k as u32).1,
+            });
         }
     }
 
@@ -304,7 +308,7 @@ impl<'a> StepBuilder<'a> {
         let groups = [group.clone(), group.clone(), group];
         let pipes = [(Pipe::TailSums, size), (Pipe::TailRatio, (1, 1)), (Pipe::TailAdd, size)];
         for (group, (pipeline, size)) in groups.into_iter().zip(pipes) {
-            self.steps.push(Step { pass: "sshgi output".to_owned(), pipeline, group, slot: 1, size });
+            self.steps.push(Step { pass: "sshgi output".to_owned(), pipeline, group, slot: 1, size, tile: 8 });
         }
     }
 
@@ -319,6 +323,7 @@ impl<'a> StepBuilder<'a> {
             group: g,
             slot: 2 + self.s.plan.levels - 1,
             size: out_size,
+            tile: 8,
         });
     }
 
@@ -351,7 +356,9 @@ impl<'a> StepBuilder<'a> {
                 buffer(8, &key.world),
             ],
         });
-        self.step(self.pass(b, "sshgi panorama gather"), Pipe::Panorama, group, slot, dest);
+        let pass = self.pass(b, "sshgi panorama gather");
+        let size = (dest.texture.width(), dest.texture.height());
+        self.steps.push(Step { pass, pipeline: Pipe::Panorama, group, slot, size, tile: PANORAMA_TILE });
         if b + 1 >= s.plan.bounces as usize {
             return;
         }
@@ -372,6 +379,34 @@ impl<'a> StepBuilder<'a> {
         });
         let pass = self.pass(b, "sshgi panorama receive");
         let size = (*side, count.div_ceil(*side));
-        self.steps.push(Step { pass, pipeline: Pipe::Receive, group, slot, size });
+        self.steps.push(Step { pass, pipeline: Pipe::Receive, group, slot, size, tile: RECEIVE_TILE });
     }
 }
+
+/// How gather level `k` spreads a texel's samples over threads: (threads per texel S, texels per
+/// workgroup side). Each thread takes every S-th sample and the workgroup adds them up
+/// (`sshgi_gather.wgsl`). A texel's samples in one thread made each thread a serial chain of N
+/// samples, each marching up to 2^k r voxel columns, and the coarse levels have few texels: on
+/// the H200 at 1080p the 2,040 texels of level 3 took 21 ms and level 0's 130,000 took 5.5 ms
+/// (`bouncelab profile`, the suite's rooms). S grows with the level so that every level launches
+/// about four threads per start-level texel.
+pub(super) fn gather_split(k: u32) -> (u32, u32) {
+    match k {
+        0 => (4, 4),
+        1 => (16, 2),
+        _ => (64, 1),
+    }
+}
+
+/// Texels per side of a panorama gather's workgroup: four threads share a texel's samples
+/// (`PANORAMA_SPLIT` in `sshgi_panorama_gather.wgsl`), as [`gather_split`]'s start level.
+const PANORAMA_TILE: u32 = 4;
+
+/// Senders per side of a panorama receive's workgroup: sixteen threads share a sender's samples
+/// (`RECEIVE_SPLIT` in `sshgi_panorama_receive.wgsl`): the 8,192 senders alone filled a few
+/// warps per SM, each a chain of 128 samples, most of them marched.
+const RECEIVE_TILE: u32 = 2;
+
+/// Texels (or senders) per side of a sky pass's workgroup: four threads share an item's rays
+/// (`SKY_SPLIT` in `sshgi_sky.wgsl`).
+const SKY_TILE: u32 = 4;
