@@ -522,7 +522,7 @@ impl IsmScreen {
         settings: &IsmSettings,
         temporal: Option<Blend>,
         exposure: f32,
-        timestamps: Option<crate::render::timing::TimestampPair<'_>>,
+        timer: &mut crate::render::timing::GpuTimer,
     ) {
         let blend = temporal.unwrap_or(Blend { confidence_cap: 0.0, w_illumination: 0.0 });
         let temporal = temporal.is_some();
@@ -558,10 +558,9 @@ impl IsmScreen {
             self.sh.write_params(queue, n, settings, ism.d_max);
         }
         let (sw, sh) = split_size(targets.size, n);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("ism shade"),
-            timestamp_writes: timestamps.as_ref().map(|t| t.compute_writes()),
-        });
+        // Three timed passes: the shading on the split G-buffer, the filters on the view, and
+        // the view importance over the pool's points.
+        let mut pass = super::gather::step_pass(encoder, timer, "ism shade");
         pass.set_pipeline(&self.split);
         pass.set_bind_group(0, &s.split_group, &[]);
         pass.dispatch_workgroups(sw.div_ceil(8), sh.div_ceil(8), 1);
@@ -571,6 +570,8 @@ impl IsmScreen {
         if settings.sh_filter {
             self.sh.dispatch(&mut pass, targets.size);
         }
+        drop(pass);
+        let mut pass = super::gather::step_pass(encoder, timer, "ism filter");
         let p = self.parity;
         if temporal {
             pass.set_pipeline(&self.temporal);
@@ -583,13 +584,14 @@ impl IsmScreen {
             pass.set_bind_group(0, &s.filter_groups[input], &[]);
             pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
         }
+        drop(pass);
         if settings.view_importance > 0.0 {
             // How strongly each pool point could light this view, for the next frame's bounce picks.
+            let mut pass = super::gather::step_pass(encoder, timer, "ism view importance");
             pass.set_pipeline(&self.view_importance);
             pass.set_bind_group(0, &s.importance_group, &[]);
             pass.dispatch_workgroups(ism.pool_points.div_ceil(64), 1, 1);
         }
-        drop(pass);
         if settings.sh_filter {
             // The SH path filters before shading, so its result (merged with the history when
             // temporal) is the indirect radiance itself.

@@ -411,7 +411,6 @@ impl GiTechnique for IsmTechnique {
         let (blend, settle_at) = self.stillness.next(settings, self.status.history_frames, camera_still);
         let temporal = (inputs.mode == GiMode::Ism).then_some(blend);
         let exposure = inputs.settings.view.exposure_ev.exp2();
-        let ts = inputs.timer.scope("ism shade");
         self.gather.record_screen(
             inputs.device,
             inputs.queue,
@@ -422,7 +421,7 @@ impl GiTechnique for IsmTechnique {
             settings,
             temporal,
             exposure,
-            ts,
+            inputs.timer,
         );
         self.status.history_frames = if temporal.is_some() { self.status.history_frames.saturating_add(1) } else { 1 };
         self.status.refine_target = if temporal.is_some() { settle_at } else { 0 };

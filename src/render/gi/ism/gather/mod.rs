@@ -233,7 +233,13 @@ impl IsmGather {
             seed: 0,
             bounce_clear: compute_pipeline(device, "ism bounce clear", &bounce_layout, &bounce_module, "clear"),
             bounce_select: compute_pipeline(device, "ism bounce select", &bounce_layout, &bounce_module, "pick"),
-            bounce_sums: compute_pipeline(device, "ism bounce source sums", &bounce_layout, &bounce_module, "source_sums"),
+            bounce_sums: compute_pipeline(
+                device,
+                "ism bounce source sums",
+                &bounce_layout,
+                &bounce_module,
+                "source_sums",
+            ),
             bounce_write: compute_pipeline(device, "ism bounce write", &bounce_layout, &bounce_module, "write_winner"),
             bounce_tail: compute_pipeline(device, "ism bounce tail", &bounce_layout, &bounce_module, "tail"),
             bounce_scan: compute_pipeline(
@@ -587,7 +593,7 @@ impl IsmGather {
         settings: &IsmSettings,
         temporal: Option<super::screen::Blend>,
         exposure: f32,
-        timestamps: Option<crate::render::timing::TimestampPair<'_>>,
+        timer: &mut GpuTimer,
     ) {
         let Self { screen, sized, .. } = self;
         let Some(s) = sized.as_ref() else { return };
@@ -611,7 +617,7 @@ impl IsmGather {
             d_max: scale.d_max.max(1e-3),
             bias: scale.bias,
         };
-        screen.record(device, queue, encoder, frame_buffer, targets, &inputs, settings, temporal, exposure, timestamps);
+        screen.record(device, queue, encoder, frame_buffer, targets, &inputs, settings, temporal, exposure, timer);
     }
 
     /// Frees the atlas, the point buffers and the screen passes' targets (another mode is
@@ -622,8 +628,13 @@ impl IsmGather {
     }
 }
 
-/// A compute pass for one step of the ISM maps, timed under `name` where the timer has room.
-fn step_pass<'e>(encoder: &'e mut wgpu::CommandEncoder, timer: &mut GpuTimer, name: &str) -> wgpu::ComputePass<'e> {
+/// A compute pass for one step of the ISM maps or of the screen's passes, timed under `name`
+/// where the timer has room.
+pub(super) fn step_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    timer: &mut GpuTimer,
+    name: &str,
+) -> wgpu::ComputePass<'e> {
     let timestamps = timer.scope(name);
     encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
         label: Some(name),
