@@ -612,3 +612,27 @@ fn an_emission_texture_picked_in_the_material_panel_is_one_undo_step() {
     assert_eq!(h.state().state().project.scene.materials()[material].emissive_texture, None, "undone");
     settle(&mut h);
 }
+
+/// Every mode's settings panel, at the editor's default window size, names each of its inputs
+/// (egui_kittest's accessibility check: a screen reader and `get_by_label` reach them). The
+/// sshgi panel's voxel depth range once had two unnamed fields, which stopped `ui_bench`.
+#[test]
+fn every_modes_settings_panel_names_its_inputs() {
+    if !common::has_gpu() {
+        return;
+    }
+    let path = default_project_path();
+    let project = Project::load(&path).expect("default project");
+    let mut h = Harness::builder()
+        .with_size(egui::vec2(1400.0, 860.0))
+        .wgpu()
+        .build_eframe(move |cc| EditorApp::new(cc, project, Some(path)));
+    h.run_steps(3);
+    for mode in GiMode::ALL {
+        h.get_by_label(mode.name()).click();
+        h.run_steps(3);
+        let unnamed = h.unnamed_widgets();
+        assert!(unnamed.is_empty(), "{}'s panel: inputs without a name:\n{}", mode.name(), unnamed.join("\n"));
+    }
+    settle(&mut h);
+}
