@@ -46,6 +46,7 @@ mod sshgi;
 mod sshgi_glossy;
 mod sshgi_hidden;
 mod sshgi_panorama;
+mod sshgi_threads;
 mod suite;
 mod textures;
 mod undo;

@@ -14,7 +14,8 @@
 struct PanoramaParams {
     // senders in the list S, samples N, frame seed, face size F.
     counts: vec4<u32>,
-    // The start level's width and height (texels), unused x2.
+    // The start level's width and height (texels); threads per texel of the gather and per
+    // sender of the receive (`split_item`).
     screen: vec4<u32>,
     // Solid angle of one start-level texel on the optical axis (sr); a voxel column's width per
     // metre of view depth (0: segments in view never walk the world grid), unused x2.
@@ -131,7 +132,7 @@ fn samples(march: bool) -> u32 {
 // E / pi at x (normal nx) from N senders picked one per stratum of the list (jittered by
 // `jitter`), each weighted by the list's size over N: an unbiased estimate over frames. With
 // `march`, every sender's segment is marched; otherwise only a hidden sender's. This thread's
-// share: samples first, first + step, ... (`SPLIT` threads share a receiver, `split_sum`).
+// share: samples first, first + step, ... (`split_item`: threads share a receiver).
 fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool, first: u32, step: u32) -> vec3<f32> {
     let count = gp.counts.x;
     let n = samples(march);
@@ -159,13 +160,22 @@ fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool, first: 
     return sum * stratum;
 }
 
-// The including shader's receivers each take SPLIT threads of a 64-thread workgroup, each
-// thread every SPLIT-th sample (a thread per receiver made each a serial chain of N marched
-// samples: on the H200 the 8,192 senders' receive was 5 ms, `bouncelab profile`).
+// The including shader's items (texels or senders) each take `split` threads of a 64-thread
+// workgroup, each thread every split-th sample (a thread per item made each a serial chain of N
+// marched samples: on the H200 the 8,192 senders' receive took 5 ms, `bouncelab profile`;
+// `passes::steps::split`). A workgroup covers a tile of 8 / sqrt(split) items a side.
 var<workgroup> split_partial: array<vec3<f32>, 64>;
 
-// The sum of the SPLIT threads' `own` of receiver `lid / SPLIT`, valid in its first thread (lid
-// a multiple of SPLIT); the whole workgroup calls it.
+// The item thread `lid` of workgroup `group` works on, and whether the thread has one.
+fn split_item(group: vec3<u32>, lid: u32, split: u32) -> vec3<u32> {
+    let side = max(8u / u32(round(sqrt(f32(split)))), 1u);
+    let slot = lid / split;
+    let item = group.xy * side + vec2<u32>(slot % side, slot / side);
+    return vec3<u32>(item, u32(slot < side * side));
+}
+
+// The sum of the split threads' `own` of item `lid / split`, valid in its first thread (lid a
+// multiple of split); the whole workgroup calls it.
 fn split_sum(lid: u32, own: vec3<f32>, split: u32) -> vec3<f32> {
     split_partial[lid] = own;
     workgroupBarrier();

@@ -28,16 +28,13 @@
 // The world's surface voxels (one word where there are none).
 @group(0) @binding(8) var<storage, read> world: array<u32>;
 
-// Threads per texel (`passes::steps::PANORAMA_TILE`: 64 / PANORAMA_SPLIT texels, 4 x 4, per
-// workgroup).
-const PANORAMA_SPLIT: u32 = 4u;
-
 @compute @workgroup_size(64, 1, 1)
 fn gather(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
     let size = textureDimensions(dest);
-    let slot = lid / PANORAMA_SPLIT;
-    let id = group.xy * 4u + vec2<u32>(slot % 4u, slot / 4u);
-    let inside = all(id < size);
+    let split = max(gp.screen.z, 1u);
+    let item = split_item(group, lid, split);
+    let id = item.xy;
+    let inside = item.z == 1u && all(id < size);
     var screen = vec4<f32>(0.0);
     var g = vec4<f32>(0.0);
     if inside {
@@ -50,10 +47,10 @@ fn gather(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_ind
     if g.a >= 0.5 && count > 0u && n > 0u {
         let x = pyramid_point(frame, g);
         let nx = oct_decode(g.gb);
-        own = gather_senders(x, nx, hash01(id.x, id.y, gp.counts.z), false, lid % PANORAMA_SPLIT, PANORAMA_SPLIT);
+        own = gather_senders(x, nx, hash01(id.x, id.y, gp.counts.z), false, lid % split, split);
     }
-    let sum = split_sum(lid, own, PANORAMA_SPLIT);
-    if inside && lid % PANORAMA_SPLIT == 0u {
+    let sum = split_sum(lid, own, split);
+    if inside && lid % split == 0u {
         textureStore(dest, id, vec4<f32>(screen.rgb + sum, screen.a));
     }
 }

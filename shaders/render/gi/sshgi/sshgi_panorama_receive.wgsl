@@ -56,17 +56,14 @@ fn gather_screen(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool, first: u
     return sum * stratum;
 }
 
-// Threads per sender (`passes::steps::RECEIVE_TILE`: 64 / RECEIVE_SPLIT senders, 2 x 2, per
-// workgroup).
-const RECEIVE_SPLIT: u32 = 16u;
-
 @compute @workgroup_size(64, 1, 1)
 fn receive(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
     let f = gp.counts.w;
-    let slot = lid / RECEIVE_SPLIT;
-    let id = group.xy * 2u + vec2<u32>(slot % 2u, slot / 2u);
+    let split = max(gp.screen.w, 1u);
+    let item = split_item(group, lid, split);
+    let id = item.xy;
     let index = id.y * f + id.x;
-    let inside = id.x < f && index < gp.counts.x;
+    let inside = item.z == 1u && id.x < f && index < gp.counts.x;
     var s = Sender();
     if inside {
         s = senders[index];
@@ -75,12 +72,12 @@ fn receive(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_in
     let hidden = index >= hidden_from();
     var own = vec3<f32>(0.0);
     if s.point.w > 0.0 {
-        let part = lid % RECEIVE_SPLIT;
-        own = gather_screen(s.point.xyz, s.normal.xyz, jitter, hidden, part, RECEIVE_SPLIT)
-            + gather_senders(s.point.xyz, s.normal.xyz, fract(jitter + 0.5), hidden, part, RECEIVE_SPLIT);
+        let part = lid % split;
+        own = gather_screen(s.point.xyz, s.normal.xyz, jitter, hidden, part, split)
+            + gather_senders(s.point.xyz, s.normal.xyz, fract(jitter + 0.5), hidden, part, split);
     }
-    let e = split_sum(lid, own, RECEIVE_SPLIT);
-    if inside && lid % RECEIVE_SPLIT == 0u {
+    let e = split_sum(lid, own, split);
+    if inside && lid % split == 0u {
         next[index] = vec4<f32>(s.reflectance.rgb * e, 0.0);
     }
 }

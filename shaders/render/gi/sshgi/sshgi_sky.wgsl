@@ -31,7 +31,8 @@ struct SkyRayParams {
     forward: vec4<f32>,
     // Voxel slices: near, far (view depth, m), slices per metre, on.
     vox: vec4<f32>,
-    // Voxel columns marched: width, view pixels per column, height, unused.
+    // Voxel columns marched: width, view pixels per column, height; threads per texel or sender
+    // (`sky_item`).
     grid: vec4<u32>,
     // The world's surface voxels (`sshgi_world_grid.wgsl`, the senders' rays): origin xyz, voxel
     // side (m).
@@ -204,48 +205,54 @@ fn cosine_ray(n: vec3<f32>, tangent: vec3<f32>, bitangent: vec3<f32>, i: u32, co
 }
 
 // E / pi from `count` cosine-distributed rays about `n` from `x` (stratified, rotated by
-// `rotation`, jittered by `jitter`): this thread's share, rays `first`, first + SKY_SPLIT, ...
+// `rotation`, jittered by `jitter`): this thread's share, rays `first`, first + split, ...
 fn sky_irradiance(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitter: f32, skip: i32, first: u32) -> vec3<f32> {
     let tangent = onb_tangent(n);
     let bitangent = onb_bitangent(n);
     var sum = vec3<f32>(0.0);
-    for (var i = first; i < count; i = i + SKY_SPLIT) {
+    for (var i = first; i < count; i = i + sky_split()) {
         let w = cosine_ray(n, tangent, bitangent, i, count, rotation, jitter);
         sum = sum + sky_along(x, n, w, skip);
     }
     return sum / f32(max(count, 1u));
 }
 
-// Threads per texel or sender, each tracing every SKY_SPLIT-th ray; a workgroup's 64 threads
-// hold a 4 x 4 tile (`passes::steps::SKY_TILE`). A thread per texel made each a serial chain
-// of marched rays: on the H200 at 1080p the sky took 12.6 ms (`bouncelab profile`, skylight).
-const SKY_SPLIT: u32 = 4u;
+// Each texel or sender takes `gp.grid.w` threads of a 64-thread workgroup, each tracing every
+// split-th ray; a workgroup covers 8 / sqrt(split) items a side (`passes::steps::split`). A
+// thread per texel made each a serial chain of marched rays: on the H200 at 1080p the sky took
+// 12.6 ms (`bouncelab profile`, skylight).
 var<workgroup> sky_partial: array<vec3<f32>, 64>;
 
-// The sum of the SKY_SPLIT threads' `own` of item `lid / SKY_SPLIT`, valid in its first
-// thread; the whole workgroup calls it.
+fn sky_split() -> u32 {
+    return max(gp.grid.w, 1u);
+}
+
+// The sum of the split threads' `own` of item `lid / split`, valid in its first thread; the
+// whole workgroup calls it.
 fn sky_sum(lid: u32, own: vec3<f32>) -> vec3<f32> {
     sky_partial[lid] = own;
     workgroupBarrier();
     var sum = own;
-    if lid % SKY_SPLIT == 0u {
-        for (var i = 1u; i < SKY_SPLIT; i = i + 1u) {
+    if lid % sky_split() == 0u {
+        for (var i = 1u; i < sky_split(); i = i + 1u) {
             sum = sum + sky_partial[lid + i];
         }
     }
     return sum;
 }
 
-// The item (texel or sender cell) a thread works on.
-fn sky_item(group: vec3<u32>, lid: u32) -> vec2<u32> {
-    let slot = lid / SKY_SPLIT;
-    return group.xy * 4u + vec2<u32>(slot % 4u, slot / 4u);
+// The item (texel or sender cell) thread `lid` works on; z = 0 where the thread has none.
+fn sky_item(group: vec3<u32>, lid: u32) -> vec3<u32> {
+    let side = max(8u / u32(round(sqrt(f32(sky_split())))), 1u);
+    let slot = lid / sky_split();
+    return vec3<u32>(group.xy * side + vec2<u32>(slot % side, slot / side), u32(slot < side * side));
 }
 
 @compute @workgroup_size(64, 1, 1)
 fn sky_light(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
-    let id = sky_item(group, lid);
-    let inside = all(id < textureDimensions(dest));
+    let item = sky_item(group, lid);
+    let id = item.xy;
+    let inside = item.z == 1u && all(id < textureDimensions(dest));
     var g = vec4<f32>(0.0);
     if inside {
         g = textureLoad(geometry, id, 0);
@@ -255,10 +262,10 @@ fn sky_light(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_
         let x = pyramid_point(frame, g);
         let rotation = 2.0 * SKY_PI * hash01(id.x & 3u, id.y & 3u, gp.counts.y);
         let jitter = hash01(id.x, id.y, gp.counts.y ^ 0x85ebca6bu);
-        own = sky_irradiance(x, oct_decode(g.gb), max(gp.counts.x, 1u), rotation, jitter, 2, lid % SKY_SPLIT);
+        own = sky_irradiance(x, oct_decode(g.gb), max(gp.counts.x, 1u), rotation, jitter, 2, lid % sky_split());
     }
     let e = sky_sum(lid, own);
-    if inside && lid % SKY_SPLIT == 0u {
+    if inside && lid % sky_split() == 0u {
         textureStore(dest, id, vec4<f32>(e, 1.0));
     }
 }
@@ -277,7 +284,7 @@ fn sky_through_world(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitt
     // Past the grid's far corner from anywhere inside it.
     let reach = length(vec3<f32>(gp.world_dims.xyz)) * gp.world.w + 1.0;
     var sum = vec3<f32>(0.0);
-    for (var i = first; i < count; i = i + SKY_SPLIT) {
+    for (var i = first; i < count; i = i + sky_split()) {
         let w = cosine_ray(n, tangent, bitangent, i, count, rotation, jitter);
         if !world_blocked(x, n, x + w * reach, vec3<f32>(0.0)) {
             sum = sum + sky_radiance(w);
@@ -293,10 +300,11 @@ fn sky_through_world(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitt
 @compute @workgroup_size(64, 1, 1)
 fn sender_sky(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
     let f = gp.counts.z;
-    let id = sky_item(group, lid);
+    let item = sky_item(group, lid);
+    let id = item.xy;
     let index = id.y * f + id.x;
     var s = Sender();
-    if id.x < f && index < gp.counts.w {
+    if item.z == 1u && id.x < f && index < gp.counts.w {
         s = senders[index];
     }
     var own = vec3<f32>(0.0);
@@ -304,7 +312,7 @@ fn sender_sky(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation
         let rotation = 2.0 * SKY_PI * hash01(id.x, id.y, gp.counts.y ^ 0x27d4eb2fu);
         let jitter = hash01(id.y, id.x, gp.counts.y ^ 0x165667b1u);
         let skip = select(0, 2, in_view(s.point.xyz));
-        let part = lid % SKY_SPLIT;
+        let part = lid % sky_split();
         if world_grid_on() {
             own = sky_through_world(s.point.xyz, s.normal.xyz, max(gp.counts.x / 4u, 1u), rotation, jitter, part);
         } else {
@@ -312,7 +320,7 @@ fn sender_sky(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation
         }
     }
     let e = sky_sum(lid, own);
-    if s.point.w > 0.0 && lid % SKY_SPLIT == 0u {
+    if s.point.w > 0.0 && lid % sky_split() == 0u {
         sender_radiance[index] = sender_radiance[index] + vec4<f32>(s.reflectance.rgb * e, 0.0);
     }
 }

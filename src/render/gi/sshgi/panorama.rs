@@ -55,7 +55,8 @@ pub struct PackParams {
 pub struct PanoramaParams {
     /// Senders in the list, samples per texel, frame seed, face size F.
     pub counts: [u32; 4],
-    /// The start level's width and height, unused x2.
+    /// The start level's width and height; threads per texel of the gather and per sender of
+    /// the receive.
     pub screen: [u32; 4],
     /// Solid angle of one start-level texel on the optical axis (sr); a voxel column's width
     /// per metre of view depth where a segment in view walks the world grid when its voxel is

@@ -19,7 +19,8 @@ mod steps;
 mod tail;
 
 use super::panorama::{PanoramaParams, Senders};
-use steps::{StepBuilder, gather_slot, panorama_slot, sky_slot};
+pub use steps::share_samples_as_on_a_gpu;
+use steps::{Shared, StepBuilder, gather_slot, panorama_slot, sky_slot, split};
 
 /// Bytes between two parameter slots (WebGPU's minimum uniform offset alignment).
 const SLOT: u64 = 256;
@@ -79,7 +80,7 @@ pub struct SkyRayParams {
     pub forward: [f32; 4],
     /// Voxel slices: near, far, slices per metre, on.
     pub vox: [f32; 4],
-    /// Voxel columns: width, view pixels per column, height, unused.
+    /// Voxel columns: width, view pixels per column, height; threads per item.
     pub grid: [u32; 4],
     /// The world grid's origin and voxel side (m) (the senders' rays).
     pub world: [f32; 4],
@@ -222,6 +223,8 @@ enum Total {
 
 /// Pipelines, parameter slots and targets of sshgi.
 pub struct SshgiPasses {
+    /// Whether items share their samples over threads ([`steps::shares_samples`]).
+    shared: bool,
     mip_layout: wgpu::BindGroupLayout,
     gather_layout: wgpu::BindGroupLayout,
     up_layout: wgpu::BindGroupLayout,
@@ -302,7 +305,7 @@ struct Step {
     group: wgpu::BindGroup,
     slot: u32,
     size: (u32, u32),
-    /// Texels per workgroup along each axis: 8, or a gather's tile ([`steps::gather_split`]).
+    /// Items per workgroup along each axis: 8, or a shared pass's tile ([`steps::split`]).
     tile: u32,
 }
 
@@ -390,6 +393,7 @@ impl SshgiPasses {
         let [(sky_layout, sky), (sender_sky_layout, sender_sky)] = sky_pipelines(device)?;
         let (tail_layout, tail) = tail::pipelines(device)?;
         Ok(Self {
+            shared: steps::shares_samples(device),
             tail_layout,
             tail,
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
@@ -589,7 +593,7 @@ impl SshgiPasses {
                     forward: [forward.x, forward.y, forward.z, 0.0],
                     // The paper's saving: later bounces may skip visibility.
                     vox: if b == 0 || settings.visibility_all_bounces { vox } else { [0.0; 4] },
-                    grid: [grid[0], grid[1], grid[2], steps::gather_split(k).0],
+                    grid: [grid[0], grid[1], grid[2], split(self.shared, Shared::Gather(k)).0],
                 };
                 put(gather_slot(plan, b as usize, k as usize), bytemuck::bytes_of(&p));
             }
@@ -598,7 +602,12 @@ impl SshgiPasses {
             let seed = inputs.frame_index.wrapping_mul(0x9e37_79b9).wrapping_add(b);
             let p = PanoramaParams {
                 counts: [senders, settings.panorama_samples, seed, face],
-                screen: [start_size.0, start_size.1, 0, 0],
+                screen: [
+                    start_size.0,
+                    start_size.1,
+                    split(self.shared, Shared::Panorama).0,
+                    split(self.shared, Shared::Receive).0,
+                ],
                 geo: [pixel_sr * (1u32 << (2 * plan.start)) as f32, grid_in_view, 0.0, 0.0],
                 forward: [forward.x, forward.y, forward.z, 0.0],
                 // The hidden senders' segments are marched in every bounce: they lie behind
@@ -619,7 +628,7 @@ impl SshgiPasses {
             ],
             forward: [forward.x, forward.y, forward.z, 0.0],
             vox,
-            grid,
+            grid: [grid[0], grid[1], grid[2], split(self.shared, Shared::Sky).0],
             world,
             world_dims,
         };

@@ -162,7 +162,14 @@ impl<'a> StepBuilder<'a> {
         });
         let size = (sky.texture.width(), sky.texture.height());
         let slot = sky_slot(s.plan);
-        self.steps.push(Step { pass: "sshgi sky".to_owned(), pipeline: Pipe::Sky, group, slot, size, tile: SKY_TILE });
+        self.steps.push(Step {
+            pass: "sshgi sky".to_owned(),
+            pipeline: Pipe::Sky,
+            group,
+            slot,
+            size,
+            tile: split(self.passes.shared, Shared::Sky).1,
+        });
         // The panorama's senders off screen: their first radiance gains the sky's light.
         let Some(([list, first, _], side, count)) = &key.senders else { return };
         let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -186,7 +193,7 @@ impl<'a> StepBuilder<'a> {
             group,
             slot,
             size: (*side, count.div_ceil(*side)),
-            tile: SKY_TILE,
+            tile: split(self.passes.shared, Shared::Sky).1,
         });
     }
 
@@ -245,7 +252,7 @@ impl<'a> StepBuilder<'a> {
                 group,
                 slot: gather_slot(s.plan, b, k),
                 size: (dest.texture.width(), dest.texture.height()),
-                tile: gather_split(k as u32).1,
+                tile: split(self.passes.shared, Shared::Gather(k as u32)).1,
             });
         }
     }
@@ -358,7 +365,14 @@ impl<'a> StepBuilder<'a> {
         });
         let pass = self.pass(b, "sshgi panorama gather");
         let size = (dest.texture.width(), dest.texture.height());
-        self.steps.push(Step { pass, pipeline: Pipe::Panorama, group, slot, size, tile: PANORAMA_TILE });
+        self.steps.push(Step {
+            pass,
+            pipeline: Pipe::Panorama,
+            group,
+            slot,
+            size,
+            tile: split(self.passes.shared, Shared::Panorama).1,
+        });
         if b + 1 >= s.plan.bounces as usize {
             return;
         }
@@ -379,34 +393,63 @@ impl<'a> StepBuilder<'a> {
         });
         let pass = self.pass(b, "sshgi panorama receive");
         let size = (*side, count.div_ceil(*side));
-        self.steps.push(Step { pass, pipeline: Pipe::Receive, group, slot, size, tile: RECEIVE_TILE });
+        self.steps.push(Step {
+            pass,
+            pipeline: Pipe::Receive,
+            group,
+            slot,
+            size,
+            tile: split(self.passes.shared, Shared::Receive).1,
+        });
     }
 }
 
-/// How gather level `k` spreads a texel's samples over threads: (threads per texel S, texels per
-/// workgroup side). Each thread takes every S-th sample and the workgroup adds them up
-/// (`sshgi_gather.wgsl`). A texel's samples in one thread made each thread a serial chain of N
-/// samples, each marching up to 2^k r voxel columns, and the coarse levels have few texels: on
-/// the H200 at 1080p the 2,040 texels of level 3 took 21 ms and level 0's 130,000 took 5.5 ms
-/// (`bouncelab profile`, the suite's rooms). S grows with the level so that every level launches
-/// about four threads per start-level texel.
-pub(super) fn gather_split(k: u32) -> (u32, u32) {
-    match k {
-        0 => (4, 4),
-        1 => (16, 2),
-        _ => (64, 1),
+/// A pass that spreads each item's (texel's or sender's) samples over threads.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Shared {
+    /// The screen's gather of level k.
+    Gather(u32),
+    /// The panorama's senders gathered on the start level.
+    Panorama,
+    /// The panorama's and hidden senders' receive.
+    Receive,
+    /// The sky's rays, on the start level and at the senders.
+    Sky,
+}
+
+/// How a pass spreads an item's samples over threads: (threads per item S, items per workgroup
+/// side, 8 / sqrt(S)). Each thread takes every S-th sample and the workgroup of 64 adds them up
+/// (`sshgi_gather.wgsl`, `sshgi_panorama_*.wgsl`, `sshgi_sky.wgsl`). A thread per item made each
+/// thread a serial chain of N samples, each marching up to 2^k r voxel columns, and the coarse
+/// levels have few texels: on the H200 at 1080p the 2,040 texels of level 3 took 21 ms, level
+/// 0's 130,000 5.5 ms, the 8,192 senders' receive 5 ms and the sky 12.6 ms (`bouncelab
+/// profile`, commit e48fc51). S grows with the level so that every level launches about four
+/// threads per start-level texel. A software adapter has no latency to hide and pays for the
+/// barrier: it keeps a thread per item (lavapipe: sshgi's probe 9.4-10.2 s with, 11.2 s
+/// without).
+pub(super) fn split(shared: bool, pass: Shared) -> (u32, u32) {
+    if !shared {
+        return (1, 8);
+    }
+    match pass {
+        Shared::Gather(0) | Shared::Panorama | Shared::Sky => (4, 4),
+        Shared::Gather(1) | Shared::Receive => (16, 2),
+        Shared::Gather(_) => (64, 1),
     }
 }
 
-/// Texels per side of a panorama gather's workgroup: four threads share a texel's samples
-/// (`PANORAMA_SPLIT` in `sshgi_panorama_gather.wgsl`), as [`gather_split`]'s start level.
-const PANORAMA_TILE: u32 = 4;
+/// Whether passes made on `device` share items' samples over threads ([`split`]): on a GPU, and
+/// on a software adapter after [`share_samples_as_on_a_gpu`].
+pub(super) fn shares_samples(device: &wgpu::Device) -> bool {
+    device.adapter_info().device_type != wgpu::DeviceType::Cpu || AS_ON_A_GPU.load(std::sync::atomic::Ordering::Relaxed)
+}
 
-/// Senders per side of a panorama receive's workgroup: sixteen threads share a sender's samples
-/// (`RECEIVE_SPLIT` in `sshgi_panorama_receive.wgsl`): the 8,192 senders alone filled a few
-/// warps per SM, each a chain of 128 samples, most of them marched.
-const RECEIVE_TILE: u32 = 2;
+/// Set by [`share_samples_as_on_a_gpu`].
+static AS_ON_A_GPU: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
-/// Texels (or senders) per side of a sky pass's workgroup: four threads share an item's rays
-/// (`SKY_SPLIT` in `sshgi_sky.wgsl`).
-const SKY_TILE: u32 = 4;
+/// Makes sshgi passes created after the call share each item's samples over threads as on a GPU even
+/// on a software adapter ([`split`]), so that the tests, which run on one, check the kernels a
+/// GPU runs. Process-wide.
+pub fn share_samples_as_on_a_gpu(on: bool) {
+    AS_ON_A_GPU.store(on, std::sync::atomic::Ordering::Relaxed);
+}
