@@ -162,8 +162,9 @@ fn pick(@builtin(global_invocation_id) id: vec3<u32>) {
 // Per source VPL k (one workgroup each): the sum of its P slots' weights (`slot_weight`) into
 // selection[2k + 1], which `write_winner` and `scan_sources` read. A tree reduction in
 // workgroup memory: `pick` used to add every slot by a compare-and-swap loop on that one word,
-// P = 1024 threads contending for each address, and the H200 profile read 4-7 ms per bounce
-// for it (`ism bounce` 22-34 ms of the frame at 1080p, whatever the view's size).
+// P = 1024 threads contending for each address, the pass's one contended step; the H200
+// profile read `ism bounce` at 12-34 ms of a 1080p frame (five bounces), whatever the view's
+// size (`docs/BENCHMARKS.md`).
 @compute @workgroup_size(256, 1, 1)
 fn source_sums(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
     let k = wid.x;

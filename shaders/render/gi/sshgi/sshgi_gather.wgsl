@@ -11,7 +11,7 @@
 // marched through the view's voxel columns (`sshgi_visibility.wgsl`). A texel's samples are
 // spread over S = `gp.grid.w` threads of its workgroup (every S-th sample each, then added up in
 // workgroup memory): a thread per texel made each a serial chain of N marches, and the coarse
-// levels, which march the farthest, have the fewest texels (`passes::steps::gather_split`).
+// levels, which march the farthest, have the fewest texels (`passes::steps::split`; a software adapter keeps S = 1).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import render/gi/sshgi/sshgi_hash.wgsl
