@@ -11,12 +11,14 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable as _;
 
 fn harness() -> Harness<'static, EditorApp> {
+    harness_sized(egui::vec2(1280.0, 800.0))
+}
+
+fn harness_sized(size: egui::Vec2) -> Harness<'static, EditorApp> {
     let path = default_project_path();
     let project = Project::load(&path).expect("default project");
-    let mut h = Harness::builder()
-        .with_size(egui::vec2(1280.0, 800.0))
-        .wgpu()
-        .build_eframe(move |cc| EditorApp::new(cc, project, Some(path)));
+    let mut h =
+        Harness::builder().with_size(size).wgpu().build_eframe(move |cc| EditorApp::new(cc, project, Some(path)));
     // The viewport repaints every frame, so step a fixed number of frames instead of `run`.
     h.run_steps(3);
     settle(&mut h);
@@ -621,13 +623,8 @@ fn every_modes_settings_panel_names_its_inputs() {
     if !common::has_gpu() {
         return;
     }
-    let path = default_project_path();
-    let project = Project::load(&path).expect("default project");
-    let mut h = Harness::builder()
-        .with_size(egui::vec2(1400.0, 860.0))
-        .wgpu()
-        .build_eframe(move |cc| EditorApp::new(cc, project, Some(path)));
-    h.run_steps(3);
+    // The editor's default window.
+    let mut h = harness_sized(egui::vec2(1400.0, 860.0));
     for mode in GiMode::ALL {
         h.get_by_label(mode.name()).click();
         h.run_steps(3);

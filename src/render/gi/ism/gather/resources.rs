@@ -5,13 +5,18 @@
 use super::{IsmGather, Key, PULL_LEVELS, VPL_BYTES, level_base};
 use crate::render::gi::ism::params::{BounceParams, GpuCluster, PullPushParams, SelectParams, SplatParams};
 
+/// Where the tail's partial screen sums start (words) and how many pairs there are: the
+/// `TAIL_SUMS_AT` and `TAIL_SLOTS` of `ism_bounce.wgsl` and `ism_shade.wgsl`.
+const TAIL_SUMS_AT: u64 = 8;
+const TAIL_SLOTS: u64 = 1024;
+
+/// The bounce tail's state (`ism_bounce.wgsl` `tail`): 8 words of running means and scale, then
+/// `TAIL_SLOTS` pairs of partial screen sums, one per group of the shading's workgroups
+/// (`ism_shade.wgsl`; one pair for the whole screen made every workgroup contend for it).
+const TAIL_BYTES: u64 = (TAIL_SUMS_AT + 2 * TAIL_SLOTS) * 4;
+
 /// The buffers of one atlas size and point count ([`IsmGather::ensure`]), before they join
 /// their bind groups in [`Sized`].
-/// The bounce tail's state (`ism_bounce.wgsl` `tail`): 8 words of running means and scale, then
-/// `TAIL_SLOTS` = 1024 pairs of partial screen sums, one per group of the shading's workgroups
-/// (`ism_shade.wgsl`; one pair for the whole screen made every workgroup contend for it).
-const TAIL_BYTES: u64 = (8 + 2 * 1024) * 4;
-
 pub(super) struct Buffers {
     pub(super) atlas: wgpu::Buffer,
     pub(super) coarse: wgpu::Buffer,
@@ -163,5 +168,22 @@ impl IsmGather {
             ],
         );
         Groups { splat, select, bounce, pull_push }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{TAIL_SLOTS, TAIL_SUMS_AT};
+
+    /// The shaders that write and read the tail's sums lay them out as the buffer is sized.
+    #[test]
+    fn the_tail_buffer_holds_the_pairs_the_shaders_address() {
+        for (name, text) in [
+            ("ism_bounce.wgsl", include_str!("../../../../../shaders/render/gi/ism/ism_bounce.wgsl")),
+            ("ism_shade.wgsl", include_str!("../../../../../shaders/render/gi/ism/ism_shade.wgsl")),
+        ] {
+            assert!(text.contains(&format!("const TAIL_SUMS_AT: u32 = {TAIL_SUMS_AT}u;")), "{name}: TAIL_SUMS_AT");
+            assert!(text.contains(&format!("const TAIL_SLOTS: u32 = {TAIL_SLOTS}u;")), "{name}: TAIL_SLOTS");
+        }
     }
 }

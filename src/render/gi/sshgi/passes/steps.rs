@@ -107,6 +107,20 @@ impl<'a> StepBuilder<'a> {
         &self.key.pyramid[self.s.plan.start as usize + k]
     }
 
+    /// Appends a dispatch of a pass that spreads each item's samples over threads ([`split`]):
+    /// `size` items, tiled as the pass shares them.
+    fn shared_step(
+        &mut self,
+        pass: String,
+        (pipeline, shared): (Pipe, Shared),
+        group: wgpu::BindGroup,
+        slot: u32,
+        size: (u32, u32),
+    ) {
+        let tile = split(self.passes.shared, shared).1;
+        self.steps.push(Step { pass, pipeline, group, slot, size, tile });
+    }
+
     /// Appends a dispatch of `pipeline` writing `dest`.
     fn step(&mut self, pass: String, pipeline: Pipe, group: wgpu::BindGroup, slot: u32, dest: &Target) {
         let size = (dest.texture.width(), dest.texture.height());
@@ -161,15 +175,7 @@ impl<'a> StepBuilder<'a> {
             ],
         });
         let size = (sky.texture.width(), sky.texture.height());
-        let slot = sky_slot(s.plan);
-        self.steps.push(Step {
-            pass: "sshgi sky".to_owned(),
-            pipeline: Pipe::Sky,
-            group,
-            slot,
-            size,
-            tile: split(self.passes.shared, Shared::Sky).1,
-        });
+        self.shared_step("sshgi sky".to_owned(), (Pipe::Sky, Shared::Sky), group, sky_slot(s.plan), size);
         // The panorama's senders off screen: their first radiance gains the sky's light.
         let Some(([list, first, _], side, count)) = &key.senders else { return };
         let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -186,15 +192,8 @@ impl<'a> StepBuilder<'a> {
                 wgpu::BindGroupEntry { binding: 9, resource: key.world.as_entire_binding() },
             ],
         });
-        let slot = sky_slot(s.plan);
-        self.steps.push(Step {
-            pass: "sshgi sky".to_owned(),
-            pipeline: Pipe::SenderSky,
-            group,
-            slot,
-            size: (*side, count.div_ceil(*side)),
-            tile: split(self.passes.shared, Shared::Sky).1,
-        });
+        let size = (*side, count.div_ceil(*side));
+        self.shared_step("sshgi sky".to_owned(), (Pipe::SenderSky, Shared::Sky), group, sky_slot(s.plan), size);
     }
 
     /// Illumination levels: the direct term as diffuse senders send it (first bounce; plus
@@ -246,14 +245,9 @@ impl<'a> StepBuilder<'a> {
         for k in 0..levels {
             let dest = if levels == 1 { out } else { &s.gathered[k] };
             let group = self.gather_group(k, dest);
-            self.steps.push(Step {
-                pass: self.pass(b, &format!("sshgi gather level {k}")),
-                pipeline: Pipe::Gather,
-                group,
-                slot: gather_slot(s.plan, b, k),
-                size: (dest.texture.width(), dest.texture.height()),
-                tile: split(self.passes.shared, Shared::Gather(k as u32)).1,
-            });
+            let (pass, size) =
+                (self.pass(b, &format!("sshgi gather level {k}")), (dest.texture.width(), dest.texture.height()));
+            self.shared_step(pass, (Pipe::Gather, Shared::Gather(k as u32)), group, gather_slot(s.plan, b, k), size);
         }
     }
 
@@ -365,14 +359,7 @@ impl<'a> StepBuilder<'a> {
         });
         let pass = self.pass(b, "sshgi panorama gather");
         let size = (dest.texture.width(), dest.texture.height());
-        self.steps.push(Step {
-            pass,
-            pipeline: Pipe::Panorama,
-            group,
-            slot,
-            size,
-            tile: split(self.passes.shared, Shared::Panorama).1,
-        });
+        self.shared_step(pass, (Pipe::Panorama, Shared::Panorama), group, slot, size);
         if b + 1 >= s.plan.bounces as usize {
             return;
         }
@@ -393,14 +380,7 @@ impl<'a> StepBuilder<'a> {
         });
         let pass = self.pass(b, "sshgi panorama receive");
         let size = (*side, count.div_ceil(*side));
-        self.steps.push(Step {
-            pass,
-            pipeline: Pipe::Receive,
-            group,
-            slot,
-            size,
-            tile: split(self.passes.shared, Shared::Receive).1,
-        });
+        self.shared_step(pass, (Pipe::Receive, Shared::Receive), group, slot, size);
     }
 }
 
