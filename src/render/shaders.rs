@@ -83,6 +83,7 @@ pub const SHADERS: &[(&str, &str)] = &[
         include_str!("../../shaders/render/gi/sshgi/sshgi_panorama_receive.wgsl"),
     ),
     ("render/gi/sshgi/sshgi_hash.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_hash.wgsl")),
+    ("render/gi/sshgi/sshgi_split.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_split.wgsl")),
     ("render/gi/sshgi/sshgi_sender.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_sender.wgsl")),
     ("render/gi/sshgi/sshgi_sky.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_sky.wgsl")),
     ("render/gi/sshgi/sshgi_tail.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_tail.wgsl")),

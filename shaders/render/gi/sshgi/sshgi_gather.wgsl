@@ -9,12 +9,11 @@
 // Samples are stratified in area with a per-pixel (4x4 interleaved) and per-frame rotation, so the
 // temporal accumulation averages the pattern out. With visibility on, each sample's segment is
 // marched through the view's voxel columns (`sshgi_visibility.wgsl`). A texel's samples are
-// spread over S = `gp.grid.w` threads of its workgroup (every S-th sample each, then added up in
-// workgroup memory): a thread per texel made each a serial chain of N marches, and the coarse
-// levels, which march the farthest, have the fewest texels (`passes::steps::split`; a software adapter keeps S = 1).
+// spread over S = `gp.grid.w` threads of its workgroup (`sshgi_split.wgsl`).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import render/gi/sshgi/sshgi_hash.wgsl
+#import render/gi/sshgi/sshgi_split.wgsl
 
 struct GatherParams {
     // pyramid level l of this level, ring (0: full disc), samples N, frame seed.
@@ -48,34 +47,24 @@ const PI: f32 = 3.14159265358979;
 const GOLDEN_ANGLE: f32 = 2.39996322972865;
 
 
-// Threads' partial sums, added up per texel.
-var<workgroup> partial: array<vec3<f32>, 64>;
-
 @compute @workgroup_size(64, 1, 1)
 fn gather(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
     let split = max(gp.grid.w, 1u);
-    let side = max(8u / u32(round(sqrt(f32(split)))), 1u);
-    let slot = lid / split;
-    let t = vec2<i32>(group.xy * side + vec2<u32>(slot % side, slot / side));
-    let size = vec2<i32>(textureDimensions(dest));
-    let inside = all(t < size) && slot < side * side;
+    let item = split_item(group, lid, split);
+    let t = vec2<i32>(item.xy);
+    let inside = item.z == 1u && all(t < vec2<i32>(textureDimensions(dest)));
     var g = vec4<f32>(0.0);
     if inside {
         g = textureLoad(geometry, t, 0);
     }
-    var sum = vec3<f32>(0.0);
+    var own = vec3<f32>(0.0);
     if g.a >= 0.5 {
-        sum = gathered(t, g, lid % split, split);
+        own = gathered(t, g, lid % split, split);
     }
-    partial[lid] = sum;
-    workgroupBarrier();
-    if !inside || lid % split != 0u {
-        return;
+    let sum = split_sum(lid, own, split);
+    if inside && lid % split == 0u {
+        textureStore(dest, t, vec4<f32>(sum, 1.0));
     }
-    for (var i = 1u; i < split; i = i + 1u) {
-        sum = sum + partial[lid + i];
-    }
-    textureStore(dest, t, vec4<f32>(sum, 1.0));
 }
 
 // Texel t's (geometry g) samples first, first + step, ... of its N.

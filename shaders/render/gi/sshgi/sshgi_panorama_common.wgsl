@@ -8,6 +8,7 @@
 // `radiance`, `voxels` and `world`.
 
 #import render/gi/sshgi/sshgi_hash.wgsl
+#import render/gi/sshgi/sshgi_split.wgsl
 #import render/gi/sshgi/sshgi_visibility.wgsl
 #import render/gi/sshgi/sshgi_world_grid.wgsl
 
@@ -158,32 +159,4 @@ fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool, first: 
         }
     }
     return sum * stratum;
-}
-
-// The including shader's items (texels or senders) each take `split` threads of a 64-thread
-// workgroup, each thread every split-th sample (a thread per item made each a serial chain of N
-// marched samples: on the H200 the 8,192 senders' receive took 5 ms, `bouncelab profile`;
-// `passes::steps::split`). A workgroup covers a tile of 8 / sqrt(split) items a side.
-var<workgroup> split_partial: array<vec3<f32>, 64>;
-
-// The item thread `lid` of workgroup `group` works on, and whether the thread has one.
-fn split_item(group: vec3<u32>, lid: u32, split: u32) -> vec3<u32> {
-    let side = max(8u / u32(round(sqrt(f32(split)))), 1u);
-    let slot = lid / split;
-    let item = group.xy * side + vec2<u32>(slot % side, slot / side);
-    return vec3<u32>(item, u32(slot < side * side));
-}
-
-// The sum of the split threads' `own` of item `lid / split`, valid in its first thread (lid a
-// multiple of split); the whole workgroup calls it.
-fn split_sum(lid: u32, own: vec3<f32>, split: u32) -> vec3<f32> {
-    split_partial[lid] = own;
-    workgroupBarrier();
-    var sum = own;
-    if lid % split == 0u {
-        for (var i = 1u; i < split; i = i + 1u) {
-            sum = sum + split_partial[lid + i];
-        }
-    }
-    return sum;
 }

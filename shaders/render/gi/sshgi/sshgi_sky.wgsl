@@ -22,6 +22,7 @@
 #import common/onb.wgsl
 #import common/sky_params.wgsl
 #import render/gi/sshgi/sshgi_hash.wgsl
+#import render/gi/sshgi/sshgi_split.wgsl
 
 struct SkyRayParams {
     // rays per texel (and sender), frame seed, panorama face size F (0: no senders), senders in
@@ -32,7 +33,7 @@ struct SkyRayParams {
     // Voxel slices: near, far (view depth, m), slices per metre, on.
     vox: vec4<f32>,
     // Voxel columns marched: width, view pixels per column, height; threads per texel or sender
-    // (`sky_item`).
+    // (`sshgi_split.wgsl`).
     grid: vec4<u32>,
     // The world's surface voxels (`sshgi_world_grid.wgsl`, the senders' rays): origin xyz, voxel
     // side (m).
@@ -218,39 +219,14 @@ fn sky_irradiance(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitter:
 }
 
 // Each texel or sender takes `gp.grid.w` threads of a 64-thread workgroup, each tracing every
-// split-th ray; a workgroup covers 8 / sqrt(split) items a side (`passes::steps::split`). A
-// thread per texel made each a serial chain of marched rays: on the H200 at 1080p the sky took
-// 12.6 ms (`bouncelab profile`, skylight).
-var<workgroup> sky_partial: array<vec3<f32>, 64>;
-
+// split-th ray (`sshgi_split.wgsl`).
 fn sky_split() -> u32 {
     return max(gp.grid.w, 1u);
 }
 
-// The sum of the split threads' `own` of item `lid / split`, valid in its first thread; the
-// whole workgroup calls it.
-fn sky_sum(lid: u32, own: vec3<f32>) -> vec3<f32> {
-    sky_partial[lid] = own;
-    workgroupBarrier();
-    var sum = own;
-    if lid % sky_split() == 0u {
-        for (var i = 1u; i < sky_split(); i = i + 1u) {
-            sum = sum + sky_partial[lid + i];
-        }
-    }
-    return sum;
-}
-
-// The item (texel or sender cell) thread `lid` works on; z = 0 where the thread has none.
-fn sky_item(group: vec3<u32>, lid: u32) -> vec3<u32> {
-    let side = max(8u / u32(round(sqrt(f32(sky_split())))), 1u);
-    let slot = lid / sky_split();
-    return vec3<u32>(group.xy * side + vec2<u32>(slot % side, slot / side), u32(slot < side * side));
-}
-
 @compute @workgroup_size(64, 1, 1)
 fn sky_light(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
-    let item = sky_item(group, lid);
+    let item = split_item(group, lid, sky_split());
     let id = item.xy;
     let inside = item.z == 1u && all(id < textureDimensions(dest));
     var g = vec4<f32>(0.0);
@@ -264,7 +240,7 @@ fn sky_light(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_
         let jitter = hash01(id.x, id.y, gp.counts.y ^ 0x85ebca6bu);
         own = sky_irradiance(x, oct_decode(g.gb), max(gp.counts.x, 1u), rotation, jitter, 2, lid % sky_split());
     }
-    let e = sky_sum(lid, own);
+    let e = split_sum(lid, own, sky_split());
     if inside && lid % sky_split() == 0u {
         textureStore(dest, id, vec4<f32>(e, 1.0));
     }
@@ -300,7 +276,7 @@ fn sky_through_world(x: vec3<f32>, n: vec3<f32>, count: u32, rotation: f32, jitt
 @compute @workgroup_size(64, 1, 1)
 fn sender_sky(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
     let f = gp.counts.z;
-    let item = sky_item(group, lid);
+    let item = split_item(group, lid, sky_split());
     let id = item.xy;
     let index = id.y * f + id.x;
     var s = Sender();
@@ -319,7 +295,7 @@ fn sender_sky(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation
             own = sky_irradiance(s.point.xyz, s.normal.xyz, max(gp.counts.x, 1u), rotation, jitter, skip, part);
         }
     }
-    let e = sky_sum(lid, own);
+    let e = split_sum(lid, own, sky_split());
     if s.point.w > 0.0 && lid % sky_split() == 0u {
         sender_radiance[index] = sender_radiance[index] + vec4<f32>(s.reflectance.rgb * e, 0.0);
     }
