@@ -27,7 +27,7 @@ pub fn rcs_ui(s: &mut RcsSettings, ui: &mut egui::Ui) {
         ui.add(egui::Slider::new(&mut s.records_per_frame, 16..=8192).logarithmic(true).text("records per frame"))
             .on_hover_text("New or renewed records computed per frame: the editor stays interactive while the cache fills, and the viewport shows it filling.");
         ui.add(egui::Slider::new(&mut s.rounds, 1..=16).text("rounds per frame"))
-            .on_hover_text("Placement rounds per frame (splat, find uncovered pixels, compute, splat again). Each waits for the GPU once.");
+            .on_hover_text("Placement rounds per frame. The first uses the uncovered pixels the last frame found and waits for nothing; each further round waits for the GPU once (a faster fill, slower frames).");
         ui.add(egui::Slider::new(&mut s.max_records, 256..=262_144).logarithmic(true).text("max records"))
             .on_hover_text("Cache capacity (160 bytes and a 1 KiB light-check stratum set each). Beyond it uncovered pixels stay without indirect light (the coverage buffer shows them).");
         ui.add(egui::Slider::new(&mut s.min_zone_pixels, 1.0..=64.0).logarithmic(true).text("min zone (px)"))

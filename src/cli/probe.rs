@@ -223,6 +223,8 @@ fn render(
     let averaged = frames.saturating_sub(from).max(1) as f32;
     for frame in ready..frames {
         renderer.render(scene, settings, size)?;
+        // Between frames, as the editor: a readback issued in this frame lands for the next.
+        renderer.wait_for_gpu()?;
         let summed = average_from.is_some() && frame >= from;
         if !args.trace && !summed {
             continue;

@@ -5,8 +5,8 @@
 //! shadows, direct light, composite, tonemap), the CPU time to record and submit a frame
 //! (`cpu_ms`), and the frames' wall-clock time; one Chrome trace per mode (chrome://tracing,
 //! Perfetto) of a frame at the first scene and resolution. Still frames keep their shadow maps,
-//! so each row also measures one frame that redraws them (`shadows_redraw_ms`), and one after a
-//! 10 cm camera move (`moved_technique_ms`, `moved_cpu_waits`); `rcs` rows fill and converge
+//! so each row also measures one frame that redraws them (`shadows_redraw_ms`), and the two after
+//! a 10 cm camera move (`moved_technique_ms`: the costlier; `moved_cpu_waits`: both); `rcs` rows fill and converge
 //! their cache first (at most 128 frames). The JSON is rewritten after every
 //! row, so a run cut short by the machine's time limit keeps what it measured, and rows past
 //! `--budget-s` are skipped and named. `tools/gpu_bench.sh` packs the binary for the machine.
@@ -67,6 +67,18 @@ fn parse_size(text: &str) -> Result<(u32, u32), String> {
         .ok_or_else(|| format!("{text:?} is not a size WxH"))
 }
 
+/// The costlier of the two frames after a 10 cm camera move.
+struct Moved {
+    /// The technique's own passes' GPU time.
+    technique_ms: f64,
+    /// The CPU's blocking waits for the GPU inside both frames' `render`.
+    waits: u64,
+    /// Every pass of that frame.
+    passes: Vec<PassTiming>,
+    /// The technique's counters after the second frame (what it did: records made, rounds).
+    counters: Vec<(&'static str, u64)>,
+}
+
 /// One measured row.
 struct Row {
     mode: GiMode,
@@ -80,9 +92,9 @@ struct Row {
     /// The shadow maps' GPU time in a frame that redraws every layer, as after a light or an
     /// object moved (a still frame keeps them: `render/shadows.rs`); 0 without shadowed lights.
     shadows_redraw_ms: f64,
-    /// The technique's GPU time, and the CPU's waits for the GPU, in the frame after the camera
-    /// moved 10 cm (what `rcs`'s second budget is about: records for the uncovered surface).
-    moved: (f64, u64),
+    /// The costlier of the two frames after the camera moved 10 cm (what `rcs`'s second
+    /// budget is about: records for the uncovered surface).
+    moved: Moved,
     /// One frame's passes with their start times (ms from the frame's first pass).
     trace: Vec<(String, f64, f64)>,
 }
@@ -104,8 +116,6 @@ impl Row {
     fn json(&self) -> Value {
         let (technique, direct) = self.split();
         let (raster, compute) = self.by_kind();
-        let passes: Vec<Value> =
-            self.passes.iter().map(|p| json!({"name": p.name, "ms": p.ms, "kind": p.kind.name()})).collect();
         json!({
             "mode": self.mode.name(),
             "scene": self.scene,
@@ -116,13 +126,20 @@ impl Row {
             "cpu_waits": self.cpu_waits,
             "frame_ms": self.frame_ms,
             "shadows_redraw_ms": self.shadows_redraw_ms,
-            "moved_technique_ms": self.moved.0,
-            "moved_cpu_waits": self.moved.1,
+            "moved_technique_ms": self.moved.technique_ms,
+            "moved_cpu_waits": self.moved.waits,
+            "moved_passes": timings_json(&self.moved.passes),
+            "moved_counters": self.moved.counters.iter().map(|(k, v)| ((*k).to_owned(), json!(v))).collect::<serde_json::Map<_, _>>(),
             "raster_ms": raster,
             "compute_ms": compute,
-            "passes": passes,
+            "passes": timings_json(&self.passes),
         })
     }
+}
+
+/// Passes as JSON: name, GPU ms and kind.
+fn timings_json(passes: &[PassTiming]) -> Vec<Value> {
+    passes.iter().map(|p| json!({"name": p.name, "ms": p.ms, "kind": p.kind.name()})).collect()
 }
 
 /// Runs the profile; returns the markdown table.
@@ -241,20 +258,30 @@ fn row(
     })
 }
 
-/// The technique's GPU time and the blocking waits in one frame after the camera moved 10 cm
-/// sideways (the scene itself is left as it was).
+/// The two frames after the camera moved 10 cm sideways (the scene itself is left as it was):
+/// the first splats and finds the uncovered pixels, the second makes their records (`rcs`);
+/// the costlier one's passes, and the waits of both.
 fn after_camera_move(
     r: &mut Renderer,
     scene: &Scene,
     settings: &RenderSettings,
     size: (u32, u32),
-) -> anyhow::Result<(f64, u64)> {
+) -> anyhow::Result<Moved> {
     let mut moved = scene.clone();
     let mut camera = *scene.camera();
     camera.position += camera.world_from_view().x_axis.truncate() * 0.1;
     moved.set_camera(camera);
-    let (passes, waits) = one_frame(r, &moved, settings, size)?;
-    Ok((sum_ms(&passes, |name| !DIRECT_PASSES.contains(&name)), waits))
+    let mut worst = Moved { technique_ms: -1.0, waits: 0, passes: Vec::new(), counters: Vec::new() };
+    for _ in 0..2 {
+        let (passes, waits) = one_frame(r, &moved, settings, size)?;
+        worst.waits += waits;
+        let technique_ms = sum_ms(&passes, |name| !DIRECT_PASSES.contains(&name));
+        if technique_ms > worst.technique_ms {
+            (worst.technique_ms, worst.passes) = (technique_ms, passes);
+        }
+    }
+    worst.counters = r.technique_status().map(|s| s.counters).unwrap_or_default();
+    Ok(worst)
 }
 
 /// The shadow maps' GPU time in one frame after every layer was made stale.
@@ -358,8 +385,8 @@ fn table(header: &Value, rows: &[Row], skipped: &[String]) -> String {
             r.cpu_waits,
             r.frame_ms,
             r.shadows_redraw_ms,
-            r.moved.0,
-            r.moved.1,
+            r.moved.technique_ms,
+            r.moved.waits,
             top.join(", ")
         );
     }

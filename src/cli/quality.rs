@@ -106,6 +106,8 @@ pub(crate) fn render_project(
         // The cache fills (and its bounce passes converge), or the history settles, first.
         while first < FILL_FRAMES && (first == 0 || r.technique_status().is_some_and(|s| s.refining)) {
             r.render(&project.scene, &project.render, size)?;
+            // Between frames: rcs's placement readback lands for the next, as in the editor.
+            r.wait_for_gpu()?;
             first += 1;
         }
         end = first + if fills { STATIC_FRAMES } else { SETTLED_FRAMES };

@@ -76,6 +76,10 @@ pub fn converge(
 ) -> Result<usize, RenderError> {
     for frame in 1..=limit {
         renderer.render(scene, settings, size)?;
+        // Between frames, outside them: a technique's readback issued in this frame (rcs's
+        // placement) lands for the next, as it does in the editor, which starts a frame once
+        // the last one has finished.
+        renderer.wait_for_gpu()?;
         if !renderer.technique_status().is_some_and(|s| s.refining) {
             return Ok(frame);
         }

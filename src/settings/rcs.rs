@@ -31,8 +31,11 @@ pub struct RcsSettings {
     /// 2048 the default project (640x360, llvmpipe) was covered after 1.9 s (3 frames) and its
     /// bounce passes converged after 8.3 s (9 frames).
     pub records_per_frame: u32,
-    /// Placement rounds per frame: splat, find uncovered pixels (one candidate per 8x8 tile),
-    /// compute their records, splat them, repeat. Each round waits for the GPU once.
+    /// Placement rounds per frame: compute records at the uncovered pixels (one candidate per
+    /// 8x8 tile) the last readback found, splat them, find the pixels still uncovered, repeat.
+    /// The first round takes the readback the frame before issued, without waiting; each
+    /// further round waits for the GPU once (a faster fill, a slower frame). Default 1: no
+    /// frame waits for the GPU.
     pub rounds: u32,
     /// Interpolate with Ward's rotational and translational gradients (on: the notes' final
     /// quality; off: flat records, disc-shaped blotches).
@@ -67,7 +70,7 @@ impl Default for RcsSettings {
             hemisphere_resolution: 32,
             max_records: 16384,
             records_per_frame: 2048,
-            rounds: 4,
+            rounds: 1,
             gradients: true,
             bounces: 16,
             convergence: 0.01,

@@ -28,6 +28,18 @@ fn harness_sized(size: egui::Vec2) -> Harness<'static, EditorApp> {
 /// Lets the viewport catch up with the editor's state: its frames render on their own device
 /// while the UI steps on, so wait for the frame in flight, step (which submits a frame of the
 /// current state) and wait for that one too.
+/// Steps until the viewport's technique has stopped refining (`rcs`: its cache filled and its
+/// bounce passes converged; each frame places one round), at most `limit` frames.
+fn until_final(h: &mut Harness<'static, EditorApp>, limit: usize) {
+    for _ in 0..limit {
+        h.run_steps(1);
+        h.state_mut().wait_viewport();
+        if h.state().renderer().and_then(|r| r.technique_status()).is_some_and(|s| !s.refining) {
+            break;
+        }
+    }
+}
+
 fn settle(h: &mut Harness<'static, EditorApp>) {
     for _ in 0..2 {
         h.state_mut().wait_viewport();
@@ -188,6 +200,8 @@ fn snapshot_of_the_default_layout() {
     }
     let mut h = harness();
     h.run_steps(2);
+    // The default project is in rcs: the snapshot shows its converged cache.
+    until_final(&mut h, 80);
     settle(&mut h);
     assert_eq!(h.state().viewport_scale(), Some(1.0), "idle: the viewport shows a full-resolution image");
     // Timings and frame times change from run to run: mask the bottom dock and status bar.

@@ -120,6 +120,13 @@ fn nudge_camera(project: &mut Project) {
     project.scene.set_camera(camera);
 }
 
+/// Renders one frame, then waits for the GPU outside it (as the editor starts a frame once the
+/// last has finished, so the frame's readback lands for the next).
+fn frame(r: &mut Renderer, project: &Project, settings: &RenderSettings) {
+    r.render(&project.scene, settings, SIZE).expect("render");
+    r.wait_for_gpu().expect("gpu");
+}
+
 #[test]
 fn a_small_camera_move_reuses_most_records() {
     let Some(ctx) = common::gpu() else { return };
@@ -129,7 +136,9 @@ fn a_small_camera_move_reuses_most_records() {
     converge(&mut r, &project, &settings, SIZE, 12);
     let before = counter(&r, "records");
     nudge_camera(&mut project);
-    r.render(&project.scene, &settings, SIZE).expect("render");
+    // The first frame finds the uncovered pixels, the second makes their records.
+    frame(&mut r, &project, &settings);
+    frame(&mut r, &project, &settings);
     let made = counter(&r, "records made last frame");
     let reused = counter(&r, "records reused last frame");
     eprintln!("{before} records; after the move {made} made, {reused} reused");
@@ -139,36 +148,42 @@ fn a_small_camera_move_reuses_most_records() {
 }
 
 #[test]
-fn a_warm_still_frame_waits_for_no_readback_and_a_camera_move_still_places_records_at_once() {
+fn no_frame_waits_for_the_gpu_and_a_camera_move_gets_its_records_the_next_frame() {
     let Some(ctx) = common::gpu() else { return };
     let (mut project, _) = cornell();
     let settings = with(&project, GiMode::Rcs, RcsSettings::default());
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     let frames = converge(&mut r, &project, &settings, SIZE, 24);
     assert!(frames < 24, "the cache did not converge in {frames} frames");
-    // The first quiet frame reads the coverage back and finds nothing to do; the next ones,
-    // with the same inputs, skip that readback and show the same image.
-    r.render(&project.scene, &settings, SIZE).expect("render");
+    // Converged: the readbacks found nothing to do, so still frames read nothing back and
+    // show the same image.
+    frame(&mut r, &project, &settings);
     let seen = r.read_hdr().expect("hdr");
-    for frame in 0..2 {
-        r.render(&project.scene, &settings, SIZE).expect("render");
-        assert_eq!(counter(&r, "GPU waits last frame"), 0, "still frame {frame} waited for the GPU");
+    for still in 0..2 {
+        frame(&mut r, &project, &settings);
+        assert_eq!(counter(&r, "GPU waits last frame"), 0, "still frame {still} waited for the GPU");
         assert_eq!(counter(&r, "uncovered tiles"), 0);
-        assert!(r.read_hdr().expect("hdr") == seen, "still frame {frame} differs from the frame before");
+        assert!(r.read_hdr().expect("hdr") == seen, "still frame {still} differs from the frame before");
     }
     nudge_camera(&mut project);
-    r.render(&project.scene, &settings, SIZE).expect("render");
-    let (made, waits) = (counter(&r, "records made last frame"), counter(&r, "GPU waits last frame"));
-    eprintln!("after the move: {made} records made, {waits} GPU waits");
-    assert!(made > 0 && waits > 0, "the move's uncovered surface got no records in its own frame");
+    let mut made = Vec::new();
+    for _ in 0..2 {
+        // `frame` waits after `render`, outside it; the counter is the waits inside the frame.
+        // (`readback::blocking_waits` counts the whole process: `cargo test` runs tests beside
+        // this one in threads.)
+        frame(&mut r, &project, &settings);
+        made.push(counter(&r, "records made last frame"));
+        assert_eq!(counter(&r, "GPU waits last frame"), 0, "a frame after the move waited for the GPU");
+    }
+    eprintln!("records made in the two frames after the move: {made:?}");
+    assert_eq!(made[0], 0, "the first frame after the move has no readback of the new view yet");
+    assert!(made[1] > 0, "the uncovered surface got no records in the frame after");
     // Another mode and back drops the cache: the frames after it place records again, however
     // quiet the view was before.
-    r.render(&project.scene, &with(&project, GiMode::Direct, RcsSettings::default()), SIZE).expect("render");
-    for frame in 0..2 {
-        r.render(&project.scene, &settings, SIZE).expect("render");
-        let waits = counter(&r, "GPU waits last frame");
-        assert!(waits > 0, "frame {frame} back in rcs skipped its placement");
-    }
+    frame(&mut r, &project, &with(&project, GiMode::Direct, RcsSettings::default()));
+    frame(&mut r, &project, &settings);
+    frame(&mut r, &project, &settings);
+    assert!(counter(&r, "records made last frame") > 0, "back in rcs, the second frame placed no record");
 }
 
 /// Two 4 x 4 m halves of a floor split by a closed 0.3 m wall 2 m high, a point light 1.5 m up
@@ -269,11 +284,14 @@ fn moving_an_object_drops_its_records_and_keeps_the_far_half() {
         .filter(|(p, c)| *c > 0 && p.x < -1.85 && p.x > -2.55 && p.z > 0.15 && p.z < 0.85 && p.y > 0.01)
         .count();
     project.scene.desc_mut().objects[2].transform.translation += Vec3::new(0.0, 0.0, -0.8);
-    r.render(&project.scene, &settings, SIZE).expect("render");
+    let renewed_before = counter(&r, "records renewed");
+    // The edit's frame drops the records and finds what to redo; the next renews them.
+    frame(&mut r, &project, &settings);
+    frame(&mut r, &project, &settings);
     let after = computed(&r);
     let dropped = counter(&r, "records dropped");
     let renewed_east = before.iter().zip(&after).filter(|((p, a), (_, b))| *a > 0 && p.x > 0.2 && b != a).count();
-    let renewed = counter(&r, "records renewed last frame");
+    let renewed = counter(&r, "records renewed") - renewed_before;
     eprintln!("{on_box} records on the box; dropped {dropped}; renewed {renewed}; east changed {renewed_east}");
     assert!(on_box > 0 && dropped as usize >= on_box, "records on the moved box were not dropped");
     assert!(renewed > 0, "no neighbour of the box was renewed");
@@ -325,7 +343,7 @@ fn the_inspector_buffers_show_the_fill_and_a_covered_converged_cache() {
 }
 
 #[test]
-fn a_cache_larger_than_the_adapter_allows_is_refused_with_the_setting_to_change() {
+fn a_cache_or_view_larger_than_the_adapter_allows_is_refused_with_what_to_change() {
     use bouncelab::render::gi::SupportQuery;
     // WebGPU's default 128 MiB storage binding holds 131072 records' check strata.
     let limits = wgpu::Limits::default();
@@ -337,7 +355,7 @@ fn a_cache_larger_than_the_adapter_allows_is_refused_with_the_setting_to_change(
         };
         RcsTechnique::support(&SupportQuery {
             limits: &limits,
-            features: wgpu::Features::FLOAT32_BLENDABLE,
+            features: wgpu::Features::empty(),
             size: SIZE,
             settings: &settings,
         })
@@ -345,14 +363,19 @@ fn a_cache_larger_than_the_adapter_allows_is_refused_with_the_setting_to_change(
     assert_eq!(query(16384), Ok(()));
     let e = query(262_144).expect_err("256 MiB of strata");
     assert!(e.contains("rcs.max_records") && e.contains("131072"), "{e}");
-    let e = RcsTechnique::support(&SupportQuery {
-        limits: &limits,
-        features: wgpu::Features::empty(),
-        size: SIZE,
-        settings: &RenderSettings::default(),
-    })
-    .expect_err("no float blending");
-    assert!(e.contains("FLOAT32_BLENDABLE"), "{e}");
+    // The splat sums take 16 bytes a pixel in one binding: 4K fits 128 MiB, 4096 x 2160 not.
+    let view = |size| {
+        let settings = RenderSettings { mode: GiMode::Rcs, ..RenderSettings::default() };
+        RcsTechnique::support(&SupportQuery {
+            limits: &limits,
+            features: wgpu::Features::empty(),
+            size,
+            settings: &settings,
+        })
+    };
+    assert_eq!(view((3840, 2160)), Ok(()));
+    let e = view((4096, 2160)).expect_err("135 MiB of sums");
+    assert!(e.contains("4096x2160") && e.contains("render smaller"), "{e}");
 }
 
 /// The Cornell box lit by its short box glowing (3 W/(sr m²)) and a constant sky through its
@@ -433,4 +456,36 @@ fn records_gather_the_light_a_glossy_floor_sends_in_its_lobe() {
     let found = (lit - direct) / (metrics::mean_luminance(&one_bounce) - direct);
     eprintln!("glossy floor: rcs finds {found:.3} of the one-bounce reference's indirect light after {frames} frames");
     assert!((0.85..=1.15).contains(&found), "rcs finds {found:.3} of the reference's indirect light");
+}
+
+/// The splat keeps a record for a 16 x 16 tile only where its zone meets the box of the tile's
+/// pixels that face its way; the test must drop no record that reaches a pixel. A cache filled
+/// with the test and one filled with every record splatted at every pixel give the same image
+/// (and so the same coverage, records and bounces at every step).
+#[test]
+fn the_splats_tile_test_drops_no_record_that_reaches_a_pixel() {
+    use bouncelab::render::gi::rcs::splat::keep_every_record_in_every_tile;
+    let Some(ctx) = common::gpu() else { return };
+    let mut project = two_rooms();
+    let settings = with(&project, GiMode::Rcs, RcsSettings::default());
+    let run = |project: &Project, every: bool| {
+        keep_every_record_in_every_tile(every);
+        let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        converge(&mut r, project, &settings, SIZE, 16);
+        let records = counter(&r, "records");
+        (r.read_hdr().expect("hdr"), records)
+    };
+    // A view from the side as well: tiles whose pixels face several ways and lie far apart.
+    for view in 0..2 {
+        let (tested, records) = run(&project, false);
+        let (every, records_every) = run(&project, true);
+        keep_every_record_in_every_tile(false);
+        assert_eq!(records, records_every, "view {view}: the fills differ");
+        assert!(records > 20, "view {view}: {records} records: no cache to splat");
+        let worst =
+            tested.iter().zip(&every).map(|(a, b)| (a[0] - b[0]).abs().max((a[1] - b[1]).abs())).fold(0.0f32, f32::max);
+        assert!(worst <= 1e-6, "view {view}: the tile test changed a pixel by {worst}");
+        let side = bouncelab::scene::Camera::look_at(Vec3::new(-3.5, 1.2, 3.5), Vec3::new(0.5, 0.3, -0.5), 1.0);
+        project.scene.set_camera(side);
+    }
 }

@@ -24,15 +24,20 @@ struct Record {
 // behind the record (Ward's (P - P_k) . (n + n_k) / 2 test at 2% of R_k): no leaks through thin
 // walls.
 fn ward_weight(r: Record, p: vec3<f32>, n: vec3<f32>) -> f32 {
-    let radius = r.position.w;
+    return ward_weight_at(r.position, r.normal.xyz, p, n);
+}
+
+// `ward_weight` of the record whose `position` (w = R_k) and normal are given.
+fn ward_weight_at(position: vec4<f32>, normal: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> f32 {
+    let radius = position.w;
     if radius <= 0.0 {
         return 0.0;
     }
-    let d = p - r.position.xyz;
-    if dot(d, (n + r.normal.xyz) * 0.5) < -0.02 * radius {
+    let d = p - position.xyz;
+    if dot(d, (n + normal) * 0.5) < -0.02 * radius {
         return 0.0;
     }
-    let cosine = clamp(dot(n, r.normal.xyz), -1.0, 1.0);
+    let cosine = clamp(dot(n, normal), -1.0, 1.0);
     return 1.0 / (length(d) / radius + sqrt(1.0 - cosine) + 1.0e-3);
 }
 

@@ -2,14 +2,15 @@
 // to the GPU: a pixel with geometry that no record reaches (summed weight 0) is uncovered; each
 // 8 x 8 tile with uncovered pixels proposes the one nearest its centre as a new record's site.
 // Candidates are appended (the CPU reads them back, orders them and computes the budget's worth).
-// The mask: r = uncovered after this round, g = the round (1-based) whose record this pixel got,
-// b = 1 where the pixel has geometry. Rounds alternate between two masks (the last one written
-// holds the frame's state).
+// The mask: r = uncovered after this pass, g = the pass (1-based) that picked this pixel for a
+// record (the next round makes it), b = 1 where the pixel has geometry. Passes alternate between
+// two masks (the last one written holds the frame's state).
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 
 struct CoverageParams {
-    // x = round (0: the frame's first, which writes every pixel of the mask), yzw unused.
+    // x = the frame's coverage pass (0: its first, which writes every pixel of the mask), yzw
+    // unused.
     round: vec4<u32>,
 }
 
@@ -32,7 +33,8 @@ struct Candidates {
 @group(0) @binding(1) var<uniform> params: CoverageParams;
 @group(0) @binding(2) var depth_tex: texture_depth_2d;
 @group(0) @binding(3) var normal_tex: texture_2d<f32>;
-@group(0) @binding(4) var accum: texture_2d<f32>;
+// The splat's weighted sums (a = summed weight), row-major.
+@group(0) @binding(4) var<storage, read> accum: array<vec4<f32>>;
 @group(0) @binding(5) var mask_in: texture_2d<f32>;
 @group(0) @binding(6) var mask_out: texture_storage_2d<rgba32float, write>;
 @group(0) @binding(7) var<storage, read_write> candidates: Candidates;
@@ -56,7 +58,7 @@ fn cs_main(
     var uncovered = false;
     if inside {
         geometry = textureLoad(depth_tex, id.xy, 0) > 0.0;
-        uncovered = geometry && textureLoad(accum, id.xy, 0).a <= 0.0;
+        uncovered = geometry && accum[id.y * size.x + id.x].a <= 0.0;
     }
     if uncovered {
         let d = vec2<i32>(id.xy % 8u) * 2 - 7;

@@ -9,25 +9,27 @@ struct ResolveParams {
 }
 
 @group(0) @binding(0) var<uniform> params: ResolveParams;
-@group(0) @binding(1) var weighted: texture_2d<f32>;
-@group(0) @binding(2) var plain: texture_2d<f32>;
+// The splat's sums, row-major, one per pixel of the view.
+@group(0) @binding(1) var<storage, read> weighted: array<vec4<f32>>;
+@group(0) @binding(2) var<storage, read> plain: array<vec4<f32>>;
 @group(0) @binding(3) var out_indirect: texture_storage_2d<rgba32float, write>;
 
 const PI: f32 = 3.14159265358979;
 
 @compute @workgroup_size(8, 8, 1)
 fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let size = textureDimensions(weighted);
+    let size = textureDimensions(out_indirect);
     if id.x >= size.x || id.y >= size.y {
         return;
     }
-    let w = textureLoad(weighted, id.xy, 0);
+    let pixel = id.y * size.x + id.x;
+    let w = weighted[pixel];
     var e = vec3<f32>(0.0);
     if w.a > 0.0 {
         if params.mode.x == 1u {
             e = w.rgb / w.a;
         } else {
-            e = textureLoad(plain, id.xy, 0).rgb / w.a;
+            e = plain[pixel].rgb / w.a;
         }
     }
     textureStore(out_indirect, id.xy, vec4<f32>(e / PI, 1.0));

@@ -63,7 +63,7 @@ impl CoveragePass {
                 uniform_entry(1, c, false),
                 texture_entry(2, c, wgpu::TextureSampleType::Depth),
                 texture_entry(3, c, unfilterable),
-                texture_entry(4, c, unfilterable),
+                crate::render::layouts::storage_entry(4, c),
                 texture_entry(5, c, unfilterable),
                 storage_texture_entry(6, wgpu::TextureFormat::Rgba32Float),
                 storage_rw_entry(7),
@@ -104,7 +104,7 @@ impl CoveragePass {
 
     /// Finds this round's candidates (after the splat into `accum`) and copies them to the
     /// staging buffer.
-    pub fn record(&mut self, inputs: &mut GiInputs<'_>, store: &Store, accum: &wgpu::TextureView, round: u32) {
+    pub fn record(&mut self, inputs: &mut GiInputs<'_>, store: &Store, accum: &wgpu::Buffer, round: u32) {
         let (Some(masks), Some(params)) = (&self.masks, self.params.get(round as usize)) else { return };
         inputs.queue.write_buffer(params, 0, bytemuck::bytes_of(&CoverageParams { round: [round, 0, 0, 0] }));
         let (read, write) = if round.is_multiple_of(2) { (1, 0) } else { (0, 1) };
@@ -119,7 +119,7 @@ impl CoveragePass {
                 entry(1, params),
                 view(2, &t.depth.view),
                 view(3, &t.normal.view),
-                view(4, accum),
+                entry(4, accum),
                 view(5, &masks[read].view),
                 view(6, &masks[write].view),
                 entry(7, &store.candidates),

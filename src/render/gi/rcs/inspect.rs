@@ -1,5 +1,5 @@
 //! The rcs inspector buffers: what each shows and how it is read from the technique's
-//! targets (the accumulation targets normalised on the CPU, the coverage masks, the atlas).
+//! targets (the accumulation buffers normalised on the CPU, the coverage masks, the atlas).
 
 use super::coverage::CoveragePass;
 use super::hemisphere::HemispherePass;
@@ -17,7 +17,7 @@ const fn buffer(name: &'static str, description: &'static str, view: BufferView)
 pub const BUFFERS: &[BufferInfo] = &[
     buffer(
         "rcs_coverage",
-        "coverage after the frame's last round: r = uncovered (no record reaches it: none once the cache has filled), g = the round whose record this pixel got this frame, b = geometry",
+        "coverage after the frame's last round: r = uncovered (no record reaches it: none once the cache has filled), g = the coverage pass that picked this pixel for a record this frame, b = geometry",
         BufferView::Colour,
     ),
     buffer(
@@ -43,7 +43,7 @@ pub const BUFFERS: &[BufferInfo] = &[
     ),
     buffer(
         "rcs_records_added",
-        "records added this frame, coloured by the round that added them (black: reused from earlier frames)",
+        "the pixels this frame's coverage picked for new records (the next frame makes them), coloured by the coverage pass that picked them (black: none)",
         BufferView::Scalar,
     ),
     buffer(
@@ -112,14 +112,18 @@ impl Inspected<'_> {
         })
     }
 
-    /// A buffer computed from the accumulation targets.
+    /// A buffer computed from the accumulation buffers.
     fn accumulated(&self, device: &wgpu::Device, queue: &wgpu::Queue, name: &str) -> Result<HdrImage, RenderError> {
-        let Some((weighted, plain)) = self.splat.targets() else {
+        let Some(accum) = self.splat.accum() else {
             return Err(RenderError::UnknownBuffer { name: name.into(), known: "render rcs first".into() });
         };
-        let mut w = read(device, queue, &weighted.texture)?;
-        let p = read(device, queue, &plain.texture)?;
-        for (a, b) in w.pixels.iter_mut().zip(&p.pixels) {
+        let texels = |buffer| -> Result<Vec<[f32; 4]>, RenderError> {
+            Ok(bytemuck::pod_collect_to_vec(&readback::read_buffer(device, queue, buffer)?))
+        };
+        let (width, height) = accum.size;
+        let mut w = HdrImage { width, height, pixels: texels(&accum.weighted)? };
+        let p = texels(&accum.plain)?;
+        for (a, b) in w.pixels.iter_mut().zip(&p) {
             let sum = a[3];
             let norm = |c: f32| if sum > 0.0 { c / sum } else { 0.0 };
             let with = [norm(a[0]), norm(a[1]), norm(a[2])];

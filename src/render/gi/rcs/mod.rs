@@ -1,13 +1,14 @@
 //! `rcs`: GPU irradiance caching by radiance cache splatting (Gautron, Krivanek, Bouatouch and
 //! Pattanaik 2005, as Gautron's SIGGRAPH 2007 course notes give it). Sparse records of indirect irradiance, each computed by
 //! rasterising the scene into a wide-angle plane at the record ([`hemisphere`], [`reduce`]),
-//! placed where splatting leaves pixels uncovered ([`coverage`]), interpolated by splatting one
-//! quad per record with Ward's weight and gradients ([`splat`]), and kept across frames in a
+//! placed where splatting leaves pixels uncovered ([`coverage`]), interpolated by splatting the
+//! records with Ward's weight and gradients (a tiled compute pass: [`splat`]), and kept across frames in a
 //! world-space cache ([`cache`]) that scene and light edits invalidate record by record
 //! ([`light_check`], [`cache::Cache::invalidate_boxes`]).
 
 pub mod cache;
 pub mod coverage;
+pub mod flight;
 pub mod grid;
 pub mod hemisphere;
 pub mod inspect;

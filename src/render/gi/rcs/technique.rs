@@ -1,21 +1,23 @@
-//! The `rcs` technique behind the GI seam: each frame splats the cache, then runs placement
-//! rounds (find uncovered pixels, compute their records by hemisphere rasterisation, splat them
-//! at once) within a per-frame record budget, renews records in place for later bounces and
-//! after edits, and writes E / pi. The cache is world-space and survives camera moves: a frame
+//! The `rcs` technique behind the GI seam: each frame splats the cache, then runs a placement
+//! round on the uncovered pixels the last frame's readback found (compute their records by
+//! hemisphere rasterisation, splat them at once; [`placement`]) within a per-frame record
+//! budget, renews records in place for later bounces and after edits, and writes E / pi. The cache is world-space and survives camera moves: a frame
 //! of a moved camera only adds records where newly visible surfaces are uncovered.
 
 use glam::Vec3;
 
+mod placement;
+
 use super::cache::{Cache, changed_boxes, object_boxes};
-use super::coverage::{CoveragePass, order, tiles};
+use super::coverage::{CoveragePass, tiles};
+use super::flight::Flight;
 use super::grid::HashGrid;
-use super::hemisphere::{HemisphereInputs, HemispherePass};
+use super::hemisphere::HemispherePass;
 use super::inspect::Inspected;
-use super::light_check::{CheckMode, LightCheckPass};
+use super::light_check::LightCheckPass;
 use super::record::{Candidate, GpuJob, GpuRecord, JobFlags, Site};
 use super::reduce::ReducePass;
-use super::splat::{Splat, SplatPass};
-use super::staging;
+use super::splat::SplatPass;
 use super::store::Store;
 use crate::image_io::HdrImage;
 use crate::render::gi::inputs::GiInputs;
@@ -37,9 +39,12 @@ struct FrameStats {
     uncovered_tiles: u64,
     light_renewals: u64,
     reused: u64,
-    /// Readbacks the CPU waited for (one per round, and the coverage's unless the frame was
-    /// quiet).
+    /// Readbacks the CPU waited for (one per round after the first; the frame's own readback
+    /// lands in a later frame).
     readbacks: u64,
+    /// The readback taken this frame showed the current view fully covered with nothing left
+    /// to do: no further readback was issued.
+    settled: bool,
 }
 
 /// Radiance cache splatting.
@@ -87,6 +92,10 @@ pub struct RcsTechnique {
     /// readback, the one GPU wait of a warm frame, and the splat, whose targets (the
     /// technique's own) still hold the same sums; only the resolve into the frame runs.
     quiet: Option<CoverageInputs>,
+    /// The placement readback in flight.
+    flight: Flight<CoverageInputs>,
+    /// Bumped whenever records are dropped: a readback issued before holds their slots.
+    generation: u64,
     status: TechniqueStatus,
 }
 
@@ -134,21 +143,27 @@ impl RcsTechnique {
             tallest_view: 0,
             tan_half_fov: None,
             quiet: None,
+            flight: Flight::default(),
+            generation: 0,
             status: TechniqueStatus::default(),
         })
     }
 
-    /// Needs blending on 32-bit float targets (the splat accumulation), and storage bindings
-    /// large enough for `max_records` records' check strata.
+    /// Needs storage bindings large enough for the view's splat sums (16 bytes a pixel) and
+    /// for `max_records` records' check strata.
     pub fn support(query: &SupportQuery<'_>) -> Result<(), String> {
-        if !query.features.contains(wgpu::Features::FLOAT32_BLENDABLE) {
-            return Err(
-                "rcs needs blending on 32-bit float targets (FLOAT32_BLENDABLE), which this adapter lacks".into()
-            );
+        let limit = query.limits.max_storage_buffer_binding_size.min(query.limits.max_buffer_size);
+        let (w, h) = query.size;
+        let sums = u64::from(w) * u64::from(h) * super::splat::ACCUM_TEXEL_BYTES;
+        if sums > limit {
+            return Err(format!(
+                "rcs sums {w}x{h} pixels in one buffer of {} MiB, over this adapter's {} MiB: render smaller",
+                sums >> 20,
+                limit >> 20
+            ));
         }
         let records = u64::from(query.settings.rcs.max_records);
         let strata = records * super::store::CHECK_STRATA * 16;
-        let limit = query.limits.max_storage_buffer_binding_size.min(query.limits.max_buffer_size);
         if strata > limit {
             return Err(format!(
                 "rcs.max_records = {records} needs {} MiB of check strata in one buffer, over this adapter's {} MiB: lower max_records to {} or fewer",
@@ -234,6 +249,7 @@ impl RcsTechnique {
             inputs.encoder.clear_buffer(&store.records, 0, None);
             self.grid_dirty = true;
             self.drop_all = false;
+            self.generation += 1;
             self.changed.clear();
         }
         if !self.changed.is_empty() {
@@ -246,6 +262,7 @@ impl RcsTechnique {
             }
             self.dropped += inv.dropped.len() as u64;
             self.grid_dirty |= !inv.dropped.is_empty();
+            self.generation += u64::from(!inv.dropped.is_empty());
             self.changed.clear();
         }
     }
@@ -327,111 +344,6 @@ impl RcsTechnique {
         store.upload_grid(inputs.device, inputs.queue, &HashGrid::build(&listed, accuracy));
         self.grid_dirty = false;
     }
-
-    /// The frame's rounds.
-    fn rounds(&mut self, inputs: &mut GiInputs<'_>, store: &mut Store, quiet: bool) -> Result<FrameStats, RenderError> {
-        let settings = inputs.settings.rcs.clone();
-        let mut stats = FrameStats { reused: self.cache.live() as u64, ..FrameStats::default() };
-        let Some(accum) = self.splat.targets().map(|t| t.0.view.clone()) else { return Ok(stats) };
-        if quiet {
-            // The records, the G-buffer and the settings are those of the frame that set
-            // `quiet`: the splat targets already hold this frame's splat (only the resolve runs).
-            return Ok(stats);
-        }
-        let check = self.light_check && self.cache.live() > 0;
-        if check {
-            self.check.record(inputs, store, CheckMode::Compare, self.cache.high_water(), settings.light_tolerance);
-            let l = store.layout;
-            inputs.encoder.copy_buffer_to_buffer(&store.changed, 0, &store.staging, l.changed, l.changed_len);
-        }
-        self.light_check = false;
-        self.splat.record(inputs, store, Splat::All(self.cache.high_water()), settings.accuracy);
-        self.coverage.record(inputs, store, &accum, 0);
-        let mut bytes = staging::submit_and_read(inputs, store)?;
-        stats.readbacks += 1;
-        if check {
-            let changed = staging::changed_slots(&bytes, store);
-            stats.light_renewals = changed.len() as u64;
-            changed.into_iter().for_each(|s| self.cache.invalidate(s));
-        }
-        let mut budget = settings.records_per_frame;
-        let capacity = store.jobs_capacity;
-        for round in 1..=settings.rounds {
-            let (count, candidates) = staging::candidates(&bytes, store);
-            stats.uncovered_tiles = u64::from(count);
-            if count == 0 && self.secondary.is_empty() && self.cache.pending_renewals() == 0 {
-                self.next_pass(settings.convergence);
-            }
-            if budget == 0 || (candidates.is_empty() && self.secondary.is_empty() && self.cache.pending_renewals() == 0)
-            {
-                break;
-            }
-            let lookup = settings.bounces > 1 && !settings.furnace && self.cache.live() > 0;
-            if lookup {
-                self.refresh_grid(inputs, store, settings.accuracy);
-            }
-            let ordered = order(candidates);
-            let (jobs, new) = self.jobs(&ordered, budget.min(capacity), &settings, lookup);
-            if jobs.is_empty() {
-                break;
-            }
-            let n = jobs.len() as u32;
-            budget = budget.saturating_sub(n);
-            stats.rounds += 1;
-            stats.made += new as u64;
-            stats.renewed += (jobs.len() - new) as u64;
-            inputs.queue.write_buffer(&store.jobs, 0, bytemuck::cast_slice(&jobs));
-            let slots: Vec<u32> = jobs.iter().map(|j| j.normal[3].to_bits()).collect();
-            inputs.queue.write_buffer(&store.splat_list, 0, bytemuck::cast_slice(&slots));
-            let background = if settings.furnace { 1.0 } else { 0.0 };
-            let buffers = HemisphereInputs {
-                jobs: &store.jobs,
-                records: &store.records,
-                grid_params: &store.grid_params,
-                grid_cells: &store.grid_cells,
-                grid_items: &store.grid_items,
-            };
-            self.hemisphere.record(inputs, &buffers, n, background);
-            if let Some(atlas) = self.hemisphere.atlas() {
-                self.reduce.record(inputs, atlas, store, n);
-            }
-            self.check.record(inputs, store, CheckMode::Store, n, settings.light_tolerance);
-            let l = store.layout;
-            inputs.encoder.copy_buffer_to_buffer(&store.results, 0, &store.staging, l.results, u64::from(n) * 16);
-            inputs.encoder.copy_buffer_to_buffer(
-                &store.secondaries,
-                0,
-                &store.staging,
-                l.secondaries,
-                l.secondaries_len,
-            );
-            let which = if new == jobs.len() { Splat::New(n) } else { Splat::All(self.cache.high_water()) };
-            self.splat.record(inputs, store, which, settings.accuracy);
-            self.coverage.record(inputs, store, &accum, round);
-            bytes = staging::submit_and_read(inputs, store)?;
-            stats.readbacks += 1;
-            let results: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(
-                bytes.get(l.results as usize..(l.results + u64::from(n) * 16) as usize).unwrap_or(&[]),
-            );
-            for r in results {
-                let change = self.cache.computed(r[2].to_bits(), r[0], r[1]);
-                if self.cache.get(r[2].to_bits()).is_some_and(|c| c.computed > 1) {
-                    // Relative to the record's own light: a dim room far down the light path
-                    // counts as much as the lit one.
-                    self.pass.0 += if change > 0.0 { f64::from(change / r[1].max(change)) } else { 0.0 };
-                    self.pass.1 += 1.0;
-                }
-            }
-            let proposed = staging::secondaries(&bytes, store);
-            let before = self.secondary.len();
-            self.queue_secondaries(proposed, &settings);
-            stats.secondary += (self.secondary.len() - before) as u64;
-            self.grid_dirty = true;
-        }
-        let (count, _) = staging::candidates(&bytes, store);
-        stats.uncovered_tiles = u64::from(count);
-        Ok(stats)
-    }
 }
 
 impl GiTechnique for RcsTechnique {
@@ -470,6 +382,9 @@ impl GiTechnique for RcsTechnique {
                 if previous.as_ref().is_some_and(|s| s.max_records != settings.max_records) || previous.is_none() {
                     self.drop_all = true;
                 }
+                // A readback in flight reads the old store's staging buffer: let it go.
+                self.flight.forget();
+                self.generation += 1;
                 let mut s = Store::new(inputs.device, settings.max_records, jobs, tiles(size));
                 if let Some(old) = previous.filter(|o| o.max_records == settings.max_records) {
                     // Keep the records across a resize: copy them over.
@@ -501,12 +416,11 @@ impl GiTechnique for RcsTechnique {
         let last_quiet = self.quiet.take();
         let quiet = untouched && last_quiet.as_ref() == Some(&now);
         self.invalidate(inputs, &store, settings.light_tolerance);
-        let result = self.rounds(inputs, &mut store, quiet);
+        let result = self.rounds(inputs, &mut store, quiet, &now);
         self.splat.resolve(inputs, settings.gradients);
         self.store = Some(store);
         let stats = result?;
-        let idle = stats.rounds == 0 && stats.uncovered_tiles == 0 && stats.light_renewals == 0;
-        if untouched && idle && self.secondary.is_empty() && self.cache.pending_renewals() == 0 {
+        if untouched && stats.settled {
             self.quiet = Some(now);
         }
         self.frame += 1;
@@ -516,7 +430,8 @@ impl GiTechnique for RcsTechnique {
         self.totals.secondary += stats.secondary;
         self.totals.light_renewals += stats.light_renewals;
         self.status.history_frames = self.status.history_frames.saturating_add(1);
-        let filling = stats.uncovered_tiles > 0 || self.cache.pending_renewals() > 0 || !self.secondary.is_empty();
+        // A readback in flight may still find uncovered pixels.
+        let filling = stats.uncovered_tiles > 0 || !self.nothing_queued() || self.flight.busy();
         self.status.refining = (filling || self.cache.unsettled()) && self.cache.room() > 0;
         self.status.refine_target = 0;
         self.status.progress = Some(format!(
@@ -578,6 +493,7 @@ impl GiTechnique for RcsTechnique {
     }
 
     fn release(&mut self) {
+        self.flight.forget();
         self.store = None;
         self.hemisphere.release();
         self.splat.release();
