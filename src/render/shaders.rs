@@ -85,6 +85,8 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/gi/sshgi/sshgi_hash.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_hash.wgsl")),
     ("render/gi/sshgi/sshgi_split.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_split.wgsl")),
     ("render/gi/sshgi/sshgi_sender.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_sender.wgsl")),
+    ("render/gi/sshgi/sshgi_sender_cdf.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_sender_cdf.wgsl")),
+    ("render/gi/sshgi/sshgi_sender_pick.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_sender_pick.wgsl")),
     ("render/gi/sshgi/sshgi_sky.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_sky.wgsl")),
     ("render/gi/sshgi/sshgi_tail.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_tail.wgsl")),
     ("render/gi/sshgi/sshgi_world_grid.wgsl", include_str!("../../shaders/render/gi/sshgi/sshgi_world_grid.wgsl")),

@@ -83,6 +83,13 @@ pub struct SshgiSettings {
     /// Panorama senders gathered per start-level texel and frame (1..=1024; the temporal filter
     /// averages them over frames). Cost: linear, as a screen level's samples.
     pub panorama_samples: u32,
+    /// The share of the panorama's and hidden senders' picks drawn in proportion to their power
+    /// (radiance x area) instead of uniformly over the list (0: uniform, the list's strata alone;
+    /// 0..=0.9). Not in the paper. Where a few senders carry the light (a room lit through its
+    /// doorways) uniform picks meet them in some frames and not in others; the uniform share
+    /// that stays bounds a sample's weight (a dim sender near the receiver). MEASURED_GAIN
+    /// Cost: one workgroup's prefix sum over the list per bounce, and a binary search per pick.
+    pub sender_power_share: f32,
     /// Rays per start-level texel and frame that look for the sky through the voxel columns
     /// (0: the sky lights nothing; 1..=64; the temporal filter averages them over frames). Not
     /// in the paper. A ray is open where it leaves the voxels' depth range or crosses a column
@@ -148,6 +155,7 @@ impl Default for SshgiSettings {
             temporal_two_tap: false,
             panorama: 32,
             panorama_samples: 64,
+            sender_power_share: 0.5,
             sky_rays: 16,
             hidden_senders: 2048,
             world_voxels: 512,
@@ -171,7 +179,7 @@ impl SshgiSettings {
 
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
-        let checks: [(&'static str, bool, String, &'static str); 13] = [
+        let checks: [(&'static str, bool, String, &'static str); 14] = [
             ("sshgi.start_level", self.start_level <= 2, self.start_level.to_string(), "0..=2"),
             ("sshgi.levels", (1..=6).contains(&self.levels), self.levels.to_string(), "1..=6"),
             ("sshgi.samples", (1..=1024).contains(&self.samples), self.samples.to_string(), "1..=1024"),
@@ -201,6 +209,12 @@ impl SshgiSettings {
                 (1..=1024).contains(&self.panorama_samples),
                 self.panorama_samples.to_string(),
                 "1..=1024",
+            ),
+            (
+                "sshgi.sender_power_share",
+                (0.0..=0.9).contains(&self.sender_power_share),
+                self.sender_power_share.to_string(),
+                "0..=0.9",
             ),
             ("sshgi.sky_rays", self.sky_rays <= 64, self.sky_rays.to_string(), "0..=64"),
             (

@@ -9,6 +9,11 @@
 //! unmarched, the room read 5.4 times the path tracer's energy, and with two columns skipped at
 //! the hidden end as at a point on screen, 0.93 open and 0.11 closed).
 //!
+//! Its raw frames (no temporal blend) are each an estimate of the light, and most of the 8,192
+//! senders are dark: picked uniformly, a receiver's samples met the few the spot lights in some
+//! frames and not in others (the frames' energy spread 18% around their mean); half of the picks
+//! drawn by power take the spread to a quarter of that without moving the mean.
+//!
 //! Turned round in the middle room, the camera has the lit first room behind it: the hidden
 //! senders' segments from there leave the view, and the world grid of surface voxels answers
 //! for them; without it they count as blocked.
@@ -126,5 +131,71 @@ fn the_world_grid_brings_light_from_behind_the_camera_through_the_doorway_and_no
     assert!(
         closed_with < 1.1 * closed_without + 0.05 * with,
         "with the doorways closed the world grid lets light through the wall: {closed_with:.5} against {closed_without:.5}"
+    );
+}
+
+/// Each of `frames` raw frames' (no temporal blend) energy over the reference's.
+fn frame_energies(ctx: &GpuContext, scene: &Scene, settings: &RenderSettings, reference: &HdrImage) -> Vec<f64> {
+    let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+    (0..POWER_FRAMES)
+        .map(|_| {
+            r.render(scene, settings, suite::REFERENCE_SIZE).expect("render");
+            let image = HdrImage {
+                width: suite::REFERENCE_SIZE.0,
+                height: suite::REFERENCE_SIZE.1,
+                pixels: r.read_hdr().expect("hdr"),
+            };
+            metrics::luminance_ratio(&image, reference).expect("ratio")
+        })
+        .collect()
+}
+
+/// Raw frames per share in the power-sampling test.
+const POWER_FRAMES: usize = 12;
+
+/// Mean and standard deviation over mean.
+fn mean_and_spread(v: &[f64]) -> (f64, f64) {
+    let n = v.len().max(1) as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let var = v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n;
+    (mean, var.sqrt() / mean.max(1e-12))
+}
+
+#[test]
+fn senders_picked_by_power_steady_the_unlit_rooms_raw_frames_and_keep_their_mean() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = suite::scene("rooms").expect("suite scene").load(Path::new(".")).expect("rooms");
+    let reference = suite::scene("rooms").expect("suite scene").reference(Path::new(".")).expect("cached reference");
+    // Raw frames (no temporal blend) and no tail: each frame is its own estimate of the bounces.
+    let settings = |sender_power_share| RenderSettings {
+        mode: GiMode::Sshgi,
+        sshgi: SshgiSettings {
+            sender_power_share,
+            temporal_weight: 0.0,
+            bounce_tail: false,
+            ..SshgiSettings::default()
+        },
+        ..project.render.clone()
+    };
+    let [uniform, half, most] = [0.0, 0.5, 0.9]
+        .map(|share| mean_and_spread(&frame_energies(&ctx, &project.scene, &settings(share), &reference)));
+    eprintln!(
+        "unlit room, raw frames (mean, spread): uniform {uniform:.3?}, half by power {half:.3?}, 0.9 by power {most:.3?}"
+    );
+    assert!(
+        half.1 < 0.5 * uniform.1,
+        "power picks leave the frames' spread at {:.3} (uniform {:.3})",
+        half.1,
+        uniform.1
+    );
+    assert!(most.1 < 0.5 * uniform.1, "0.9 by power leaves the spread at {:.3} (uniform {:.3})", most.1, uniform.1);
+    // Both mixtures estimate the same light: a wrong probability would move their means apart.
+    assert!((half.0 / most.0 - 1.0).abs() < 0.06, "the means differ with the share: {:.3} and {:.3}", half.0, most.0);
+    let tolerance = 3.0 * uniform.1 / (POWER_FRAMES as f64).sqrt() + 0.03;
+    assert!(
+        (half.0 / uniform.0 - 1.0).abs() < tolerance,
+        "power picks moved the mean: {:.3} against the uniform picks' {:.3}",
+        half.0,
+        uniform.0
     );
 }

@@ -5,7 +5,7 @@
 // view's voxels, and one that leaves the view, or whose columns are coarser than the world's
 // voxels, through the scene's surface voxels in the world (`world_occluded`; blocked without
 // them where it leaves the view). The including shader binds `frame`, `gp`, `senders`,
-// `radiance`, `voxels` and `world`.
+// `radiance`, `cdf` (`sshgi_sender_pick.wgsl`), `voxels` and `world`.
 
 #import render/gi/sshgi/sshgi_hash.wgsl
 #import render/gi/sshgi/sshgi_split.wgsl
@@ -19,7 +19,8 @@ struct PanoramaParams {
     // sender of the receive (`split_item`).
     screen: vec4<u32>,
     // Solid angle of one start-level texel on the optical axis (sr); a voxel column's width per
-    // metre of view depth (0: segments in view never walk the world grid), unused x2.
+    // metre of view depth (0: segments in view never walk the world grid); the share m of the
+    // sender picks drawn by power (`sshgi_sender_pick.wgsl`); unused.
     geo: vec4<f32>,
     // xyz the camera's forward axis, w unused.
     forward: vec4<f32>,
@@ -35,6 +36,7 @@ struct PanoramaParams {
 }
 
 #import render/gi/sshgi/sshgi_sender.wgsl
+#import render/gi/sshgi/sshgi_sender_pick.wgsl
 
 const PI: f32 = 3.14159265358979;
 
@@ -130,22 +132,24 @@ fn samples(march: bool) -> u32 {
     return select(gp.counts.y, max(gp.counts.y / 4u, 1u), march);
 }
 
-// E / pi at x (normal nx) from N senders picked one per stratum of the list (jittered by
-// `jitter`), each weighted by the list's size over N: an unbiased estimate over frames. With
-// `march`, every sender's segment is marched; otherwise only a hidden sender's. This thread's
-// share: samples first, first + step, ... (`split_item`: threads share a receiver).
+// E / pi at x (normal nx) from N senders picked one per stratum (jittered by `jitter`) of the
+// list's mixture of uniform and power-proportional picks (`pick_sender`, share `gp.geo.z` by
+// power), each weighted by one over N times its pick's probability: an unbiased estimate over
+// frames. With `march`, every sender's segment is marched; otherwise only a hidden sender's.
+// This thread's share: samples first, first + step, ... (`split_item`: threads share a
+// receiver).
 fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool, first: u32, step: u32) -> vec3<f32> {
     let count = gp.counts.x;
     let n = samples(march);
     if count == 0u || n == 0u {
         return vec3<f32>(0.0);
     }
-    let stratum = f32(count) / f32(n);
     // A marching receiver is a hidden sender itself.
     let xm = select(x, off_surface(x, nx), march);
     var sum = vec3<f32>(0.0);
     for (var i = first; i < n; i = i + step) {
-        let pick = min(u32((f32(i) + fract(jitter + f32(i) * 0.618034)) * stratum), count - 1u);
+        let drawn = pick_sender((f32(i) + fract(jitter + f32(i) * 0.618034)) / f32(n), count, gp.geo.z);
+        let pick = drawn.index;
         let s = senders[pick];
         if s.point.w <= 0.0 {
             continue;
@@ -155,8 +159,8 @@ fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool, first: 
         let y = select(s.point.xyz, off_surface(s.point.xyz, s.normal.xyz), hidden);
         // A receiver on screen skips its columns; a hidden receiver and sender do not.
         if ff > 0.0 && !((march || hidden) && world_occluded(xm, nx, y, s.normal.xyz, vec2<bool>(!march, !hidden))) {
-            sum = sum + radiance[pick].rgb * ff;
+            sum = sum + radiance[pick].rgb * (ff / drawn.pdf);
         }
     }
-    return sum * stratum;
+    return sum / f32(n);
 }

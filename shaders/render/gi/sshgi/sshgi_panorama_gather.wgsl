@@ -1,10 +1,11 @@
 // sshgi panorama, gather (an extension of Soler et al. 2010, not in the paper): each start-level
 // texel adds to the screen's gather of a bounce the light of N senders of the panorama
 // (`sshgi_panorama_pack.wgsl`: the surfaces around the camera the view does not show), picked
-// one per stratum of the sender list with a per-pixel and per-frame jitter, each with the same
-// bounded disc form factor as the screen's gathers (Eq. 4, R^2 = cos(theta') ds / pi), weighted
-// by the list's size over N: an unbiased estimate of the panorama's E / pi, averaged over frames
-// by the temporal filter. No visibility for the panorama's senders: the view's voxels do not reach
+// one per stratum of a mixture of uniform and power-proportional picks over the sender list
+// (`sshgi_sender_pick.wgsl`) with a per-pixel and per-frame jitter, each with the same bounded
+// disc form factor as the screen's gathers (Eq. 4, R^2 = cos(theta') ds / pi), weighted by one
+// over N times its pick's probability: an unbiased estimate of the panorama's E / pi, averaged
+// over frames by the temporal filter. No visibility for the panorama's senders: the view's voxels do not reach
 // off screen, so light passes through whatever lies between the receiver and a panorama sender.
 // The hidden senders after them in the list (`sshgi_hidden_pack.wgsl`) are marched through the
 // voxels, and where a segment leaves the view through the world's surface voxels.
@@ -27,6 +28,8 @@
 @group(0) @binding(7) var<storage, read> voxels: array<vec4<u32>>;
 // The world's surface voxels (one word where there are none).
 @group(0) @binding(8) var<storage, read> world: array<u32>;
+// The prefix sums of this bounce's senders' power (`sshgi_sender_cdf.wgsl`).
+@group(0) @binding(9) var<storage, read> cdf: array<f32>;
 
 @compute @workgroup_size(64, 1, 1)
 fn gather(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {

@@ -1,7 +1,8 @@
 // sshgi panorama, receive (an extension of Soler et al. 2010, not in the paper): the panorama's
 // senders' outgoing radiance of the next bounce, reflectance x E / pi, where E comes from this
 // bounce's senders on screen (N start-level texels, one per stratum, each with the texel area of
-// the screen gathers' Eq. 2) and in the panorama (N senders, `gather_senders`). So light that
+// the screen gathers' Eq. 2) and in the panorama (N senders, `gather_senders`, part of them
+// picked by power). So light that
 // leaves the screen, lights a surface off screen and comes back reaches the view in the later
 // bounces. No visibility between the panorama's senders and the screen; a hidden sender
 // (`sshgi_hidden_pack.wgsl`) marches each segment through the view's voxels, and where it leaves
@@ -25,6 +26,8 @@
 @group(0) @binding(7) var<storage, read> voxels: array<vec4<u32>>;
 // The world's surface voxels (one word where there are none).
 @group(0) @binding(8) var<storage, read> world: array<u32>;
+// The prefix sums of this bounce's senders' power (`sshgi_sender_cdf.wgsl`).
+@group(0) @binding(9) var<storage, read> cdf: array<f32>;
 
 // E / pi at x (normal nx) from N start-level texels of the screen, one per stratum (with
 // `march`, each segment marched through the view's voxels).

@@ -60,7 +60,8 @@ pub struct PanoramaParams {
     pub screen: [u32; 4],
     /// Solid angle of one start-level texel on the optical axis (sr); a voxel column's width
     /// per metre of view depth where a segment in view walks the world grid when its voxel is
-    /// smaller (0: never, `SshgiSettings::world_grid_in_view` off), unused x2.
+    /// smaller (0: never, `SshgiSettings::world_grid_in_view` off); the share of the sender
+    /// picks drawn by power (`SshgiSettings::sender_power_share`); unused.
     pub geo: [f32; 4],
     /// The camera's forward axis, unused.
     pub forward: [f32; 4],
@@ -75,12 +76,15 @@ pub struct PanoramaParams {
 }
 
 /// What the panorama hands `sshgi`'s steps: the sender list, the ping-pong radiance buffers
-/// (the first holds the first bounce's after the pack), the face size and the hidden senders
-/// after the faces' in the list.
+/// (the first holds the first bounce's after the pack), the prefix sums of a bounce's sender
+/// power, the face size and the hidden senders after the faces' in the list.
 #[derive(Clone, Copy)]
 pub struct Senders<'a> {
     pub list: &'a wgpu::Buffer,
     pub radiance: [&'a wgpu::Buffer; 2],
+    /// The prefix sums of the senders' power in the bounce being gathered
+    /// (`sshgi_sender_cdf.wgsl`, written before each bounce's gather and receive).
+    pub cdf: &'a wgpu::Buffer,
     /// The face size F.
     pub face: u32,
     /// Hidden senders after the faces' 6 F^2 ([`super::hidden`]; 0: none).
@@ -121,6 +125,8 @@ struct Faces {
     distances: wgpu::Buffer,
     senders: wgpu::Buffer,
     radiance: [wgpu::Buffer; 2],
+    /// One f32 per sender: the prefix sums of a bounce's sender power.
+    cdf: wgpu::Buffer,
     /// Per face: the lighting inputs' and the pack's bind groups, for the inputs they name.
     groups: Option<(GroupKey, Vec<(wgpu::BindGroup, wgpu::BindGroup)>)>,
 }
@@ -264,7 +270,7 @@ impl Panorama {
         let along = if hidden > 0 { inputs.settings.sshgi.world_voxels } else { 0 };
         let world = world.update(inputs.device, inputs.queue, inputs.scene, along);
         let [first, second] = &faces.radiance;
-        Some(Senders { list: &faces.senders, radiance: [first, second], face: size, hidden, world })
+        Some(Senders { list: &faces.senders, radiance: [first, second], cdf: &faces.cdf, face: size, hidden, world })
     }
 
     /// Creates the faces and the list when their size or the hidden senders' count changes.
@@ -286,13 +292,14 @@ impl Panorama {
         let senders = buffer("sshgi panorama senders", SENDER_BYTES);
         let radiance =
             [buffer("sshgi panorama radiance", RADIANCE_BYTES), buffer("sshgi panorama radiance", RADIANCE_BYTES)];
+        let cdf = buffer("sshgi sender power prefix sums", 4);
         let distances = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sshgi panorama distances"),
             size: texels * 4,
             usage: wgpu::BufferUsages::STORAGE,
             mapped_at_creation: false,
         });
-        self.faces = Some(Faces { size, hidden, faces, distances, senders, radiance, groups: None });
+        self.faces = Some(Faces { size, hidden, faces, distances, senders, radiance, cdf, groups: None });
     }
 
     /// Face `index`'s targets, constants and fixed bind groups.
@@ -331,7 +338,10 @@ impl Panorama {
         let Some(f) = &self.faces else { return 0 };
         let targets: u64 =
             f.faces.iter().flat_map(|face| face.targets.all()).map(|target| texture_bytes(&target.texture)).sum();
-        let lists = f.senders.size() + f.distances.size() + f.radiance.iter().map(wgpu::Buffer::size).sum::<u64>();
+        let lists = f.senders.size()
+            + f.distances.size()
+            + f.cdf.size()
+            + f.radiance.iter().map(wgpu::Buffer::size).sum::<u64>();
         targets + lists + self.hidden.gpu_bytes() + self.world.gpu_bytes()
     }
 }
@@ -417,8 +427,8 @@ fn write_frames(queue: &wgpu::Queue, faces: &Faces, view: &FrameUniforms, camera
 /// The gather's bind group layout and pipeline (dispatched among `sshgi`'s steps,
 /// [`super::passes`]): the view's frame constants, its parameters (a dynamic slot of the
 /// steps' parameter buffer), the start level's geometry, the screen's bounce, the output, the
-/// sender list, the senders' radiance of the bounce, the voxel columns and the world grid (the
-/// hidden senders' visibility).
+/// sender list, the senders' radiance of the bounce, the voxel columns, the world grid (the
+/// hidden senders' visibility) and the prefix sums of the senders' power.
 pub fn gather_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
     let c = wgpu::ShaderStages::COMPUTE;
     let rest = [
@@ -427,6 +437,7 @@ pub fn gather_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, 
         storage_entry(6, c),
         storage_entry(7, c),
         storage_entry(8, c),
+        storage_entry(9, c),
     ];
     step_pipeline(device, "sshgi panorama gather", "render/gi/sshgi/sshgi_panorama_gather.wgsl", "gather", &rest)
 }
@@ -434,11 +445,18 @@ pub fn gather_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, 
 /// The receive's bind group layout and pipeline (dispatched among `sshgi`'s steps after each
 /// bounce but the last): the view's frame constants, the parameter slot, the start level's
 /// geometry and this bounce's screen radiance, the sender list, this bounce's and the next
-/// bounce's sender radiance, the voxel columns and the world grid.
+/// bounce's sender radiance, the voxel columns, the world grid and the prefix sums of this
+/// bounce's sender power.
 pub fn receive_pipeline(device: &wgpu::Device) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline), ShaderError> {
     let c = wgpu::ShaderStages::COMPUTE;
-    let rest =
-        [storage_entry(4, c), storage_entry(5, c), storage_rw_entry(6), storage_entry(7, c), storage_entry(8, c)];
+    let rest = [
+        storage_entry(4, c),
+        storage_entry(5, c),
+        storage_rw_entry(6),
+        storage_entry(7, c),
+        storage_entry(8, c),
+        storage_entry(9, c),
+    ];
     step_pipeline(device, "sshgi panorama receive", "render/gi/sshgi/sshgi_panorama_receive.wgsl", "receive", &rest)
 }
 

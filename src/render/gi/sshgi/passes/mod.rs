@@ -15,6 +15,8 @@ use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::{Target, formats};
 use crate::settings::SshgiSettings;
 
+mod sender_cdf;
+mod sky;
 mod steps;
 mod tail;
 
@@ -231,6 +233,8 @@ pub struct SshgiPasses {
     tail_layout: wgpu::BindGroupLayout,
     /// The tail's sums, ratio and add ([`tail`]).
     tail: [wgpu::ComputePipeline; 3],
+    /// The prefix sums of a bounce's sender power ([`sender_cdf`]).
+    sender_cdf: (wgpu::BindGroupLayout, wgpu::ComputePipeline),
     box_seed: wgpu::ComputePipeline,
     reflectance_seed: wgpu::ComputePipeline,
     reduce: wgpu::ComputePipeline,
@@ -269,8 +273,9 @@ struct Inputs {
     out: wgpu::TextureView,
     voxels: wgpu::Buffer,
     frame: wgpu::Buffer,
-    /// The panorama's sender list, radiance buffers, face size and senders in the list.
-    senders: Option<([wgpu::Buffer; 3], u32, u32)>,
+    /// The panorama's sender list, radiance buffers, power prefix sums, face size and senders
+    /// in the list.
+    senders: Option<([wgpu::Buffer; 4], u32, u32)>,
     /// The world grid (the hidden senders' segments that leave the view; `no_voxels` for none).
     world: wgpu::Buffer,
     /// The sky's image and uniforms (the sky pass).
@@ -295,6 +300,7 @@ enum Pipe {
     TailSums,
     TailRatio,
     TailAdd,
+    SenderCdf,
 }
 
 /// One dispatch: the (timed) pass it belongs to, its pipeline, bind group, parameter slot and
@@ -307,45 +313,6 @@ struct Step {
     size: (u32, u32),
     /// Items per workgroup along each axis: 8, or a shared pass's tile ([`steps::split`]).
     tile: u32,
-}
-
-/// The sky pass's layouts and pipelines (`sshgi_sky.wgsl`): the start level's (`sky_light`) and
-/// the panorama senders' (`sender_sky`).
-type SkyPipelines = [(wgpu::BindGroupLayout, wgpu::ComputePipeline); 2];
-
-fn sky_pipelines(device: &wgpu::Device) -> Result<SkyPipelines, ShaderError> {
-    let c = wgpu::ShaderStages::COMPUTE;
-    let float = wgpu::TextureSampleType::Float { filterable: false };
-    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("sshgi sky layout"),
-        entries: &[
-            uniform_entry(0, c, false),
-            uniform_entry(1, c, true),
-            texture_entry(2, c, float),
-            storage_texture_entry(3, formats::HDR),
-            storage_entry(4, c),
-            texture_entry(5, c, float),
-            uniform_entry(6, c, false),
-            storage_entry(9, c),
-        ],
-    });
-    let module = shaders::module(device, "render/gi/sshgi/sshgi_sky.wgsl")?;
-    let pipeline = compute_pipeline(device, "sshgi sky", &layout, &module, "sky_light");
-    let sender_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("sshgi sender sky layout"),
-        entries: &[
-            uniform_entry(0, c, false),
-            uniform_entry(1, c, true),
-            storage_entry(4, c),
-            texture_entry(5, c, float),
-            uniform_entry(6, c, false),
-            storage_entry(7, c),
-            crate::render::layouts::storage_rw_entry(8),
-            storage_entry(9, c),
-        ],
-    });
-    let sender = compute_pipeline(device, "sshgi sender sky", &sender_layout, &module, "sender_sky");
-    Ok([(layout, pipeline), (sender_layout, sender)])
 }
 
 impl SshgiPasses {
@@ -390,12 +357,13 @@ impl SshgiPasses {
         let up = shaders::module(device, "render/gi/sshgi/sshgi_upsample.wgsl")?;
         let (panorama_layout, panorama) = super::panorama::gather_pipeline(device)?;
         let (receive_layout, receive) = super::panorama::receive_pipeline(device)?;
-        let [(sky_layout, sky), (sender_sky_layout, sender_sky)] = sky_pipelines(device)?;
+        let [(sky_layout, sky), (sender_sky_layout, sender_sky)] = sky::pipelines(device)?;
         let (tail_layout, tail) = tail::pipelines(device)?;
         Ok(Self {
             shared: steps::shares_samples(device),
             tail_layout,
             tail,
+            sender_cdf: sender_cdf::pipeline(device)?,
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
             reflectance_seed: compute_pipeline(device, "sshgi reflectance seed", &mip_layout, &mip, "reflectance_seed"),
             reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
@@ -487,8 +455,9 @@ impl SshgiPasses {
             out: out.view.clone(),
             voxels: visibility.map_or(&self.no_voxels, |v| v.columns).clone(),
             frame: inputs.frame_buffer.clone(),
-            senders: panorama
-                .map(|p| ([p.list.clone(), p.radiance[0].clone(), p.radiance[1].clone()], p.face, p.count())),
+            senders: panorama.map(|p| {
+                ([p.list.clone(), p.radiance[0].clone(), p.radiance[1].clone(), p.cdf.clone()], p.face, p.count())
+            }),
             sky: sky.map(|s| (s.view.clone(), s.buffer.clone())),
             world: panorama.and_then(|p| p.world).map_or(&self.no_voxels, |w| w.buffer).clone(),
         };
@@ -525,6 +494,7 @@ impl SshgiPasses {
                 Pipe::TailSums => &self.tail[0],
                 Pipe::TailRatio => &self.tail[1],
                 Pipe::TailAdd => &self.tail[2],
+                Pipe::SenderCdf => &self.sender_cdf.1,
             });
             pass.set_bind_group(0, &step.group, &[step.slot * SLOT as u32]);
             pass.dispatch_workgroups(step.size.0.div_ceil(step.tile), step.size.1.div_ceil(step.tile), 1);
@@ -608,7 +578,7 @@ impl SshgiPasses {
                     split(self.shared, Shared::Panorama).0,
                     split(self.shared, Shared::Receive).0,
                 ],
-                geo: [pixel_sr * (1u32 << (2 * plan.start)) as f32, grid_in_view, 0.0, 0.0],
+                geo: [pixel_sr * (1u32 << (2 * plan.start)) as f32, grid_in_view, settings.sender_power_share, 0.0],
                 forward: [forward.x, forward.y, forward.z, 0.0],
                 // The hidden senders' segments are marched in every bounce: they lie behind
                 // something by definition, so without it each would light through it.

@@ -177,7 +177,7 @@ impl<'a> StepBuilder<'a> {
         let size = (sky.texture.width(), sky.texture.height());
         self.shared_step("sshgi sky".to_owned(), (Pipe::Sky, Shared::Sky), group, sky_slot(s.plan), size);
         // The panorama's senders off screen: their first radiance gains the sky's light.
-        let Some(([list, first, _], side, count)) = &key.senders else { return };
+        let Some(([list, first, _, _], side, count)) = &key.senders else { return };
         let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("sshgi sender sky bind group"),
             layout: &self.passes.sender_sky_layout,
@@ -328,15 +328,37 @@ impl<'a> StepBuilder<'a> {
         });
     }
 
+    /// The prefix sums of bounce `b`'s sender power (`sshgi_sender_cdf.wgsl`), which the
+    /// gather and the receive after it draw from: one workgroup over the list.
+    fn sender_cdf(&mut self, b: usize, [list, radiance, cdf]: [&'a wgpu::Buffer; 3]) {
+        let buffer = |binding, b: &'a wgpu::Buffer| wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() };
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("sshgi sender cdf bind group"),
+            layout: &self.passes.sender_cdf.0,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 1, resource: self.params_binding(16) },
+                buffer(2, list),
+                buffer(3, radiance),
+                buffer(4, cdf),
+            ],
+        });
+        let pass = self.pass(b, "sshgi sender cdf");
+        let slot = panorama_slot(self.s.plan, b);
+        self.steps.push(Step { pass, pipeline: Pipe::SenderCdf, group, slot, size: (1, 1), tile: 1 });
+    }
+
     /// The panorama's senders gathered into bounce `b` (its screen bounce plus their light),
     /// then, but after the last bounce, the senders' radiance of the next bounce
-    /// ([`super::super::panorama`]).
+    /// ([`super::super::panorama`]); both draw their senders from the prefix sums of the
+    /// bounce's sender power, written first.
     pub(super) fn panorama(&mut self, b: usize) {
         let (s, key) = (self.s, self.key);
-        let (Some(screen), Some(([list, first, second], side, count))) = (s.screen_bounce.get(b), &key.senders) else {
+        let (Some(screen), Some(([list, first, second, cdf], side, count))) = (s.screen_bounce.get(b), &key.senders)
+        else {
             return;
         };
         let (radiance, next) = if b.is_multiple_of(2) { (first, second) } else { (second, first) };
+        self.sender_cdf(b, [list, radiance, cdf]);
         let slot = panorama_slot(s.plan, b);
         let dest = &s.bounce[b];
         let texture =
@@ -355,6 +377,7 @@ impl<'a> StepBuilder<'a> {
                 buffer(6, radiance),
                 buffer(7, &key.voxels),
                 buffer(8, &key.world),
+                buffer(9, cdf),
             ],
         });
         let pass = self.pass(b, "sshgi panorama gather");
@@ -376,6 +399,7 @@ impl<'a> StepBuilder<'a> {
                 buffer(6, next),
                 buffer(7, &key.voxels),
                 buffer(8, &key.world),
+                buffer(9, cdf),
             ],
         });
         let pass = self.pass(b, "sshgi panorama receive");
