@@ -81,7 +81,12 @@ pub struct SshgiSettings {
     /// F x F texels, and `panorama_samples` per start-level texel.
     pub panorama: u32,
     /// Panorama senders gathered per start-level texel and frame (1..=1024; the temporal filter
-    /// averages them over frames). Cost: linear, as a screen level's samples.
+    /// averages them over frames). Cost: linear, as a screen level's samples, and more where the
+    /// picks meet lit hidden senders, whose segments are marched. 32 since stop 71 (64 before):
+    /// with half the picks by power (`sender_power_share`) 32 spread less from frame to frame
+    /// than 64 uniform picks on every level measured, for about the uniform picks' cost
+    /// (lavapipe, `probe SCENE --mode sshgi --frames 16 --timings`, sshgi's passes: the rooms
+    /// 156 -> 169 ms, the window room 90 -> 76 ms).
     pub panorama_samples: u32,
     /// The share of the panorama's and hidden senders' picks drawn in proportion to their power
     /// (radiance x area) instead of uniformly over the list (0: uniform, the list's strata alone;
@@ -160,7 +165,7 @@ impl Default for SshgiSettings {
             temporal_weight: 0.85,
             temporal_two_tap: false,
             panorama: 32,
-            panorama_samples: 64,
+            panorama_samples: 32,
             sender_power_share: 0.5,
             sky_rays: 16,
             hidden_senders: 2048,

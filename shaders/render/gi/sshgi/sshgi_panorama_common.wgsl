@@ -157,9 +157,12 @@ fn gather_senders(x: vec3<f32>, nx: vec3<f32>, jitter: f32, march: bool, first: 
         let ff = disc_form_factor(s.point.xyz - x, nx, s.normal.xyz, s.point.w);
         let hidden = pick >= hidden_from();
         let y = select(s.point.xyz, off_surface(s.point.xyz, s.normal.xyz), hidden);
-        // A receiver on screen skips its columns; a hidden receiver and sender do not.
-        if ff > 0.0 && !((march || hidden) && world_occluded(xm, nx, y, s.normal.xyz, vec2<bool>(!march, !hidden))) {
-            sum = sum + radiance[pick].rgb * (ff / drawn.pdf);
+        // A receiver on screen skips its columns; a hidden receiver and sender do not. A dark
+        // sender sends nothing, and its segment is not marched.
+        let light = radiance[pick].rgb;
+        let lit = any(light > vec3<f32>(0.0));
+        if ff > 0.0 && lit && !((march || hidden) && world_occluded(xm, nx, y, s.normal.xyz, vec2<bool>(!march, !hidden))) {
+            sum = sum + light * (ff / drawn.pdf);
         }
     }
     return sum / f32(n);
