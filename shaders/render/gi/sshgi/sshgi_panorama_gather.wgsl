@@ -5,8 +5,9 @@
 // (`sshgi_sender_pick.wgsl`) with a per-pixel and per-frame jitter, each with the same bounded
 // disc form factor as the screen's gathers (Eq. 4, R^2 = cos(theta') ds / pi), weighted by one
 // over N times its pick's probability: an unbiased estimate of the panorama's E / pi, averaged
-// over frames by the temporal filter. No visibility for the panorama's senders: the view's voxels do not reach
-// off screen, so light passes through whatever lies between the receiver and a panorama sender.
+// over frames by the temporal filter. No visibility for the panorama's senders: the view's
+// voxels do not reach off screen, so light passes through whatever lies between the receiver and
+// a panorama sender.
 // The hidden senders after them in the list (`sshgi_hidden_pack.wgsl`) are marched through the
 // voxels, and where a segment leaves the view through the world's surface voxels.
 #import common/frame.wgsl

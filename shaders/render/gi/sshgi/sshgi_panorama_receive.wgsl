@@ -2,9 +2,8 @@
 // senders' outgoing radiance of the next bounce, reflectance x E / pi, where E comes from this
 // bounce's senders on screen (N start-level texels, one per stratum, each with the texel area of
 // the screen gathers' Eq. 2) and in the panorama (N senders, `gather_senders`, part of them
-// picked by power). So light that
-// leaves the screen, lights a surface off screen and comes back reaches the view in the later
-// bounces. No visibility between the panorama's senders and the screen; a hidden sender
+// picked by power). So light that leaves the screen, lights a surface off screen and comes back
+// reaches the view in the later bounces. No visibility between the panorama's senders and the screen; a hidden sender
 // (`sshgi_hidden_pack.wgsl`) marches each segment through the view's voxels, and where it leaves
 // the view through the world's surface voxels.
 #import common/frame.wgsl
