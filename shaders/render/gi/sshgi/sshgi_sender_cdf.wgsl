@@ -1,11 +1,14 @@
 // sshgi's sender list sampled by power (not in Soler et al. 2010, whose senders are the screen's
-// texels alone): the inclusive prefix sums of every sender's power, luminance(radiance) x ds,
-// over the list of this bounce (`sshgi_sender_pick.wgsl` draws from them). On levels lit through
-// doorways most of the list is dark and a few senders carry the light: picked one per stratum of
-// the list, a receiver's N samples met them in some frames and not in others. One workgroup: each
-// thread sums a contiguous run of the list, the workgroup scans the 256 runs (Hillis-Steele), and
-// each thread writes its run's prefix sums. The list holds 6 F^2 + hidden senders (8,192 at the
-// defaults, at most 114,688): a run of at most 448 senders a thread.
+// texels alone): prefix sums of every sender's power, luminance(radiance) x ds, over the list of
+// this bounce (`sshgi_sender_pick.wgsl` draws from them). On levels lit through doorways most of
+// the list is dark and a few senders carry the light: picked one per stratum of the list, a
+// receiver's N samples met them in some frames and not in others.
+//
+// Two levels, so that no pass is one thread's long walk: `blocks` gives each block of 256
+// senders a workgroup, which scans its powers (Hillis-Steele) into the block's own inclusive
+// prefix sums at `cdf[i]` and its total at `cdf[count + block]`; `totals` (one workgroup) turns
+// the blocks' totals into their inclusive prefix sums in place. The list holds 6 F^2 + hidden
+// senders: 8,192 at the defaults (32 blocks), at most 114,688 (448 blocks, two a thread).
 #import render/gi/sshgi/sshgi_sender.wgsl
 
 struct CdfParams {
@@ -18,12 +21,15 @@ struct CdfParams {
 @group(0) @binding(2) var<storage, read> senders: array<Sender>;
 // The senders' outgoing radiance of this bounce.
 @group(0) @binding(3) var<storage, read> radiance: array<vec4<f32>>;
-// Inclusive prefix sums of the senders' power.
+// Per sender its block's inclusive prefix sum, then per block the inclusive prefix sum of the
+// blocks' totals.
 @group(0) @binding(4) var<storage, read_write> cdf: array<f32>;
 
-const THREADS: u32 = 256u;
+const BLOCK: u32 = 256u;
+// Block totals a thread of `totals` takes (at most 448 blocks).
+const PER_THREAD: u32 = 2u;
 
-var<workgroup> runs: array<f32, 256>;
+var<workgroup> scan: array<f32, 256>;
 
 // Sender i's power, the luminance of its radiance times its area (its flux over pi: what it can
 // send a receiver, before the form factor); 0 for an empty slot and for a radiance that is not
@@ -37,33 +43,68 @@ fn power(i: u32) -> f32 {
     return select(0.0, p, p > 0.0 && p < 3.0e38);
 }
 
-@compute @workgroup_size(256, 1, 1)
-fn prefix(@builtin(local_invocation_index) lid: u32) {
-    let count = min(cp.counts.x, arrayLength(&cdf));
-    let per = (count + THREADS - 1u) / THREADS;
-    let begin = min(lid * per, count);
-    let end = min(begin + per, count);
-    var sum = 0.0;
-    for (var i = begin; i < end; i = i + 1u) {
-        sum = sum + power(i);
-    }
-    runs[lid] = sum;
+// The workgroup's inclusive prefix sums of every thread's `v` (Hillis-Steele), in `scan`; called
+// by the whole workgroup.
+fn scan_workgroup(lid: u32, v: f32) {
+    scan[lid] = v;
     workgroupBarrier();
-    for (var offset = 1u; offset < THREADS; offset = offset << 1u) {
+    for (var offset = 1u; offset < BLOCK; offset = offset << 1u) {
         var before = 0.0;
         if lid >= offset {
-            before = runs[lid - offset];
+            before = scan[lid - offset];
         }
         workgroupBarrier();
-        runs[lid] = runs[lid] + before;
+        scan[lid] = scan[lid] + before;
         workgroupBarrier();
     }
-    var running = 0.0;
-    if lid > 0u {
-        running = runs[lid - 1u];
+}
+
+fn sender_count() -> u32 {
+    return min(cp.counts.x, arrayLength(&cdf));
+}
+
+fn block_count() -> u32 {
+    return (sender_count() + BLOCK - 1u) / BLOCK;
+}
+
+@compute @workgroup_size(256, 1, 1)
+fn blocks(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) lid: u32) {
+    let count = sender_count();
+    let i = group.x * BLOCK + lid;
+    var p = 0.0;
+    if i < count {
+        p = power(i);
     }
-    for (var i = begin; i < end; i = i + 1u) {
-        running = running + power(i);
-        cdf[i] = running;
+    scan_workgroup(lid, p);
+    if i < count {
+        cdf[i] = scan[lid];
+    }
+    if lid == BLOCK - 1u && count + group.x < arrayLength(&cdf) {
+        cdf[count + group.x] = scan[lid];
+    }
+}
+
+@compute @workgroup_size(256, 1, 1)
+fn totals(@builtin(local_invocation_index) lid: u32) {
+    let count = sender_count();
+    let blocks = min(block_count(), arrayLength(&cdf) - count);
+    let first = lid * PER_THREAD;
+    var run = array<f32, PER_THREAD>();
+    var sum = 0.0;
+    for (var k = 0u; k < PER_THREAD; k = k + 1u) {
+        if first + k < blocks {
+            sum = sum + cdf[count + first + k];
+        }
+        run[k] = sum;
+    }
+    scan_workgroup(lid, sum);
+    var before = 0.0;
+    if lid > 0u {
+        before = scan[lid - 1u];
+    }
+    for (var k = 0u; k < PER_THREAD; k = k + 1u) {
+        if first + k < blocks {
+            cdf[count + first + k] = before + run[k];
+        }
     }
 }

@@ -125,7 +125,8 @@ struct Faces {
     distances: wgpu::Buffer,
     senders: wgpu::Buffer,
     radiance: [wgpu::Buffer; 2],
-    /// One f32 per sender: the prefix sums of a bounce's sender power.
+    /// The prefix sums of a bounce's sender power: per sender within its block, then per block
+    /// ([`super::passes::sender_cdf`]).
     cdf: wgpu::Buffer,
     /// Per face: the lighting inputs' and the pack's bind groups, for the inputs they name.
     groups: Option<(GroupKey, Vec<(wgpu::BindGroup, wgpu::BindGroup)>)>,
@@ -292,7 +293,12 @@ impl Panorama {
         let senders = buffer("sshgi panorama senders", SENDER_BYTES);
         let radiance =
             [buffer("sshgi panorama radiance", RADIANCE_BYTES), buffer("sshgi panorama radiance", RADIANCE_BYTES)];
-        let cdf = buffer("sshgi sender power prefix sums", 4);
+        let cdf = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("sshgi sender power prefix sums"),
+            size: 4 * super::passes::sender_cdf::floats(count),
+            usage: wgpu::BufferUsages::STORAGE,
+            mapped_at_creation: false,
+        });
         let distances = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("sshgi panorama distances"),
             size: texels * 4,

@@ -15,7 +15,7 @@ use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::{Target, formats};
 use crate::settings::SshgiSettings;
 
-mod sender_cdf;
+pub mod sender_cdf;
 mod sky;
 mod steps;
 mod tail;
@@ -234,7 +234,7 @@ pub struct SshgiPasses {
     /// The tail's sums, ratio and add ([`tail`]).
     tail: [wgpu::ComputePipeline; 3],
     /// The prefix sums of a bounce's sender power ([`sender_cdf`]).
-    sender_cdf: (wgpu::BindGroupLayout, wgpu::ComputePipeline),
+    sender_cdf: (wgpu::BindGroupLayout, [wgpu::ComputePipeline; 2]),
     box_seed: wgpu::ComputePipeline,
     reflectance_seed: wgpu::ComputePipeline,
     reduce: wgpu::ComputePipeline,
@@ -300,7 +300,8 @@ enum Pipe {
     TailSums,
     TailRatio,
     TailAdd,
-    SenderCdf,
+    SenderCdfBlocks,
+    SenderCdfTotals,
 }
 
 /// One dispatch: the (timed) pass it belongs to, its pipeline, bind group, parameter slot and
@@ -363,7 +364,7 @@ impl SshgiPasses {
             shared: steps::shares_samples(device),
             tail_layout,
             tail,
-            sender_cdf: sender_cdf::pipeline(device)?,
+            sender_cdf: sender_cdf::pipelines(device)?,
             box_seed: compute_pipeline(device, "sshgi box seed", &mip_layout, &mip, "box_seed"),
             reflectance_seed: compute_pipeline(device, "sshgi reflectance seed", &mip_layout, &mip, "reflectance_seed"),
             reduce: compute_pipeline(device, "sshgi reduce", &mip_layout, &mip, "reduce"),
@@ -494,7 +495,8 @@ impl SshgiPasses {
                 Pipe::TailSums => &self.tail[0],
                 Pipe::TailRatio => &self.tail[1],
                 Pipe::TailAdd => &self.tail[2],
-                Pipe::SenderCdf => &self.sender_cdf.1,
+                Pipe::SenderCdfBlocks => &self.sender_cdf.1[0],
+                Pipe::SenderCdfTotals => &self.sender_cdf.1[1],
             });
             pass.set_bind_group(0, &step.group, &[step.slot * SLOT as u32]);
             pass.dispatch_workgroups(step.size.0.div_ceil(step.tile), step.size.1.div_ceil(step.tile), 1);

@@ -329,8 +329,9 @@ impl<'a> StepBuilder<'a> {
     }
 
     /// The prefix sums of bounce `b`'s sender power (`sshgi_sender_cdf.wgsl`), which the
-    /// gather and the receive after it draw from: one workgroup over the list.
-    fn sender_cdf(&mut self, b: usize, [list, radiance, cdf]: [&'a wgpu::Buffer; 3]) {
+    /// gather and the receive after it draw from: a workgroup per block of `count` senders,
+    /// then one over the blocks' totals.
+    fn sender_cdf(&mut self, b: usize, [list, radiance, cdf]: [&'a wgpu::Buffer; 3], count: u32) {
         let buffer = |binding, b: &'a wgpu::Buffer| wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() };
         let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("sshgi sender cdf bind group"),
@@ -344,7 +345,10 @@ impl<'a> StepBuilder<'a> {
         });
         let pass = self.pass(b, "sshgi sender cdf");
         let slot = panorama_slot(self.s.plan, b);
-        self.steps.push(Step { pass, pipeline: Pipe::SenderCdf, group, slot, size: (1, 1), tile: 1 });
+        let blocks = count.div_ceil(super::sender_cdf::BLOCK);
+        for (pipeline, size) in [(Pipe::SenderCdfBlocks, (blocks, 1)), (Pipe::SenderCdfTotals, (1, 1))] {
+            self.steps.push(Step { pass: pass.clone(), pipeline, group: group.clone(), slot, size, tile: 1 });
+        }
     }
 
     /// The panorama's senders gathered into bounce `b` (its screen bounce plus their light),
@@ -358,7 +362,7 @@ impl<'a> StepBuilder<'a> {
             return;
         };
         let (radiance, next) = if b.is_multiple_of(2) { (first, second) } else { (second, first) };
-        self.sender_cdf(b, [list, radiance, cdf]);
+        self.sender_cdf(b, [list, radiance, cdf], *count);
         let slot = panorama_slot(s.plan, b);
         let dest = &s.bounce[b];
         let texture =
