@@ -21,6 +21,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("common/sky.wgsl", include_str!("../../shaders/common/sky.wgsl")),
     ("common/sky_params.wgsl", include_str!("../../shaders/common/sky_params.wgsl")),
     ("common/vpl.wgsl", include_str!("../../shaders/common/vpl.wgsl")),
+    ("common/workgroup_scan.wgsl", include_str!("../../shaders/common/workgroup_scan.wgsl")),
     ("common/workgroup_sum.wgsl", include_str!("../../shaders/common/workgroup_sum.wgsl")),
     ("render/composite.wgsl", include_str!("../../shaders/render/composite.wgsl")),
     ("render/gbuffer.wgsl", include_str!("../../shaders/render/gbuffer.wgsl")),

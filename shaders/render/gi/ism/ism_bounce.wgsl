@@ -13,6 +13,7 @@
 //   source's lit points, with the view importance (`importance`), each new VPL carrying an
 //   equal share of the set's light divided by its point's weight.
 #import common/color.wgsl
+#import common/workgroup_scan.wgsl
 #import common/vpl.wgsl
 #import render/gi/ism/ism_lookup.wgsl
 
@@ -227,22 +228,9 @@ fn write_winner(@builtin(global_invocation_id) id: vec3<u32>) {
 // slots are ordered by source VPL and then by its points' cluster order (`ism_select.wgsl`), so
 // the draws are stratified over the sources and, within each, over space.
 // `scan_sources` turns the per-source sums (`source_sums`) into their exclusive prefix
-// (selection[2k] = the bits of the prefix before source k, [2k + 1] = the source's sum).
-var<workgroup> scan: array<f32, 256>;
+// (selection[2k] = the bits of the prefix before source k, [2k + 1] = the source's sum), with
+// `scan_inclusive` (`common/workgroup_scan.wgsl`).
 var<workgroup> last_thread: atomic<u32>;
-
-// Inclusive Hillis-Steele scan of `scan`; the whole workgroup calls it.
-fn scan_inclusive(lid: u32) {
-    for (var off = 1u; off < 256u; off = off * 2u) {
-        var v = scan[lid];
-        if lid >= off {
-            v = v + scan[lid - off];
-        }
-        workgroupBarrier();
-        scan[lid] = v;
-        workgroupBarrier();
-    }
-}
 
 fn source_sum(k: u32) -> f32 {
     let v = bitcast<f32>(atomicLoad(&selection[2u * k + 1u]));

@@ -9,6 +9,7 @@
 // prefix sums at `cdf[i]` and its total at `cdf[count + block]`; `totals` (one workgroup) turns
 // the blocks' totals into their inclusive prefix sums in place. The list holds 6 F^2 + hidden
 // senders: 8,192 at the defaults (32 blocks), at most 114,688 (448 blocks, two a thread).
+#import common/workgroup_scan.wgsl
 #import render/gi/sshgi/sshgi_sender.wgsl
 
 struct CdfParams {
@@ -29,8 +30,6 @@ const BLOCK: u32 = 256u;
 // Block totals a thread of `totals` takes (at most 448 blocks).
 const PER_THREAD: u32 = 2u;
 
-var<workgroup> scan: array<f32, 256>;
-
 // Sender i's power, the luminance of its radiance times its area (its flux over pi: what it can
 // send a receiver, before the form factor); 0 for an empty slot and for a radiance that is not
 // finite (never drawn by power).
@@ -43,20 +42,12 @@ fn power(i: u32) -> f32 {
     return select(0.0, p, p > 0.0 && p < 3.0e38);
 }
 
-// The workgroup's inclusive prefix sums of every thread's `v` (Hillis-Steele), in `scan`; called
-// by the whole workgroup.
+// The workgroup's inclusive prefix sums of every thread's `v`, in `scan`
+// (`common/workgroup_scan.wgsl`); called by the whole workgroup.
 fn scan_workgroup(lid: u32, v: f32) {
     scan[lid] = v;
     workgroupBarrier();
-    for (var offset = 1u; offset < BLOCK; offset = offset << 1u) {
-        var before = 0.0;
-        if lid >= offset {
-            before = scan[lid - offset];
-        }
-        workgroupBarrier();
-        scan[lid] = scan[lid] + before;
-        workgroupBarrier();
-    }
+    scan_inclusive(lid);
 }
 
 fn sender_count() -> u32 {
