@@ -1,7 +1,7 @@
 //! The GI panel's ISM section (`ism`, `ism-ritschel`): every IsmSettings field with its
 //! cost/quality trade-off as a tooltip.
 
-use crate::settings::{BouncePick, IsmSettings, TailRatio};
+use crate::settings::{BouncePick, IsmSettings, ShadeResolution, TailRatio};
 
 /// Draws the ISM settings.
 pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
@@ -19,6 +19,7 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
             .on_hover_text("Drawn by solid angle from each VPL. Too few: holes and light leaks; cost: linear.");
         ui.add(egui::Slider::new(&mut m.interleave, 1..=8).text("interleave n"))
             .on_hover_text("Each pixel sees VPLs / n² VPLs; the n x n filter hides the pattern.");
+        shade_resolution_ui(m, ui);
         ui.add(egui::Slider::new(&mut m.bounces, 1..=6).text("bounces")).on_hover_text("Each extra bounce: one VPL, ISM and shading pass.");
         ui.add(egui::Slider::new(&mut m.base_confidence, 0.0..=0.99).text("base confidence"))
             .on_hover_text("Higher: smoother over time, more afterglow after lighting changes.");
@@ -77,4 +78,23 @@ pub fn ism_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
             "Filter incident radiance as 9 SH coefficients per colour, then shade with each pixel's own normal-mapped normal and glossy lobe. Cost: 56 bytes per pixel and 27-channel filtering (on an H100 `ism shade` 0.91 -> 1.08 ms at 320x180, 1.09 -> 1.68 ms at 640x360; docs/BENCHMARKS.md).",
         );
     });
+}
+
+/// The gathering resolution's choice; the SH filter always gathers at full resolution.
+fn shade_resolution_ui(m: &mut IsmSettings, ui: &mut egui::Ui) {
+    ui.add_enabled_ui(!m.sh_filter, |ui| {
+        ui.horizontal(|ui| {
+            ui.label("gather at");
+            ui.radio_value(&mut m.shade_resolution, ShadeResolution::Auto, "auto").on_hover_text(
+                "Half resolution from 640 x 360 pixels on, full below: where a view's pixels are small against its indirect light.",
+            );
+            ui.radio_value(&mut m.shade_resolution, ShadeResolution::Full, "full")
+                .on_hover_text("Every pixel gathers its share of the VPLs (the thesis).");
+            ui.radio_value(&mut m.shade_resolution, ShadeResolution::Half, "half").on_hover_text(
+                "One pixel of each 2 x 2 gathers (a quarter of `ism shade`'s lookups); the geometry-aware filter takes its taps from those.",
+            );
+        });
+    })
+    .response
+    .on_disabled_hover_text("The SH filter gathers at full resolution.");
 }

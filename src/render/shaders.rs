@@ -40,6 +40,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/gi/ism/ism_select.wgsl", include_str!("../../shaders/render/gi/ism/ism_select.wgsl")),
     ("render/gi/ism/ism_split.wgsl", include_str!("../../shaders/render/gi/ism/ism_split.wgsl")),
     ("render/gi/ism/ism_temporal.wgsl", include_str!("../../shaders/render/gi/ism/ism_temporal.wgsl")),
+    ("render/gi/ism/ism_upsample.wgsl", include_str!("../../shaders/render/gi/ism/ism_upsample.wgsl")),
     ("render/gi/ism/ism_view_importance.wgsl", include_str!("../../shaders/render/gi/ism/ism_view_importance.wgsl")),
     ("render/gi/ism/ism_light_texel.wgsl", include_str!("../../shaders/render/gi/ism/ism_light_texel.wgsl")),
     ("render/gi/ism/light_gbuffer.wgsl", include_str!("../../shaders/render/gi/ism/light_gbuffer.wgsl")),

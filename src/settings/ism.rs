@@ -157,6 +157,13 @@ pub struct IsmSettings {
     /// shade` pass goes from 0.91 to 1.08 ms at 320x180 and from 1.09 to 1.68 ms at 640x360
     /// (docs/BENCHMARKS.md); on lavapipe +7% and +17% (docs/BENCHMARKS-lavapipe.md).
     pub sh_filter: bool,
+    /// The resolution the VPLs are gathered at (`ism shade`, the pass whose every pixel makes
+    /// `vpl_count x bounces / n^2` imperfect-shadow-map lookups). `Half` gathers at one pixel
+    /// of each 2 x 2 block, a quarter of the lookups, and the geometry-aware filter then takes
+    /// its n x n taps from those samples (each tested against the full-resolution pixel's
+    /// plane and normal) before the temporal merge. Not with the SH filter, which gathers at
+    /// full resolution. Cost and gain: [`ShadeResolution`].
+    pub shade_resolution: ShadeResolution,
     /// An extra fixed minimum VPL distance in metres, on top of `clamp_disk` (0 = none, the
     /// default). The thesis clamps d^2 >= 1 in world units, which assumes large scenes: in a 2 m
     /// Cornell box that loses 9-11% of the one-bounce light, and with 0.1 m the 20 cm diorama
@@ -190,6 +197,36 @@ pub struct IsmSettings {
     /// need no grazing margin, and it shifts the light beyond doorways (0.2 took the three
     /// rooms from 0.90 to 0.64 of the reference's energy, measured with texel-centre depths).
     pub bias_slope: f32,
+}
+
+/// Where `ism shade` gathers the VPLs ([`IsmSettings::shade_resolution`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShadeResolution {
+    /// Every pixel gathers its share of the VPLs (Knecht's interleaved shading as the thesis
+    /// runs it).
+    Full,
+    /// One pixel of each 2 x 2 block gathers; a quarter of the lookups.
+    Half,
+    /// `Half` from [`ShadeResolution::AUTO_HALF_FROM`] pixels on, `Full` below.
+    #[default]
+    Auto,
+}
+
+impl ShadeResolution {
+    /// The view size (pixels) from which `Auto` gathers at half resolution.
+    pub const AUTO_HALF_FROM: u64 = 640 * 360;
+
+    /// The step between gathering pixels along each axis for a view of `size` (1 or 2); the
+    /// SH filter always gathers at full resolution.
+    pub fn scale(self, size: (u32, u32), sh_filter: bool) -> u32 {
+        let half = match self {
+            Self::Full => false,
+            Self::Half => true,
+            Self::Auto => u64::from(size.0) * u64::from(size.1) >= Self::AUTO_HALF_FROM,
+        };
+        if half && !sh_filter { 2 } else { 1 }
+    }
 }
 
 /// The ratio r of the bounce tail (`IsmSettings::bounce_tail`), `ism_bounce.wgsl` `tail`.
@@ -279,6 +316,7 @@ impl Default for IsmSettings {
             filter_depth: 0.01,
             filter_normal: 0.8,
             sh_filter: false,
+            shade_resolution: ShadeResolution::Auto,
             bounce_tail: true,
             bounce_pick: BouncePick::Resampled,
             view_importance: 8.0,
@@ -375,5 +413,22 @@ impl IsmSettings {
             });
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ShadeResolution;
+
+    #[test]
+    fn auto_gathers_at_half_resolution_from_640_by_360_and_the_sh_filter_always_at_full() {
+        let auto = ShadeResolution::Auto;
+        assert_eq!(auto.scale((639, 360), false), 1);
+        assert_eq!(auto.scale((640, 360), false), 2);
+        assert_eq!(auto.scale((3840, 2160), false), 2);
+        assert_eq!(auto.scale((3840, 2160), true), 1);
+        assert_eq!(ShadeResolution::Half.scale((64, 36), false), 2);
+        assert_eq!(ShadeResolution::Half.scale((64, 36), true), 1);
+        assert_eq!(ShadeResolution::Full.scale((3840, 2160), false), 1);
     }
 }

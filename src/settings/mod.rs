@@ -14,7 +14,7 @@ mod rcs;
 mod sshgi;
 mod vo;
 
-pub use ism::{BouncePick, IsmSettings, MAX_ATLAS_SIDE, TailRatio};
+pub use ism::{BouncePick, IsmSettings, MAX_ATLAS_SIDE, ShadeResolution, TailRatio};
 pub use mrt::{BlockOverride, DrtSettings, MrtSettings};
 pub use rcs::RcsSettings;
 pub use sshgi::SshgiSettings;

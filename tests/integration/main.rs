@@ -28,6 +28,7 @@ mod gltf_import;
 mod ism;
 mod ism_footprint;
 mod ism_glossy;
+mod ism_half;
 mod ism_inspector;
 mod ism_lights;
 mod ism_oracle;

@@ -6,7 +6,8 @@
 //! The GPU passes: [`vpl_pass`] (light G-buffer of every light, importance, VPLs; the first
 //! set's view weight in [`first_view`]), [`gather`]
 //! (ISM atlas and further bounces), [`screen`] (split G-buffer, shading, temporal merge,
-//! filter) and [`sh_filter`] (Segovia & Wald's SH filter), with their parameter blocks in
+//! filter; [`upsample`] its filter when shading at half resolution) and [`sh_filter`] (Segovia
+//! & Wald's SH filter), with their parameter blocks in
 //! [`params`]. [`technique`] puts them behind the GI seam; [`points`] builds the sample points'
 //! per-point data. [`oracle`] checks a rendered frame's maps, lookups and bounce against rays
 //! through the scene (`bouncelab probe-ism`).
@@ -23,6 +24,7 @@ pub mod screen;
 pub mod sh_filter;
 pub mod stillness;
 pub mod technique;
+pub mod upsample;
 pub mod vpl_pass;
 
 /// This technique's entry shaders (its registry row lists them).
@@ -38,6 +40,7 @@ pub const SHADERS: &[&str] = &[
     "render/gi/ism/ism_splat.wgsl",
     "render/gi/ism/ism_split.wgsl",
     "render/gi/ism/ism_temporal.wgsl",
+    "render/gi/ism/ism_upsample.wgsl",
     "render/gi/ism/ism_view_importance.wgsl",
     "render/gi/ism/pull_push.wgsl",
     "render/gi/ism/light_gbuffer.wgsl",

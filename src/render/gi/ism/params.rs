@@ -83,8 +83,18 @@ pub struct PullPushParams {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct SplitParams {
-    /// Interleave n, unused x3.
+    /// Interleave n, gathering step s (1 or 2), unused x2.
     pub counts: [u32; 4],
+}
+
+/// `UpsampleParams` in `ism_upsample.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct UpsampleParams {
+    /// Interleave n, gathering step s, gathered samples along x and y.
+    pub counts: [u32; 4],
+    /// Alpha (normalised depth), beta (min cosine), depth range (metres), unused.
+    pub params: [f32; 4],
 }
 
 /// `ShadeParams` in `ism_shade.wgsl`.
@@ -198,6 +208,7 @@ const _: () = assert!(std::mem::size_of::<BounceParams>() == 80);
 const _: () = assert!(std::mem::size_of::<PullPushParams>() == 32);
 const _: () = assert!(std::mem::size_of::<SplitParams>() == 16);
 const _: () = assert!(std::mem::size_of::<ShadeParams>() == 64);
+const _: () = assert!(std::mem::size_of::<UpsampleParams>() == 32);
 const _: () = assert!(std::mem::size_of::<TemporalParams>() == 48);
 const _: () = assert!(std::mem::size_of::<FilterParams>() == 32);
 const _: () = assert!(std::mem::size_of::<GenParams>() == 32);
@@ -216,6 +227,7 @@ pub const PARAM_BLOCKS: &[(&str, &str, usize)] = &[
     ("render/gi/ism/ism_shade.wgsl", "ShadeParams", std::mem::size_of::<ShadeParams>()),
     ("render/gi/ism/ism_temporal.wgsl", "TemporalParams", std::mem::size_of::<TemporalParams>()),
     ("render/gi/ism/ism_filter.wgsl", "FilterParams", std::mem::size_of::<FilterParams>()),
+    ("render/gi/ism/ism_upsample.wgsl", "UpsampleParams", std::mem::size_of::<UpsampleParams>()),
     ("render/gi/ism/ism_sh_filter.wgsl", "ShFilterParams", std::mem::size_of::<FilterParams>()),
     ("render/gi/ism/vpl_generate.wgsl", "GenParams", std::mem::size_of::<GenParams>()),
     ("render/gi/ism/vpl_generate.wgsl", "TileRecord", std::mem::size_of::<TileRecord>()),

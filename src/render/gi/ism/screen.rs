@@ -1,8 +1,9 @@
 //! The screen-space half of the ISM technique: the split G-buffer (P9), interleaved VPL
 //! shading (P10) or Segovia & Wald's SH projection, the SH filter with per-pixel BRDF
 //! evaluation, the temporal merge with its confidence (P12) and the geometry-aware filter
-//! (P13; labels as in docs/ARCHITECTURE.md, "ISM pass labels"). The VPL sets and imperfect
-//! shadow maps it reads come from [`super::gather`].
+//! (P13; labels as in docs/ARCHITECTURE.md, "ISM pass labels"), or, when the shading gathers
+//! at half resolution, [`super::upsample`]'s filter before the merge. The VPL sets and
+//! imperfect shadow maps it reads come from [`super::gather`].
 
 use crate::render::layouts::{compute_pipeline, storage_entry, storage_texture_entry, texture_entry, uniform_entry};
 use crate::render::shaders::{self, ShaderError};
@@ -11,6 +12,7 @@ use crate::settings::IsmSettings;
 
 use super::params::{FilterParams, ShadeParams, SplitParams, TemporalParams};
 use super::sh_filter::ShFilter;
+use super::upsample::{Gathered, IsmUpsample, gathered_size};
 use crate::render::gi::technique::texture_bytes;
 
 fn size_of<T>() -> u64 {
@@ -61,6 +63,8 @@ struct Key {
     view: (u32, u32),
     n: u32,
     sh: bool,
+    /// The gathering step (`ShadeResolution::scale`).
+    step: u32,
     generation: u64,
 }
 
@@ -93,6 +97,9 @@ struct Sized {
     filter_groups: [wgpu::BindGroup; 3],
     /// The view-importance pass over the pool points.
     importance_group: wgpu::BindGroup,
+    /// With a gathering step over 1: the filtered light the temporal merge reads, and the
+    /// filter's bind groups writing it (0) or the view's indirect target (1, no temporal reuse).
+    upsampled: Option<(Target, [wgpu::BindGroup; 2])>,
 }
 
 /// The temporal merge's blend for one frame (`ism_temporal.wgsl`).
@@ -121,6 +128,7 @@ pub struct IsmScreen {
     filter_layout: wgpu::BindGroupLayout,
     filter: wgpu::ComputePipeline,
     filter_params: wgpu::Buffer,
+    upsample: IsmUpsample,
     importance_layout: wgpu::BindGroupLayout,
     view_importance: wgpu::ComputePipeline,
     parity: usize,
@@ -250,6 +258,7 @@ impl IsmScreen {
             filter: compute_pipeline(device, "ism filter", &filter_layout, &filter_module, "cs_main"),
             filter_params: uniform(device, "ism filter params", size_of::<FilterParams>()),
             filter_layout,
+            upsample: IsmUpsample::new(device)?,
             parity: 0,
             reset: true,
             sized: None,
@@ -269,8 +278,13 @@ impl IsmScreen {
         if self.sized.as_ref().is_some_and(|s| s.key == key) {
             return;
         }
-        let split = split_size(key.view, key.n);
+        let split = split_size(gathered_size(key.view, key.step), key.n);
         let [split_position, split_normal, raw] = Self::split_targets(device, split);
+        let upsampled = (key.step > 1).then(|| {
+            let gathered = Gathered { position: &split_position, normal: &split_normal, raw: &raw };
+            self.upsample_stage(device, key, frame_buffer, targets, &gathered)
+        });
+        let temporal_input = upsampled.as_ref().map(|(t, _)| t);
         if key.sh {
             self.sh.ensure(device, split, frame_buffer, targets);
         }
@@ -287,7 +301,7 @@ impl IsmScreen {
             ],
         });
         let shade_group = self.shade_group(device, key, ism, [&split_position, &split_normal, &raw]);
-        let temporal = self.temporal_stage(device, key, frame_buffer, targets, &raw);
+        let temporal = self.temporal_stage(device, key, frame_buffer, targets, temporal_input.unwrap_or(&raw));
         let importance_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ism view importance bind group"),
             layout: &self.importance_layout,
@@ -315,7 +329,28 @@ impl IsmScreen {
             temporal_groups,
             filter_groups,
             importance_group,
+            upsampled,
         });
+    }
+
+    /// The filtered light of half-resolution gathering and the filter's two bind groups
+    /// (writing it, or the view's indirect target).
+    fn upsample_stage(
+        &self,
+        device: &wgpu::Device,
+        key: Key,
+        frame_buffer: &wgpu::Buffer,
+        targets: &ViewTargets,
+        gathered: &Gathered<'_>,
+    ) -> (Target, [wgpu::BindGroup; 2]) {
+        use wgpu::TextureUsages as U;
+        let usage = U::STORAGE_BINDING | U::TEXTURE_BINDING | U::COPY_SRC;
+        let target = Target::new(device, "ism upsampled", key.view, formats::HDR, usage);
+        let groups = [
+            self.upsample.bind_group(device, frame_buffer, gathered, targets, &target.view),
+            self.upsample.bind_group(device, frame_buffer, gathered, targets, &targets.indirect.view),
+        ];
+        (target, groups)
     }
 
     /// The split G-buffer's positions and normals and the split accumulation, at `split`.
@@ -374,8 +409,8 @@ impl IsmScreen {
     }
 
     /// The temporal merge's history (ping-pong), confidence and previous normals, with the
-    /// filter's and the merge's bind groups; the merge reads the split accumulation `raw`, or
-    /// the SH-shaded radiance.
+    /// filter's and the merge's bind groups; the merge reads `raw` (the split accumulation, or
+    /// the half-resolution gathering's filtered light), or the SH-shaded radiance.
     fn temporal_stage(
         &self,
         device: &wgpu::Device,
@@ -471,6 +506,7 @@ impl IsmScreen {
             .iter()
             .map(|t| texture_bytes(&t.texture))
             .sum::<u64>()
+                + s.upsampled.as_ref().map_or(0, |(t, _)| texture_bytes(&t.texture))
         });
         own + self.sh.gpu_bytes()
     }
@@ -495,6 +531,11 @@ impl IsmScreen {
     /// `None` with the SH filter, which accumulates SH coefficients instead.
     pub fn raw(&self) -> Option<&Target> {
         self.sized.as_ref().filter(|s| !s.key.sh).map(|s| &s.raw)
+    }
+
+    /// Half-resolution gathering's filtered light, before the temporal merge.
+    pub fn upsampled(&self) -> Option<&Target> {
+        self.sized.as_ref().and_then(|s| s.upsampled.as_ref()).map(|(t, _)| t)
     }
 
     /// The split G-buffer: world positions and octahedral normals.
@@ -527,21 +568,26 @@ impl IsmScreen {
         let blend = temporal.unwrap_or(Blend { confidence_cap: 0.0, w_illumination: 0.0 });
         let temporal = temporal.is_some();
         let n = settings.interleave.max(1);
-        let key = Key { view: targets.size, n, sh: settings.sh_filter, generation: ism.generation };
+        let step = settings.shade_resolution.scale(targets.size, settings.sh_filter);
+        let key = Key { view: targets.size, n, sh: settings.sh_filter, step, generation: ism.generation };
         self.ensure(device, key, frame_buffer, targets, ism);
         let Some(s) = &self.sized else { return };
         let d_min = settings.clamp_distance;
         let (w, h) = targets.size;
-        queue.write_buffer(&self.split_params, 0, bytemuck::bytes_of(&SplitParams { counts: [n, 0, 0, 0] }));
+        let gathered = gathered_size(targets.size, step);
+        queue.write_buffer(&self.split_params, 0, bytemuck::bytes_of(&SplitParams { counts: [n, step, 0, 0] }));
         let shade = ShadeParams {
             counts: [ism.vpl_count, ism.r, ism.tiles_per_row, n],
             params: [1.0 / ism.d_max, 0.0, d_min * d_min, settings.clamp_disk],
-            sets: [ism.sets, w, h, ism.per_ism],
+            sets: [ism.sets, gathered.0, gathered.1, ism.per_ism],
             bias: ism.bias,
         };
         queue.write_buffer(&self.shade_params, 0, bytemuck::bytes_of(&shade));
         let reset = u32::from(self.reset || !temporal);
-        let raw_split = if settings.sh_filter { 0 } else { n };
+        // The SH path and half-resolution gathering filter before the merge, which then reads
+        // the view's layout.
+        let filtered_first = settings.sh_filter || s.upsampled.is_some();
+        let raw_split = if filtered_first { 0 } else { n };
         let merge = TemporalParams {
             flags: [reset, raw_split, 0, 0],
             weights: [settings.base_confidence, settings.w_position, settings.w_normal, blend.w_illumination],
@@ -557,7 +603,8 @@ impl IsmScreen {
         if settings.sh_filter {
             self.sh.write_params(queue, n, settings, ism.d_max);
         }
-        let (sw, sh) = split_size(targets.size, n);
+        self.upsample.write_params(queue, n, step, gathered, settings, ism.d_max);
+        let (sw, sh) = split_size(gathered, n);
         // Three timed passes: the shading on the split G-buffer, the filters on the view, and
         // the view importance over the pool's points.
         let mut pass = super::gather::step_pass(encoder, timer, "ism shade");
@@ -573,12 +620,15 @@ impl IsmScreen {
         drop(pass);
         let mut pass = super::gather::step_pass(encoder, timer, "ism filter");
         let p = self.parity;
+        if let Some((_, groups)) = &s.upsampled {
+            self.upsample.dispatch(&mut pass, &groups[usize::from(!temporal)], targets.size);
+        }
         if temporal {
             pass.set_pipeline(&self.temporal);
             pass.set_bind_group(0, &s.temporal_groups[p], &[]);
             pass.dispatch_workgroups(w.div_ceil(8), h.div_ceil(8), 1);
         }
-        if !settings.sh_filter {
+        if !filtered_first {
             let input = if temporal { 2 - p } else { 0 };
             pass.set_pipeline(&self.filter);
             pass.set_bind_group(0, &s.filter_groups[input], &[]);
@@ -592,9 +642,10 @@ impl IsmScreen {
             pass.set_bind_group(0, &s.importance_group, &[]);
             pass.dispatch_workgroups(ism.pool_points.div_ceil(64), 1, 1);
         }
-        if settings.sh_filter {
-            // The SH path filters before shading, so its result (merged with the history when
-            // temporal) is the indirect radiance itself.
+        if filtered_first && (temporal || settings.sh_filter) {
+            // The SH path filters before shading and half-resolution gathering before the merge,
+            // so their result (merged with the history when temporal) is the indirect light
+            // itself; without temporal reuse the half-resolution filter wrote it already.
             let result = if temporal { Some(&s.history[1 - p]) } else { self.sh.shaded() };
             if let Some(result) = result {
                 encoder.copy_texture_to_texture(

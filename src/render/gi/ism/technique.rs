@@ -128,7 +128,13 @@ pub const BUFFERS: &[BufferInfo] = &[
     },
     BufferInfo {
         name: "ism_raw",
-        description: "Interleaved VPL shading in the split layout, before filtering (irradiance filter only).",
+        description: "Interleaved VPL shading in the split layout, before filtering (irradiance filter only; a quarter of the view when gathering at half resolution).",
+        format: "rgba32f",
+        view: BufferView::Colour,
+    },
+    BufferInfo {
+        name: "ism_upsampled",
+        description: "Half-resolution gathering: the filter's full-resolution light from the gathered samples, before the temporal merge.",
         format: "rgba32f",
         view: BufferView::Colour,
     },
@@ -460,6 +466,12 @@ impl GiTechnique for IsmTechnique {
                 name: name.into(),
                 known: "render an ism mode with the irradiance filter first (the SH filter accumulates \
                         coefficients: see ism_sh_shaded, ism_sh_dc, ism_sh_direction)"
+                    .into(),
+            }),
+            "ism_upsampled" => screen.upsampled().map(|t| &t.texture).ok_or_else(|| RenderError::UnknownBuffer {
+                name: name.into(),
+                known: "render an ism mode that gathers at half resolution first (shade_resolution: half, or auto \
+                        from 640 x 360)"
                     .into(),
             }),
             "ism_confidence" => screen.confidence().map(|t| &t.texture).ok_or_else(missing),
