@@ -9,8 +9,8 @@
 //
 // The pool is grouped in clusters of nearby points (Morton order, 64 points, bounding sphere).
 // One workgroup per VPL weighs every cluster by the projected solid angle it subtends (`weight`),
-// scans the weights, and draws P points by systematic sampling: P equally
-// spaced positions on the weights' CDF with one random offset per VPL and frame, each taking
+// scans the weights, and draws P points by systematic sampling (each thread P / 256 of them):
+// P equally spaced positions on the weights' CDF with one random offset per VPL and frame, each taking
 // the point at the same relative position inside its cluster (so the points are stratified in
 // space too). A chosen point stands for the area a_j n_c W / (P w_c) (a_j: its own pool area,
 // w_c: the cluster's weight, W: their sum), so sums over the chosen points estimate surface
@@ -146,41 +146,90 @@ fn select_points(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocatio
     if lid == 0u {
         vpls[sp.counts.w + k].normal.w = sqrt(total / f32(p_count));
     }
-    // Samples u_i = (i + xi) W / P in [start, end) are this thread's; neighbouring threads
-    // share the boundary value bit for bit, so every slot is written exactly once.
-    var start = 0.0;
-    if lid > 0u {
-        start = prefix[lid - 1u];
-    }
-    let end = prefix[lid];
     let xi = offset01(k, sp.seed.x);
     let scale = f32(p_count) / total;
-    let i0 = u32(max(ceil(start * scale - xi), 0.0));
-    let i1 = min(u32(max(ceil(end * scale - xi), 0.0)), p_count);
+    // Samples u_i = (i + xi) W / P in [start, end) of thread t's clusters are t's: slots
+    // first_slot(t) .. first_slot(t + 1), the shared boundary value bit for bit, so every slot
+    // is written exactly once. The slots are dealt out evenly (slot i to thread i mod 256):
+    // near a VPL a few clusters take most of the weight, and the thread holding them wrote
+    // hundreds of slots in a row while the rest of the workgroup waited (on a GPU, a serial
+    // chain per VPL). Each slot finds its owner by a binary search over the first slots and
+    // walks the owner's clusters from their start as the owner's own loop did, so the choice
+    // is the same bit for bit.
+    for (var i = lid; i < p_count; i = i + GROUP) {
+        let t = owner(i, scale, xi);
+        let t_lo = min(t * per, n_clusters);
+        let t_hi = min(t_lo + per, n_clusters);
+        var acc = 0.0;
+        if t > 0u {
+            acc = prefix[t - 1u];
+        }
+        write_slot(i, k, base, all_base, walk(t_lo, t_hi, acc, (f32(i) + xi) / scale, o, n), total);
+    }
+}
+
+// The first slot of thread t's share: ceil(prefix[t - 1] P / W - xi) (0 for t = 0).
+fn first_slot(t: u32, scale: f32, xi: f32) -> u32 {
+    if t == 0u {
+        return 0u;
+    }
+    return u32(max(ceil(prefix[t - 1u] * scale - xi), 0.0));
+}
+
+// The thread whose share holds slot i: the last t with first_slot(t) <= i.
+fn owner(i: u32, scale: f32, xi: f32) -> u32 {
+    var lo = 0u;
+    var hi = GROUP - 1u;
+    while lo < hi {
+        let mid = (lo + hi + 1u) / 2u;
+        if first_slot(mid, scale, xi) <= i {
+            lo = mid;
+        } else {
+            hi = mid - 1u;
+        }
+    }
+    return lo;
+}
+
+// Where sample u falls among clusters lo..hi whose weights start at acc: the cluster, the
+// weights before it, its weight.
+struct Found {
+    c: u32,
+    acc: f32,
+    w: f32,
+}
+
+fn walk(lo: u32, hi: u32, start: f32, u: f32, o: vec3<f32>, n: vec3<f32>) -> Found {
     var c = lo;
     var acc = start;
     var w = 0.0;
     if c < hi {
         w = weight(clusters[c], o, n);
     }
-    for (var i = i0; i < i1; i = i + 1u) {
-        let u = (f32(i) + xi) / scale;
-        while c + 1u < hi && (acc + w <= u || w <= 0.0) {
-            acc = acc + w;
-            c = c + 1u;
-            w = weight(clusters[c], o, n);
-        }
-        let cl = clusters[min(c, n_clusters - 1u)];
-        if w <= 0.0 || cl.count == 0u {
-            chosen[base + i] = vec2<u32>(NONE, 0u);
-            chosen_all[all_base + i] = NONE;
-            continue;
-        }
-        let f = clamp((u - acc) / w, 0.0, 0.99999);
-        let j = cl.first + min(u32(f * f32(cl.count)), cl.count - 1u);
-        let a = sp.params.x / max(point_normals[j].w, 1.0e-6);
-        let area = a * f32(cl.count) * total / (f32(p_count) * w);
-        chosen[base + i] = vec2<u32>(j, bitcast<u32>(area));
-        chosen_all[all_base + i] = j;
+    while c + 1u < hi && (acc + w <= u || w <= 0.0) {
+        acc = acc + w;
+        c = c + 1u;
+        w = weight(clusters[c], o, n);
     }
+    return Found(c, acc, w);
+}
+
+// Writes slot i of VPL k: the point at the same relative position inside the found cluster as
+// the sample inside its weight, and the area it stands for.
+fn write_slot(i: u32, k: u32, base: u32, all_base: u32, f: Found, total: f32) {
+    let p_count = sp.counts.y;
+    let cl = clusters[min(f.c, sp.counts.z - 1u)];
+    if f.w <= 0.0 || cl.count == 0u {
+        chosen[base + i] = vec2<u32>(NONE, 0u);
+        chosen_all[all_base + i] = NONE;
+        return;
+    }
+    let scale = f32(p_count) / total;
+    let u = (f32(i) + offset01(k, sp.seed.x)) / scale;
+    let frac = clamp((u - f.acc) / f.w, 0.0, 0.99999);
+    let j = cl.first + min(u32(frac * f32(cl.count)), cl.count - 1u);
+    let a = sp.params.x / max(point_normals[j].w, 1.0e-6);
+    let area = a * f32(cl.count) * total / (f32(p_count) * f.w);
+    chosen[base + i] = vec2<u32>(j, bitcast<u32>(area));
+    chosen_all[all_base + i] = j;
 }
