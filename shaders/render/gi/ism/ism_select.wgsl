@@ -150,21 +150,31 @@ fn select_points(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocatio
     let scale = f32(p_count) / total;
     // Samples u_i = (i + xi) W / P in [start, end) of thread t's clusters are t's: slots
     // first_slot(t) .. first_slot(t + 1), the shared boundary value bit for bit, so every slot
-    // is written exactly once. The slots are dealt out evenly (slot i to thread i mod 256):
-    // near a VPL a few clusters take most of the weight, and the thread holding them wrote
-    // hundreds of slots in a row while the rest of the workgroup waited (on a GPU, a serial
-    // chain per VPL). Each slot finds its owner by a binary search over the first slots and
-    // walks the owner's clusters from their start as the owner's own loop did, so the choice
-    // is the same bit for bit.
-    for (var i = lid; i < p_count; i = i + GROUP) {
-        let t = owner(i, scale, xi);
-        let t_lo = min(t * per, n_clusters);
+    // is written exactly once. The slots are dealt out evenly, P / 256 consecutive ones a
+    // thread: near a VPL a few clusters take most of the weight, and the thread holding them
+    // wrote hundreds of slots in a row while the rest of the workgroup waited (on a GPU, a
+    // serial chain per VPL). A thread finds each slot's owner by a binary search over the
+    // first slots and walks the owner's clusters as the owner's own loop did, from their start
+    // when the owner changes, so the choice is the same bit for bit.
+    let slots = (p_count + GROUP - 1u) / GROUP;
+    let s0 = min(lid * slots, p_count);
+    let s1 = min(s0 + slots, p_count);
+    var t = GROUP;
+    var f = Found(0u, 0.0, 0.0);
+    for (var i = s0; i < s1; i = i + 1u) {
+        let owner_i = owner(i, scale, xi);
+        let t_lo = min(owner_i * per, n_clusters);
         let t_hi = min(t_lo + per, n_clusters);
-        var acc = 0.0;
-        if t > 0u {
-            acc = prefix[t - 1u];
+        if owner_i != t {
+            t = owner_i;
+            var acc = 0.0;
+            if t > 0u {
+                acc = prefix[t - 1u];
+            }
+            f = start_walk(t_lo, t_hi, acc, o, n);
         }
-        write_slot(i, k, base, all_base, walk(t_lo, t_hi, acc, (f32(i) + xi) / scale, o, n), total);
+        f = walk(f, t_hi, (f32(i) + xi) / scale, o, n);
+        write_slot(i, k, base, all_base, f, total);
     }
 }
 
@@ -199,13 +209,20 @@ struct Found {
     w: f32,
 }
 
-fn walk(lo: u32, hi: u32, start: f32, u: f32, o: vec3<f32>, n: vec3<f32>) -> Found {
-    var c = lo;
-    var acc = start;
+// The walk's state at the first of clusters lo..hi, whose weights start at `start`.
+fn start_walk(lo: u32, hi: u32, start: f32, o: vec3<f32>, n: vec3<f32>) -> Found {
     var w = 0.0;
-    if c < hi {
-        w = weight(clusters[c], o, n);
+    if lo < hi {
+        w = weight(clusters[lo], o, n);
     }
+    return Found(lo, start, w);
+}
+
+// The walk from `f` on to sample u (never back: the samples of a thread's share grow).
+fn walk(f: Found, hi: u32, u: f32, o: vec3<f32>, n: vec3<f32>) -> Found {
+    var c = f.c;
+    var acc = f.acc;
+    var w = f.w;
     while c + 1u < hi && (acc + w <= u || w <= 0.0) {
         acc = acc + w;
         c = c + 1u;
