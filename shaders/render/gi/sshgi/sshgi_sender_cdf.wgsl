@@ -7,8 +7,11 @@
 // Two levels, so that no pass is one thread's long walk: `blocks` gives each block of 256
 // senders a workgroup, which scans its powers (Hillis-Steele) into the block's own inclusive
 // prefix sums at `cdf[i]` and its total at `cdf[count + block]`; `totals` (one workgroup) turns
-// the blocks' totals into their inclusive prefix sums in place. The list holds 6 F^2 + hidden
-// senders: 8,192 at the defaults (32 blocks), at most 114,688 (448 blocks, two a thread).
+// the blocks' totals into their inclusive prefix sums in place, and keeps the list's total power
+// in the buffer's last two floats (the previous bounce's, then this one's: `HISTORY` in
+// `sender_cdf.rs`), from which the bounce tail takes the world's ratio (`sshgi_tail.wgsl`). The
+// list holds 6 F^2 + hidden senders: 8,192 at the defaults (32 blocks), at most 114,688 (448
+// blocks, two a thread).
 #import common/workgroup_scan.wgsl
 #import render/gi/sshgi/sshgi_sender.wgsl
 
@@ -97,5 +100,10 @@ fn totals(@builtin(local_invocation_index) lid: u32) {
         if first + k < blocks {
             cdf[count + first + k] = before + run[k];
         }
+    }
+    let end = arrayLength(&cdf);
+    if lid == 0u && end >= count + blocks + 2u {
+        cdf[end - 2u] = cdf[end - 1u];
+        cdf[end - 1u] = scan[255u];
     }
 }

@@ -212,8 +212,9 @@ struct Sized {
     sky: Option<[Target; 3]>,
     /// Which of `bounce[0]` and `sums` holds the bounces' sum (and the sky's).
     total: Total,
-    /// The tail's factor and per-tile sums (with `Plan::tail`).
-    tail: Option<wgpu::Buffer>,
+    /// The tail's factor and per-tile sums (with `Plan::tail`), and the zeros it reads for the
+    /// world's ratio without a sender list.
+    tail: Option<[wgpu::Buffer; 2]>,
 }
 
 /// Where the bounces' sum lies.
@@ -429,7 +430,7 @@ impl SshgiPasses {
                 0 => Total::Bounce,
                 adds => Total::Sum(adds % 2),
             },
-            tail: plan.tail.then(|| tail::buffer(device, plan.level_size(0))),
+            tail: plan.tail.then(|| [tail::buffer(device, plan.level_size(0)), tail::no_world(device)]),
         });
     }
 

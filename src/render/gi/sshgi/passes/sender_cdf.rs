@@ -19,9 +19,14 @@ pub const MAX_BLOCKS: u32 = 512;
 // The largest list the settings allow: six faces of 128^2 and 16,384 hidden senders.
 const _: () = assert!((6 * 128 * 128 + 16_384_u32).div_ceil(BLOCK) <= MAX_BLOCKS);
 
-/// Floats of the prefix sums of a list of `count` senders: one per sender, one per block.
+/// The list's total power of the last two bounces, kept after the prefix sums (previous,
+/// last): the world's ratio the bounce tail reads (`sshgi_tail.wgsl`).
+pub const HISTORY: u64 = 2;
+
+/// Floats of the prefix sums of a list of `count` senders: one per sender, one per block, and
+/// the [`HISTORY`] of the list's totals.
 pub fn floats(count: u64) -> u64 {
-    count + count.div_ceil(u64::from(BLOCK))
+    count + count.div_ceil(u64::from(BLOCK)) + HISTORY
 }
 
 /// The layout (1: the panorama's parameter slot, whose first word is the sender count; 2 the

@@ -278,17 +278,19 @@ impl<'a> StepBuilder<'a> {
             total = dest;
             adds = b;
         }
-        if let (Some(buffer), true) = (&s.tail, bounces >= 2) {
+        if let (Some([buffer, no_world]), true) = (&s.tail, bounces >= 2) {
             let dest = &s.sums[(adds + 1) % 2];
-            self.tail([&s.bounce[bounces - 2], &s.bounce[bounces - 1], total, dest], buffer);
+            let powers = self.key.senders.as_ref().map_or(no_world, |([.., cdf], ..)| cdf);
+            self.tail([&s.bounce[bounces - 2], &s.bounce[bounces - 1], total, dest], [buffer, powers]);
             total = dest;
         }
         total
     }
 
     /// The bounces after the last as a geometric tail of it (`sshgi_tail.wgsl`): `previous` and
-    /// `last` bounce, the sum so far and its destination.
-    fn tail(&mut self, [previous, last, total, dest]: [&'a Target; 4], buffer: &wgpu::Buffer) {
+    /// `last` bounce, the sum so far and its destination; the factor's buffer and the sender
+    /// list's prefix sums (their last two floats, the list's power of the two bounces).
+    fn tail(&mut self, [previous, last, total, dest]: [&'a Target; 4], [buffer, powers]: [&wgpu::Buffer; 2]) {
         let texture = |binding, t: &'a Target| wgpu::BindGroupEntry {
             binding,
             resource: wgpu::BindingResource::TextureView(&t.view),
@@ -303,6 +305,7 @@ impl<'a> StepBuilder<'a> {
                 texture(3, total),
                 texture(4, dest),
                 wgpu::BindGroupEntry { binding: 5, resource: buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 6, resource: powers.as_entire_binding() },
             ],
         });
         let size = (last.texture.width(), last.texture.height());

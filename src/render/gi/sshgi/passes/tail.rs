@@ -6,13 +6,16 @@
 //! view: the suite's cluttered room read 0.688 / 0.753 / 0.795 of the path tracer's energy at 2 /
 //! 3 / 4 bounces, the development levels lit through doorways gained 0.06-0.14 at the fourth.
 
-use crate::render::layouts::{compute_pipeline, storage_rw_entry, storage_texture_entry, texture_entry, uniform_entry};
+use crate::render::layouts::{
+    compute_pipeline, storage_entry, storage_rw_entry, storage_texture_entry, texture_entry, uniform_entry,
+};
 use crate::render::shaders::{self, ShaderError};
 use crate::render::targets::formats;
 
 /// The tail's layout (0: the steps' parameter slot, unused; 1 the previous bounce, 2 the last,
-/// 3 the sum so far, 4 the sum with the tail, 5 the factor and per-tile sums) and its three
-/// pipelines: sums, ratio, add.
+/// 3 the sum so far, 4 the sum with the tail, 5 the factor and per-tile sums, 6 the sender power
+/// prefix sums, whose last two floats are the list's total power of the previous and the last
+/// bounce, or [`no_world`]) and its three pipelines: sums, ratio, add.
 pub(super) fn pipelines(
     device: &wgpu::Device,
 ) -> Result<(wgpu::BindGroupLayout, [wgpu::ComputePipeline; 3]), ShaderError> {
@@ -27,12 +30,24 @@ pub(super) fn pipelines(
             texture_entry(3, c, float),
             storage_texture_entry(4, formats::HDR),
             storage_rw_entry(5),
+            storage_entry(6, c),
         ],
     });
     let module = shaders::module(device, "render/gi/sshgi/sshgi_tail.wgsl")?;
     let pipelines = [("sshgi tail sums", "sums"), ("sshgi tail ratio", "ratio"), ("sshgi tail add", "add")]
         .map(|(label, entry)| compute_pipeline(device, label, &layout, &module, entry));
     Ok((layout, pipelines))
+}
+
+/// What the tail reads in place of the sender list's powers when there is no list (no panorama):
+/// two zeros, so the ratio is the screen's alone.
+pub(super) fn no_world(device: &wgpu::Device) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("sshgi tail: no sender powers"),
+        size: 8,
+        usage: wgpu::BufferUsages::STORAGE,
+        mapped_at_creation: false,
+    })
 }
 
 /// The factor and one pair of sums per 8x8 tile of a start level of `size`.
