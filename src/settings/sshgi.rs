@@ -35,8 +35,13 @@ pub struct SshgiSettings {
     /// Eq. 4's bound, which loses 3% at 64 samples against 256: 0.933).
     pub bounces: u32,
     /// Add the bounces after the last as a geometric series of it, at the ratio of the last
-    /// bounce's light on the start level to the previous bounce's (at most 0.75). Not in the
-    /// paper (`ism`'s tail, at its screen ratio). The suite's cluttered room 0.795 -> 0.878 of
+    /// bounce's light on the start level to the previous bounce's (up to 0.75; past it, light
+    /// still arriving on screen, the geometric mean of that and the sender list's power ratio,
+    /// between 0.75 and 0.9, `sshgi_tail.wgsl`). Not in the paper (`ism`'s tail, at its screen
+    /// ratio, and past the cap `ism`'s mean ratio: `bouncelab probe LEVEL --mode sshgi --frames
+    /// 40 --average-from 16`, the turning corridor 0.675 -> 0.903 of the path tracer's energy,
+    /// the held-out maisonette 0.522 -> 0.902, the suite's rooms 0.918 -> 0.963; free: the
+    /// list's totals come with its prefix sums). The suite's cluttered room 0.795 -> 0.878 of
     /// the path tracer's energy, the hall 0.873 -> 0.927, the diorama 1.068 -> 1.110 (its later
     /// bounces leak without `visibility_all_bounces`; `bouncelab probe --mode sshgi`, 32
     /// frames). Cost: three small passes over the start level (a sum per tile, one workgroup for
