@@ -30,6 +30,7 @@ pub const SHADERS: &[(&str, &str)] = &[
     ("render/gi/ism/ism_bounce.wgsl", include_str!("../../shaders/render/gi/ism/ism_bounce.wgsl")),
     ("render/gi/ism/ism_clips.wgsl", include_str!("../../shaders/render/gi/ism/ism_clips.wgsl")),
     ("render/gi/ism/ism_filter.wgsl", include_str!("../../shaders/render/gi/ism/ism_filter.wgsl")),
+    ("render/gi/ism/ism_filter_centre.wgsl", include_str!("../../shaders/render/gi/ism/ism_filter_centre.wgsl")),
     ("render/gi/ism/ism_lookup.wgsl", include_str!("../../shaders/render/gi/ism/ism_lookup.wgsl")),
     ("render/gi/ism/ism_shade.wgsl", include_str!("../../shaders/render/gi/ism/ism_shade.wgsl")),
     ("render/gi/ism/ism_sh_filter.wgsl", include_str!("../../shaders/render/gi/ism/ism_sh_filter.wgsl")),

@@ -7,6 +7,7 @@
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/interleave.wgsl
+#import render/gi/ism/ism_filter_centre.wgsl
 
 struct FilterParams {
     // interleave n, n when `raw` is in the split layout (0: full layout), unused x2.
@@ -33,14 +34,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if p.x >= size.x || p.y >= size.y {
         return;
     }
-    let pp = position(id.xy);
-    if pp.w < 0.5 {
+    let centre = filter_centre(frame, depth_tex, normal_tex, id.xy);
+    if centre.position.w < 0.5 {
         textureStore(out_indirect, id.xy, vec4<f32>(0.0));
         return;
     }
-    let enc = textureLoad(normal_tex, id.xy, 0);
-    let np = oct_decode(enc.xy);
-    let ngp = oct_decode(enc.zw);
     let tolerance = fp.params.x * fp.params.z;
     let half = i32(fp.counts.x / 2u);
     let n = i32(fp.counts.x);
@@ -51,7 +49,7 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
             let q = clamp(p + vec2<i32>(dx, dy), vec2<i32>(0), size - 1);
             let pq = position(vec2<u32>(q));
             let nq = oct_decode(textureLoad(normal_tex, vec2<u32>(q), 0).xy);
-            if pq.w > 0.5 && abs(dot(pq.xyz - pp.xyz, ngp)) < tolerance && dot(nq, np) > fp.params.y {
+            if pq.w > 0.5 && filter_accepts(centre, pq.xyz, nq, tolerance, fp.params.y) {
                 var at = vec2<u32>(q);
                 if fp.counts.y > 0u {
                     at = split_address(at, vec2<u32>(size), fp.counts.y);

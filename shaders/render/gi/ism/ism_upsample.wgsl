@@ -9,6 +9,7 @@
 #import common/frame.wgsl
 #import common/octahedral.wgsl
 #import common/interleave.wgsl
+#import render/gi/ism/ism_filter_centre.wgsl
 
 struct UpsampleParams {
     // interleave n, gathering step s, gathered samples along x and y.
@@ -45,14 +46,11 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
     if p.x >= size.x || p.y >= size.y {
         return;
     }
-    let pp = position_at(frame, depth_tex, id.xy);
-    if pp.w < 0.5 {
+    let centre = filter_centre(frame, depth_tex, normal_tex, id.xy);
+    if centre.position.w < 0.5 {
         textureStore(out_indirect, id.xy, vec4<f32>(0.0));
         return;
     }
-    let enc = textureLoad(normal_tex, id.xy, 0);
-    let np = oct_decode(enc.xy);
-    let ngp = oct_decode(enc.zw);
     let tolerance = up.params.x * up.params.z;
     let n = i32(up.counts.x);
     let s = i32(up.counts.y);
@@ -71,14 +69,14 @@ fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
                 continue;
             }
             let nq = oct_decode(textureLoad(split_normal, at, 0).xy);
-            let off_plane = abs(dot(pq.xyz - pp.xyz, ngp));
-            let cosine = dot(nq, np);
             let value = textureLoad(raw, at, 0).rgb;
-            if off_plane < tolerance && cosine > up.params.y {
+            if filter_accepts(centre, pq.xyz, nq, tolerance, up.params.y) {
                 acc = acc + value;
                 w = w + 1.0;
             }
-            let score = off_plane / max(tolerance, 1.0e-12) + max(up.params.y - cosine, 0.0) * 1.0e3;
+            // The stand-in: nearest the plane, then the closest normal.
+            let off_plane = abs(dot(pq.xyz - centre.position.xyz, centre.geometric));
+            let score = off_plane / max(tolerance, 1.0e-12) + max(up.params.y - dot(nq, centre.normal), 0.0) * 1.0e3;
             if score < best_score {
                 best_score = score;
                 best = value;
