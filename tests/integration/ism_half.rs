@@ -43,7 +43,7 @@ fn half_resolution_gathering_splits_every_second_pixel_into_a_quarter_of_the_tex
     assert!(indirect.pixels.iter().all(|p| p.iter().all(|c| c.is_finite())), "finite indirect light");
 }
 
-/// Per frame of `mode` at `shade` over 16 frames at 64 x 36 from 2 x 2 supersampling: the
+/// Per frame of `mode` at `shade` over 12 frames at 64 x 36 from 2 x 2 supersampling: the
 /// images box-filtered to 64 x 36.
 fn frames(
     ctx: &bouncelab::render::GpuContext,
@@ -57,7 +57,7 @@ fn frames(
     settings.mode = mode;
     settings.ism.shade_resolution = shade;
     let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
-    (0..16)
+    (0..12)
         .map(|_| {
             r.render(&project.scene, &settings, big).expect("render");
             let pixels = image_io::box_downsample(&r.read_hdr().expect("hdr"), big, k);
@@ -78,11 +78,11 @@ fn mean_image(frames: &[HdrImage]) -> HdrImage {
 }
 
 #[test]
-#[ignore = "heavy: 64 default-settings ism frames and a reference"]
+#[ignore = "heavy: 48 default-settings ism frames and a reference"]
 fn half_resolution_gathering_keeps_full_gatherings_light_error_and_steadiness() {
     let Some(ctx) = common::gpu() else { return };
     let project = Project::load(&default_project_path()).expect("default project");
-    let reference = common::reference(&project.scene, (64, 36), ReferenceSettings { spp: 512, ..Default::default() });
+    let reference = common::reference(&project.scene, (64, 36), ReferenceSettings { spp: 256, ..Default::default() });
     let direct = {
         let mut settings = project.render.clone();
         settings.mode = GiMode::Direct;
@@ -94,7 +94,7 @@ fn half_resolution_gathering_keeps_full_gatherings_light_error_and_steadiness() 
         let full = frames(&ctx, &project, mode, ShadeResolution::Full);
         let half = frames(&ctx, &project, mode, ShadeResolution::Half);
         // ism: the settled frames; ism-ritschel: the mean of its independent frames.
-        let judged = |f: &[HdrImage]| if mode == GiMode::Ism { f[15].clone() } else { mean_image(&f[8..]) };
+        let judged = |f: &[HdrImage]| if mode == GiMode::Ism { f[11].clone() } else { mean_image(&f[6..]) };
         let (jf, jh) = (judged(&full), judged(&half));
         let (lf, lh) = (
             metrics::luminance_ratio(&jf, &reference).expect("ratio"),
@@ -105,8 +105,8 @@ fn half_resolution_gathering_keeps_full_gatherings_light_error_and_steadiness() 
             metrics::flip(&jh, &reference, 0.0).expect("flip").0,
         );
         let (cf, ch) = (
-            metrics::mean_frame_change(&full[8..]).expect("frames"),
-            metrics::mean_frame_change(&half[8..]).expect("frames"),
+            metrics::mean_frame_change(&full[6..]).expect("frames"),
+            metrics::mean_frame_change(&half[6..]).expect("frames"),
         );
         eprintln!(
             "{mode:?} full / half: energy {lf:.4} / {lh:.4}, FLIP {ff:.4} / {fh:.4} (direct {fd:.4}), frame change {cf:.5} / {ch:.5}"
