@@ -59,7 +59,7 @@ pub struct RenderArgs {
     /// Write an intermediate buffer instead of the final image: albedo, normal, material,
     /// motion, object_id, depth, direct, exitance, indirect, hdr, ldr, shadow_map, pyramid_0..5,
     /// and the mode's own (ISM: ism_light_*, ism_importance, ism_atlas(_splats), ism_split_*, ism_raw,
-    /// ism_confidence, ism_history, ism_sh_*; sshgi: sshgi_illumination_k, sshgi_gather_k,
+    /// ism_upsampled, ism_confidence, ism_history, ism_sh_*; sshgi: sshgi_illumination_k, sshgi_gather_k,
     /// sshgi_sum_k, sshgi_bounce_b, sshgi_screen_bounce, sshgi_bounce_sum, sshgi_raw, sshgi_visibility_difference,
     /// sshgi_acceptance, sshgi_voxels(_start), sshgi_voxel_slices@level,first,last); an unknown
     /// name lists the mode's buffers.
