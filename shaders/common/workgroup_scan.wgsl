@@ -2,7 +2,8 @@
 // has no float atomics): each invocation writes its value to `scan[lid]`, the workgroup passes a
 // barrier, and `scan_inclusive(lid)`, called in uniform control flow, leaves in `scan[lid]` the
 // sum of the values up to and with lid's. Used by `ism`'s bounce (`ism_bounce.wgsl`: the sources'
-// prefix) and `sshgi`'s sender power (`sshgi_sender_cdf.wgsl`).
+// prefix) and point selection (`ism_select.wgsl`: the clusters' weights) and `sshgi`'s sender
+// power (`sshgi_sender_cdf.wgsl`).
 
 var<workgroup> scan: array<f32, 256>;
 

@@ -19,6 +19,7 @@
 // spacing, the lookup offset's unit (`ism_offset_point`).
 #import common/octahedral.wgsl
 #import common/vpl.wgsl
+#import common/workgroup_scan.wgsl
 
 struct SelectParams {
     // VPLs per set, points per ISM P, clusters, first VPL of the set.
@@ -55,8 +56,6 @@ struct Cluster {
 
 const GROUP: u32 = 256u;
 const NONE: u32 = 0xffffffffu;
-
-var<workgroup> prefix: array<f32, 256>;
 
 // How far above the VPL's plane (normal n, the centre at v from the VPL) any of cluster c's
 // points can lie: the sphere's top, or tighter, from the cluster's plane (normal m, thickness
@@ -118,19 +117,11 @@ fn select_points(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocatio
     for (var c = lo; c < hi; c = c + 1u) {
         own = own + weight(clusters[c], o, n);
     }
-    prefix[lid] = own;
+    // The weights' inclusive prefix sums over the threads, in `scan`.
+    scan[lid] = own;
     workgroupBarrier();
-    // Inclusive scan (Hillis-Steele).
-    for (var off = 1u; off < GROUP; off = off * 2u) {
-        var v = prefix[lid];
-        if lid >= off {
-            v = v + prefix[lid - off];
-        }
-        workgroupBarrier();
-        prefix[lid] = v;
-        workgroupBarrier();
-    }
-    let total = prefix[GROUP - 1u];
+    scan_inclusive(lid);
+    let total = scan[GROUP - 1u];
     let base = k * p_count;
     let all_base = (sp.counts.w + k) * p_count;
     if !alive || total <= 0.0 {
@@ -169,21 +160,22 @@ fn select_points(@builtin(workgroup_id) wid: vec3<u32>, @builtin(local_invocatio
             t = owner_i;
             var acc = 0.0;
             if t > 0u {
-                acc = prefix[t - 1u];
+                acc = scan[t - 1u];
             }
             f = start_walk(t_lo, t_hi, acc, o, n);
         }
-        f = walk(f, t_hi, (f32(i) + xi) / scale, o, n);
-        write_slot(i, k, base, all_base, f, total);
+        let u = (f32(i) + xi) / scale;
+        f = walk(f, t_hi, u, o, n);
+        write_slot(i, base, all_base, u, f, total);
     }
 }
 
-// The first slot of thread t's share: ceil(prefix[t - 1] P / W - xi) (0 for t = 0).
+// The first slot of thread t's share: ceil(scan[t - 1] P / W - xi) (0 for t = 0).
 fn first_slot(t: u32, scale: f32, xi: f32) -> u32 {
     if t == 0u {
         return 0u;
     }
-    return u32(max(ceil(prefix[t - 1u] * scale - xi), 0.0));
+    return u32(max(ceil(scan[t - 1u] * scale - xi), 0.0));
 }
 
 // The thread whose share holds slot i: the last t with first_slot(t) <= i.
@@ -231,9 +223,10 @@ fn walk(f: Found, hi: u32, u: f32, o: vec3<f32>, n: vec3<f32>) -> Found {
     return Found(c, acc, w);
 }
 
-// Writes slot i of VPL k: the point at the same relative position inside the found cluster as
-// the sample inside its weight, and the area it stands for.
-fn write_slot(i: u32, k: u32, base: u32, all_base: u32, f: Found, total: f32) {
+// Writes slot i (sample u) of a VPL whose slots start at `base` (`all_base` in `chosen_all`): the
+// point at the same relative position inside the found cluster as the sample inside its weight,
+// and the area it stands for.
+fn write_slot(i: u32, base: u32, all_base: u32, u: f32, f: Found, total: f32) {
     let p_count = sp.counts.y;
     let cl = clusters[min(f.c, sp.counts.z - 1u)];
     if f.w <= 0.0 || cl.count == 0u {
@@ -241,8 +234,6 @@ fn write_slot(i: u32, k: u32, base: u32, all_base: u32, f: Found, total: f32) {
         chosen_all[all_base + i] = NONE;
         return;
     }
-    let scale = f32(p_count) / total;
-    let u = (f32(i) + offset01(k, sp.seed.x)) / scale;
     let frac = clamp((u - f.acc) / f.w, 0.0, 0.99999);
     let j = cl.first + min(u32(frac * f32(cl.count)), cl.count - 1u);
     let a = sp.params.x / max(point_normals[j].w, 1.0e-6);

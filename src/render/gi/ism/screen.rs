@@ -603,7 +603,9 @@ impl IsmScreen {
         if settings.sh_filter {
             self.sh.write_params(queue, n, settings, ism.d_max);
         }
-        self.upsample.write_params(queue, n, step, gathered, settings, ism.d_max);
+        if s.upsampled.is_some() {
+            self.upsample.write_params(queue, n, step, gathered, settings, ism.d_max);
+        }
         let (sw, sh) = split_size(gathered, n);
         // Three timed passes: the shading on the split G-buffer, the filters on the view, and
         // the view importance over the pool's points.
