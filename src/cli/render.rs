@@ -56,6 +56,9 @@ pub struct RenderArgs {
     /// Bounce from which Russian roulette may end paths (reference mode).
     #[arg(long)]
     pub rr_start: Option<u32>,
+    /// Path guiding, true or false (reference mode; unbiased either way; off by default).
+    #[arg(long)]
+    pub guiding: Option<bool>,
     /// Write an intermediate buffer instead of the final image: albedo, normal, material,
     /// motion, object_id, depth, direct, exitance, indirect, hdr, ldr, shadow_map, pyramid_0..5,
     /// and the mode's own (ISM: ism_light_*, ism_importance, ism_atlas(_splats), ism_split_*, ism_raw,
@@ -139,6 +142,7 @@ fn checked_project(args: &RenderArgs) -> anyhow::Result<(Project, (u32, u32))> {
     r.reference.max_bounces = args.max_bounces.unwrap_or(r.reference.max_bounces);
     r.reference.seed = args.seed.unwrap_or(r.reference.seed);
     r.reference.rr_start = args.rr_start.unwrap_or(r.reference.rr_start);
+    r.reference.guiding = args.guiding.unwrap_or(r.reference.guiding);
     r.validate()?;
     let size = (args.width, args.height);
     if size.0 == 0 || size.1 == 0 || size.0 > 16384 || size.1 > 16384 {

@@ -9,6 +9,9 @@ pub mod bvh;
 pub mod drt;
 pub mod emitters;
 pub mod facing;
+pub mod guiding;
+#[cfg(test)]
+mod guiding_tests;
 pub mod ism;
 pub mod mrt;
 pub mod open_edges;

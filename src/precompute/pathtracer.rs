@@ -7,14 +7,16 @@
 //! lights too: next-event estimation samples an emissive triangle by power (`emitters.rs`) and
 //! an image sky by luminance (`sky_sampler.rs`), BRDF sampling finds them as well, and the two
 //! are combined by multiple importance sampling with the power heuristic (Veach 1997, ch. 9); a
-//! constant sky is left to BRDF sampling alone. Paths continue by BRDF importance sampling, with
-//! Russian roulette from `rr_start`; `max_bounces = 1` is direct light only (the BRDF-sampled
-//! ray is still traced, to find emitters and the sky for MIS, but the path ends). One call of
+//! constant sky is left to BRDF sampling alone. Paths continue by BRDF importance sampling or,
+//! with path guiding on (`guiding.rs`), by its mixture with a guide learnt from earlier passes
+//! (every MIS weight then uses the mixture's density), with Russian roulette from `rr_start`;
+//! `max_bounces = 1` is direct light only (the BRDF-sampled ray is still traced, to find
+//! emitters and the sky for MIS, but the path ends). One call of
 //! [`PathTracer::add_sample`] adds one jittered (box-filtered) sample to every pixel, in parallel
 //! over rows with rayon, and can be cancelled. Each path draws its decisions from its pixel's
 //! Owen-scrambled Sobol sequence (`sampler.rs`), so a pixel's samples spread evenly.
 
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use glam::{Vec2, Vec3};
@@ -23,6 +25,7 @@ use rayon::prelude::*;
 use super::brdf::{Surface, phong_exponent};
 use super::bvh::{Hit, SceneBvh};
 use super::emitters::{Emitters, power_heuristic};
+use super::guiding::{CellGuide, GUIDE_SHARE, Guide, Record, TRAINING_PASSES, Training};
 use super::sampler::{PathSampler, Sampler};
 use super::sky_sampler::{SkyDistribution, sky_distribution};
 use crate::image_io::srgb_to_linear;
@@ -58,6 +61,9 @@ pub struct PathTracer {
     size: (u32, u32),
     settings: ReferenceSettings,
     accum: Vec<[f64; 3]>,
+    /// Path guiding (`guiding.rs`): what bounces sample from, and the iteration learning the next.
+    guide: Option<Guide>,
+    training: Option<Training>,
     spp: u32,
     rays: u64,
     elapsed: Duration,
@@ -95,7 +101,10 @@ impl PathTracer {
         bvh.wide(); // Built here, not in the first sample's time.
         let emitters = Emitters::new(&bvh, scene.materials());
         let sky = scene.sky_texels();
+        let training = settings.guiding.then(|| scene_box(&bvh)).flatten().map(|(lo, hi)| Training::first(lo, hi));
         Self {
+            guide: None,
+            training,
             bvh,
             materials: scene.materials().to_vec(),
             images: scene.resources().images.clone(),
@@ -138,26 +147,28 @@ impl PathTracer {
     /// Adds one sample to every pixel; returns `None` (and adds nothing) if cancelled.
     pub fn add_sample(&mut self, cancel: &AtomicBool) -> Option<Progress> {
         let start = Instant::now();
-        let w = self.size.0;
-        let sample = self.spp;
-        let rays = AtomicU64::new(0);
+        let w = self.size.0 as usize;
+        let train = self.training.is_some();
         let mut pass = vec![[0.0f32; 3]; self.accum.len()];
-        pass.par_chunks_mut(w as usize).enumerate().for_each(|(y, row)| {
+        let mut rays = 0u64;
+        // While guiding trains, rows go in bands whose records are added in row order (so a
+        // seed gives one image) without holding a whole pass's records.
+        let band = if train { BAND_ROWS * w } else { pass.len().max(1) };
+        for (b, chunk) in pass.chunks_mut(band).enumerate() {
+            let rows: Vec<(u64, Vec<Record>)> = chunk
+                .par_chunks_mut(w)
+                .enumerate()
+                .map(|(i, row)| self.row(b * band / w + i, row, cancel, train))
+                .collect();
             if cancel.load(Ordering::Relaxed) {
-                return;
+                return None;
             }
-            let mut row_rays = 0u64;
-            for (x, out) in row.iter_mut().enumerate() {
-                let pixel = y as u64 * u64::from(w) + x as u64;
-                let mut sampler = PathSampler::new(self.settings.seed, pixel, sample);
-                let (l, r) = self.trace(x as f32, y as f32, &mut sampler);
-                *out = l.to_array();
-                row_rays += r;
+            for (r, records) in rows {
+                rays += r;
+                if let Some(t) = &mut self.training {
+                    t.add(&records);
+                }
             }
-            rays.fetch_add(row_rays, Ordering::Relaxed);
-        });
-        if cancel.load(Ordering::Relaxed) {
-            return None;
         }
         for (a, p) in self.accum.iter_mut().zip(&pass) {
             for c in 0..3 {
@@ -165,9 +176,47 @@ impl PathTracer {
             }
         }
         self.spp += 1;
-        self.rays += rays.into_inner();
+        self.learn();
+        self.rays += rays;
         self.elapsed += start.elapsed();
         Some(self.progress())
+    }
+
+    /// One sample of every pixel of row `y` into `row`: the rays traced and, if `train`, the
+    /// guiding records of its paths.
+    fn row(&self, y: usize, row: &mut [[f32; 3]], cancel: &AtomicBool, train: bool) -> (u64, Vec<Record>) {
+        let mut sink = Sink::default();
+        if cancel.load(Ordering::Relaxed) {
+            return (0, sink.records);
+        }
+        let mut rays = 0u64;
+        let w = self.size.0 as u64;
+        for (x, out) in row.iter_mut().enumerate() {
+            let pixel = y as u64 * w + x as u64;
+            let mut sampler = PathSampler::new(self.settings.seed, pixel, self.spp);
+            let dir = self.camera_ray(x as f32, y as f32, &mut sampler);
+            // A quarter of the paths (a different quarter each pass) train the guide.
+            let trains = train && (x as u64 + 2 * (y as u64 & 1) + u64::from(self.spp)).is_multiple_of(TRAINING_STRIDE);
+            let into = if trains { Some(&mut sink) } else { None };
+            let (l, r) = self.radiance_into(self.camera.position, dir, &mut sampler, into);
+            *out = l.to_array();
+            rays += r;
+        }
+        (rays, sink.records)
+    }
+
+    /// After a pass: ends the training iteration if it is complete (its guide replaces the
+    /// last; training stops after [`TRAINING_PASSES`]).
+    fn learn(&mut self) {
+        let Some((guide, next)) = self.training.as_mut().and_then(Training::finish_pass) else { return };
+        self.guide = Some(guide);
+        self.training = (self.spp < TRAINING_PASSES).then_some(next);
+    }
+
+    /// Cells of the path-guiding tree the tracer samples from (0 before the first pass or
+    /// with guiding off).
+    pub fn guide_cells(&self) -> usize {
+        self.guide.as_ref().map_or(0, Guide::cells)
     }
 
     /// Adds samples until `spp` are accumulated (or cancelled), reporting after each pass.
@@ -218,12 +267,6 @@ impl PathTracer {
         (p, tri.ng, surface)
     }
 
-    /// One path through pixel (x, y): radiance and the number of rays traced.
-    fn trace(&self, x: f32, y: f32, rng: &mut impl Sampler) -> (Vec3, u64) {
-        let dir = self.camera_ray(x, y, rng);
-        self.radiance(self.camera.position, dir, rng)
-    }
-
     /// The direction of a camera ray through pixel (x, y), jittered within the pixel.
     pub fn camera_ray(&self, x: f32, y: f32, rng: &mut impl Sampler) -> Vec3 {
         let (w, h) = self.size;
@@ -244,8 +287,19 @@ impl PathTracer {
     /// One path estimate of the radiance arriving at `origin` from direction `-dir` (the ray
     /// `origin + t dir`), and the number of rays traced.
     pub fn radiance(&self, origin: Vec3, dir: Vec3, rng: &mut impl Sampler) -> (Vec3, u64) {
+        self.radiance_into(origin, dir, rng, None)
+    }
+
+    /// [`Self::radiance`], handing the path's guiding records to `records`.
+    fn radiance_into(
+        &self,
+        origin: Vec3,
+        dir: Vec3,
+        rng: &mut impl Sampler,
+        records: Option<&mut Sink>,
+    ) -> (Vec3, u64) {
         let mut radiance = Vec3::ZERO;
-        let rays = self.walk(origin, dir, rng, |vertex| radiance += vertex.light);
+        let rays = self.follow(origin, dir, rng, &mut |vertex| radiance += vertex.light, records);
         if let Some(c) = self.settings.clamp {
             let m = radiance.max_element();
             if m > c {
@@ -260,7 +314,20 @@ impl PathTracer {
     /// the first, its next-event estimate, and the MIS-weighted emission and sky its sampled
     /// bounce ray finds, times the path's throughput); a first ray that leaves the scene hands
     /// over the sky it sees as a vertex at depth 0 far along `dir`. Returns the rays traced.
-    pub fn walk(&self, mut origin: Vec3, mut dir: Vec3, rng: &mut impl Sampler, mut visit: impl FnMut(Vertex)) -> u64 {
+    pub fn walk(&self, origin: Vec3, dir: Vec3, rng: &mut impl Sampler, mut visit: impl FnMut(Vertex)) -> u64 {
+        self.follow(origin, dir, rng, &mut visit, None)
+    }
+
+    /// [`Self::walk`], handing the path's guiding records (one a bounce) to `records`.
+    fn follow(
+        &self,
+        mut origin: Vec3,
+        mut dir: Vec3,
+        rng: &mut impl Sampler,
+        visit: &mut dyn FnMut(Vertex),
+        records: Option<&mut Sink>,
+    ) -> u64 {
+        let mut trail = records.zip(self.training.as_ref()).map(|(r, t)| Trail::new(r, t));
         let mut throughput = Vec3::ONE;
         let mut rays = 1u64;
         let eps = 1e-4 * self.bvh.scale;
@@ -280,7 +347,8 @@ impl PathTracer {
                 break; // One-sided: the back of a surface is black.
             }
             let lifted = p + ng * eps;
-            let at = ShadingPoint { p, ng, lifted, v, surface: &surface };
+            let guide = self.guide.as_ref().and_then(|g| g.at(p, ng));
+            let at = ShadingPoint { p, ng, lifted, v, surface: &surface, guide };
             let mut light = throughput * self.next_event(&at, rng, &mut rays);
             if depth == 0 {
                 light += self.emitted(&h);
@@ -288,17 +356,29 @@ impl PathTracer {
             let last = depth + 1 >= self.settings.max_bounces;
             if last && !area_lights {
                 visit(Vertex { depth, p, ng, light });
+                if let Some(t) = &mut trail {
+                    t.add(light);
+                }
                 break;
             }
-            let Some((l, pdf)) = sample_bounce(&surface, ng, v, rng) else {
+            let Some((l, pdf)) = sample_bounce(&at, rng) else {
                 visit(Vertex { depth, p, ng, light });
+                if let Some(t) = &mut trail {
+                    t.add(light);
+                }
                 break;
             };
             throughput *= surface.eval(v, l) * surface.n.dot(l) / pdf;
+            if let Some(t) = &mut trail {
+                t.bounce(p, ng, l, pdf, throughput, light);
+            }
             rays += 1;
             hit = self.bvh.trace(lifted, l, f32::INFINITY);
             light += throughput * self.found_light(l, hit.as_ref(), pdf);
             visit(Vertex { depth, p, ng, light });
+            if let Some(t) = &mut trail {
+                t.add(light);
+            }
             if last {
                 break;
             }
@@ -311,6 +391,9 @@ impl PathTracer {
             }
             origin = lifted;
             dir = l;
+        }
+        if let Some(t) = trail {
+            t.finish();
         }
         rays
     }
@@ -368,7 +451,7 @@ impl PathTracer {
             if let Some(cos) = at.facing(l).filter(|_| pdf > 0.0) {
                 *rays += 1;
                 if !self.bvh.trace_occluded(at.lifted, l, f32::INFINITY) {
-                    let w = power_heuristic(pdf, at.surface.pdf(at.v, l));
+                    let w = power_heuristic(pdf, at.bounce_pdf(l));
                     out += at.surface.eval(at.v, l) * self.sky_radiance(l) * cos / pdf * w;
                 }
             }
@@ -397,7 +480,7 @@ impl PathTracer {
         }
         let pdf = s.pdf_area * dist * dist / cos_light;
         let hit = Hit { t: dist, tri: s.tri, u: s.u, v: s.v };
-        let w = power_heuristic(pdf, at.surface.pdf(at.v, l));
+        let w = power_heuristic(pdf, at.bounce_pdf(l));
         at.surface.eval(at.v, l) * self.emitted(&hit) * cos / pdf * w
     }
 
@@ -428,6 +511,8 @@ struct ShadingPoint<'a> {
     lifted: Vec3,
     v: Vec3,
     surface: &'a Surface,
+    /// The guiding distribution of the point's cell, if one was learnt.
+    guide: CellGuide<'a>,
 }
 
 impl ShadingPoint<'_> {
@@ -437,17 +522,104 @@ impl ShadingPoint<'_> {
         let cos = self.surface.n.dot(l);
         (self.ng.dot(l) > 0.0 && cos > 0.0).then_some(cos)
     }
+
+    /// The density with which [`sample_bounce`] picks `l`: the BRDF's, or its mixture with the
+    /// guide's where the cell has one.
+    fn bounce_pdf(&self, l: Vec3) -> f32 {
+        let brdf = self.surface.pdf(self.v, l);
+        match self.guide {
+            Some(g) => GUIDE_SHARE * g.pdf(l) + (1.0 - GUIDE_SHARE) * brdf,
+            None => brdf,
+        }
+    }
 }
 
-/// A bounce direction sampled from the BRDF above the geometric normal, with its density.
-fn sample_bounce(surface: &Surface, ng: Vec3, v: Vec3, rng: &mut impl Sampler) -> Option<(Vec3, f32)> {
+/// A bounce direction above the geometric and the shading normal, sampled from the BRDF or,
+/// where the point's cell learnt a guide, from the one-sample mixture of the BRDF and the guide
+/// (the choice number picks the strategy, then the lobe); with its density. `None` ends the path
+/// (a direction below the surface carries no light).
+fn sample_bounce(at: &ShadingPoint<'_>, rng: &mut impl Sampler) -> Option<(Vec3, f32)> {
     let [u0, u1, choice] = rng.next_3d();
-    let l = surface.sample(v, (u0, u1), choice)?;
-    if ng.dot(l) <= 0.0 {
+    let l = match at.guide {
+        Some(g) if choice < GUIDE_SHARE => g.sample(u0, u1),
+        Some(_) => at.surface.sample(at.v, (u0, u1), (choice - GUIDE_SHARE) / (1.0 - GUIDE_SHARE))?,
+        None => at.surface.sample(at.v, (u0, u1), choice)?,
+    };
+    if at.ng.dot(l) <= 0.0 || at.surface.n.dot(l) <= 0.0 {
         return None;
     }
-    let pdf = surface.pdf(v, l);
+    let pdf = at.bounce_pdf(l);
     (pdf > 0.0).then_some((l, pdf))
+}
+
+/// One path in this many trains the guide (the rest only use it): a quarter of the paths
+/// learn about as well as all of them and cost a quarter as much (docs/notes/reference-tracer.md).
+const TRAINING_STRIDE: u64 = 4;
+
+/// Rows of a band while guiding trains.
+const BAND_ROWS: usize = 32;
+
+/// The box around the scene's triangles (`None` for an empty scene): the guiding tree's root.
+fn scene_box(bvh: &SceneBvh) -> Option<(Vec3, Vec3)> {
+    let corners = bvh.tris.iter().flat_map(|t| t.p);
+    let lo = corners.clone().reduce(Vec3::min)?;
+    let hi = corners.reduce(Vec3::max)?;
+    Some((lo, hi))
+}
+
+/// A path's bounces, for guiding's training: each bounce's estimate of the radiance arriving
+/// along its direction is all the light the path gathers after it, over the throughput it had
+/// just after it.
+struct Trail<'a> {
+    sink: &'a mut Sink,
+    training: &'a Training,
+    gathered: Vec3,
+}
+
+/// Where a row's paths leave their guiding records, with room for one path's bounces.
+#[derive(Default)]
+struct Sink {
+    records: Vec<Record>,
+    bounces: Vec<Bounce>,
+}
+
+/// A bounce of a [`Trail`].
+struct Bounce {
+    p: Vec3,
+    ng: Vec3,
+    l: Vec3,
+    pdf: f32,
+    throughput: Vec3,
+    before: Vec3,
+}
+
+impl<'a> Trail<'a> {
+    fn new(sink: &'a mut Sink, training: &'a Training) -> Self {
+        sink.bounces.clear();
+        Self { sink, training, gathered: Vec3::ZERO }
+    }
+
+    /// A bounce at `p` (normal `ng`) along `l` (density `pdf`); `throughput` is the path's just
+    /// after it, `light` what the vertex sent before it.
+    fn bounce(&mut self, p: Vec3, ng: Vec3, l: Vec3, pdf: f32, throughput: Vec3, light: Vec3) {
+        self.sink.bounces.push(Bounce { p, ng, l, pdf, throughput, before: self.gathered + light });
+    }
+
+    /// A vertex's whole light, once visited.
+    fn add(&mut self, light: Vec3) {
+        self.gathered += light;
+    }
+
+    /// Hands over each bounce's record.
+    fn finish(self) {
+        const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
+        let Sink { records, bounces } = self.sink;
+        for b in bounces.iter() {
+            let after = self.gathered - b.before;
+            let incident = Vec3::select(b.throughput.cmpgt(Vec3::ZERO), after / b.throughput, Vec3::ZERO);
+            records.push(self.training.record(b.p, b.ng, b.l, incident.dot(LUMA) / b.pdf));
+        }
+    }
 }
 
 /// A surface a path meets ([`PathTracer::walk`]).

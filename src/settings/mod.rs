@@ -131,11 +131,17 @@ pub struct ReferenceSettings {
     pub seed: u64,
     /// Optional clamp of each path's radiance (biased; removes fireflies). `None` = unbiased.
     pub clamp: Option<f32>,
+    /// Path guiding (unbiased): bounces learn from earlier passes where the light came from
+    /// (`precompute/guiding.rs`). Off by default: it costs 31-60% more a sample and, against
+    /// Mitsuba 3, reached a given FLIP faster only on the Cornell box (1.47-1.58x Mitsuba's time
+    /// against 1.69-1.80x without) and on `rooms` at 64-128 spp; on `clutter` it was slower
+    /// (docs/notes/reference-tracer.md).
+    pub guiding: bool,
 }
 
 impl Default for ReferenceSettings {
     fn default() -> Self {
-        Self { spp: 256, max_bounces: 64, rr_start: 5, seed: 0, clamp: None }
+        Self { spp: 256, max_bounces: 64, rr_start: 5, seed: 0, clamp: None, guiding: false }
     }
 }
 
