@@ -132,10 +132,10 @@ pub struct ReferenceSettings {
     /// Optional clamp of each path's radiance (biased; removes fireflies). `None` = unbiased.
     pub clamp: Option<f32>,
     /// Path guiding (unbiased): bounces learn from earlier passes where the light came from
-    /// (`precompute/guiding.rs`). Off by default: it costs 31-60% more a sample and, against
-    /// Mitsuba 3, reached a given FLIP faster only on the Cornell box (1.47-1.58x Mitsuba's time
-    /// against 1.69-1.80x without) and on `rooms` at 64-128 spp; on `clutter` it was slower
-    /// (docs/notes/reference-tracer.md).
+    /// (`precompute/guiding.rs`). Off by default: it costs 30-80% more a sample (two machines)
+    /// and, against Mitsuba 3, reached a given FLIP faster only on the Cornell box (1.47-1.58x
+    /// Mitsuba's time against 1.69-1.80x without) and on `rooms` at 64-128 spp; on `clutter` it
+    /// was slower (docs/notes/reference-tracer.md).
     pub guiding: bool,
 }
 
