@@ -8,6 +8,7 @@
 use std::path::Path;
 use std::time::Instant;
 
+use bouncelab::precompute::brdf::Surface;
 use bouncelab::precompute::pathtracer::PathTracer;
 use bouncelab::precompute::rng::Pcg32;
 use bouncelab::precompute::sampler::PathSampler;
@@ -51,11 +52,11 @@ fn main() -> anyhow::Result<()> {
     let mut rng = Pcg32::new(3, 0, 0);
     let rays: Vec<(Vec3, Vec3)> = vertices
         .iter()
-        .map(|&(p, n)| {
-            let (t, b) = bouncelab::precompute::brdf::basis(n);
-            let (u0, u1) = (rng.next_f32(), rng.next_f32());
-            let (r, phi) = (u0.sqrt(), std::f32::consts::TAU * u1);
-            (p + n * eps, t * (r * phi.cos()) + b * (r * phi.sin()) + n * (1.0 - u0).max(0.0).sqrt())
+        .filter_map(|&(p, n)| {
+            // A white Lambertian surface: the tracer's own cosine-distributed bounce.
+            let diffuse = Surface { albedo: Vec3::ONE, specular: Vec3::ZERO, exponent: 1.0, n };
+            let d = diffuse.sample(n, (rng.next_f32(), rng.next_f32()), 1.0)?;
+            Some((p + n * eps, d))
         })
         .collect();
     let start = Instant::now();

@@ -165,8 +165,8 @@ pub fn gi_ui(state: &mut EditorState, ui: &mut egui::Ui, renderer: Option<&Rende
             .on_hover_text("Unbiased; earlier = faster but noisier.");
         ui.checkbox(&mut r.guiding, "path guiding").on_hover_text(
             "Unbiased: bounces learn from earlier passes where the light comes from. Less noise a \
-             sample where light arrives by bounces (Cornell box: half the samples for the same \
-             error), but 30-80% more time a sample: a net gain only in such views.",
+             sample where light arrives by bounces (Cornell box: half the samples for nearly \
+             the same error), but 30-80% more time a sample: a net gain only in such views.",
         );
     });
     egui::CollapsingHeader::new("View").default_open(true).show(ui, |ui| {

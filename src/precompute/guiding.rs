@@ -73,14 +73,7 @@ pub fn bin_of(d: Vec3) -> usize {
 /// that share a cell do not mix their light (levels are mostly axis-aligned).
 pub const SIDES: usize = 6;
 pub fn side_of(n: Vec3) -> usize {
-    let a = n.abs();
-    let axis = if a.x >= a.y && a.x >= a.z {
-        0
-    } else if a.y >= a.z {
-        1
-    } else {
-        2
-    };
+    let axis = n.abs().max_position();
     2 * axis + usize::from(n[axis] < 0.0)
 }
 
@@ -217,14 +210,7 @@ fn split_cell(out: &mut Tree, to: usize, bounds: (Vec3, Vec3), count: f64, thres
         out.boxes.push(bounds);
         return;
     }
-    let size = hi - lo;
-    let axis = if size.x >= size.y && size.x >= size.z {
-        0
-    } else if size.y >= size.z {
-        1
-    } else {
-        2
-    };
+    let axis = (hi - lo).max_position();
     let split = 0.5 * (lo[axis] + hi[axis]);
     let child = out.nodes.len();
     out.nodes.extend([Node { axis: LEAF, split: 0.0, child: 0 }; 2]);
@@ -236,12 +222,11 @@ fn split_cell(out: &mut Tree, to: usize, bounds: (Vec3, Vec3), count: f64, thres
     split_cell(out, child + 1, (right_lo, hi), count * 0.5, threshold, depth + 1);
 }
 
-/// One path vertex's training record: its cell, its cell and side's histogram, the bin its
-/// bounce went into and its estimate of the bin's integral of incident radiance (luminance over
-/// the bounce's density).
+/// One path vertex's training record: its cell and side's histogram (`cell * SIDES + side`),
+/// the bin its bounce went into and its estimate of the bin's integral of incident radiance
+/// (luminance over the bounce's density).
 #[derive(Clone, Copy, Debug)]
 pub struct Record {
-    cell: u32,
     histogram: u32,
     bin: u16,
     value: f32,
@@ -363,13 +348,13 @@ impl Training {
     pub fn record(&self, p: Vec3, ng: Vec3, l: Vec3, value: f32) -> Record {
         let cell = self.tree.cell(p);
         let value = if value.is_finite() { value.max(0.0) } else { 0.0 };
-        Record { cell: cell as u32, histogram: (cell * SIDES + side_of(ng)) as u32, bin: bin_of(l) as u16, value }
+        Record { histogram: (cell * SIDES + side_of(ng)) as u32, bin: bin_of(l) as u16, value }
     }
 
     /// Adds one pass's records (in a fixed order, so a seed gives one image).
     pub fn add(&mut self, records: &[Record]) {
         for r in records {
-            self.counts[r.cell as usize] += 1;
+            self.counts[r.histogram as usize / SIDES] += 1;
             if r.value <= 0.0 {
                 continue;
             }

@@ -27,7 +27,7 @@ use super::bvh::{Hit, SceneBvh};
 use super::emitters::{Emitters, power_heuristic};
 use super::guiding::{CellGuide, GUIDE_SHARE, Guide, Record, TRAINING_PASSES, Training};
 use super::sampler::{PathSampler, Sampler};
-use super::sky_sampler::{SkyDistribution, sky_distribution};
+use super::sky_sampler::{SkyDistribution, luminance, sky_distribution};
 use crate::image_io::srgb_to_linear;
 use crate::scene::{Camera, Environment, Image, Light, LightKind, Material, Scene, SkyImage};
 use crate::settings::ReferenceSettings;
@@ -101,7 +101,7 @@ impl PathTracer {
         bvh.wide(); // Built here, not in the first sample's time.
         let emitters = Emitters::new(&bvh, scene.materials());
         let sky = scene.sky_texels();
-        let training = settings.guiding.then(|| scene_box(&bvh)).flatten().map(|(lo, hi)| Training::first(lo, hi));
+        let training = settings.guiding.then(|| scene.bounds()).flatten().map(|b| Training::first(b.min, b.max));
         Self {
             guide: None,
             training,
@@ -559,14 +559,6 @@ const TRAINING_STRIDE: u64 = 4;
 /// Rows of a band while guiding trains.
 const BAND_ROWS: usize = 32;
 
-/// The box around the scene's triangles (`None` for an empty scene): the guiding tree's root.
-fn scene_box(bvh: &SceneBvh) -> Option<(Vec3, Vec3)> {
-    let corners = bvh.tris.iter().flat_map(|t| t.p);
-    let lo = corners.clone().reduce(Vec3::min)?;
-    let hi = corners.reduce(Vec3::max)?;
-    Some((lo, hi))
-}
-
 /// A path's bounces, for guiding's training: each bounce's estimate of the radiance arriving
 /// along its direction is all the light the path gathers after it, over the throughput it had
 /// just after it.
@@ -612,12 +604,11 @@ impl<'a> Trail<'a> {
 
     /// Hands over each bounce's record.
     fn finish(self) {
-        const LUMA: Vec3 = Vec3::new(0.2126, 0.7152, 0.0722);
         let Sink { records, bounces } = self.sink;
         for b in bounces.iter() {
             let after = self.gathered - b.before;
             let incident = Vec3::select(b.throughput.cmpgt(Vec3::ZERO), after / b.throughput, Vec3::ZERO);
-            records.push(self.training.record(b.p, b.ng, b.l, incident.dot(LUMA) / b.pdf));
+            records.push(self.training.record(b.p, b.ng, b.l, luminance(incident) / b.pdf));
         }
     }
 }
