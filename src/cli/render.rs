@@ -60,7 +60,7 @@ pub struct RenderArgs {
     #[arg(long)]
     pub guiding: Option<bool>,
     /// Write an intermediate buffer instead of the final image: albedo, normal, material,
-    /// motion, object_id, depth, direct, exitance, indirect, hdr, ldr, shadow_map, pyramid_0..5,
+    /// motion, object_id, depth, direct, exitance, indirect, hdr, ldr, shadow_map, pyramid_0..7,
     /// and the mode's own (ISM: ism_light_*, ism_importance, ism_atlas(_splats), ism_split_*, ism_raw,
     /// ism_upsampled, ism_confidence, ism_history, ism_sh_*; sshgi: sshgi_illumination_k, sshgi_gather_k,
     /// sshgi_sum_k, sshgi_bounce_b, sshgi_screen_bounce, sshgi_bounce_sum, sshgi_raw, sshgi_visibility_difference,

@@ -8,8 +8,10 @@ use super::shaders::{self, ShaderError};
 use super::targets::{Target, ViewTargets, formats};
 use super::timing::TimestampPair;
 
-/// Most levels built (level 0 included).
-pub const MAX_LEVELS: u32 = 6;
+/// Most levels built (level 0 included): enough for sshgi's four levels from a sixteenth of a
+/// 4K view (`SshgiSettings::max_start_texels`); the levels past the sixth are a few texels on
+/// views below 1280x720.
+pub const MAX_LEVELS: u32 = 8;
 
 struct Sized {
     size: (u32, u32),
@@ -138,5 +140,7 @@ mod tests {
         assert_eq!(level_count((1, 1)), 1);
         assert_eq!(level_count((64, 36)), 6);
         assert_eq!(level_count((8, 3)), 2);
+        assert_eq!(level_count((1920, 1080)), 8);
+        assert_eq!(level_count((3840, 2160)), 8);
     }
 }

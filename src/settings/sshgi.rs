@@ -15,6 +15,17 @@ pub struct SshgiSettings {
     /// about 4x the start level's gather (the paper: 6.6 ms at ¼, 25.9 ms at ½ without
     /// visibility, GTX 260, 1280x720, 64 samples).
     pub start_level: u32,
+    /// Texels the start level may hold at most (0: no cap): where `start_level`'s reduction of a
+    /// large view leaves more, the start is halved again until it fits, so that the frame's cost
+    /// stops growing with the view. Every pass but the voxelisation and the last up-sampling
+    /// works per start-level texel (the gathers, the panorama's gather and receive, the sky
+    /// rays, the tail): on the H200 (commit e48fc51) sshgi read 50 / 82 / 289 ms at 720p /
+    /// 1080p / 4K on the rooms, growing with the pixels. The default 57,600 is the paper's
+    /// start level at 1280x720 (320x180, a quarter); 1920x1080 then starts at an eighth
+    /// (240x135) and 3840x2160 at a sixteenth. Below 1280x720 (the editor's viewport at the
+    /// default window, the quality matrix) nothing changes. Measured cost and quality:
+    /// `docs/BENCHMARKS.md`, "sshgi's start level capped".
+    pub max_start_texels: u32,
     /// Levels gathered (1..=6, fewer where the view is too small): level k covers the ring
     /// r 2^(k-1)..r 2^k start-level texels around each pixel, so each level doubles the reach
     /// for about a quarter of the previous level's cost (the paper: a 5th level +1% time).
@@ -161,6 +172,7 @@ impl Default for SshgiSettings {
     fn default() -> Self {
         Self {
             start_level: 2,
+            max_start_texels: Self::PAPER_START_TEXELS,
             levels: 4,
             samples: 64,
             radius: 0.0,
@@ -184,6 +196,22 @@ impl Default for SshgiSettings {
 }
 
 impl SshgiSettings {
+    /// The paper's start level at 1280x720: a quarter of the view, 320x180 texels.
+    pub const PAPER_START_TEXELS: u32 = 320 * 180;
+
+    /// The pyramid level the gathers start at for a view of `view` pixels whose pyramid holds
+    /// `pyramid_levels` levels: `start_level`, halved further while the level holds more than
+    /// `max_start_texels` texels, and never past the pyramid's coarsest level.
+    pub fn start_level_for(&self, view: (u32, u32), pyramid_levels: u32) -> u32 {
+        let last = pyramid_levels.saturating_sub(1);
+        let texels = |l: u32| u64::from((view.0 >> l.min(31)).max(1)) * u64::from((view.1 >> l.min(31)).max(1));
+        let mut start = self.start_level.min(last);
+        while self.max_start_texels > 0 && start < last && texels(start) > u64::from(self.max_start_texels) {
+            start += 1;
+        }
+        start
+    }
+
     /// Settings from RON that names only the fields it changes (`bouncelab probe --settings`),
     /// every field left out at its current default. A project file's missing
     /// `world_grid_in_view` reads as off instead (a project saved before it existed keeps its
@@ -198,8 +226,14 @@ impl SshgiSettings {
 
     /// Checks ranges (absurd values are errors, never silently clamped).
     pub fn validate(&self) -> Result<(), SettingsError> {
-        let checks: [(&'static str, bool, String, &'static str); 14] = [
+        let checks: [(&'static str, bool, String, &'static str); 15] = [
             ("sshgi.start_level", self.start_level <= 2, self.start_level.to_string(), "0..=2"),
+            (
+                "sshgi.max_start_texels",
+                self.max_start_texels == 0 || self.max_start_texels >= 1024,
+                self.max_start_texels.to_string(),
+                "0 (no cap) or at least 1024 texels",
+            ),
             ("sshgi.levels", (1..=6).contains(&self.levels), self.levels.to_string(), "1..=6"),
             ("sshgi.samples", (1..=1024).contains(&self.samples), self.samples.to_string(), "1..=1024"),
             (
@@ -284,6 +318,25 @@ mod tests {
     }
 
     #[test]
+    fn the_start_level_is_halved_until_it_holds_at_most_the_cap() {
+        let s = SshgiSettings::default();
+        // Enough pyramid levels for every view below (a 3840x2160 view has 12).
+        assert_eq!(s.start_level_for((1280, 720), 12), 2, "the paper's 320x180 at 720p is within the cap");
+        assert_eq!(s.start_level_for((1024, 640), 12), 2);
+        assert_eq!(s.start_level_for((256, 144), 12), 2, "the quality matrix's view is unchanged");
+        assert_eq!(s.start_level_for((1920, 1080), 12), 3, "1080p starts at 240x135");
+        assert_eq!(s.start_level_for((2560, 1440), 12), 3, "1440p starts at 320x180");
+        assert_eq!(s.start_level_for((3840, 2160), 12), 4, "4K starts at 240x135");
+        let uncapped = SshgiSettings { max_start_texels: 0, ..s.clone() };
+        assert_eq!(uncapped.start_level_for((3840, 2160), 12), 2, "0 is no cap");
+        let full = SshgiSettings { start_level: 0, ..s.clone() };
+        assert_eq!(full.start_level_for((320, 180), 12), 0, "a view within the cap starts where it is set");
+        assert_eq!(full.start_level_for((1920, 1080), 12), 3);
+        assert_eq!(s.start_level_for((3840, 2160), 3), 2, "never past the pyramid's coarsest level");
+        assert_eq!(s.start_level_for((3840, 2160), 0), 0);
+    }
+
+    #[test]
     fn a_project_saved_before_the_grid_in_view_keeps_it_off_and_new_settings_have_it_on() {
         let old: SshgiSettings = ron::from_str("(world_voxels: 256, hidden_senders: 2048)").expect("old settings");
         assert!(!old.world_grid_in_view, "an old project's 256-voxel grid got the rule it reads worse with");
@@ -309,6 +362,9 @@ mod tests {
         assert_eq!(bad.validate().map_err(|e| e.name), Err("sshgi.bounces"));
         let bad = SshgiSettings { radius: f32::NAN, ..Default::default() };
         assert_eq!(bad.validate().map_err(|e| e.name), Err("sshgi.radius"));
+        let bad = SshgiSettings { max_start_texels: 100, ..Default::default() };
+        assert_eq!(bad.validate().map_err(|e| e.name), Err("sshgi.max_start_texels"));
+        assert!(SshgiSettings { max_start_texels: 0, ..Default::default() }.validate().is_ok());
         assert!(SshgiSettings::default().validate().is_ok());
     }
 }

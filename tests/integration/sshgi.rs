@@ -6,7 +6,8 @@
 //! within 10%: it reads 0.905); a visibility difference buffer equal to an unshadowed render's,
 //! and a voxel slice viewer that ORs its slice range; a closed wall that stops the
 //! light with visibility and leaks it without; the temporal filter on a moving camera; voting
-//! that drops a one-pixel pole from the coarse levels instead of letting it flicker.
+//! that drops a one-pixel pole from the coarse levels instead of letting it flicker; a start level
+//! over its texel cap that starts coarser, exactly as the level it lands on.
 
 use crate::common;
 
@@ -129,6 +130,33 @@ fn sshgi_on_the_cornell_box_has_under_six_tenths_of_directs_flip_and_energy_with
     // Eq. 4's bound loses 2% at 64 samples against 256). Before the march ran between the voted
     // points' own pixels over half-size columns it read 0.881.
     assert!((0.9..=1.1).contains(&energy), "sshgi energy {energy:.3} of the reference");
+}
+
+#[test]
+fn a_start_level_over_the_texel_cap_starts_where_the_cap_allows_and_renders_as_that_level() {
+    let Some(ctx) = common::gpu() else { return };
+    let project = suite::scene("cornell").expect("suite scene").load(Path::new(".")).expect("cornell");
+    let big = (SIZE.0 * 2, SIZE.1 * 2);
+    // One frame: the start level's gather size and the image.
+    let frame = |sshgi: SshgiSettings| {
+        let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
+        r.render(&project.scene, &with(&project, GiMode::Sshgi, sshgi), big).expect("render");
+        let gather = r.read_buffer("sshgi_gather_0").expect("start level gather");
+        ((gather.width, gather.height), r.read_hdr().expect("hdr"))
+    };
+    let half = SshgiSettings { start_level: 1, temporal_weight: 0.0, ..Default::default() };
+    // 256x144 halves to 128x72 (9,216 texels), over a cap of 64x36: one more halving.
+    let (capped_size, capped) = frame(SshgiSettings { max_start_texels: 64 * 36, ..half.clone() });
+    let (uncapped_size, _) = frame(SshgiSettings { max_start_texels: 0, ..half.clone() });
+    let (quarter_size, quarter) = frame(SshgiSettings { start_level: 2, max_start_texels: 0, ..half });
+    assert_eq!(uncapped_size, (128, 72), "without a cap the start level is the one set");
+    assert_eq!(capped_size, (64, 36), "the capped start level holds at most the cap's texels");
+    assert_eq!(quarter_size, (64, 36));
+    // Every pass (voxel level, radius, energy scale, panorama and sky per start texel) takes the
+    // start the cap chose: the image equals that of the level set directly.
+    let worst =
+        capped.iter().zip(&quarter).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs())).fold(0.0f32, f32::max);
+    assert!(worst <= 1e-6, "the capped start renders unlike the quarter start it chose: worst difference {worst}");
 }
 
 /// A floor with a spot-lit patch on its left, a closed 0.3 m wall standing across it, and a

@@ -92,9 +92,11 @@ pub const FRAME_BUFFERS: &[BufferInfo] = &[
     },
     pyramid("pyramid_1", "Depth/normal pyramid level 1 (each texel one of its children, chosen by vote)."),
     pyramid("pyramid_2", "Depth/normal pyramid level 2 (sshgi's quarter start level)."),
-    pyramid("pyramid_3", "Depth/normal pyramid level 3."),
-    pyramid("pyramid_4", "Depth/normal pyramid level 4."),
+    pyramid("pyramid_3", "Depth/normal pyramid level 3 (sshgi's start level from 1920x1080, within its texel cap)."),
+    pyramid("pyramid_4", "Depth/normal pyramid level 4 (sshgi's start level at 3840x2160)."),
     pyramid("pyramid_5", "Depth/normal pyramid level 5."),
+    pyramid("pyramid_6", "Depth/normal pyramid level 6 (views of 64 pixels and more a side)."),
+    pyramid("pyramid_7", "Depth/normal pyramid level 7 (views of 128 pixels and more a side)."),
 ];
 
 /// An inspector entry of a pyramid level.

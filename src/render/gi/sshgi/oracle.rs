@@ -74,7 +74,7 @@ pub fn first_bounce(
         }
     }
     let sshgi = bounce.as_ref().map_or(0.0, mean_rgb) / frames as f64;
-    let start = render.sshgi.start_level as usize;
+    let start = render.sshgi.start_level_for(size, crate::render::pyramid::level_count(size)) as usize;
     let geo = renderer.read_buffer(&format!("pyramid_{start}"))?;
     let light = renderer.read_buffer("sshgi_illumination_0")?;
     let (w, h) = (geo.width as usize, geo.height as usize);

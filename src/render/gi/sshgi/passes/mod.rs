@@ -168,10 +168,11 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// The plan for `settings` over a pyramid of `pyramid_levels` levels: the start level and
-    /// the level count are cut to what the pyramid holds.
+    /// The plan for `settings` over a pyramid of `pyramid_levels` levels: the start level
+    /// ([`SshgiSettings::start_level_for`], within `max_start_texels`) and the level count are
+    /// cut to what the pyramid holds.
     pub fn new(settings: &SshgiSettings, view: (u32, u32), pyramid_levels: u32) -> Self {
-        let start = settings.start_level.min(pyramid_levels.saturating_sub(1));
+        let start = settings.start_level_for(view, pyramid_levels);
         let levels = settings.levels.clamp(1, (pyramid_levels - start).max(1));
         let panorama = settings.panorama > 0;
         let bounces = settings.bounces.max(1);
