@@ -137,11 +137,19 @@ fn a_start_level_over_the_texel_cap_starts_where_the_cap_allows_and_renders_as_t
     let Some(ctx) = common::gpu() else { return };
     let project = suite::scene("cornell").expect("suite scene").load(Path::new(".")).expect("cornell");
     let big = (SIZE.0 * 2, SIZE.1 * 2);
-    // One frame: the start level's gather size and the image.
+    // One frame: the start level's gather size, the image, and whether the GI panel's notes
+    // name the capped start (64x36 in place of 128x72).
     let frame = |sshgi: SshgiSettings| {
         let mut r = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
-        r.render(&project.scene, &with(&project, GiMode::Sshgi, sshgi), big).expect("render");
+        let settings = with(&project, GiMode::Sshgi, sshgi);
+        r.render(&project.scene, &settings, big).expect("render");
         let gather = r.read_buffer("sshgi_gather_0").expect("start level gather");
+        let notes = r.limitations(&project.scene, &settings);
+        assert_eq!(
+            notes.iter().any(|n| n.contains("starts its gathers at 64x36 texels, not 128x72")),
+            settings.sshgi.max_start_texels > 0,
+            "the notes name the capped start exactly when the cap acts: {notes:?}"
+        );
         ((gather.width, gather.height), r.read_hdr().expect("hdr"))
     };
     let half = SshgiSettings { start_level: 1, temporal_weight: 0.0, ..Default::default() };

@@ -11,7 +11,8 @@
 #import common/object.wgsl
 
 struct VoxelParams {
-    // near, far (view depth, m), slices per metre (128 / (far - near)), unused.
+    // near, far (view depth, m), slices per metre (128 / (far - near)), the raster's width in
+    // columns (the view's, or a coarser level's where the view's columns exceed a binding).
     range: vec4<f32>,
     // xyz the camera's forward axis, w unused.
     forward: vec4<f32>,
@@ -54,7 +55,7 @@ fn fs_main(in: VoxelOut) -> @location(0) vec4<f32> {
     if z <= vp.range.y {
         let s = u32(clamp(floor((z - vp.range.x) * vp.range.z), 0.0, 127.0));
         let pixel = vec2<u32>(in.clip.xy);
-        let base = (pixel.y * u32(frame.size.x) + pixel.x) * 4u;
+        let base = (pixel.y * u32(vp.range.w) + pixel.x) * 4u;
         for (var w = 0u; w < 4u; w = w + 1u) {
             let mask = from_slice(w, s);
             if mask != 0u {

@@ -13,7 +13,7 @@ use crate::render::gi::technique::{
 };
 use crate::render::{RenderError, readback};
 use crate::scene::Scene;
-use crate::settings::RenderSettings;
+use crate::settings::{RenderSettings, SshgiSettings};
 
 /// An inspector entry of one level's buffer.
 const fn level(name: &'static str, description: &'static str) -> BufferInfo {
@@ -97,6 +97,11 @@ pub struct SshgiTechnique {
     status: TechniqueStatus,
     /// The visibility difference is inspected: gather the first bounce unshadowed too.
     unshadowed: bool,
+    /// The last frame's view size and pyramid level count (what the start level's cap acted on).
+    last_view: Option<((u32, u32), u32)>,
+    /// The level the last frame's voxelisation rasterised: above 0 where the view's columns
+    /// exceed one storage binding of the device.
+    voxel_finest: u32,
 }
 
 impl SshgiTechnique {
@@ -110,6 +115,8 @@ impl SshgiTechnique {
             temporal: TemporalPass::new(device)?,
             status: TechniqueStatus::default(),
             unshadowed: false,
+            last_view: None,
+            voxel_finest: 0,
         })
     }
 
@@ -156,6 +163,24 @@ fn read_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Text
     Ok(HdrImage { width: texture.width(), height: texture.height(), pixels })
 }
 
+impl SshgiTechnique {
+    /// The note that the last frame's view started coarser than `start_level` because of
+    /// `max_start_texels`, naming both sizes (none when the cap did not act).
+    fn capped_start(&self, settings: &SshgiSettings) -> Option<String> {
+        let (view, levels) = self.last_view?;
+        let start = settings.start_level_for(view, levels);
+        let set = settings.start_level.min(levels.saturating_sub(1));
+        (start > set).then(|| {
+            let size = |l: u32| ((view.0 >> l).max(1), (view.1 >> l).max(1));
+            let ((w, h), (sw, sh)) = (size(start), size(set));
+            format!(
+                "the {}x{} view starts its gathers at {w}x{h} texels, not {sw}x{sh}: the start level holds at most {} texels (`start level at most`), which keeps sshgi's cost from growing with the view; light through narrow openings is sampled coarser (the rooms at 1080p: 3% darker); turn the cap off or raise it for a final image",
+                view.0, view.1, settings.max_start_texels
+            )
+        })
+    }
+}
+
 impl GiTechnique for SshgiTechnique {
     fn needs(&self) -> Needs {
         Needs { pyramid: true, ..Needs::default() }
@@ -174,11 +199,15 @@ impl GiTechnique for SshgiTechnique {
         }
         let settings = inputs.settings.sshgi.clone();
         let mut plan = Plan::new(&settings, inputs.targets.size, pyramid.len() as u32);
+        self.last_view = Some((inputs.targets.size, pyramid.len() as u32));
         let axis = ViewAxis::new(inputs.frame);
         let range = Self::voxel_range(inputs, &axis);
         plan.unshadowed = self.unshadowed && range.is_some();
-        // The voxel level the gathers march: `visibility_detail` levels finer than the start.
-        let level = plan.start.saturating_sub(settings.visibility_detail);
+        // The voxel level the gathers march: `visibility_detail` levels finer than the start, and
+        // no finer than the columns one storage binding of the device holds.
+        let finest = super::voxels::finest_level(inputs.device, inputs.targets.size);
+        self.voxel_finest = finest;
+        let level = plan.start.saturating_sub(settings.visibility_detail).max(finest);
         self.voxel_marched = level as usize;
         if let Some((near, far)) = range {
             let params = VoxelParams {
@@ -332,6 +361,13 @@ impl GiTechnique for SshgiTechnique {
             "indirect shadows come from a voxelisation of the view: occluders hidden behind others or off screen cast none, and meshes must be closed".to_owned(),
             "senders and receivers are diffuse: a glossy surface sends its lobe's share of the light spread over its hemisphere, and receives no glossy reflection of the bounce light".to_owned(),
         ];
+        out.extend(self.capped_start(&settings.sshgi));
+        if self.voxel_finest > 0 && settings.sshgi.visibility {
+            out.push(format!(
+                "the view's voxel columns exceed one storage buffer of this GPU: the voxelisation casts a ray per {0}x{0} pixels, so occluders thinner than that can miss the indirect shadows",
+                1u32 << self.voxel_finest
+            ));
+        }
         if emissive {
             out.push(
                 if settings.sshgi.panorama > 0 && settings.sshgi.hidden_senders > 0 {

@@ -23,7 +23,8 @@ const MAX_LEVELS: u64 = 8;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct VoxelParams {
-    /// near, far (view depth, m), slices per metre, unused.
+    /// near, far (view depth, m), slices per metre, the raster's width in columns (set by
+    /// [`VoxelPass::record`]).
     pub range: [f32; 4],
     /// xyz the camera's forward axis.
     pub forward: [f32; 4],
@@ -58,8 +59,26 @@ pub fn automatic_range(camera: Vec3, forward: Vec3, bounds: (Vec3, Vec3)) -> Opt
     (far > 0.0 && far.is_finite()).then(|| (near.max(0.0), far))
 }
 
+/// The finest level of a view of `size` whose columns fit in `limit` bytes (one storage binding
+/// on the device): the voxelisation rasterises there, level 0 (a column per view pixel) wherever
+/// it fits. A view of 5760 x 3240 (1920 x 1080 supersampled 3x) needs 299 MB at level 0, over a
+/// software adapter's 128 MiB.
+pub fn finest_fitting_level(size: (u32, u32), limit: u64) -> u32 {
+    let bytes = |l: u32| u64::from((size.0 >> l).max(1)) * u64::from((size.1 >> l).max(1)) * COLUMN_BYTES;
+    (0..MAX_LEVELS as u32 - 1).find(|&l| bytes(l) <= limit).unwrap_or(MAX_LEVELS as u32 - 1)
+}
+
+/// [`finest_fitting_level`] within `device`'s storage binding and buffer limits.
+pub fn finest_level(device: &wgpu::Device, size: (u32, u32)) -> u32 {
+    let limits = device.limits();
+    finest_fitting_level(size, limits.max_storage_buffer_binding_size.min(limits.max_buffer_size))
+}
+
 struct Sized {
     size: (u32, u32),
+    /// The level the voxelisation rasterises ([`finest_level`]); the levels below it hold a
+    /// placeholder and are never marched.
+    first: usize,
     levels: Vec<wgpu::Buffer>,
     sizes: Vec<(u32, u32)>,
     dummy: Target,
@@ -158,12 +177,14 @@ impl VoxelPass {
             return;
         }
         let sizes: Vec<(u32, u32)> = (0..levels).map(|l| ((size.0 >> l).max(1), (size.1 >> l).max(1))).collect();
+        let first = (finest_level(device, size) as usize).min(levels - 1);
         let buffers = sizes
             .iter()
-            .map(|&(w, h)| {
+            .enumerate()
+            .map(|(l, &(w, h))| {
                 device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some("sshgi voxel columns"),
-                    size: u64::from(w) * u64::from(h) * COLUMN_BYTES,
+                    size: if l < first { COLUMN_BYTES } else { u64::from(w) * u64::from(h) * COLUMN_BYTES },
                     usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
                     mapped_at_creation: false,
                 })
@@ -172,11 +193,11 @@ impl VoxelPass {
         let dummy = Target::new(
             device,
             "sshgi voxelize raster target",
-            size,
+            sizes[first],
             wgpu::TextureFormat::R8Unorm,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
-        self.sized = Some(Sized { size, levels: buffers, sizes, dummy, groups: None });
+        self.sized = Some(Sized { size, first, levels: buffers, sizes, dummy, groups: None });
     }
 
     /// Voxelises the scene for a view of `size` and reduces `levels` levels (level 0 = the view).
@@ -202,10 +223,10 @@ impl VoxelPass {
                 entries: &[
                     wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: self.params.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 2, resource: s.levels[0].as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: s.levels[s.first].as_entire_binding() },
                 ],
             });
-            let mips = (1..s.levels.len())
+            let mips = (s.first + 1..s.levels.len())
                 .map(|l| {
                     device.create_bind_group(&wgpu::BindGroupDescriptor {
                         label: Some("sshgi voxel mip bind group"),
@@ -227,7 +248,7 @@ impl VoxelPass {
                 .collect();
             // The reductions' sizes change only with the view.
             let mut slots = [0u8; (SLOT * MAX_LEVELS) as usize];
-            for l in 1..s.levels.len() {
+            for l in s.first + 1..s.levels.len() {
                 let (f, c) = (s.sizes[l - 1], s.sizes[l]);
                 let p = MipParams { sizes: [f.0, f.1, c.0, c.1] };
                 slots[l * SLOT as usize..l * SLOT as usize + 16].copy_from_slice(bytemuck::bytes_of(&p));
@@ -236,8 +257,13 @@ impl VoxelPass {
             s.groups = Some((frame_buffer.clone(), draw, mips));
         }
         let Some((_, draw_group, mip_groups)) = &s.groups else { return };
+        // The raster's width, for the fragment's column index.
+        let params = VoxelParams {
+            range: [params.range[0], params.range[1], params.range[2], s.sizes[s.first].0 as f32],
+            ..params
+        };
         queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
-        encoder.clear_buffer(&s.levels[0], 0, None);
+        encoder.clear_buffer(&s.levels[s.first], 0, None);
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("sshgi voxelize"),
@@ -251,7 +277,7 @@ impl VoxelPass {
                     },
                 })],
                 depth_stencil_attachment: None,
-                timestamp_writes: timestamps.as_ref().map(|t| t.render_writes(true, s.levels.len() == 1)),
+                timestamp_writes: timestamps.as_ref().map(|t| t.render_writes(true, s.levels.len() == s.first + 1)),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
@@ -260,22 +286,24 @@ impl VoxelPass {
             pass.set_bind_group(1, &gpu.object_bind_group, &[]);
             gpu.draw_geometry(&mut pass);
         }
-        if s.levels.len() > 1 {
+        if s.levels.len() > s.first + 1 {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("sshgi voxel levels"),
                 timestamp_writes: timestamps.as_ref().map(|t| t.compute_end_writes()),
             });
             pass.set_pipeline(&self.mip_pipeline);
-            for (l, group) in mip_groups.iter().enumerate().map(|(i, g)| (i + 1, g)) {
+            for (l, group) in mip_groups.iter().enumerate().map(|(i, g)| (s.first + 1 + i, g)) {
                 pass.set_bind_group(0, group, &[(l as u64 * SLOT) as u32]);
                 pass.dispatch_workgroups(s.sizes[l].0.div_ceil(8), s.sizes[l].1.div_ceil(8), 1);
             }
         }
     }
 
-    /// The columns of level `l` (row-major, four words per texel) of the last frame.
+    /// The columns of level `l` (row-major, four words per texel) of the last frame; none below
+    /// the level the voxelisation rasterised.
     pub fn level(&self, l: usize) -> Option<&wgpu::Buffer> {
-        self.sized.as_ref()?.levels.get(l)
+        let s = self.sized.as_ref()?;
+        if l < s.first { None } else { s.levels.get(l) }
     }
 
     /// The size of level `l`.
@@ -366,6 +394,16 @@ pub fn parse_slices(args: &str) -> Option<(usize, u32, u32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_voxelisation_rasterises_the_finest_level_that_fits_one_binding() {
+        let mib = 1u64 << 20;
+        assert_eq!(finest_fitting_level((1920, 1080), 128 * mib), 0, "1080p's 33 MB fit");
+        assert_eq!(finest_fitting_level((3840, 2160), 128 * mib), 0, "4K's 133 MB fit in 128 MiB");
+        assert_eq!(finest_fitting_level((5760, 3240), 128 * mib), 1, "5760 x 3240's 299 MB do not");
+        assert_eq!(finest_fitting_level((5760, 3240), 4096 * mib), 0);
+        assert_eq!(finest_fitting_level((5760, 3240), 1), MAX_LEVELS as u32 - 1, "never past the last level");
+    }
 
     #[test]
     fn a_column_summary_names_the_solid_share_and_its_ends() {
