@@ -16,14 +16,15 @@ pub fn sshgi_ui(m: &mut SshgiSettings, ui: &mut egui::Ui) {
         .on_hover_text("The start level's gather dominates the cost: each step finer costs about 4x (the paper: 6.6 ms at a quarter, 25.9 ms at half, 1280x720).");
         let mut capped = m.max_start_texels > 0;
         ui.horizontal(|ui| {
-            ui.checkbox(&mut capped, "start level at most");
+            let toggle = ui.checkbox(&mut capped, "start level at most");
             // Shown only while on: the drag value's range would clamp the 0 that means off.
             if m.max_start_texels > 0 {
-                ui.add(egui::DragValue::new(&mut m.max_start_texels).range(1024..=8_294_400).speed(256.0).suffix(" texels"));
+                ui.add(egui::DragValue::new(&mut m.max_start_texels).range(1024..=8_294_400).speed(256.0).suffix(" texels"))
+                    .labelled_by(toggle.id);
             }
         })
         .response
-        .on_hover_text("Views larger than 1280x720 start a level coarser for each halving it takes to hold at most this many texels (default 320x180, the paper's quarter at 720p): 1080p starts at an eighth, 4K at a sixteenth, and the cost stops growing with the view. Off: the start resolution above at every view size.");
+        .on_hover_text("Views larger than 1280x720 start a level coarser for each halving it takes to hold at most this many texels (default 320x180, the paper's quarter at 720p): 1080p starts at an eighth, 4K at a sixteenth, and most of the cost stops growing with the view (the voxelisation and the temporal filter stay per pixel). Off: the start resolution above at every view size.");
         if capped != (m.max_start_texels > 0) {
             m.max_start_texels = if capped { SshgiSettings::PAPER_START_TEXELS } else { 0 };
         }

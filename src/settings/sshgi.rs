@@ -16,14 +16,14 @@ pub struct SshgiSettings {
     /// visibility, GTX 260, 1280x720, 64 samples).
     pub start_level: u32,
     /// Texels the start level may hold at most (0: no cap): where `start_level`'s reduction of a
-    /// large view leaves more, the start is halved again until it fits, so that the frame's cost
-    /// stops growing with the view. Every pass but the voxelisation and the last up-sampling
-    /// works per start-level texel (the gathers, the panorama's gather and receive, the sky
-    /// rays, the tail): on the H200 (commit e48fc51) sshgi read 50 / 82 / 289 ms at 720p /
+    /// large view leaves more, the start is halved again until it fits, so that most of the
+    /// frame's cost stops growing with the view. Every pass but the voxelisation, the last
+    /// up-sampling and the temporal filter works per start-level texel (the gathers, the
+    /// panorama's gather and receive, the sky rays, the later bounces, the tail): on the H200 (commit e48fc51) sshgi read 50 / 82 / 289 ms at 720p /
     /// 1080p / 4K on the rooms, growing with the pixels. The default 57,600 is the paper's
     /// start level at 1280x720 (320x180, a quarter); 1920x1080 then starts at an eighth
-    /// (240x135) and 3840x2160 at a sixteenth. Below 1280x720 (the editor's viewport at the
-    /// default window, the quality matrix) nothing changes. Measured cost and quality:
+    /// (240x135) and 3840x2160 at a sixteenth. Views up to 1280x720 (the quality matrix's
+    /// 256x144 among them) start where they did. Measured cost and quality:
     /// `docs/BENCHMARKS.md`, "sshgi's start level capped".
     pub max_start_texels: u32,
     /// Levels gathered (1..=6, fewer where the view is too small): level k covers the ring

@@ -160,8 +160,9 @@ fn a_start_level_over_the_texel_cap_starts_where_the_cap_allows_and_renders_as_t
     assert_eq!(uncapped_size, (128, 72), "without a cap the start level is the one set");
     assert_eq!(capped_size, (64, 36), "the capped start level holds at most the cap's texels");
     assert_eq!(quarter_size, (64, 36));
-    // Every pass (voxel level, radius, energy scale, panorama and sky per start texel) takes the
-    // start the cap chose: the image equals that of the level set directly.
+    // Every pass the Cornell box runs (voxel level, ring radius, energy scale, the panorama's
+    // gather and receive per start texel) takes the start the cap chose: the image equals that of
+    // the level set directly.
     let worst =
         capped.iter().zip(&quarter).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs())).fold(0.0f32, f32::max);
     assert!(worst <= 1e-6, "the capped start renders unlike the quarter start it chose: worst difference {worst}");

@@ -99,9 +99,6 @@ pub struct SshgiTechnique {
     unshadowed: bool,
     /// The last frame's view size and pyramid level count (what the start level's cap acted on).
     last_view: Option<((u32, u32), u32)>,
-    /// The level the last frame's voxelisation rasterised: above 0 where the view's columns
-    /// exceed one storage binding of the device.
-    voxel_finest: u32,
 }
 
 impl SshgiTechnique {
@@ -116,7 +113,6 @@ impl SshgiTechnique {
             status: TechniqueStatus::default(),
             unshadowed: false,
             last_view: None,
-            voxel_finest: 0,
         })
     }
 
@@ -174,7 +170,7 @@ impl SshgiTechnique {
             let size = |l: u32| ((view.0 >> l).max(1), (view.1 >> l).max(1));
             let ((w, h), (sw, sh)) = (size(start), size(set));
             format!(
-                "the {}x{} view starts its gathers at {w}x{h} texels, not {sw}x{sh}: the start level holds at most {} texels (`start level at most`), which keeps sshgi's cost from growing with the view; light through narrow openings is sampled coarser (the rooms at 1080p: 3% darker); turn the cap off or raise it for a final image",
+                "the {}x{} view starts its gathers at {w}x{h} texels, not {sw}x{sh}: the start level holds at most {} texels (`start level at most`), which keeps most of sshgi's cost from growing with the view; light through narrow openings is sampled coarser (the rooms at 1080p: 3% darker); turn the cap off or raise it for a final image",
                 view.0, view.1, settings.max_start_texels
             )
         })
@@ -206,7 +202,6 @@ impl GiTechnique for SshgiTechnique {
         // The voxel level the gathers march: `visibility_detail` levels finer than the start, and
         // no finer than the columns one storage binding of the device holds.
         let finest = super::voxels::finest_level(inputs.device, inputs.targets.size);
-        self.voxel_finest = finest;
         let level = plan.start.saturating_sub(settings.visibility_detail).max(finest);
         self.voxel_marched = level as usize;
         if let Some((near, far)) = range {
@@ -223,6 +218,7 @@ impl GiTechnique for SshgiTechnique {
                 inputs.scene_gpu,
                 inputs.targets.size,
                 level + 1,
+                finest,
                 params,
                 ts,
             );
@@ -362,10 +358,11 @@ impl GiTechnique for SshgiTechnique {
             "senders and receivers are diffuse: a glossy surface sends its lobe's share of the light spread over its hemisphere, and receives no glossy reflection of the bounce light".to_owned(),
         ];
         out.extend(self.capped_start(&settings.sshgi));
-        if self.voxel_finest > 0 && settings.sshgi.visibility {
+        let finest = self.voxels.first_level();
+        if finest > 0 && settings.sshgi.visibility {
             out.push(format!(
                 "the view's voxel columns exceed one storage buffer of this GPU: the voxelisation casts a ray per {0}x{0} pixels, so occluders thinner than that can miss the indirect shadows",
-                1u32 << self.voxel_finest
+                1u32 << finest
             ));
         }
         if emissive {

@@ -171,13 +171,13 @@ impl VoxelPass {
         })
     }
 
-    fn ensure(&mut self, device: &wgpu::Device, size: (u32, u32), levels: u32) {
+    fn ensure(&mut self, device: &wgpu::Device, size: (u32, u32), levels: u32, first: u32) {
         let levels = u64::from(levels).clamp(1, MAX_LEVELS) as usize;
         if self.sized.as_ref().is_some_and(|s| s.size == size && s.levels.len() == levels) {
             return;
         }
         let sizes: Vec<(u32, u32)> = (0..levels).map(|l| ((size.0 >> l).max(1), (size.1 >> l).max(1))).collect();
-        let first = (finest_level(device, size) as usize).min(levels - 1);
+        let first = (first as usize).min(levels - 1);
         let buffers = sizes
             .iter()
             .enumerate()
@@ -200,7 +200,8 @@ impl VoxelPass {
         self.sized = Some(Sized { size, first, levels: buffers, sizes, dummy, groups: None });
     }
 
-    /// Voxelises the scene for a view of `size` and reduces `levels` levels (level 0 = the view).
+    /// Voxelises the scene for a view of `size` at level `first` ([`finest_level`]) and reduces
+    /// the levels after it up to `levels` levels (level 0 = the view).
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -211,10 +212,11 @@ impl VoxelPass {
         gpu: &SceneGpu,
         size: (u32, u32),
         levels: u32,
+        first: u32,
         params: VoxelParams,
         timestamps: Option<TimestampPair<'_>>,
     ) {
-        self.ensure(device, size, levels);
+        self.ensure(device, size, levels, first);
         let Some(s) = &mut self.sized else { return };
         if s.groups.as_ref().is_none_or(|(frame, ..)| frame != frame_buffer) {
             let draw = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -304,6 +306,12 @@ impl VoxelPass {
     pub fn level(&self, l: usize) -> Option<&wgpu::Buffer> {
         let s = self.sized.as_ref()?;
         if l < s.first { None } else { s.levels.get(l) }
+    }
+
+    /// The level the last voxelisation rasterised (0: a column per view pixel; coarser where
+    /// the view's columns exceed one storage binding).
+    pub fn first_level(&self) -> u32 {
+        self.sized.as_ref().map_or(0, |s| s.first as u32)
     }
 
     /// The size of level `l`.
