@@ -63,10 +63,20 @@ pub struct SshgiSettings {
     /// lies between. Cost: the paper's frame went from 9.8 to 58 ms (1280x720, ¼ start, 64
     /// samples): each sample marches up to r columns, plus a fixed voxelisation pass.
     pub visibility: bool,
-    /// March the voxels on every bounce instead of the first only. The paper skips visibility
-    /// after the first bounce to save cost (after Yu et al. 2009: later bounces are smooth enough
-    /// that their leaks are hard to see); each later bounce's gather then costs as much as without
-    /// visibility.
+    /// March the voxels on every bounce instead of the first only (on since stop 77). The paper
+    /// skips visibility after the first bounce to save cost (after Yu et al. 2009: later bounces
+    /// are smooth enough that their leaks are hard to see). On levels joined by corridors the
+    /// leaks are a large part of the later bounces: the development level of tall rooms joined
+    /// by corridors reads 1.29 of the path tracer's indirect light of four bounces without it
+    /// and 1.14 with it, its first bounce 1.08 either way (`bouncelab probe corridors_tall.gltf
+    /// --mode sshgi --settings "(bounces: 4, bounce_tail: false)"` against a reference cut at
+    /// five path vertices). Off, the development levels' corridors read 1.08 to 1.30 of the path
+    /// tracer's energy, on, 0.95 to 1.14 (`docs/notes/sshgi.md`, stop 77; a level whose light
+    /// arrives after many bounces, the turning corridor, 0.91 -> 0.82: the columns' coarseness
+    /// now blocks later bounces too). Cost: each later bounce's gather marches as the first's:
+    /// sshgi's passes 1.8-2.3x the time without it (lavapipe, 640x360, the rooms, the window
+    /// room and the cluttered room; `docs/BENCHMARKS.md`). Off, each later bounce costs as much
+    /// as without visibility.
     pub visibility_all_bounces: bool,
     /// How many levels finer than the start level the voxel columns are that the visibility
     /// march reads (0..=2, capped at the view's own): each column is the OR of the view's in its
@@ -179,7 +189,7 @@ impl Default for SshgiSettings {
             bounces: 4,
             bounce_tail: true,
             visibility: true,
-            visibility_all_bounces: false,
+            visibility_all_bounces: true,
             visibility_detail: 1,
             voxel_range: [0.0, 0.0],
             temporal_weight: 0.85,

@@ -6,8 +6,10 @@
 //! stratified distribution): `BLOCKS` blocks, each a stratified sample of the whole scene, one
 //! block a frame, so the temporal filter averages several point sets.
 //!
-//! Each frame `sshgi_hidden_pack.wgsl` tests this frame's block against the panorama's distances
-//! (a point the camera sees is left to the screen and the panorama), lights the hidden points with
+//! Each frame `sshgi_hidden_pack.wgsl` tests this frame's block against what the camera sees (a
+//! point it sees is left to the screen and the panorama): a point inside the view's frustum
+//! against the view's own distances (the depth/normal pyramid's level 0, at the view's
+//! resolution), one outside it against the panorama's; lights the hidden points with
 //! the view's lights and shadow maps (as diffuse senders: a glossy lobe's share of the light too,
 //! spread over the hemisphere) and their emission, and writes them after the
 //! panorama's senders into its list: the gathers and receives then treat them as senders like
@@ -22,7 +24,7 @@ use glam::{Mat4, Vec2, Vec3};
 
 use crate::precompute::sample_points::{SamplePoints, distribute};
 use crate::render::gi::inputs::GiInputs;
-use crate::render::layouts::{compute_pipeline_with, storage_entry, storage_rw_entry, uniform_entry};
+use crate::render::layouts::{compute_pipeline_with, storage_entry, storage_rw_entry, texture_entry, uniform_entry};
 use crate::render::lighting::{LightingInputs, LightingPass};
 use crate::render::shaders::{self, ShaderError};
 use crate::scene::Scene;
@@ -30,8 +32,8 @@ use crate::scene::Scene;
 /// Point sets the points are drawn in; frame n packs set n mod `BLOCKS`.
 pub const BLOCKS: u32 = 8;
 
-/// Relative distance by which a point must lie behind every panorama texel around its direction
-/// to count as hidden.
+/// Relative distance by which a point must lie behind every view pixel (or panorama texel)
+/// around its direction to count as hidden.
 const TOLERANCE: f32 = 0.02;
 
 /// One point of the scene (`Surfel` in `sshgi_hidden_pack.wgsl`).
@@ -95,6 +97,7 @@ struct GroupKey {
     lights: wgpu::Buffer,
     shadow_views: wgpu::Buffer,
     shadow_maps: wgpu::TextureView,
+    view_geometry: wgpu::TextureView,
 }
 
 /// The hidden senders' pass and point set.
@@ -120,6 +123,7 @@ impl HiddenSenders {
                 storage_entry(2, c),
                 storage_rw_entry(3),
                 storage_rw_entry(4),
+                texture_entry(5, c, wgpu::TextureSampleType::Float { filterable: false }),
             ],
         });
         let module = shaders::module(device, "render/gi/sshgi/sshgi_hidden_pack.wgsl")?;
@@ -145,6 +149,8 @@ impl HiddenSenders {
     ) {
         self.update(inputs.device, inputs.queue, inputs.scene, per_frame);
         let Some((_, surfels)) = &self.surfels else { return };
+        // What the view sees at its own resolution (sshgi always builds the pyramid).
+        let Some(view_geometry) = inputs.pyramid.as_ref().and_then(|p| p.levels.first()) else { return };
         let key = GroupKey {
             surfels: surfels.clone(),
             distances: lists.distances.clone(),
@@ -154,6 +160,7 @@ impl HiddenSenders {
             lights: inputs.lights.buffer.clone(),
             shadow_views: inputs.lights.shadow_views.clone(),
             shadow_maps: inputs.lights.shadow_maps.clone(),
+            view_geometry: view_geometry.view.clone(),
         };
         if self.groups.as_ref().is_none_or(|(k, _)| *k != key) {
             let groups = self.bind_groups(inputs.device, &key, lighting, sky);
@@ -194,6 +201,7 @@ impl HiddenSenders {
                 buffer(2, &key.distances),
                 buffer(3, &key.senders),
                 buffer(4, &key.radiance),
+                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&key.view_geometry) },
             ],
         });
         let lights = lighting.inputs_bind_group(
