@@ -79,10 +79,11 @@ fn direct_exitance(s: Surfel) -> vec3<f32> {
     return sum;
 }
 
-// Whether the view shows p: 0 where p lies outside the view's frustum, else 1 where it lies no
-// farther than the farthest of the 2x2 view pixels around its projection (plus the tolerance;
-// a pixel without a surface is infinitely far), 2 where it lies behind all four.
-fn seen_in_view(p: vec3<f32>) -> u32 {
+// Whether the view shows p, at distance d from the camera: 0 where p lies outside the view's
+// frustum, else 1 where it lies no farther than the farthest of the 2x2 view pixels around its
+// projection (plus the tolerance; a pixel without a surface is infinitely far), 2 where it lies
+// behind all four.
+fn seen_in_view(p: vec3<f32>, d: f32) -> u32 {
     let c = frame.clip_from_world * vec4<f32>(p, 1.0);
     if c.w <= 0.0 {
         return 0u;
@@ -100,7 +101,6 @@ fn seen_in_view(p: vec3<f32>) -> u32 {
         let g = textureLoad(view_geometry, t, 0);
         far = max(far, select(1.0e30, g.r, g.a > 0.5));
     }
-    let d = distance(p, frame.camera_position.xyz);
     return select(2u, 1u, d <= far * (1.0 + hp.tolerance.x));
 }
 
@@ -108,12 +108,12 @@ fn seen_in_view(p: vec3<f32>) -> u32 {
 // (`seen_in_view`), elsewhere when it lies no farther than the farthest of the 2x2 panorama
 // texels around its direction (plus the tolerance). A point no face holds counts as seen.
 fn seen_from_camera(p: vec3<f32>) -> bool {
-    let in_view = seen_in_view(p);
+    let d = distance(p, frame.camera_position.xyz);
+    let in_view = seen_in_view(p, d);
     if in_view != 0u {
         return in_view == 1u;
     }
     let f = hp.counts.w;
-    let d = distance(p, frame.camera_position.xyz);
     for (var face = 0u; face < 6u; face = face + 1u) {
         let c = hp.faces[face] * vec4<f32>(p, 1.0);
         if c.w <= 0.0 {
